@@ -1,0 +1,46 @@
+// vds: closed triangle meshes of simple solids, generated in code.
+//
+// Tests, benchmarks and `vds eval` build their inputs with these, so that they
+// run from a clean clone and any size can be made on demand. Each solid comes
+// with its analytic description, to tell how far a point is from the ideal
+// surface; the tessellation differs from it by at most `tessellationError`.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include <vds/mesh.h>
+
+namespace vds::solids {
+
+/// Signed distance estimate to an analytic solid: negative inside. Exact for
+/// boxes and spheres; for unions/differences it is the usual min/max bound.
+struct Solid {
+    TriangleMesh mesh;
+    float tessellationError = 0.0f; ///< max distance between mesh and ideal surface
+    /// Signed distance of `p` to the ideal solid (negative inside).
+    float (*signedDistance)(const Solid&, const glm::vec3& p) = nullptr;
+    glm::vec3 centre{0.0f};
+    glm::vec3 size{0.0f}; ///< box: edge lengths; sphere: (r, inner r or 0, 0); torus: (R, r, 0)
+    float distance(const glm::vec3& p) const { return signedDistance(*this, p); }
+};
+
+/// Axis-aligned box from `lo` to `hi`, 12 triangles.
+Solid box(const glm::vec3& lo, const glm::vec3& hi);
+/// UV sphere with `segments` around and `segments/2` rings (>= 8).
+Solid sphere(const glm::vec3& centre, float radius, std::uint32_t segments);
+/// Torus around the z axis: major radius R, minor radius r.
+Solid torus(const glm::vec3& centre, float majorRadius, float minorRadius, std::uint32_t segments);
+/// Hollow shell: sphere of `outer` radius with a sphere of `inner` radius cut
+/// out (inner surface facing inwards). Two shells in one mesh.
+Solid shell(const glm::vec3& centre, float outer, float inner, std::uint32_t segments);
+/// Two overlapping boxes in one mesh, each closed and outward facing, not
+/// merged: the overlap is crossed twice, so parity calls it outside while
+/// non-zero winding calls it inside (the ideal solid is the union).
+Solid overlappingBoxes(const glm::vec3& loA, const glm::vec3& hiA, const glm::vec3& loB, const glm::vec3& hiB);
+
+/// Merges several solids' meshes into one (indices rebased).
+TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b);
+
+} // namespace vds::solids

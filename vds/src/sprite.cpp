@@ -1,0 +1,175 @@
+// Trapp & Döllner 2008, section 3.2: the volumetric parity test, on the CPU.
+// The arithmetic mirrors shaders/vds/vpt.glsl step for step (no fused
+// multiply-adds, same summation order), so C++ and GLSL answers are identical.
+#include <vds/sprite.h>
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include <glm/matrix.hpp>
+
+#include <vds/error.h>
+
+namespace vds {
+
+Axis parseAxis(const std::string& s) {
+    if (s == "x" || s == "X") return Axis::X;
+    if (s == "y" || s == "Y") return Axis::Y;
+    if (s == "z" || s == "Z") return Axis::Z;
+    throw InvalidArgument("unknown axis '" + s + "' (expected x, y or z)");
+}
+
+Rule parseRule(const std::string& s) {
+    if (s == "parity") return Rule::Parity;
+    if (s == "winding") return Rule::Winding;
+    throw InvalidArgument("unknown rule '" + s + "' (expected parity or winding)");
+}
+
+const char* toString(Axis a) { return a == Axis::X ? "x" : a == Axis::Y ? "y" : "z"; }
+const char* toString(Rule r) { return r == Rule::Parity ? "parity" : "winding"; }
+
+glm::ivec3 axisPermutation(Axis axis) {
+    switch (axis) {
+    case Axis::X: return {1, 2, 0};
+    case Axis::Y: return {2, 0, 1};
+    case Axis::Z: break;
+    }
+    return {0, 1, 2};
+}
+
+glm::vec3 SpriteGrid::toTexture(const glm::vec3& world) const {
+    const glm::vec3 d(world.x - position.x, world.y - position.y, world.z - position.z);
+    const glm::mat3& m = matrix;
+    return {(m[0][0] * d.x + m[1][0] * d.y) + m[2][0] * d.z,
+            (m[0][1] * d.x + m[1][1] * d.y) + m[2][1] * d.z,
+            (m[0][2] * d.x + m[1][2] * d.y) + m[2][2] * d.z};
+}
+
+glm::vec3 SpriteGrid::texelCentre(std::uint32_t i, std::uint32_t j, float r) const {
+    const glm::ivec3 p = axisPermutation(axis);
+    glm::vec3 c;
+    c[p.x] = box.lo[p.x] + (float(i) + 0.5f) * texelSize;
+    c[p.y] = box.lo[p.y] + (float(j) + 0.5f) * texelSize;
+    c[p.z] = box.lo[p.z] + r * (box.hi[p.z] - box.lo[p.z]);
+    return c;
+}
+
+SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution) {
+    if (resolution == 0 || resolution > kMaxResolution)
+        throw InvalidArgument("resolution " + std::to_string(resolution) + " is out of range (1 to " +
+                              std::to_string(kMaxResolution) + ")");
+    const glm::ivec3 p = axisPermutation(axis);
+    const glm::vec3 ext = box.hi - box.lo;
+    const double es = ext[p.x], et = ext[p.y], er = ext[p.z];
+    if (!(std::isfinite(es) && std::isfinite(et) && std::isfinite(er)))
+        throw InvalidArgument("box is not finite");
+    const double across = std::max(es, et);
+    if (!(across > 0.0)) throw InvalidArgument(std::string("box has no extent across the view axis ") + toString(axis));
+    if (!(er > 0.0)) throw InvalidArgument(std::string("box has no extent along the view axis ") + toString(axis));
+
+    SpriteGrid g;
+    g.box = box;
+    g.axis = axis;
+    const double texel = across / resolution;
+    auto count = [&](double e) {
+        if (e == across) return resolution;
+        return std::max<std::uint32_t>(1, std::min<std::uint32_t>(resolution, std::uint32_t(std::ceil(e / texel))));
+    };
+    g.width = count(es);
+    g.height = count(et);
+    g.texelSize = float(texel);
+    g.position = box.lo;
+    g.matrix = glm::mat3(0.0f);
+    g.matrix[p.x][0] = float(1.0 / (g.width * texel));
+    g.matrix[p.y][1] = float(1.0 / (g.height * texel));
+    g.matrix[p.z][2] = float(1.0 / er);
+    return g;
+}
+
+bool Sprite::contains(const glm::vec3& world, Rule rule) const {
+    const glm::vec3 t = grid.toTexture(world);
+    if (!(t.z >= 0.0f && t.z <= 1.0f)) return false;
+    const float fs = std::floor(t.x * float(grid.width));
+    const float ft = std::floor(t.y * float(grid.height));
+    if (!(fs >= 0.0f && fs < float(grid.width) && ft >= 0.0f && ft < float(grid.height))) return false;
+    const std::size_t column = std::size_t(ft) * grid.width + std::size_t(fs);
+    int parity = 0, winding = 0;
+    for (std::uint32_t k = offsets[column], end = offsets[column + 1]; k < end; ++k) {
+        const float e = crossings[k];
+        if (!(std::fabs(e) < t.z)) break;
+        parity ^= 1;
+        winding += crossingEnters(e) ? 1 : -1;
+    }
+    return rule == Rule::Parity ? parity != 0 : winding != 0;
+}
+
+void Sprite::transform(const glm::mat4& model) {
+    const glm::mat3 a(model);
+    const glm::vec3 b(model[3]);
+    const float det = glm::determinant(a);
+    if (!(std::isfinite(det) && det != 0.0f) || model[0][3] != 0.0f || model[1][3] != 0.0f || model[2][3] != 0.0f ||
+        model[3][3] != 1.0f)
+        throw InvalidArgument("sprite transform must be affine and invertible");
+    grid.matrix = grid.matrix * glm::inverse(a);
+    grid.position = a * grid.position + b;
+}
+
+std::size_t Sprite::memoryBytes() const {
+    return offsets.size() * sizeof(std::uint32_t) + crossings.size() * sizeof(float);
+}
+
+std::size_t Sprite::denseBytes() const {
+    return std::size_t(grid.width) * grid.height * std::max<std::uint32_t>(1, depthComplexity) * sizeof(float);
+}
+
+void Sprite::checkConsistent() const {
+    const std::size_t columns = std::size_t(grid.width) * grid.height;
+    if (grid.width == 0 || grid.height == 0 || grid.width > kMaxResolution || grid.height > kMaxResolution)
+        throw FormatError("sprite size " + std::to_string(grid.width) + "x" + std::to_string(grid.height) +
+                          " is out of range");
+    if (offsets.size() != columns + 1) throw FormatError("sprite offsets do not match its size");
+    if (offsets.front() != 0 || offsets.back() != crossings.size())
+        throw FormatError("sprite offsets do not match its crossing count");
+    std::uint32_t most = 0;
+    for (std::size_t c = 0; c < columns; ++c) {
+        if (offsets[c + 1] < offsets[c]) throw FormatError("sprite offsets decrease at column " + std::to_string(c));
+        most = std::max(most, offsets[c + 1] - offsets[c]);
+        float previous = 0.0f;
+        for (std::uint32_t k = offsets[c]; k < offsets[c + 1]; ++k) {
+            const float d = std::fabs(crossings[k]);
+            if (!(d >= 0.0f && d <= 1.0f)) throw FormatError("sprite depth out of [0,1] at column " + std::to_string(c));
+            if (d < previous) throw FormatError("sprite column " + std::to_string(c) + " is not sorted by depth");
+            previous = d;
+        }
+    }
+    if (most != depthComplexity)
+        throw FormatError("sprite depth complexity " + std::to_string(depthComplexity) + " disagrees with its columns (" +
+                          std::to_string(most) + ")");
+    for (int k = 0; k < 9; ++k)
+        if (!std::isfinite(grid.matrix[k / 3][k % 3])) throw FormatError("sprite matrix is not finite");
+    if (!std::isfinite(grid.position.x + grid.position.y + grid.position.z))
+        throw FormatError("sprite position is not finite");
+}
+
+void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count, std::uint8_t* labels,
+              const ClassifyOptions& options) {
+    unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    threads = unsigned(std::min<std::size_t>(threads, std::max<std::size_t>(1, count / 4096)));
+    auto work = [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) labels[k] = sprite.contains(points[k], options.rule) ? 1 : 0;
+    };
+    if (threads <= 1) {
+        work(0, count);
+        return;
+    }
+    std::vector<std::thread> pool;
+    const std::size_t chunk = (count + threads - 1) / threads;
+    for (unsigned t = 0; t < threads; ++t) {
+        const std::size_t begin = std::min(count, t * chunk), end = std::min(count, begin + chunk);
+        pool.emplace_back(work, begin, end);
+    }
+    for (auto& th : pool) th.join();
+}
+
+} // namespace vds
