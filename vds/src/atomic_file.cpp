@@ -1,22 +1,25 @@
-#include "atomic_file.h"
+#include <vds/atomic_file.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <vds/error.h>
 
 namespace vds {
 
-namespace detail {
-
 AtomicFile::AtomicFile(const std::string& target) : target_(target) {
     std::string pattern = target + ".tmp-XXXXXX";
     const int fd = ::mkstemp(pattern.data());
     if (fd < 0) throw IoError(target + ": cannot create a file there (" + std::strerror(errno) + ")");
+    // mkstemp makes the file private; give it the permissions a plain create would.
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    ::fchmod(fd, 0666 & ~mask);
     ::close(fd);
     temporary_ = pattern;
 }
@@ -31,6 +34,6 @@ void AtomicFile::commit() {
     committed_ = true;
 }
 
-} // namespace detail
+
 
 } // namespace vds

@@ -9,7 +9,7 @@
 #include <png.h>
 #include <unistd.h>
 
-#include "atomic_file.h"
+#include <vds/atomic_file.h>
 #include <vds/error.h>
 
 namespace vds {
@@ -31,7 +31,7 @@ void pngWarning(png_structp, png_const_charp) {}
 void writePng(const Image& image, const std::string& path) {
     if (image.width == 0 || image.height == 0 || image.rgba.size() != std::size_t(image.width) * image.height * 4)
         throw InvalidArgument(path + ": image is empty or its size disagrees with its pixels");
-    detail::AtomicFile out(path);
+    AtomicFile out(path);
     {
         File f(std::fopen(out.path().c_str(), "wb"));
         if (!f) throw IoError(path + ": cannot write (" + std::strerror(errno) + ")");

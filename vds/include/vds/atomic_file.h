@@ -1,9 +1,10 @@
-// vds internal: write-to-temporary-then-rename, so outputs are never half-written.
+// vds: write to a temporary file beside the target, then rename it into place,
+// so an output is never left half-written (a crash leaves the old file or none).
 #pragma once
 
 #include <string>
 
-namespace vds::detail {
+namespace vds {
 
 /// A temporary file beside `target`; `commit()` renames it over the target,
 /// the destructor removes it if not committed. Throws `IoError`.
@@ -23,4 +24,4 @@ private:
     bool committed_ = false;
 };
 
-} // namespace vds::detail
+} // namespace vds

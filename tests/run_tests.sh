@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# The whole test suite from a fresh Debian 12 machine: installs the packages,
+# builds (Release, tests on) into build-tests/, runs every test with ctest.
+# GL tests run on a real headless context (llvmpipe without a GPU); a missing
+# GL fails them rather than skipping (set VDS_REQUIRE_GL=0 to allow skips).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash tools/install-deps.sh
+cmake -S . -B build-tests -G Ninja -DCMAKE_BUILD_TYPE=Release -DVDS_BUILD_TESTS=ON
+cmake --build build-tests -j "$(nproc)"
+export VDS_REQUIRE_GL="${VDS_REQUIRE_GL:-1}"
+ctest --test-dir build-tests --output-on-failure -j "$(nproc)" --timeout 600

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs what vds needs to build, test and run on Debian 12, from Debian's
+# packages only. Does nothing when everything is already there.
+set -euo pipefail
+packages=(
+  cmake ninja-build g++ pkg-config
+  libegl-dev libgl-dev libopengl-dev   # OpenGL through EGL (glvnd)
+  libgl1-mesa-dri libegl-mesa0         # Mesa's llvmpipe: GL 4.5 core where there is no GPU
+  libglm-dev libopenmesh-dev libopenexr-dev libpng-dev libgtest-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all packages present"
+  exit 0
+fi
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+$sudo apt-get update -q
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
