@@ -10,7 +10,7 @@
 namespace cli {
 
 int info(int argc, char** argv) {
-    const Args args(argc, argv, {}, {"--help"});
+    const Args args(argc, argv, {}, {"--help", "--quiet"});
     if (args.has("--help")) {
         std::fputs("usage: vds info SPRITE.vds\n\nPrints what a sprite file holds: size, depth complexity,\n"
                    "placement (P_S, M_S), source mesh, validation, and memory figures.\n",

@@ -69,6 +69,22 @@ TriangleMesh loadMesh(const std::string& path) {
         throw FormatError(path + ": unsupported mesh format '" + ext + "' (expected .obj, .ply, .stl or .off)");
     requireReadable(path);
     PolyMesh mesh = readWithOpenMesh(path);
+    if (ext == ".obj") {
+        // OpenMesh skips OBJ vertices it cannot parse (NaN, garbage) and the
+        // faces using them without saying so; a mesh silently missing parts
+        // must not be baked.
+        std::ifstream in(path);
+        std::string line;
+        std::size_t declared = 0;
+        while (std::getline(in, line)) {
+            const std::size_t p = line.find_first_not_of(" \t");
+            if (p != std::string::npos && line.compare(p, 2, "v ") == 0) ++declared;
+        }
+        if (declared != mesh.n_vertices())
+            throw FormatError(path + ": " + std::to_string(declared - std::min<std::size_t>(declared, mesh.n_vertices())) +
+                              " of " + std::to_string(declared) +
+                              " vertices could not be read (non-finite or malformed coordinates)");
+    }
 
     TriangleMesh out;
     out.name = std::filesystem::path(path).filename().string();

@@ -1,0 +1,219 @@
+// The vds tool and the clip sample, run as a user runs them: real files in a
+// temporary directory, exit codes and one-line messages checked.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include <vds/image.h>
+#include <vds/solids.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+    int code = -1;
+    std::string output; // stdout and stderr together
+};
+
+Result run(const std::string& command) {
+    Result r;
+    std::FILE* p = ::popen((command + " 2>&1").c_str(), "r");
+    if (!p) return r;
+    std::array<char, 4096> buffer{};
+    while (std::fgets(buffer.data(), int(buffer.size()), p)) r.output += buffer.data();
+    const int status = ::pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+std::string lastLine(const std::string& text) {
+    std::string t = text;
+    while (!t.empty() && t.back() == '\n') t.pop_back();
+    const auto n = t.rfind('\n');
+    return n == std::string::npos ? t : t.substr(n + 1);
+}
+
+void writeObj(const fs::path& path, const vds::TriangleMesh& mesh) {
+    std::ofstream out(path);
+    for (const auto& v : mesh.positions) out << "v " << v.x << ' ' << v.y << ' ' << v.z << '\n';
+    for (const auto& t : mesh.triangles) out << "f " << t.x + 1 << ' ' << t.y + 1 << ' ' << t.z + 1 << '\n';
+}
+
+std::string readFile(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("vds_cli_test_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        writeObj(dir / "box.obj", vds::solids::box({-1, -1, -1}, {1, 0.5f, 2}).mesh);
+        std::ofstream pts(dir / "points.txt");
+        pts << "0 0 0\n0.9 0.4 1.9\n1.1 0 0\n0 0.6 0\n-0.5 -0.5 -1.5\n# a comment\n0.5 0 1\n";
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string p(const std::string& name) const { return (dir / name).string(); }
+    Result vds(const std::string& args) const { return run(std::string(VDS_TOOL) + " " + args); }
+    fs::path dir;
+};
+
+TEST_F(Cli, BakeInfoClassifyRoundTrip) {
+    Result r = vds("bake " + p("box.obj") + " -o " + p("box.vds") + " --resolution 64 --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = vds("info " + p("box.vds"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("depth complexity:  2"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("box.obj, 12 triangles"), std::string::npos) << r.output;
+    for (const char* extra : {"", " --gpu", " --rule winding", " --threads 1"}) {
+        r = vds("classify " + p("box.vds") + " " + p("points.txt") + " -o " + p("labels.txt") + extra + " --quiet");
+        ASSERT_EQ(r.code, 0) << extra << ": " << r.output;
+        EXPECT_EQ(readFile(dir / "labels.txt"), "1\n1\n0\n0\n0\n1\n") << extra;
+    }
+    r = vds("classify --exact --mesh " + p("box.obj") + " " + p("points.txt") + " -o " + p("exact.txt") + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(readFile(dir / "exact.txt"), "1\n1\n0\n0\n0\n1\n");
+    r = vds("classify --mesh " + p("box.obj") + " --with vds --resolution 32 " + p("points.txt") + " -o " +
+            p("with.txt") + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(readFile(dir / "with.txt"), "1\n1\n0\n0\n0\n1\n");
+}
+
+TEST_F(Cli, AllBakeMethodsWriteTheSameSprite) {
+    for (const char* m : {"lists", "peel", "cpu"}) {
+        const Result r = vds(std::string("bake ") + p("box.obj") + " -o " + p(std::string(m) + ".vds") +
+                             " --resolution 40 --axis y --quiet --method " + m);
+        ASSERT_EQ(r.code, 0) << m << ": " << r.output;
+    }
+    EXPECT_EQ(readFile(dir / "lists.vds"), readFile(dir / "peel.vds"));
+    const Result a = vds("info " + p("lists.vds")), b = vds("info " + p("cpu.vds"));
+    EXPECT_EQ(a.output.substr(a.output.find("depth complexity")), b.output.substr(b.output.find("depth complexity")));
+}
+
+TEST_F(Cli, EveryCommandHasHelp) {
+    for (const char* c : {"--help", "bake --help", "classify --help", "info --help"}) {
+        const Result r = vds(c);
+        EXPECT_EQ(r.code, 0) << c;
+        EXPECT_NE(r.output.find("usage: vds"), std::string::npos) << c;
+    }
+    EXPECT_EQ(run(std::string(VDS_CLIP) + " --help").code, 0);
+}
+
+TEST_F(Cli, BadCommandLinesExitTwoWithOneLine) {
+    for (const std::string& args :
+         {std::string("bake"), "bake " + p("box.obj"), "bake " + p("box.obj") + " -o x.vds --resolution 0",
+          "bake " + p("box.obj") + " -o x.vds --resolution 100000", "bake " + p("box.obj") + " -o x.vds --resolution abc",
+          "bake " + p("box.obj") + " -o x.vds --axis w", "bake " + p("box.obj") + " -o x.vds --bogus",
+          "classify " + p("box.vds"), "classify --exact " + p("points.txt") + " -o x.txt", std::string("frobnicate")}) {
+        const Result r = vds(args);
+        EXPECT_EQ(r.code, 2) << args << ": " << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
+    }
+}
+
+TEST_F(Cli, BadInputFilesExitOneWithOneLineAndLoseNothing) {
+    ASSERT_EQ(vds("bake " + p("box.obj") + " -o " + p("box.vds") + " --resolution 16 --quiet").code, 0);
+    std::ofstream(dir / "empty.obj").close();
+    std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n";
+    std::ofstream(dir / "nan.txt") << "0 0 0\nnan 1 2\n";
+    std::ofstream(dir / "corrupt.vds") << "this is not an OpenEXR file";
+    const std::string vdsBytes = readFile(dir / "box.vds");
+    std::ofstream(dir / "truncated.vds", std::ios::binary) << vdsBytes.substr(0, vdsBytes.size() / 2);
+    std::ofstream(dir / "labels.txt") << "previous\n";
+    const std::vector<std::string> bad = {
+        "bake " + p("missing.obj") + " -o " + p("out.vds"),
+        "bake " + p("empty.obj") + " -o " + p("out.vds"),
+        "bake " + p("nan.obj") + " -o " + p("out.vds"),
+        "bake " + p("box.obj") + " -o " + p("no/such/dir/out.vds"),
+        "info " + p("corrupt.vds"),
+        "info " + p("truncated.vds"),
+        "classify " + p("truncated.vds") + " " + p("points.txt") + " -o " + p("labels.txt"),
+        "classify " + p("box.vds") + " " + p("nan.txt") + " -o " + p("labels.txt"),
+        "classify " + p("box.vds") + " " + p("missing.txt") + " -o " + p("labels.txt"),
+    };
+    for (const auto& args : bad) {
+        const Result r = vds(args + " --quiet");
+        EXPECT_EQ(r.code, 1) << args << ": " << r.output;
+        EXPECT_NE(lastLine(r.output).find("error: "), std::string::npos) << args << ": " << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "out.vds"));
+    EXPECT_EQ(readFile(dir / "labels.txt"), "previous\n"); // a failed run leaves the old output alone
+    for (const auto& entry : fs::directory_iterator(dir))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+}
+
+TEST_F(Cli, OpenMeshIsBakedWithAWarningAndRecorded) {
+    auto box = vds::solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    box.triangles.pop_back();
+    writeObj(dir / "open.obj", box);
+    Result r = vds("bake " + p("open.obj") + " -o " + p("open.vds") + " --resolution 16 --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("3 boundary edges"), std::string::npos) << r.output;
+    r = vds("info " + p("open.vds"));
+    EXPECT_NE(r.output.find("NOT A SOLID"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, NoGlGivesAClearErrorAndTheCpuBakerStillWorks) {
+    // glvnd finds no EGL vendor: as on a machine without any GL driver.
+    const std::string noGl = "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json __EGL_VENDOR_LIBRARY_DIRS=/nonexistent ";
+    Result r = run(noGl + VDS_TOOL + " bake " + p("box.obj") + " -o " + p("gl.vds") + " --quiet");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("no OpenGL"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    r = run(noGl + VDS_TOOL + " bake " + p("box.obj") + " -o " + p("cpu.vds") + " --method cpu --resolution 32 --quiet");
+    EXPECT_EQ(r.code, 0) << r.output;
+    r = run(noGl + VDS_TOOL + " classify " + p("cpu.vds") + " " + p("points.txt") + " -o " + p("l.txt") + " --quiet");
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(readFile(dir / "l.txt"), "1\n1\n0\n0\n0\n1\n");
+}
+
+// The sample's picture: a thin plate facing the camera, clipped by a sphere
+// sprite through its middle. Pixels whose plate point lies inside the sphere
+// (by more than two texels) must show the background; those outside, the plate.
+TEST_F(Cli, ClipSampleRemovesExactlyThePixelsInsideTheSprite) {
+    writeObj(dir / "plate.obj", vds::solids::box({-1, -1, -0.02f}, {1, 1, 0.02f}).mesh);
+    const auto sphere = vds::solids::sphere({0.2f, -0.1f, 0}, 0.6f, 96);
+    writeObj(dir / "sphere.obj", sphere.mesh);
+    ASSERT_EQ(vds("bake " + p("sphere.obj") + " -o " + p("sphere.vds") + " --resolution 256 --quiet").code, 0);
+    const Result r = run(std::string(VDS_CLIP) + " " + p("plate.obj") + " --clip " + p("sphere.vds") + " -o " +
+                         p("clip.png") + " --size 200 --view z");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const vds::Image image = vds::readPng(p("clip.png"));
+    ASSERT_EQ(image.width, 200u);
+    // The camera fits the plate's box: its bounding sphere's radius spans half the image.
+    const float radius = 0.5f * std::sqrt(2.0f * 2.0f * 2 + 0.04f * 0.04f);
+    const float texel = 1.2f / 256.0f;
+    std::size_t clipped = 0, kept = 0, wrong = 0;
+    for (std::uint32_t y = 0; y < 200; ++y)
+        for (std::uint32_t x = 0; x < 200; ++x) {
+            const float wx = -radius + 2.0f * radius * (float(x) + 0.5f) / 200.0f;
+            const float wy = radius - 2.0f * radius * (float(y) + 0.5f) / 200.0f;
+            if (std::fabs(wx) > 0.98f || std::fabs(wy) > 0.98f) continue; // plate rim
+            const float d = std::hypot(wx - 0.2f, wy + 0.1f) - std::sqrt(0.36f - 0.02f * 0.02f);
+            if (std::fabs(d) < 2.0f * texel + sphere.tessellationError + 2.0f * radius / 200.0f) continue;
+            const bool background = image.at(x, y)[0] == 255 && image.at(x, y)[1] == 255 && image.at(x, y)[2] == 255;
+            if (d < 0) { ++clipped; wrong += !background; }
+            else { ++kept; wrong += background; }
+        }
+    EXPECT_GT(clipped, 5000u);
+    EXPECT_GT(kept, 5000u);
+    EXPECT_EQ(wrong, 0u);
+}
+
+} // namespace
