@@ -104,8 +104,22 @@ TEST_F(Cli, AllBakeMethodsWriteTheSameSprite) {
     EXPECT_EQ(a.output.substr(a.output.find("depth complexity")), b.output.substr(b.output.find("depth complexity")));
 }
 
+TEST_F(Cli, EvalReportsAndWritesJsonAndSlices) {
+    const Result r = vds("eval " + p("box.obj") + " --resolutions 16,32 --points 20000 --surface-points 20000 --json " +
+                         p("eval.json") + " --images " + p("slice") + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("| 32 | 32x24x2 |"), std::string::npos) << r.output;
+    const std::string json = readFile(dir / "eval.json");
+    EXPECT_NE(json.find("\"rows\": ["), std::string::npos) << json;
+    for (const char* axis : {"x", "y", "z"}) {
+        const vds::Image slice = vds::readPng(p(std::string("slice-32-") + axis + ".png"));
+        EXPECT_GT(slice.width, 100u);
+    }
+    EXPECT_EQ(vds("eval " + p("box.obj") + " --resolutions 0").code, 2);
+}
+
 TEST_F(Cli, EveryCommandHasHelp) {
-    for (const char* c : {"--help", "bake --help", "classify --help", "info --help"}) {
+    for (const char* c : {"--help", "bake --help", "classify --help", "info --help", "eval --help"}) {
         const Result r = vds(c);
         EXPECT_EQ(r.code, 0) << c;
         EXPECT_NE(r.output.find("usage: vds"), std::string::npos) << c;

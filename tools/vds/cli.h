@@ -47,5 +47,6 @@ void progress(bool quiet, const std::string& what);
 int bake(int argc, char** argv);
 int classify(int argc, char** argv);
 int info(int argc, char** argv);
+int eval(int argc, char** argv);
 
 } // namespace cli

@@ -77,6 +77,7 @@ const char* kUsage =
     "  classify  SPRITE.vds POINTS -o LABELS.txt\n"
     "                                   label points 1 inside / 0 outside\n"
     "  info      SPRITE.vds             describe a sprite file\n"
+    "  eval      MESH                   accuracy of sprites vs the exact classifier\n"
     "\n"
     "Run 'vds <command> --help' for a command's options.\n";
 
@@ -92,6 +93,7 @@ int main(int argc, char** argv) {
         if (command == "bake") return cli::bake(argc - 2, argv + 2);
         if (command == "classify") return cli::classify(argc - 2, argv + 2);
         if (command == "info") return cli::info(argc - 2, argv + 2);
+        if (command == "eval") return cli::eval(argc - 2, argv + 2);
         std::fprintf(stderr, "vds: unknown command '%s' (try 'vds --help')\n", command.c_str());
         return cli::kUsage;
     } catch (const cli::UsageError& e) {
