@@ -4,7 +4,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <vds/bake.h>
 #include <vds/error.h>
+#include <vds/solids.h>
 #include <vds/sprite.h>
 
 namespace vds {
@@ -126,6 +128,16 @@ TEST(Sprite, CrossingEncodingKeepsFacingAtDepthZero) {
     EXPECT_TRUE(crossingEnters(encodeCrossing(0.0f, true)));
     EXPECT_FALSE(crossingEnters(encodeCrossing(0.0f, false)));
     EXPECT_EQ(crossingDepth(encodeCrossing(0.25f, false)), 0.25f);
+}
+
+TEST(ChooseViewAxis, PicksTheAxisWithTheFewestLayers) {
+    // A torus seen along its symmetry axis has two layers, from the side four.
+    auto torus = solids::torus({0, 0, 0}, 1.0f, 0.3f, 48).mesh;
+    EXPECT_EQ(chooseViewAxis(torus), Axis::Z);
+    for (auto& p : torus.positions) p = glm::vec3(p.z, p.x, p.y); // symmetry axis now x
+    EXPECT_EQ(chooseViewAxis(torus), Axis::X);
+    for (auto& p : torus.positions) p = glm::vec3(p.z, p.x, p.y); // and now y
+    EXPECT_EQ(chooseViewAxis(torus), Axis::Y);
 }
 
 } // namespace

@@ -21,7 +21,7 @@ const char* kHelp =
     "options:\n"
     "  -o FILE             output sprite (written whole or not at all)\n"
     "  --resolution N      texels on the longer side of the view, 1..16384 (default 1024)\n"
-    "  --axis x|y|z        view direction (default z)\n"
+    "  --axis x|y|z|auto   view direction (default z); auto picks the axis with the fewest layers\n"
     "  --method lists|peel|cpu\n"
     "                      fragment lists (default), depth peeling, or exact CPU ray casting\n"
     "  --quiet             no progress messages\n";
@@ -39,7 +39,7 @@ int bake(int argc, char** argv) {
     vds::BakeOptions options;
     options.resolution = args.getUint("--resolution", 1024);
     try {
-        options.axis = vds::parseAxis(args.get("--axis", "z"));
+        if (args.get("--axis") != "auto") options.axis = vds::parseAxis(args.get("--axis", "z"));
         options.method = vds::parseBakeMethod(args.get("--method", "lists"));
     } catch (const vds::InvalidArgument& e) {
         throw UsageError(e.what());
@@ -53,6 +53,10 @@ int bake(int argc, char** argv) {
     options.sourceName = mesh.name;
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, path);
+    if (args.get("--axis") == "auto") {
+        options.axis = vds::chooseViewAxis(mesh);
+        progress(quiet, std::string("axis auto: ") + vds::toString(options.axis) + " has the fewest layers");
+    }
     if (!report.closed())
         std::fprintf(stderr, "vds bake: warning: %s is %s; the sprite answers for a surface, not a solid\n",
                      path.c_str(), report.summary().c_str());

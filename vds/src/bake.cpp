@@ -50,6 +50,23 @@ Sprite assembleSprite(const BakeSetup& setup, const BakeOptions& options, MeshVi
 
 } // namespace detail
 
+Axis chooseViewAxis(MeshView mesh, std::uint32_t probeResolution) {
+    Axis best = Axis::Z;
+    std::uint64_t bestKey = ~std::uint64_t(0);
+    for (Axis axis : {Axis::Z, Axis::X, Axis::Y}) {
+        BakeOptions o;
+        o.axis = axis;
+        o.resolution = probeResolution;
+        const Sprite probe = bakeCpu(mesh, o);
+        const std::uint64_t key = (std::uint64_t(probe.depthComplexity) << 40) | probe.crossings.size();
+        if (key < bestKey) {
+            bestKey = key;
+            best = axis;
+        }
+    }
+    return best;
+}
+
 Sprite bake(MeshView mesh, const BakeOptions& options, GlContext* gl) {
     if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
     const detail::BakeSetup setup = detail::prepareBake(mesh, options);

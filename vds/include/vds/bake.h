@@ -40,6 +40,13 @@ struct BakeOptions {
     std::function<void(const std::string&)> progress;
 };
 
+/// The view axis with the fewest layers (the least depth complexity d_S; ties
+/// go to fewer crossings in all), found by exact CPU bakes at a coarse
+/// `probeResolution` along x, y and z. Trapp & Doellner 2008, section 6, name
+/// this "optimal view direction" as future work: fewer layers mean a smaller
+/// texture and fewer lookups per test. Throws like `bake`.
+Axis chooseViewAxis(MeshView mesh, std::uint32_t probeResolution = 64);
+
 /// Bakes `mesh`. Validates it first: empty meshes, non-finite coordinates and
 /// bad indices throw `InvalidMesh`; an open or non-manifold mesh is baked, its
 /// sprite marked `SolidStatus::Open` (the caller should warn: the answers are
