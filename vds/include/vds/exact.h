@@ -27,8 +27,16 @@
 namespace vds {
 
 /// Exact classifier over a copy of a mesh's triangles, with an acceleration
-/// structure over their projections along `axis`. Construction is O(n log n);
-/// queries are thread safe.
+/// structure over their projections along `axis` (a uniform grid; about 100
+/// bytes per triangle). Construction is O(n log n); queries are thread safe.
+///
+/// Points are in mesh coordinates; any point may be asked (points off the
+/// mesh's projection, and non-finite ones, are outside). A point on an edge
+/// or vertex of the projection is claimed by the triangles that contain the
+/// point moved by (eps, -eps^2) in (s,t), eps infinitesimal: the top-left
+/// fill rule with t up. So a ray through a shared edge or vertex of a closed
+/// mesh counts one crossing per surface sheet. Triangles parallel to the
+/// axis are never crossed.
 class ExactClassifier {
 public:
     /// Copies the triangles. Throws `InvalidMesh` if the mesh is not usable
@@ -40,12 +48,15 @@ public:
 
     Axis axis() const;
 
-    /// Winding number of `p`: crossings in front of p (towards -axis) entering
-    /// count +1, leaving -1.
+    /// Winding number of `p`: crossings strictly in front of p (smaller depth,
+    /// towards -axis) count +1 where the surface faces the viewer (its
+    /// outward normal points towards -axis: the ray enters), -1 elsewhere.
     int winding(const glm::vec3& p) const;
     /// Parity (odd crossings) or non-zero winding.
     bool contains(const glm::vec3& p, Rule rule = Rule::Parity) const;
-    /// Batch form; `labels[k]` = 1 inside, 0 outside.
+    /// Batch form: `points` and `labels` hold `count` elements, owned by the
+    /// caller; `labels[k]` = 1 inside, 0 outside. Runs on `options.threads`
+    /// threads (0: one per hardware thread).
     void classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels,
                   const ClassifyOptions& options = {}) const;
 
@@ -59,7 +70,12 @@ private:
 };
 
 /// CPU baker: the sprite the GL bakers make, by exact ray casting at texel
-/// centres (`bake()` calls this for `BakeMethod::Cpu`). Multi-threaded.
+/// centres (`bake()` calls this for `BakeMethod::Cpu`). A column holds one
+/// crossing per triangle whose projection claims the texel centre (the rule
+/// of `ExactClassifier`), at the depth of the triangle's plane there in LDI
+/// texture space, sorted by depth, then triangle index. Validates like
+/// `bake()` (throws `InvalidMesh`); `options.maxListNodes` is ignored. Runs on
+/// every hardware thread; `options.progress` is called on the calling thread.
 Sprite bakeCpu(MeshView mesh, const BakeOptions& options);
 
 } // namespace vds
