@@ -10,4 +10,20 @@ set(VDS_SHADER_FILES
   vds/classify.comp
   samples/clip.vert
   samples/clip.frag
+  voxel/grid.glsl
+  voxel/triangles.glsl
+  voxel/raster.vert
+  voxel/solid_common.glsl
+  voxel/solid.frag
+  voxel/solid_flip.comp
+  voxel/solid_propagate.comp
+  voxel/solid.glsl
+  voxel/slicemap.glsl
+  voxel/slicemap.frag
+  voxel/slicemap_range.frag
+  voxel/surface.comp
+  voxel/slicing.vert
+  voxel/slicing.geom
+  voxel/slicing.frag
+  voxel/classify.comp
 )

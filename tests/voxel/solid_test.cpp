@@ -1,0 +1,142 @@
+// Solid voxelization (Schwarz 2012): rasterization and compute give the same
+// bits, equal to the exact classifier at every voxel centre but where the
+// rasterizer's 1/256 snapping moves an edge across a centre or a centre lies
+// on the surface within rounding.
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include <vds/error.h>
+#include <vds/exact.h>
+#include <vds/solids.h>
+#include <vds/voxel/representation.h>
+#include <vds/voxel/solid.h>
+
+#include "../support/gl_fixture.h"
+#include "voxel_test_util.h"
+
+namespace vds::voxel {
+namespace {
+
+class SolidTest : public vds::test::GlTest {};
+
+// Cells where the voxel grid differs from `expected(centre)`.
+template <class Expected> std::vector<glm::uvec3> differences(const BitGrid& bits, const Expected& expected) {
+    std::vector<glm::uvec3> out;
+    const glm::uvec3 n = bits.grid.size;
+    for (std::uint32_t z = 0; z < n.z; ++z)
+        for (std::uint32_t y = 0; y < n.y; ++y)
+            for (std::uint32_t x = 0; x < n.x; ++x)
+                if (bits.test(x, y, z) != expected(bits.grid.cellCentre(x, y, z))) out.push_back({x, y, z});
+    return out;
+}
+
+void expectIdentical(const BitGrid& a, const BitGrid& b, const std::string& what) {
+    ASSERT_EQ(a.grid.size, b.grid.size) << what;
+    std::size_t differing = 0;
+    for (std::size_t w = 0; w < a.words.size(); ++w) differing += a.words[w] != b.words[w];
+    EXPECT_EQ(differing, 0u) << what << ": words differ between raster and compute";
+}
+
+TEST_F(SolidTest, BoxGivesExactlyTheVoxelsWhoseCentresItHolds) {
+    // Faces between voxel centres, vertices not on the snapping grid.
+    const auto box = solids::box({0.3f, 0.21f, 0.13f}, {0.7f, 0.93f, 0.61f});
+    const VoxelGrid grid = makeVoxelGrid({{0, 0, 0}, {1, 1, 1}}, 16);
+    for (SolidMethod m : {SolidMethod::Raster, SolidMethod::Compute}) {
+        const BitGrid bits = voxelizeSolid(gl(), box.mesh, grid, m);
+        const auto wrong = differences(bits, [&](const glm::vec3& c) { return box.distance(c) < 0.0f; });
+        EXPECT_TRUE(wrong.empty()) << toString(m) << ": " << wrong.size() << " voxels differ";
+        EXPECT_EQ(bits.count(), 6u * 12u * 8u) << toString(m); // x 5..10, y 3..14, z 2..9
+    }
+}
+
+TEST_F(SolidTest, MeshBeyondTheGridStillCountsWithoutDepthClipping) {
+    // The grid is the middle of a box: every voxel is inside, though the
+    // front and back faces lie outside the grid in depth.
+    const auto box = solids::box({0, 0, 0}, {1, 1, 1});
+    const VoxelGrid grid = makeVoxelGrid({{0.25f, 0.25f, 0.25f}, {0.75f, 0.75f, 0.75f}}, 8);
+    for (SolidMethod m : {SolidMethod::Raster, SolidMethod::Compute})
+        EXPECT_EQ(voxelizeSolid(gl(), box.mesh, grid, m).count(), 512u) << toString(m);
+}
+
+TEST_F(SolidTest, RasterAndComputeGiveIdenticalBits) {
+    const auto sphere = solids::sphere({0.1f, -0.2f, 0.3f}, 1.0f, 48);
+    const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.4f, 40);
+    const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.7f, 32);
+    const auto boxes = solids::overlappingBoxes({0, 0, 0}, {1, 1, 1}, {0.5f, 0.4f, 0.3f}, {1.5f, 1.3f, 1.2f});
+    for (const auto* solid : {&sphere, &torus, &shell, &boxes})
+        for (std::uint32_t resolution : {33u, 64u, 100u}) {
+            const VoxelGrid grid = makeVoxelGrid(meshBounds(solid->mesh), resolution);
+            expectIdentical(voxelizeSolid(gl(), solid->mesh, grid, SolidMethod::Raster),
+                            voxelizeSolid(gl(), solid->mesh, grid, SolidMethod::Compute),
+                            "resolution " + std::to_string(resolution));
+        }
+}
+
+TEST_F(SolidTest, EqualsTheExactClassifierAtVoxelCentresButForNearTies) {
+    const auto sphere = solids::sphere({0.1f, -0.2f, 0.3f}, 1.0f, 48);
+    const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.4f, 40);
+    const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.7f, 32);
+    const auto boxes = solids::overlappingBoxes({0, 0, 0}, {1, 1, 1}, {0.5f, 0.4f, 0.3f}, {1.5f, 1.3f, 1.2f});
+    for (const auto* solid : {&sphere, &torus, &shell, &boxes}) {
+        const ExactClassifier exact(solid->mesh, Axis::Z);
+        const VoxelGrid grid = makeVoxelGrid(meshBounds(solid->mesh), 64);
+        const BitGrid bits = voxelizeSolid(gl(), solid->mesh, grid, SolidMethod::Compute);
+        const auto wrong = differences(bits, [&](const glm::vec3& c) { return exact.contains(c); });
+        EXPECT_LT(wrong.size(), grid.cellCount() / 10000 + 1);
+        for (const glm::uvec3& c : wrong) {
+            // Either the snapping (at most 1/512 per axis) moved an edge across
+            // the column centre, or the centre lies on the surface in depth.
+            EXPECT_TRUE(test::nearInDepth(solid->mesh, grid, c.x, c.y, c.z + 0.5) ||
+                        test::nearProjectedEdge(solid->mesh, grid, c.x, c.y, 1.0 / 256.0))
+                << "voxel " << c.x << "," << c.y << "," << c.z << " differs from the exact classifier";
+        }
+    }
+}
+
+TEST_F(SolidTest, ClosedMeshesOnTheSnappingGridEqualTheExactClassifierEverywhere) {
+    // Vertices on multiples of 1/256 cell: snapping changes nothing, and a
+    // square grid puts voxel centres exactly on the faces' diagonals, where
+    // the tie rule must count one crossing.
+    const auto boxes = solids::overlappingBoxes({0, 0, 0}, {1, 1, 1}, {0.25f, 0.5f, 0.25f}, {1.25f, 1.5f, 1.0f});
+    const ExactClassifier exact(boxes.mesh, Axis::Z);
+    const VoxelGrid grid = makeVoxelGrid(meshBounds(boxes.mesh), 24);
+    for (SolidMethod m : {SolidMethod::Raster, SolidMethod::Compute}) {
+        const BitGrid bits = voxelizeSolid(gl(), boxes.mesh, grid, m);
+        EXPECT_TRUE(differences(bits, [&](const glm::vec3& c) { return exact.contains(c); }).empty()) << toString(m);
+    }
+}
+
+TEST_F(SolidTest, BadInputIsRejectedWithAClearError) {
+    auto open = solids::sphere({0, 0, 0}, 1.0f, 16).mesh;
+    open.triangles.pop_back();
+    const VoxelGrid grid = makeVoxelGrid(meshBounds(open), 16);
+    EXPECT_THROW(voxelizeSolid(gl(), open, grid, SolidMethod::Raster), InvalidMesh);
+    EXPECT_THROW(buildModel(open, Representation::Solid, {16}, &gl()), InvalidMesh);
+    const auto sphere = solids::sphere({0, 0, 0}, 1.0f, 16);
+    EXPECT_THROW(buildModel(sphere.mesh, Representation::SolidCompute, {0}, &gl()), InvalidArgument);
+    EXPECT_THROW(buildModel(sphere.mesh, Representation::Solid, {100000}, &gl()), InvalidArgument);
+    EXPECT_THROW(buildModel(sphere.mesh, Representation::Solid, {kMaxResolution}, &gl()), InvalidArgument);
+    EXPECT_THROW(parseSolidMethod("xor"), InvalidArgument);
+}
+
+TEST_F(SolidTest, ModelsAnswerPointQueriesLikeTheirGrid) {
+    const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.4f, 32);
+    const Model model = buildModel(torus.mesh, parseRepresentation("solid-compute"), {40}, &gl());
+    ASSERT_NE(model.solid(), nullptr);
+    EXPECT_EQ(model.slicemap(), nullptr);
+    EXPECT_EQ(model.cells(), model.solid()->grid.size);
+    EXPECT_EQ(model.memoryBytes(), model.solid()->words.size() * 4);
+    EXPECT_GE(model.buildSeconds(), 0.0);
+    const VoxelGrid& g = model.solid()->grid;
+    for (std::uint32_t x = 0; x < g.size.x; x += 3)
+        EXPECT_EQ(model.contains(g.cellCentre(x, g.size.y / 2, g.size.z / 2)),
+                  model.solid()->test(x, g.size.y / 2, g.size.z / 2));
+    EXPECT_FALSE(model.contains({0, 0, 0}));    // the hole
+    EXPECT_TRUE(model.contains({1.0f, 0, 0}));  // in the tube
+    EXPECT_FALSE(model.contains({5.0f, 0, 0})); // outside the grid
+}
+
+} // namespace
+} // namespace vds::voxel
