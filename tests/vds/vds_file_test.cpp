@@ -1,0 +1,434 @@
+// Tests of the .vds file (vds/src/vds_file.cpp): bit-exact round trips, the
+// atomic write, and refusal of every kind of damaged file without a crash.
+#include <vds/vds_file.h>
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <vds/error.h>
+#include <vds/sprite.h>
+
+namespace fs = std::filesystem;
+using namespace std::string_literals;
+
+namespace {
+
+// ---------------------------------------------------------------- sprites built by hand
+
+/// Appends one column of `(depth, entering)` crossings, already sorted.
+void addColumn(vds::Sprite& s, const std::vector<std::pair<float, bool>>& column) {
+    for (const auto& [depth, entering] : column) s.crossings.push_back(vds::encodeCrossing(depth, entering));
+    s.offsets.push_back(std::uint32_t(s.crossings.size()));
+    s.depthComplexity = std::max(s.depthComplexity, std::uint32_t(column.size()));
+}
+
+vds::Sprite emptySprite(std::uint32_t resolution, vds::Axis axis = vds::Axis::Z) {
+    vds::Sprite s;
+    s.grid = vds::makeGrid(vds::Box{{-1.0f, -2.0f, -0.5f}, {3.0f, 1.0f, 1.5f}}, axis, resolution);
+    s.offsets.assign(1, 0);
+    s.sourceName = "bunny.obj";
+    s.sourceTriangles = (std::uint64_t(1) << 40) + 7; // does not fit 32 bits
+    s.status = vds::SolidStatus::Open;
+    s.validation = "open: 12 boundary edges, 3 non-manifold edges";
+    // A placed sprite: every matrix entry distinct, so a transposition shows.
+    s.grid.position = {0.25f, -1.5f, 3.0f};
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) s.grid.matrix[c][r] = 0.1f * float(1 + 3 * c + r) + (c == r ? 1.0f : 0.0f);
+    return s;
+}
+
+/// A small sprite with every special case: empty columns, -0.0 (leaving at
+/// depth 0), a crossing at depth 1, ties, and one column of 40 crossings.
+vds::Sprite specialSprite(vds::Axis axis = vds::Axis::Z) {
+    vds::Sprite s = emptySprite(8, axis);
+    const std::size_t columns = std::size_t(s.width()) * s.height();
+    std::mt19937 rng(1234);
+    for (std::size_t c = 0; c < columns; ++c) {
+        std::vector<std::pair<float, bool>> column;
+        if (c == 0 || c == columns - 1 || c % 5 == 3) {
+            // empty
+        } else if (c == 1) {
+            column = {{0.0f, false}, {0.0f, true}, {0.5f, false}, {1.0f, true}};
+        } else if (c == 2) {
+            column = {{1.0f, true}, {1.0f, false}};
+        } else if (c == columns / 2) {
+            for (int k = 0; k < 40; ++k) column.push_back({float(k / 2) / 20.0f, k % 2 == 0});
+        } else {
+            float depth = 0.0f;
+            const int n = 1 + int(rng() % 6);
+            for (int k = 0; k < n; ++k) {
+                depth = std::min(1.0f, depth + float(rng() >> 8) * 0x1p-24f * 0.3f);
+                column.push_back({depth, (rng() & 1) != 0});
+            }
+        }
+        addColumn(s, column);
+    }
+    return s;
+}
+
+/// What a baker makes of a sphere with a stack of thin plates inside it: most
+/// columns have 2 crossings, a few have 8.
+vds::Sprite realisticSprite(std::uint32_t resolution) {
+    vds::Sprite s = emptySprite(resolution);
+    s.status = vds::SolidStatus::Closed;
+    for (std::uint32_t j = 0; j < s.height(); ++j) {
+        for (std::uint32_t i = 0; i < s.width(); ++i) {
+            const float u = (float(i) + 0.5f) / float(s.width()) * 2.0f - 1.0f;
+            const float v = (float(j) + 0.5f) / float(s.height()) * 2.0f - 1.0f;
+            const float r2 = u * u + v * v;
+            std::vector<std::pair<float, bool>> column;
+            if (r2 < 0.81f) {
+                const float h = 0.5f * std::sqrt(0.81f - r2);
+                column.push_back({0.5f - h, true});
+                if (std::fabs(u) < 0.1f && std::fabs(v) < 0.1f)
+                    for (int k = 0; k < 3; ++k) {
+                        column.push_back({0.4f + 0.05f * float(k), false});
+                        column.push_back({0.42f + 0.05f * float(k), true});
+                    }
+                column.push_back({0.5f + h, false});
+            }
+            addColumn(s, column);
+        }
+    }
+    return s;
+}
+
+// ---------------------------------------------------------------- comparisons
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void expectSameSprite(const vds::Sprite& a, const vds::Sprite& b) {
+    EXPECT_EQ(a.grid.axis, b.grid.axis);
+    EXPECT_EQ(a.grid.width, b.grid.width);
+    EXPECT_EQ(a.grid.height, b.grid.height);
+    EXPECT_TRUE(sameBits(a.grid.texelSize, b.grid.texelSize));
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_TRUE(sameBits(a.grid.box.lo[k], b.grid.box.lo[k])) << k;
+        EXPECT_TRUE(sameBits(a.grid.box.hi[k], b.grid.box.hi[k])) << k;
+        EXPECT_TRUE(sameBits(a.grid.position[k], b.grid.position[k])) << k;
+    }
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) EXPECT_TRUE(sameBits(a.grid.matrix[c][r], b.grid.matrix[c][r])) << c << r;
+    EXPECT_EQ(a.depthComplexity, b.depthComplexity);
+    EXPECT_EQ(a.offsets, b.offsets);
+    ASSERT_EQ(a.crossings.size(), b.crossings.size());
+    EXPECT_TRUE(a.crossings.empty() ||
+                std::memcmp(a.crossings.data(), b.crossings.data(), a.crossings.size() * sizeof(float)) == 0);
+    EXPECT_EQ(a.sourceName, b.sourceName);
+    EXPECT_EQ(a.sourceTriangles, b.sourceTriangles);
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_EQ(a.validation, b.validation);
+}
+
+bool identical(const vds::Sprite& a, const vds::Sprite& b) {
+    bool same = a.grid.axis == b.grid.axis && a.grid.width == b.grid.width && a.grid.height == b.grid.height &&
+                sameBits(a.grid.texelSize, b.grid.texelSize) && a.depthComplexity == b.depthComplexity &&
+                a.offsets == b.offsets && a.crossings.size() == b.crossings.size() &&
+                a.sourceName == b.sourceName && a.sourceTriangles == b.sourceTriangles && a.status == b.status &&
+                a.validation == b.validation;
+    for (int k = 0; same && k < 3; ++k)
+        same = sameBits(a.grid.box.lo[k], b.grid.box.lo[k]) && sameBits(a.grid.box.hi[k], b.grid.box.hi[k]) &&
+               sameBits(a.grid.position[k], b.grid.position[k]);
+    for (int k = 0; same && k < 9; ++k) same = sameBits(a.grid.matrix[k / 3][k % 3], b.grid.matrix[k / 3][k % 3]);
+    return same && (a.crossings.empty() ||
+                    std::memcmp(a.crossings.data(), b.crossings.data(), a.crossings.size() * sizeof(float)) == 0);
+}
+
+// ---------------------------------------------------------------- files
+
+std::string readBytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void writeBytes(const fs::path& p, const std::string& bytes) {
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+    ASSERT_TRUE(out.good()) << p;
+}
+
+std::vector<std::string> entries(const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+/// Offset of `needle` in `bytes`; fails the test if absent.
+std::size_t find(const std::string& bytes, const std::string& needle) {
+    const std::size_t at = bytes.find(needle);
+    EXPECT_NE(at, std::string::npos) << needle;
+    return at == std::string::npos ? 0 : at;
+}
+
+/// Offset of the value of header attribute `name`: name\0 type\0 int32 size, value.
+std::size_t attributeValue(const std::string& bytes, const std::string& name, const std::string& type) {
+    return find(bytes, name + '\0' + type + '\0') + name.size() + 1 + type.size() + 1 + 4;
+}
+
+class VdsFileTest : public testing::Test {
+protected:
+    void SetUp() override {
+        static std::atomic<int> counter{0};
+        dir_ = fs::path(testing::TempDir()) /
+               ("vds_file_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::remove_all(dir_, ignored);
+    }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+    /// Reads `bytes` as a .vds file; returns the FormatError message, or ""
+    /// if the file was read (then `*out` holds the sprite).
+    std::string readDamaged(const std::string& bytes, vds::Sprite* out = nullptr) {
+        const std::string p = path("damaged.vds");
+        writeBytes(p, bytes);
+        try {
+            vds::Sprite s = vds::readSprite(p);
+            if (out) *out = std::move(s);
+            return "";
+        } catch (const vds::FormatError& e) {
+            const std::string message = e.what();
+            EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+            EXPECT_EQ(message.rfind(p + ": ", 0), 0u) << message;
+            return message.empty() ? "?" : message;
+        }
+    }
+
+    fs::path dir_;
+};
+
+// ---------------------------------------------------------------- round trips
+
+TEST_F(VdsFileTest, RoundTripIsBitExact) {
+    const vds::Sprite s = specialSprite();
+    ASSERT_NO_THROW(s.checkConsistent());
+    vds::writeSprite(s, path("a.vds"));
+    const vds::Sprite r = vds::readSprite(path("a.vds"));
+    expectSameSprite(s, r);
+    // The leaving crossing at depth 0 keeps its sign.
+    ASSERT_GE(r.crossings.size(), 2u);
+    EXPECT_TRUE(std::signbit(r.crossings[0]));
+    EXPECT_FALSE(vds::crossingEnters(r.crossings[0]));
+    EXPECT_TRUE(vds::crossingEnters(r.crossings[1]));
+    EXPECT_EQ(r.depthComplexity, 40u);
+    EXPECT_EQ(r.sourceTriangles, (std::uint64_t(1) << 40) + 7);
+}
+
+TEST_F(VdsFileTest, RoundTripEveryAxis) {
+    for (vds::Axis axis : {vds::Axis::X, vds::Axis::Y, vds::Axis::Z}) {
+        const vds::Sprite s = specialSprite(axis);
+        vds::writeSprite(s, path("axis.vds"));
+        expectSameSprite(s, vds::readSprite(path("axis.vds")));
+    }
+}
+
+TEST_F(VdsFileTest, RoundTripWithoutCrossings) {
+    vds::Sprite s = emptySprite(5);
+    s.sourceName.clear();
+    s.validation.clear();
+    s.sourceTriangles = 0;
+    for (std::size_t c = 0, n = std::size_t(s.width()) * s.height(); c < n; ++c) addColumn(s, {});
+    vds::writeSprite(s, path("empty.vds"));
+    const vds::Sprite r = vds::readSprite(path("empty.vds"));
+    expectSameSprite(s, r);
+    EXPECT_TRUE(r.crossings.empty());
+    EXPECT_EQ(r.depthComplexity, 0u);
+}
+
+TEST_F(VdsFileTest, RoundTripLargeSprite) {
+    // More rows than one OpenEXR chunk (16) and one read batch.
+    const vds::Sprite s = realisticSprite(300);
+    vds::writeSprite(s, path("large.vds"));
+    expectSameSprite(s, vds::readSprite(path("large.vds")));
+}
+
+TEST_F(VdsFileTest, FileIsSmallerThanDenseTexture) {
+    const vds::Sprite s = realisticSprite(128);
+    EXPECT_EQ(s.depthComplexity, 8u);
+    vds::writeSprite(s, path("sphere.vds"));
+    const std::uintmax_t size = fs::file_size(path("sphere.vds"));
+    EXPECT_LT(size, s.denseBytes() / 2) << "dense " << s.denseBytes();
+    EXPECT_LT(size, s.memoryBytes()) << "in memory " << s.memoryBytes();
+}
+
+// ---------------------------------------------------------------- writing
+
+TEST_F(VdsFileTest, ExistingFileIsReplacedWhole) {
+    const vds::Sprite big = realisticSprite(64);
+    const vds::Sprite small = specialSprite();
+    vds::writeSprite(small, path("fresh.vds"));
+    const std::string fresh = readBytes(path("fresh.vds"));
+
+    vds::writeSprite(big, path("target.vds"));
+    ASSERT_GT(fs::file_size(path("target.vds")), fresh.size());
+    vds::writeSprite(small, path("target.vds"));
+    EXPECT_EQ(readBytes(path("target.vds")), fresh);
+    expectSameSprite(small, vds::readSprite(path("target.vds")));
+
+    writeBytes(path("junk.vds"), std::string(100000, 'x'));
+    vds::writeSprite(small, path("junk.vds"));
+    EXPECT_EQ(readBytes(path("junk.vds")), fresh);
+    EXPECT_EQ(entries(dir_), (std::vector<std::string>{"fresh.vds", "junk.vds", "target.vds"}));
+}
+
+TEST_F(VdsFileTest, WriteIntoMissingDirectoryThrowsIoError) {
+    const std::string target = path("no/such/dir/a.vds");
+    try {
+        vds::writeSprite(specialSprite(), target);
+        FAIL() << "no exception";
+    } catch (const vds::IoError& e) {
+        EXPECT_NE(std::string(e.what()).find(target), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(entries(dir_).empty());
+}
+
+TEST_F(VdsFileTest, FailedRenameLeavesNoTemporary) {
+    // The target is a non-empty directory: the temporary is written, the
+    // rename fails, and the temporary must go.
+    fs::create_directories(dir_ / "taken.vds" / "inside");
+    EXPECT_THROW(vds::writeSprite(specialSprite(), path("taken.vds")), vds::IoError);
+    EXPECT_EQ(entries(dir_), std::vector<std::string>{"taken.vds"});
+}
+
+TEST_F(VdsFileTest, InconsistentSpriteIsNotWritten) {
+    vds::Sprite s = specialSprite();
+    s.depthComplexity += 1;
+    EXPECT_THROW(vds::writeSprite(s, path("bad.vds")), vds::FormatError);
+    s = specialSprite();
+    s.offsets.pop_back();
+    EXPECT_THROW(vds::writeSprite(s, path("bad.vds")), vds::FormatError);
+    EXPECT_TRUE(entries(dir_).empty());
+}
+
+// ---------------------------------------------------------------- reading bad files
+
+TEST_F(VdsFileTest, MissingFileThrowsIoError) {
+    EXPECT_THROW(vds::readSprite(path("missing.vds")), vds::IoError);
+    EXPECT_THROW(vds::readSprite(dir_.string()), vds::IoError); // a directory
+}
+
+TEST_F(VdsFileTest, NonVdsFilesThrowFormatError) {
+    EXPECT_NE(readDamaged(""), "");
+    EXPECT_NE(readDamaged("v/1"), "");
+    EXPECT_NE(readDamaged("# not a sprite\nv 0 0 0\nf 1 2 3\n"), "");
+    static const unsigned char png[] = {
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00,
+        0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x00, 0x00, 0x00, 0x00, 0x3a, 0x7e, 0x9b, 0x55, 0x00,
+        0x00, 0x00, 0x0a, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0x60, 0x00, 0x00, 0x00, 0x02, 0x00, 0x01,
+        0x48, 0xaf, 0xa4, 0x71, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+    EXPECT_NE(readDamaged(std::string(reinterpret_cast<const char*>(png), sizeof png)), "");
+}
+
+TEST_F(VdsFileTest, RandomBytesThrowFormatError) {
+    std::mt19937 rng(42);
+    for (std::size_t size : {1u, 7u, 8u, 100u, 4096u, 70000u}) {
+        std::string bytes(size, '\0');
+        for (char& c : bytes) c = char(rng());
+        EXPECT_NE(readDamaged(bytes), "") << size;
+        // Random bytes behind a valid OpenEXR deep scanline magic and version field.
+        if (size > 8) {
+            std::memcpy(&bytes[0], "\x76\x2f\x31\x01\x02\x08\x00\x00", 8);
+            EXPECT_NE(readDamaged(bytes), "") << size;
+        }
+    }
+}
+
+TEST_F(VdsFileTest, EveryTruncationThrowsFormatError) {
+    vds::writeSprite(specialSprite(), path("whole.vds"));
+    const std::string whole = readBytes(path("whole.vds"));
+    ASSERT_GT(whole.size(), 200u);
+    // Every cut in the header and the chunk table, then every third one.
+    for (std::size_t length = 0; length < whole.size(); length += length < 1024 ? 1 : 3)
+        EXPECT_NE(readDamaged(whole.substr(0, length)), "") << "cut at " << length << " of " << whole.size();
+    EXPECT_NE(readDamaged(whole.substr(0, whole.size() - 1)), "");
+}
+
+TEST_F(VdsFileTest, ByteFlipsAreRefusedOrHarmless) {
+    // Any single damaged byte either is refused or (in parts of the OpenEXR
+    // header the sprite does not use, or the recoverable chunk table) leaves
+    // the sprite exactly as written; it never crashes or yields another sprite.
+    const vds::Sprite s = specialSprite();
+    vds::writeSprite(s, path("whole.vds"));
+    const std::string whole = readBytes(path("whole.vds"));
+    int refused = 0;
+    for (std::size_t at = 0; at < whole.size(); ++at) {
+        for (unsigned mask : {0x01u, 0xffu}) {
+            std::string bytes = whole;
+            bytes[at] = char(bytes[at] ^ char(mask));
+            vds::Sprite r;
+            if (readDamaged(bytes, &r).empty())
+                EXPECT_TRUE(identical(s, r)) << "byte " << at << " ^ " << mask;
+            else
+                ++refused;
+        }
+    }
+    EXPECT_GT(refused, int(whole.size()));
+}
+
+TEST_F(VdsFileTest, FlippedDataByteThrowsFormatError) {
+    const vds::Sprite s = realisticSprite(32);
+    vds::writeSprite(s, path("whole.vds"));
+    const std::string whole = readBytes(path("whole.vds"));
+    // The middle of the file is compressed samples of the middle rows.
+    for (std::size_t at : {whole.size() / 2, whole.size() / 2 + 7, whole.size() * 3 / 5}) {
+        std::string bytes = whole;
+        bytes[at] = char(bytes[at] ^ 0x10);
+        EXPECT_NE(readDamaged(bytes), "") << "byte " << at << " of " << whole.size();
+    }
+}
+
+TEST_F(VdsFileTest, EditedAttributesAreDetected) {
+    vds::writeSprite(specialSprite(), path("whole.vds"));
+    const std::string whole = readBytes(path("whole.vds"));
+
+    std::string bytes = whole; // same length, other name: only the checksum can tell
+    bytes[find(bytes, "bunny.obj")] = 'B';
+    EXPECT_NE(readDamaged(bytes).find("checksum"), std::string::npos);
+
+    bytes = whole;
+    bytes[attributeValue(bytes, "vds.status", "int")] = 0; // Open -> Closed
+    EXPECT_NE(readDamaged(bytes).find("checksum"), std::string::npos);
+
+    bytes = whole;
+    bytes[attributeValue(bytes, "vds.formatVersion", "int")] = 2;
+    EXPECT_NE(readDamaged(bytes).find("format version 2"), std::string::npos);
+
+    bytes = whole;
+    bytes[attributeValue(bytes, "vds.depthComplexity", "int")] = 41;
+    EXPECT_NE(readDamaged(bytes).find("depthComplexity"), std::string::npos);
+
+    bytes = whole;
+    bytes[attributeValue(bytes, "vds.axis", "int")] = 7;
+    EXPECT_NE(readDamaged(bytes).find("vds.axis"), std::string::npos);
+
+    bytes = whole;
+    bytes[find(bytes, "vds.texelSize") + 12] = 'f'; // renamed: the attribute is missing
+    EXPECT_NE(readDamaged(bytes).find("missing attribute vds.texelSize"), std::string::npos);
+
+    bytes = whole;
+    bytes[find(bytes, "vds.texelSize\0float"s) + 16] = 'a'; // "flaat": an unknown type
+    EXPECT_NE(readDamaged(bytes).find("vds.texelSize has type"), std::string::npos);
+
+    bytes = whole;
+    bytes[find(bytes, "vds.checksum\0string"s) + 13 + 7 + 4] ^= 1;
+    EXPECT_NE(readDamaged(bytes), "");
+}
+
+} // namespace

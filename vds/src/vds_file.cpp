@@ -1,0 +1,729 @@
+// The .vds file: a sprite (Trapp & Döllner 2008, section 3.1: P_S, M_S, the
+// LDI and d_S) as one OpenEXR deep scanline image; docs/format.md.
+//
+// OpenEXR only ever sees memory: the writer encodes into a byte buffer that is
+// then written to a temporary file and renamed over the target, and the reader
+// loads the whole file first. So every system-call failure is ours to report
+// (IoError, with errno's reason) and everything OpenEXR rejects is the
+// content's fault (FormatError).
+#include <vds/vds_file.h>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <new>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <ImfChannelList.h>
+#include <ImfCompression.h>
+#include <ImfDeepFrameBuffer.h>
+#include <ImfDeepScanLineInputFile.h>
+#include <ImfDeepScanLineOutputFile.h>
+#include <ImfFloatAttribute.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfIntAttribute.h>
+#include <ImfMatrixAttribute.h>
+#include <ImfPartType.h>
+#include <ImfStringAttribute.h>
+#include <ImfVecAttribute.h>
+#include <ImfVersion.h>
+
+#include <Iex.h>
+
+#include <vds/error.h>
+
+namespace vds {
+namespace {
+
+// Attribute names (docs/format.md lists types and meaning).
+constexpr const char* kFormatVersionAttr = "vds.formatVersion";
+constexpr const char* kAxisAttr = "vds.axis";
+constexpr const char* kPositionAttr = "vds.position";
+constexpr const char* kMatrixAttr = "vds.matrix";
+constexpr const char* kBoxMinAttr = "vds.boxMin";
+constexpr const char* kBoxMaxAttr = "vds.boxMax";
+constexpr const char* kTexelSizeAttr = "vds.texelSize";
+constexpr const char* kDepthComplexityAttr = "vds.depthComplexity";
+constexpr const char* kSourceNameAttr = "vds.sourceName";
+constexpr const char* kSourceTrianglesAttr = "vds.sourceTriangles";
+constexpr const char* kStatusAttr = "vds.status";
+constexpr const char* kValidationAttr = "vds.validation";
+constexpr const char* kChecksumAttr = "vds.checksum";
+
+constexpr const char* kDepthChannel = "Z";
+constexpr const char* kEnteringChannel = "entering";
+
+// Bytes per stored sample: Z (FLOAT) + entering (UINT).
+constexpr std::uint64_t kBytesPerSample = 8;
+// Deflate expands data at most about 1032-fold (RLE 64-fold, NONE 1-fold), so
+// a file of n bytes cannot hold more than this many times n bytes of sample
+// counts and samples; larger claims are corrupt and refused before allocating.
+constexpr std::uint64_t kMaxExpansion = 1100;
+// Rows per OpenEXR call are capped so the per-pixel pointer tables the deep
+// API needs stay near 20 MB.
+constexpr std::uint64_t kPixelsPerBatch = std::uint64_t(1) << 20;
+
+// ---------------------------------------------------------------- messages
+
+std::string oneLine(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    for (char c : text) {
+        const bool blank = c == '\n' || c == '\r' || c == '\t';
+        if (blank && (out.empty() || out.back() == ' ')) continue;
+        out += blank ? ' ' : c;
+    }
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    return out;
+}
+
+std::string errnoText(int error) { return std::error_code(error, std::generic_category()).message(); }
+
+[[noreturn]] void formatFail(const std::string& path, const std::string& what) {
+    throw FormatError(path + ": " + oneLine(what));
+}
+
+// ---------------------------------------------------------------- checksum
+
+/// 64-bit FNV-1a over a little-endian serialisation, independent of the host.
+class Fnv1a64 {
+public:
+    void byte(std::uint8_t b) {
+        hash_ ^= b;
+        hash_ *= 0x100000001b3ull;
+    }
+    void u32(std::uint32_t v) {
+        for (int k = 0; k < 4; ++k) byte(std::uint8_t(v >> (8 * k)));
+    }
+    void u64(std::uint64_t v) {
+        for (int k = 0; k < 8; ++k) byte(std::uint8_t(v >> (8 * k)));
+    }
+    void f32(float f) {
+        std::uint32_t bits;
+        std::memcpy(&bits, &f, sizeof bits);
+        u32(bits);
+    }
+    void str(const std::string& s) {
+        u64(s.size());
+        for (char c : s) byte(std::uint8_t(c));
+    }
+    std::uint64_t value() const { return hash_; }
+
+private:
+    std::uint64_t hash_ = 0xcbf29ce484222325ull;
+};
+
+/// The checksum of docs/format.md: every field of the sprite, in this order.
+std::uint64_t spriteChecksum(const Sprite& s) {
+    Fnv1a64 h;
+    h.u32(std::uint32_t(Sprite::kFormatVersion));
+    h.u32(s.grid.width);
+    h.u32(s.grid.height);
+    h.u32(std::uint32_t(s.grid.axis));
+    h.f32(s.grid.texelSize);
+    for (int k = 0; k < 3; ++k) h.f32(s.grid.position[k]);
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) h.f32(s.grid.matrix[c][r]);
+    for (int k = 0; k < 3; ++k) h.f32(s.grid.box.lo[k]);
+    for (int k = 0; k < 3; ++k) h.f32(s.grid.box.hi[k]);
+    h.u32(s.depthComplexity);
+    h.u64(s.sourceTriangles);
+    h.u32(std::uint32_t(s.status));
+    h.str(s.sourceName);
+    h.str(s.validation);
+    for (std::uint32_t o : s.offsets) h.u32(o);
+    for (float c : s.crossings) h.f32(c);
+    return h.value();
+}
+
+std::string toHex(std::uint64_t v) {
+    static const char digits[] = "0123456789abcdef";
+    std::string s(16, '0');
+    for (int k = 15; k >= 0; --k, v >>= 4) s[std::size_t(k)] = digits[v & 15];
+    return s;
+}
+
+bool parseHex(const std::string& s, std::uint64_t& v) {
+    if (s.size() != 16) return false;
+    v = 0;
+    for (char c : s) {
+        const int d = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+        if (d < 0) return false;
+        v = (v << 4) | std::uint64_t(d);
+    }
+    return true;
+}
+
+bool parseDecimal(const std::string& s, std::uint64_t& v) {
+    if (s.empty() || s.size() > 20) return false;
+    v = 0;
+    for (char c : s) {
+        if (c < '0' || c > '9') return false;
+        const std::uint64_t d = std::uint64_t(c - '0');
+        if (v > (std::numeric_limits<std::uint64_t>::max() - d) / 10) return false;
+        v = v * 10 + d;
+    }
+    return true;
+}
+
+// ---------------------------------------------------------------- matrices
+
+// The file stores M_S as Imath's M33f with x[i][j] = glm matrix[i][j]: the same
+// nine floats in the same order, which in Imath's row-vector convention
+// (T = (P - P_S) * M) is the same linear map as glm's T = M_S * (P - P_S).
+Imath::V3f toImath(const glm::vec3& v) { return Imath::V3f(v.x, v.y, v.z); }
+glm::vec3 toGlm(const Imath::V3f& v) { return glm::vec3(v.x, v.y, v.z); }
+
+Imath::M33f toImath(const glm::mat3& m) {
+    Imath::M33f out;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) out.x[i][j] = m[i][j];
+    return out;
+}
+
+glm::mat3 toGlm(const Imath::M33f& m) {
+    glm::mat3 out;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) out[i][j] = m.x[i][j];
+    return out;
+}
+
+// ---------------------------------------------------------------- memory streams
+
+/// Growable in-memory output stream for OpenEXR.
+class MemoryOStream final : public Imf::OStream {
+public:
+    explicit MemoryOStream(const std::string& name) : Imf::OStream(name.c_str()) {}
+
+    void write(const char c[], int n) override {
+        if (n < 0) throw Iex::ArgExc("negative write size");
+        const std::size_t end = position_ + std::size_t(n);
+        if (end > bytes_.size()) bytes_.resize(end);
+        if (n > 0) std::memcpy(bytes_.data() + position_, c, std::size_t(n));
+        position_ = end;
+    }
+    std::uint64_t tellp() override { return position_; }
+    void seekp(std::uint64_t pos) override { position_ = std::size_t(pos); }
+
+    const std::vector<char>& bytes() const { return bytes_; }
+
+private:
+    std::vector<char> bytes_;
+    std::size_t position_ = 0;
+};
+
+/// Read-only view of a loaded file; every read past the end throws.
+class MemoryIStream final : public Imf::IStream {
+public:
+    MemoryIStream(const std::string& name, std::vector<char>& bytes) : Imf::IStream(name.c_str()), bytes_(bytes) {}
+
+    bool isMemoryMapped() const override { return true; }
+    bool read(char c[], int n) override {
+        const char* p = take(n);
+        if (n > 0) std::memcpy(c, p, std::size_t(n));
+        return position_ < bytes_.size();
+    }
+    char* readMemoryMapped(int n) override { return take(n); }
+    std::uint64_t tellg() override { return position_; }
+    void seekg(std::uint64_t pos) override { position_ = pos; }
+    void clear() override {}
+
+private:
+    char* take(int n) {
+        if (n < 0 || position_ > bytes_.size() || std::uint64_t(n) > bytes_.size() - position_)
+            throw Iex::InputExc("unexpected end of file");
+        char* p = bytes_.data() + position_;
+        position_ += std::uint64_t(n);
+        return p;
+    }
+
+    std::vector<char>& bytes_;
+    std::uint64_t position_ = 0;
+};
+
+// ---------------------------------------------------------------- files
+
+class FileDescriptor {
+public:
+    explicit FileDescriptor(int fd) : fd_(fd) {}
+    ~FileDescriptor() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    FileDescriptor(const FileDescriptor&) = delete;
+    FileDescriptor& operator=(const FileDescriptor&) = delete;
+    int get() const { return fd_; }
+    /// Closes now and returns close()'s result (errno set on failure).
+    int close() {
+        const int fd = fd_;
+        fd_ = -1;
+        return ::close(fd);
+    }
+
+private:
+    int fd_;
+};
+
+std::vector<char> readWholeFile(const std::string& path) {
+    FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+    if (fd.get() < 0) throw IoError(path + ": cannot open: " + errnoText(errno));
+    struct stat st;
+    if (::fstat(fd.get(), &st) != 0) throw IoError(path + ": cannot read: " + errnoText(errno));
+    if (S_ISDIR(st.st_mode)) throw IoError(path + ": cannot read: is a directory");
+
+    // One byte more than the size, so reaching the end needs no reallocation.
+    std::vector<char> bytes(S_ISREG(st.st_mode) ? std::size_t(st.st_size) + 1 : std::size_t(1) << 16);
+    std::size_t size = 0;
+    for (;;) {
+        if (size == bytes.size()) bytes.resize(bytes.size() * 2);
+        const ssize_t n = ::read(fd.get(), bytes.data() + size, bytes.size() - size);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            throw IoError(path + ": cannot read: " + errnoText(errno));
+        }
+        if (n == 0) break;
+        size += std::size_t(n);
+    }
+    bytes.resize(size);
+    return bytes;
+}
+
+/// A uniquely named file beside `path`, created with O_EXCL and the usual
+/// permissions (0666 less the umask); removed on destruction unless kept.
+class TemporaryFile {
+public:
+    explicit TemporaryFile(const std::string& path) {
+        static std::atomic<std::uint64_t> counter{0};
+        const std::uint64_t seed = std::uint64_t(::getpid()) * 0x9e3779b97f4a7c15ull ^
+                                   std::uint64_t(std::chrono::steady_clock::now().time_since_epoch().count());
+        for (int attempt = 0; attempt < 100; ++attempt) {
+            // splitmix64 of seed + counter: a different name per attempt and thread.
+            std::uint64_t z = seed + (counter.fetch_add(1) + 1) * 0x9e3779b97f4a7c15ull;
+            z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+            z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+            z ^= z >> 31;
+            std::string name = path + ".tmp-";
+            for (int k = 0; k < 6; ++k, z /= 36) name += "0123456789abcdefghijklmnopqrstuvwxyz"[z % 36];
+            fd_ = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+            if (fd_ >= 0) {
+                name_ = name;
+                return;
+            }
+            if (errno != EEXIST) throw IoError(path + ": cannot write: " + errnoText(errno));
+        }
+        throw IoError(path + ": cannot write: no free temporary name beside it");
+    }
+    ~TemporaryFile() {
+        if (fd_ >= 0) ::close(fd_);
+        if (!kept_) ::unlink(name_.c_str());
+    }
+    TemporaryFile(const TemporaryFile&) = delete;
+    TemporaryFile& operator=(const TemporaryFile&) = delete;
+
+    int fd() const { return fd_; }
+    const std::string& name() const { return name_; }
+    int close() {
+        const int fd = fd_;
+        fd_ = -1;
+        return ::close(fd);
+    }
+    void keep() { kept_ = true; }
+
+private:
+    int fd_ = -1;
+    std::string name_;
+    bool kept_ = false;
+};
+
+void writeFileAtomically(const std::string& path, const std::vector<char>& bytes) {
+    TemporaryFile tmp(path);
+    const char* p = bytes.data();
+    std::size_t left = bytes.size();
+    while (left > 0) {
+        const ssize_t n = ::write(tmp.fd(), p, left);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            throw IoError(path + ": cannot write: " + errnoText(errno));
+        }
+        p += n;
+        left -= std::size_t(n);
+    }
+    // fsync before rename, so a crash cannot leave an empty file under the name.
+    if (::fsync(tmp.fd()) != 0) throw IoError(path + ": cannot write: " + errnoText(errno));
+    if (tmp.close() != 0) throw IoError(path + ": cannot write: " + errnoText(errno));
+    if (std::rename(tmp.name().c_str(), path.c_str()) != 0)
+        throw IoError(path + ": cannot replace: " + errnoText(errno));
+    tmp.keep();
+}
+
+// ---------------------------------------------------------------- encoding
+
+/// Rows per OpenEXR call for an image `width` pixels wide.
+int batchRows(std::uint32_t width) {
+    return int(std::max<std::uint64_t>(1, kPixelsPerBatch / width));
+}
+
+/// OpenEXR addresses slice memory by absolute pixel position, base + y * yStride:
+/// the base that puts row `y0` at `firstRow`.
+char* sliceBase(void* firstRow, int y0, std::size_t yStride) {
+    return reinterpret_cast<char*>(reinterpret_cast<std::uintptr_t>(firstRow) - std::uintptr_t(y0) * yStride);
+}
+
+/// The frame buffer of rows y0.. of a `width`-wide image: per pixel a sample
+/// count and pointers to its first depth (float) and entering flag (unsigned).
+Imf::DeepFrameBuffer batchFrameBuffer(unsigned* counts, char** depthPointers, char** enteringPointers, int y0,
+                                      std::uint32_t width) {
+    Imf::DeepFrameBuffer fb;
+    fb.insertSampleCountSlice(Imf::Slice(Imf::UINT, sliceBase(counts, y0, sizeof(unsigned) * width),
+                                         sizeof(unsigned), sizeof(unsigned) * width));
+    fb.insert(kDepthChannel, Imf::DeepSlice(Imf::FLOAT, sliceBase(depthPointers, y0, sizeof(char*) * width),
+                                            sizeof(char*), sizeof(char*) * width, sizeof(float)));
+    fb.insert(kEnteringChannel, Imf::DeepSlice(Imf::UINT, sliceBase(enteringPointers, y0, sizeof(char*) * width),
+                                               sizeof(char*), sizeof(char*) * width, sizeof(unsigned)));
+    return fb;
+}
+
+/// Refuses what the reader would refuse, so every written file reads back.
+void checkWritable(const Sprite& sprite, const std::string& path) {
+    try {
+        sprite.checkConsistent();
+    } catch (const FormatError& e) {
+        formatFail(path, std::string("not written: ") + e.what());
+    }
+    if (unsigned(sprite.grid.axis) > 2) formatFail(path, "not written: invalid axis");
+    if (unsigned(sprite.status) > 1) formatFail(path, "not written: invalid solid status");
+    if (sprite.depthComplexity > std::uint32_t(std::numeric_limits<int>::max()))
+        formatFail(path, "not written: depth complexity too large");
+}
+
+Imf::Header makeHeader(const Sprite& sprite) {
+    Imf::Header header(int(sprite.width()), int(sprite.height()));
+    header.setType(Imf::DEEPSCANLINE);
+    // ZIPS: zlib per scanline. OpenEXR 3.1 refuses ZIP (16-line chunks) for deep data.
+    header.compression() = Imf::ZIPS_COMPRESSION;
+    header.channels().insert(kDepthChannel, Imf::Channel(Imf::FLOAT));
+    header.channels().insert(kEnteringChannel, Imf::Channel(Imf::UINT));
+
+    const SpriteGrid& g = sprite.grid;
+    header.insert(kFormatVersionAttr, Imf::IntAttribute(Sprite::kFormatVersion));
+    header.insert(kAxisAttr, Imf::IntAttribute(int(g.axis)));
+    header.insert(kPositionAttr, Imf::V3fAttribute(toImath(g.position)));
+    header.insert(kMatrixAttr, Imf::M33fAttribute(toImath(g.matrix)));
+    header.insert(kBoxMinAttr, Imf::V3fAttribute(toImath(g.box.lo)));
+    header.insert(kBoxMaxAttr, Imf::V3fAttribute(toImath(g.box.hi)));
+    header.insert(kTexelSizeAttr, Imf::FloatAttribute(g.texelSize));
+    header.insert(kDepthComplexityAttr, Imf::IntAttribute(int(sprite.depthComplexity)));
+    header.insert(kSourceNameAttr, Imf::StringAttribute(sprite.sourceName));
+    header.insert(kSourceTrianglesAttr, Imf::StringAttribute(std::to_string(sprite.sourceTriangles)));
+    header.insert(kStatusAttr, Imf::IntAttribute(int(sprite.status)));
+    header.insert(kValidationAttr, Imf::StringAttribute(sprite.validation));
+    header.insert(kChecksumAttr, Imf::StringAttribute(toHex(spriteChecksum(sprite))));
+    return header;
+}
+
+std::vector<char> encodeSprite(const Sprite& sprite, const std::string& path) {
+    const std::uint32_t width = sprite.width(), height = sprite.height();
+    MemoryOStream stream(path);
+    {
+        Imf::DeepScanLineOutputFile file(stream, makeHeader(sprite));
+        const int rows = batchRows(width);
+        std::vector<unsigned> counts;
+        std::vector<char*> depthPointers, enteringPointers;
+        std::vector<float> depths;
+        std::vector<unsigned> entering;
+        for (int y0 = 0; y0 < int(height); y0 += rows) {
+            const int y1 = std::min(int(height), y0 + rows);
+            const std::size_t first = std::size_t(y0) * width, last = std::size_t(y1) * width;
+            const std::uint32_t base = sprite.offsets[first];
+            const std::size_t samples = sprite.offsets[last] - base;
+
+            counts.resize(last - first);
+            depthPointers.resize(last - first);
+            enteringPointers.resize(last - first);
+            depths.resize(std::max<std::size_t>(1, samples));
+            entering.resize(std::max<std::size_t>(1, samples));
+            for (std::size_t k = 0; k < samples; ++k) {
+                const float e = sprite.crossings[base + k];
+                depths[k] = crossingDepth(e);
+                entering[k] = crossingEnters(e) ? 1u : 0u;
+            }
+            for (std::size_t c = first; c < last; ++c) {
+                counts[c - first] = sprite.offsets[c + 1] - sprite.offsets[c];
+                depthPointers[c - first] = reinterpret_cast<char*>(depths.data() + (sprite.offsets[c] - base));
+                enteringPointers[c - first] = reinterpret_cast<char*>(entering.data() + (sprite.offsets[c] - base));
+            }
+
+            file.setFrameBuffer(
+                batchFrameBuffer(counts.data(), depthPointers.data(), enteringPointers.data(), y0, width));
+            file.writePixels(y1 - y0);
+        }
+    } // the destructor writes the chunk offset table
+    return stream.bytes();
+}
+
+// ---------------------------------------------------------------- decoding
+
+const Imf::Attribute& requireAttribute(const Imf::Header& header, const char* name, const char* typeName,
+                                       const std::string& path) {
+    const auto it = header.find(name);
+    if (it == header.end()) formatFail(path, std::string("missing attribute ") + name);
+    if (std::strcmp(it.attribute().typeName(), typeName) != 0)
+        formatFail(path, std::string("attribute ") + name + " has type " + it.attribute().typeName() + ", expected " +
+                             typeName);
+    return it.attribute();
+}
+
+template <class T>
+const T& value(const Imf::Header& header, const char* name, const std::string& path) {
+    using Attr = Imf::TypedAttribute<T>;
+    const Imf::Attribute& a = requireAttribute(header, name, Attr::staticTypeName(), path);
+    const Attr* typed = dynamic_cast<const Attr*>(&a);
+    if (!typed) formatFail(path, std::string("attribute ") + name + " has an unexpected type");
+    return typed->value();
+}
+
+void checkChannels(const Imf::Header& header, const std::string& path) {
+    const Imf::ChannelList& channels = header.channels();
+    int count = 0;
+    for (auto it = channels.begin(); it != channels.end(); ++it) {
+        ++count;
+        const std::string name = it.name();
+        const Imf::Channel& ch = it.channel();
+        const Imf::PixelType expected = name == kDepthChannel      ? Imf::FLOAT
+                                        : name == kEnteringChannel ? Imf::UINT
+                                                                   : Imf::NUM_PIXELTYPES;
+        if (expected == Imf::NUM_PIXELTYPES) formatFail(path, "unexpected channel \"" + name + "\"");
+        if (ch.type != expected)
+            formatFail(path, "channel \"" + name + "\" has the wrong type (expected " +
+                                 (expected == Imf::FLOAT ? "FLOAT" : "UINT") + ")");
+        if (ch.xSampling != 1 || ch.ySampling != 1) formatFail(path, "channel \"" + name + "\" is subsampled");
+    }
+    if (count != 2 || !channels.findChannel(kDepthChannel) || !channels.findChannel(kEnteringChannel))
+        formatFail(path, "expected exactly the channels \"Z\" and \"entering\"");
+}
+
+/// Reads and checks everything up to the pixels: the OpenEXR version field,
+/// the header, and the vds.* attributes into `sprite` (offsets, crossings and
+/// the checksum excepted). Returns the stored checksum.
+std::uint64_t readHeader(MemoryIStream& stream, std::uint64_t fileSize, const std::string& path, Sprite& sprite) {
+    char head[8] = {};
+    if (fileSize < 8) formatFail(path, "not a .vds file (too short for OpenEXR)");
+    stream.read(head, 8);
+    if (!Imf::isImfMagic(head)) formatFail(path, "not a .vds file (not OpenEXR)");
+    const int version = int(std::uint32_t(std::uint8_t(head[4])) | std::uint32_t(std::uint8_t(head[5])) << 8 |
+                            std::uint32_t(std::uint8_t(head[6])) << 16 | std::uint32_t(std::uint8_t(head[7])) << 24);
+    if (Imf::getVersion(version) != Imf::EXR_VERSION || !Imf::supportsFlags(Imf::getFlags(version)))
+        formatFail(path, "unsupported OpenEXR version field");
+    if (Imf::isMultiPart(version)) formatFail(path, "not a .vds file (multi-part OpenEXR)");
+    if (Imf::isTiled(version) || !Imf::isNonImage(version))
+        formatFail(path, "not a .vds file (not a deep scanline OpenEXR image)");
+
+    Imf::Header header;
+    int headerVersion = version;
+    header.readFrom(stream, headerVersion);
+    if (!header.hasType() || header.type() != Imf::DEEPSCANLINE)
+        formatFail(path, "not a .vds file (not a deep scanline OpenEXR image)");
+
+    // The image size bounds every allocation OpenEXR makes: check it first.
+    const Imath::Box2i& window = header.dataWindow();
+    const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+    const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+    if (window.min.x != 0 || window.min.y != 0)
+        formatFail(path, "data window does not start at (0, 0)");
+    if (width < 1 || height < 1 || width > kMaxResolution || height > kMaxResolution)
+        formatFail(path, "image size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range");
+    if (std::uint64_t(width * height) * sizeof(std::uint32_t) > kMaxExpansion * fileSize)
+        formatFail(path, "image size " + std::to_string(width) + "x" + std::to_string(height) +
+                             " is too large for the file (truncated or corrupt)");
+    header.sanityCheck(false, false);
+    const Imf::Compression compression = header.compression();
+    if (compression != Imf::NO_COMPRESSION && compression != Imf::RLE_COMPRESSION &&
+        compression != Imf::ZIPS_COMPRESSION)
+        formatFail(path, "unsupported compression for deep data");
+    checkChannels(header, path);
+
+    const int formatVersion = value<int>(header, kFormatVersionAttr, path);
+    if (formatVersion != Sprite::kFormatVersion)
+        formatFail(path, "unsupported format version " + std::to_string(formatVersion) + " (this library reads " +
+                             std::to_string(Sprite::kFormatVersion) + ")");
+
+    SpriteGrid& g = sprite.grid;
+    g.width = std::uint32_t(width);
+    g.height = std::uint32_t(height);
+    const int axis = value<int>(header, kAxisAttr, path);
+    if (axis < 0 || axis > 2)
+        formatFail(path, "attribute vds.axis is " + std::to_string(axis) + ", expected 0, 1 or 2");
+    g.axis = Axis(axis);
+    g.position = toGlm(value<Imath::V3f>(header, kPositionAttr, path));
+    g.matrix = toGlm(value<Imath::M33f>(header, kMatrixAttr, path));
+    g.box.lo = toGlm(value<Imath::V3f>(header, kBoxMinAttr, path));
+    g.box.hi = toGlm(value<Imath::V3f>(header, kBoxMaxAttr, path));
+    g.texelSize = value<float>(header, kTexelSizeAttr, path);
+
+    const int depthComplexity = value<int>(header, kDepthComplexityAttr, path);
+    if (depthComplexity < 0) formatFail(path, "attribute vds.depthComplexity is negative");
+    sprite.depthComplexity = std::uint32_t(depthComplexity);
+    sprite.sourceName = value<std::string>(header, kSourceNameAttr, path);
+    if (!parseDecimal(value<std::string>(header, kSourceTrianglesAttr, path), sprite.sourceTriangles))
+        formatFail(path, "attribute vds.sourceTriangles is not a decimal number");
+    const int status = value<int>(header, kStatusAttr, path);
+    if (status < 0 || status > 1)
+        formatFail(path, "attribute vds.status is " + std::to_string(status) + ", expected 0 or 1");
+    sprite.status = SolidStatus(status);
+    sprite.validation = value<std::string>(header, kValidationAttr, path);
+
+    std::uint64_t checksum = 0;
+    if (!parseHex(value<std::string>(header, kChecksumAttr, path), checksum))
+        formatFail(path, "attribute vds.checksum is not 16 lowercase hex digits");
+    return checksum;
+}
+
+/// Reads the sample counts into `sprite.offsets` as prefix sums and checks
+/// them against d_S and the file size.
+void readOffsets(Imf::DeepScanLineInputFile& file, std::uint64_t fileSize, const std::string& path, Sprite& sprite) {
+    const std::uint32_t width = sprite.width(), height = sprite.height();
+    const std::size_t columns = std::size_t(width) * height;
+    sprite.offsets.assign(columns + 1, 0);
+
+    // Counts land in offsets[1..]; the prefix sum then runs in place.
+    Imf::DeepFrameBuffer fb;
+    fb.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(sprite.offsets.data() + 1),
+                                         sizeof(std::uint32_t), sizeof(std::uint32_t) * width));
+    file.setFrameBuffer(fb);
+    file.readPixelSampleCounts(0, int(height) - 1);
+
+    std::uint64_t total = 0;
+    std::uint32_t most = 0;
+    for (std::size_t c = 0; c < columns; ++c) {
+        const std::uint32_t count = sprite.offsets[c + 1];
+        most = std::max(most, count);
+        total += count;
+        if (total > std::numeric_limits<std::uint32_t>::max())
+            formatFail(path, "more than 2^32-1 crossings in total");
+        sprite.offsets[c + 1] = std::uint32_t(total);
+    }
+    if (most != sprite.depthComplexity)
+        formatFail(path, "the most crossings in a column is " + std::to_string(most) + " but vds.depthComplexity is " +
+                             std::to_string(sprite.depthComplexity));
+    if (total * kBytesPerSample > kMaxExpansion * fileSize)
+        formatFail(path, std::to_string(total) + " crossings cannot fit in a file of " + std::to_string(fileSize) +
+                             " bytes (corrupt sample counts)");
+}
+
+/// Reads the samples into `sprite.crossings`, checking each one.
+void readCrossings(Imf::DeepScanLineInputFile& file, const std::string& path, Sprite& sprite) {
+    const std::uint32_t width = sprite.width(), height = sprite.height();
+    const std::vector<std::uint32_t>& offsets = sprite.offsets;
+    sprite.crossings.assign(std::max<std::size_t>(1, offsets.back()), 0.0f);
+
+    const int rows = batchRows(width);
+    std::vector<unsigned> counts;
+    std::vector<char*> depthPointers, enteringPointers;
+    std::vector<unsigned> entering;
+    for (int y0 = 0; y0 < int(height); y0 += rows) {
+        const int y1 = std::min(int(height), y0 + rows);
+        const std::size_t first = std::size_t(y0) * width, last = std::size_t(y1) * width;
+        const std::uint32_t base = offsets[first];
+        const std::size_t samples = offsets[last] - base;
+
+        counts.assign(last - first, 0);
+        depthPointers.resize(last - first);
+        enteringPointers.resize(last - first);
+        entering.assign(std::max<std::size_t>(1, samples), 0);
+        for (std::size_t c = first; c < last; ++c) {
+            depthPointers[c - first] = reinterpret_cast<char*>(sprite.crossings.data() + offsets[c]);
+            enteringPointers[c - first] = reinterpret_cast<char*>(entering.data() + (offsets[c] - base));
+        }
+
+        file.setFrameBuffer(batchFrameBuffer(counts.data(), depthPointers.data(), enteringPointers.data(), y0, width));
+        // setFrameBuffer forgets the counts; they are read again and must not
+        // have changed, since the pointers above were laid out for them.
+        file.readPixelSampleCounts(y0, y1 - 1);
+        for (std::size_t c = first; c < last; ++c)
+            if (counts[c - first] != offsets[c + 1] - offsets[c])
+                formatFail(path, "sample counts changed between reads");
+        file.readPixels(y0, y1 - 1);
+
+        for (std::size_t c = first; c < last; ++c) {
+            float previous = 0.0f;
+            for (std::uint32_t k = offsets[c]; k < offsets[c + 1]; ++k) {
+                const float depth = sprite.crossings[k];
+                const unsigned enters = entering[k - base];
+                const auto where = [&] {
+                    return " at texel (" + std::to_string(c % width) + ", " + std::to_string(c / width) + ")";
+                };
+                if (!(depth >= 0.0f && depth <= 1.0f) || std::signbit(depth))
+                    formatFail(path, "depth outside [0, 1]" + where());
+                if (enters > 1) formatFail(path, "\"entering\" is neither 0 nor 1" + where());
+                if (depth < previous) formatFail(path, "crossings not sorted by depth" + where());
+                previous = depth;
+                sprite.crossings[k] = encodeCrossing(depth, enters == 1);
+            }
+        }
+    }
+    sprite.crossings.resize(offsets.back());
+}
+
+Sprite decodeSprite(std::vector<char>& bytes, const std::string& path) {
+    const std::uint64_t fileSize = bytes.size();
+    MemoryIStream stream(path, bytes);
+    Sprite sprite;
+    const std::uint64_t storedChecksum = readHeader(stream, fileSize, path, sprite);
+
+    stream.seekg(0);
+    Imf::DeepScanLineInputFile file(stream);
+    readOffsets(file, fileSize, path, sprite);
+    readCrossings(file, path, sprite);
+
+    if (spriteChecksum(sprite) != storedChecksum) formatFail(path, "checksum mismatch (corrupt or edited file)");
+    try {
+        sprite.checkConsistent();
+    } catch (const FormatError& e) {
+        formatFail(path, e.what());
+    }
+    return sprite;
+}
+
+} // namespace
+
+void writeSprite(const Sprite& sprite, const std::string& path) {
+    checkWritable(sprite, path);
+    std::vector<char> bytes;
+    try {
+        bytes = encodeSprite(sprite, path);
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(path + ": not enough memory to encode the sprite");
+    } catch (const std::exception& e) { // Iex::BaseExc derives from std::exception
+        throw IoError(path + ": cannot encode: " + oneLine(e.what()));
+    }
+    writeFileAtomically(path, bytes);
+}
+
+Sprite readSprite(const std::string& path) {
+    try {
+        std::vector<char> bytes = readWholeFile(path);
+        return decodeSprite(bytes, path);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(path + ": not enough memory to read the sprite");
+    } catch (const Iex::BaseExc& e) {
+        formatFail(path, e.what());
+    } catch (const std::exception& e) {
+        formatFail(path, e.what());
+    }
+}
+
+} // namespace vds
