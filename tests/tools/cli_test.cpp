@@ -118,8 +118,31 @@ TEST_F(Cli, EvalReportsAndWritesJsonAndSlices) {
     EXPECT_EQ(vds("eval " + p("box.obj") + " --resolutions 0").code, 2);
 }
 
+TEST_F(Cli, EveryRepresentationAnswersTheSameQueries) {
+    for (const char* with : {"slicemap", "slicemap-local", "solid", "solid-compute"})
+        for (const char* gpu : {"", " --gpu"}) {
+            const Result r = vds("classify --mesh " + p("box.obj") + " --with " + with + " --resolution 32 " +
+                                 p("points.txt") + " -o " + p("w.txt") + gpu + " --quiet");
+            ASSERT_EQ(r.code, 0) << with << gpu << ": " << r.output;
+            EXPECT_EQ(readFile(dir / "w.txt"), "1\n1\n0\n0\n0\n1\n") << with << gpu;
+        }
+    EXPECT_EQ(vds("classify --mesh " + p("box.obj") + " --with voxels " + p("points.txt") + " -o " + p("w.txt")).code, 2);
+    EXPECT_EQ(vds("classify --mesh " + p("box.obj") + " --with solid --resolution 0 " + p("points.txt") + " -o " +
+                  p("w.txt")).code, 2);
+}
+
+TEST_F(Cli, CompareWritesTableJsonAndChart) {
+    const Result r = vds("compare " + p("box.obj") + " --resolutions 16 --points 5000 --surface-points 2000 --json " +
+                         p("c.json") + " --chart " + p("c.png") + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* method : {"vds-parity", "vds-winding", "slicemap", "slicemap-local", "solid", "solid-compute"})
+        EXPECT_NE(r.output.find(method), std::string::npos) << method;
+    EXPECT_NE(readFile(dir / "c.json").find("solid-compute"), std::string::npos);
+    EXPECT_GT(vds::readPng(p("c.png")).width, 100u);
+}
+
 TEST_F(Cli, EveryCommandHasHelp) {
-    for (const char* c : {"--help", "bake --help", "classify --help", "info --help", "eval --help"}) {
+    for (const char* c : {"--help", "bake --help", "classify --help", "info --help", "eval --help", "compare --help"}) {
         const Result r = vds(c);
         EXPECT_EQ(r.code, 0) << c;
         EXPECT_NE(r.output.find("usage: vds"), std::string::npos) << c;

@@ -48,5 +48,6 @@ int bake(int argc, char** argv);
 int classify(int argc, char** argv);
 int info(int argc, char** argv);
 int eval(int argc, char** argv);
+int compare(int argc, char** argv);
 
 } // namespace cli

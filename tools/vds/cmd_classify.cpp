@@ -11,6 +11,7 @@
 #include <vds/gpu_sprite.h>
 #include <vds/mesh_io.h>
 #include <vds/vds_file.h>
+#include <vds/voxel/representation.h>
 
 #include "cli.h"
 
@@ -20,7 +21,7 @@ namespace {
 const char* kHelp =
     "usage: vds classify SPRITE.vds POINTS -o LABELS.txt [options]\n"
     "       vds classify --exact --mesh MESH POINTS -o LABELS.txt [options]\n"
-    "       vds classify --mesh MESH --with vds --resolution N POINTS -o LABELS.txt [options]\n"
+    "       vds classify --mesh MESH --with REPRESENTATION --resolution N POINTS -o LABELS.txt [options]\n"
     "\n"
     "Labels each point 1 (inside) or 0 (outside), one line per point, in the\n"
     "order given. POINTS is a text file of lines 'x y z' in the mesh's\n"
@@ -34,8 +35,12 @@ const char* kHelp =
     "  --threads N           CPU threads (default: all)\n"
     "  --exact               exact classification on the mesh's triangles (needs --mesh)\n"
     "  --mesh MESH           classify against a mesh: --exact, or --with REPRESENTATION\n"
-    "  --with vds            bake the mesh in memory first (at --resolution, default 1024)\n"
-    "  --resolution N        resolution for --with\n"
+    "  --with REPRESENTATION build it from the mesh in memory first, at --resolution:\n"
+    "                        vds (a sprite), slicemap, slicemap-local (front/back slicemap pair,\n"
+    "                        uniform or local slicing), solid, solid-compute (solid voxels by\n"
+    "                        rasterization or in compute); see docs/voxel.md\n"
+    "  --resolution N        texels or voxels on the box's longest side for --with\n"
+    "                        (default 1024 for vds, 256 for the others)\n"
     "  --quiet               no progress messages\n";
 
 void writeLabels(const std::string& path, const std::vector<std::uint8_t>& labels) {
@@ -76,8 +81,17 @@ int classify(int argc, char** argv) {
     }
     options.threads = args.getUint("--threads", 0);
     const std::string with = args.get("--with", "vds");
-    if (args.has("--with") && with != "vds") throw UsageError("unknown representation '" + with + "' for --with");
-    const std::uint32_t resolution = args.getUint("--resolution", 1024);
+    vds::voxel::Representation representation{};
+    if (with != "vds") {
+        try {
+            representation = vds::voxel::parseRepresentation(with);
+        } catch (const vds::InvalidArgument& e) {
+            throw UsageError(std::string(e.what()) + " (or vds)");
+        }
+    }
+    const std::uint32_t resolution = args.getUint("--resolution", with == "vds" ? 1024 : 256);
+    if (resolution == 0 || resolution > vds::kMaxResolution)
+        throw UsageError("--resolution must be 1.." + std::to_string(vds::kMaxResolution));
 
     const std::string pointsPath = args.positional().back();
     const std::vector<glm::vec3> points = vds::loadPoints(pointsPath);
@@ -96,6 +110,21 @@ int classify(int argc, char** argv) {
         const vds::ExactClassifier exact(mesh);
         exact.classify(points.data(), points.size(), labels.data(), options);
         method = "exact";
+    } else if (with != "vds") {
+        if (options.rule == vds::Rule::Winding) throw UsageError("--rule winding needs a sprite (--with vds)");
+        const vds::TriangleMesh mesh = vds::loadMesh(args.get("--mesh"));
+        vds::GlContext gl;
+        vds::voxel::ModelOptions modelOptions;
+        modelOptions.resolution = resolution;
+        const vds::voxel::Model model = vds::voxel::buildModel(mesh, representation, modelOptions, &gl);
+        progress(quiet, "built " + model.summary());
+        if (args.has("--gpu")) {
+            vds::voxel::classifyOnGpu(gl, model, points.data(), points.size(), labels.data());
+            method = with + " on the GPU (" + gl.info().renderer + ")";
+        } else {
+            model.classify(points.data(), points.size(), labels.data(), options.threads);
+            method = with + " on the CPU";
+        }
     } else {
         vds::Sprite sprite;
         if (fromMesh) {

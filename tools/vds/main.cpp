@@ -78,6 +78,7 @@ const char* kUsage =
     "                                   label points 1 inside / 0 outside\n"
     "  info      SPRITE.vds             describe a sprite file\n"
     "  eval      MESH                   accuracy of sprites vs the exact classifier\n"
+    "  compare   MESH                   VDS vs slicemaps and solid voxels: error, memory, speed\n"
     "\n"
     "Run 'vds <command> --help' for a command's options.\n";
 
@@ -94,6 +95,7 @@ int main(int argc, char** argv) {
         if (command == "classify") return cli::classify(argc - 2, argv + 2);
         if (command == "info") return cli::info(argc - 2, argv + 2);
         if (command == "eval") return cli::eval(argc - 2, argv + 2);
+        if (command == "compare") return cli::compare(argc - 2, argv + 2);
         std::fprintf(stderr, "vds: unknown command '%s' (try 'vds --help')\n", command.c_str());
         return cli::kUsage;
     } catch (const cli::UsageError& e) {

@@ -1,0 +1,88 @@
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <vector>
+
+#include <vds/atomic_file.h>
+#include <vds/error.h>
+#include <vds/image.h>
+#include <vds/mesh_io.h>
+#include <vds/sprite.h>
+#include <vds/voxel/compare.h>
+
+#include "cli.h"
+
+namespace cli {
+
+namespace {
+const char* kHelp =
+    "usage: vds compare MESH [options]\n"
+    "\n"
+    "Compares the VDS (parity and winding) with slicemaps (uniform and local)\n"
+    "and solid voxels (raster and compute) on the same points, at equal\n"
+    "resolution and at equal memory: misclassification rate against the exact\n"
+    "classifier, worst error distance in cells, build time, query throughput,\n"
+    "memory. Prints a table; writes JSON and a PNG chart of error against memory.\n"
+    "\n"
+    "options:\n"
+    "  --resolutions LIST   comma-separated (default 32,64,128)\n"
+    "  --points N           uniform points in the padded box (default 100000)\n"
+    "  --surface-points N   points near the surface (default 50000)\n"
+    "  --json FILE          write the result as JSON\n"
+    "  --chart FILE.png     write the error-against-memory chart\n"
+    "  --seed N             random seed (default 1)\n"
+    "  --quiet              no progress messages\n";
+
+void writeText(const std::string& path, const std::string& text) {
+    vds::AtomicFile out(path);
+    std::FILE* f = std::fopen(out.path().c_str(), "wb");
+    if (!f) throw vds::IoError(path + ": cannot write");
+    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    if (std::fclose(f) != 0 || !ok) throw vds::IoError(path + ": cannot write");
+    out.commit();
+}
+} // namespace
+
+int compare(int argc, char** argv) {
+    const Args args(argc, argv, {"--resolutions", "--points", "--surface-points", "--json", "--chart", "--seed"},
+                    {"--help", "--quiet"});
+    if (args.has("--help")) {
+        std::fputs(kHelp, stdout);
+        return 0;
+    }
+    args.expectPositional(1, "one mesh file");
+    const bool quiet = args.has("--quiet");
+    vds::voxel::CompareOptions options;
+    if (args.has("--resolutions")) {
+        options.resolutions.clear();
+        std::stringstream in(args.get("--resolutions"));
+        std::string item;
+        while (std::getline(in, item, ',')) {
+            char* end = nullptr;
+            const unsigned long v = std::strtoul(item.c_str(), &end, 10);
+            if (item.empty() || *end || v == 0 || v > vds::kMaxResolution)
+                throw UsageError("--resolutions expects numbers 1.." + std::to_string(vds::kMaxResolution));
+            options.resolutions.push_back(std::uint32_t(v));
+        }
+    }
+    options.uniformPoints = args.getUint("--points", 100000);
+    options.surfacePoints = args.getUint("--surface-points", 50000);
+    options.seed = args.getUint("--seed", 1);
+    options.progress = [quiet](const std::string& s) { progress(quiet, s); };
+    const std::string& path = args.positional()[0];
+    const vds::TriangleMesh mesh = vds::loadMesh(path);
+    options.meshName = mesh.name;
+    const vds::voxel::CompareResult result = vds::voxel::compare(mesh, options);
+    std::fputs(result.table().c_str(), stdout);
+    if (args.has("--json")) {
+        writeText(args.get("--json"), result.json());
+        std::printf("wrote %s\n", args.get("--json").c_str());
+    }
+    if (args.has("--chart")) {
+        vds::writePng(vds::voxel::errorChart(result), args.get("--chart"));
+        std::printf("wrote %s\n", args.get("--chart").c_str());
+    }
+    return 0;
+}
+
+} // namespace cli
