@@ -9,7 +9,7 @@
 // 2. Classification throughput for N uniform random points (default 10M) in
 //    the padded box: CPU with 1 and 2 threads, GL compute (upload, dispatch
 //    and read-back included).
-// 3. File size of the .vds (OpenEXR deep, ZIP) vs the dense w*h*d float texture.
+// 3. File size of the .vds (OpenEXR deep, ZIPS) vs the dense w*h*d float texture.
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -23,6 +23,7 @@
 #include <vector>
 
 #include <vds/bake.h>
+#include <vds/exact.h>
 #include <vds/gl_context.h>
 #include <vds/gpu_sprite.h>
 #include <vds/mesh_io.h>
@@ -64,8 +65,9 @@ int main(int argc, char** argv) {
         if (a == "--resolutions" && i + 1 < argc) resolutions = parseList(argv[++i]);
         else if (a == "--points" && i + 1 < argc) pointCount = std::stoull(argv[++i]);
         else if (a == "--no-cpu-bake") cpuBake = false;
+        else if (a == "--classify-only") resolutions.clear();
         else if (a == "--help") {
-            std::puts("usage: vds_bench [--resolutions 512,1024,2048] [--points N] [--no-cpu-bake] [MESH ...]");
+            std::puts("usage: vds_bench [--resolutions 512,1024,2048] [--points N] [--no-cpu-bake] [--classify-only] [MESH ...]");
             return 0;
         } else meshPaths.push_back(a);
     }
@@ -97,9 +99,11 @@ int main(int argc, char** argv) {
             }
         }
 
-        std::puts("## Bake time (seconds), one run each\n");
-        std::puts("| mesh | triangles | resolution | w x h x d | peel | lists | peel / lists | cpu (exact) | identical |");
-        std::puts("|---|---:|---:|---|---:|---:|---:|---:|---|");
+        if (!resolutions.empty()) {
+            std::puts("## Bake time (seconds), one run each\n");
+            std::puts("| mesh | triangles | resolution | w x h x d | peel | lists | peel / lists | cpu (exact) | identical |");
+            std::puts("|---|---:|---:|---|---:|---:|---:|---:|---|");
+        }
         struct SizeRow { std::string mesh; std::uint32_t res; std::size_t file, dense, crossings; };
         std::vector<SizeRow> sizes;
         vds::Sprite keep; // the 1M sphere at 1024, for classification
@@ -131,9 +135,11 @@ int main(int argc, char** argv) {
                 if (res == 1024 && mesh.triangles.size() >= 1000000) keep = std::move(lists);
             }
 
-        std::puts("\n## File size: .vds (OpenEXR deep, ZIP) vs the paper's dense float texture\n");
-        std::puts("| mesh | resolution | crossings | .vds bytes | dense bytes | dense / .vds |");
-        std::puts("|---|---:|---:|---:|---:|---:|");
+        if (!sizes.empty()) {
+            std::puts("\n## File size: .vds (OpenEXR deep, ZIPS) vs the paper's dense float texture\n");
+            std::puts("| mesh | resolution | crossings | .vds bytes | dense bytes | dense / .vds |");
+            std::puts("|---|---:|---:|---:|---:|---:|");
+        }
         for (const auto& s : sizes)
             std::printf("| %s | %u | %zu | %zu | %zu | %.1fx |\n", s.mesh.c_str(), s.res, s.crossings, s.file, s.dense,
                         double(s.dense) / double(s.file));
@@ -165,6 +171,15 @@ int main(int argc, char** argv) {
         const double tg = seconds([&] { classifier.classify(gpu, points.data(), points.size(), c.data()); });
         std::printf("| GL compute (%s) | %.3f | %.3g | %s |\n", info.renderer.c_str(), tg, double(pointCount) / tg,
                     a == c ? "yes" : "NO");
+        // The exact classifier on the same points: the yardstick's speed, and how often the sprite differs.
+        std::vector<std::uint8_t> e(pointCount);
+        const vds::ExactClassifier exact(meshes.back());
+        const double te = seconds([&] { exact.classify(points.data(), points.size(), e.data(), two); });
+        std::size_t differ = 0;
+        for (std::size_t k = 0; k < pointCount; ++k) differ += a[k] != e[k];
+        std::printf("| exact (on the 1,002,000 triangles), 2 threads | %.3f | %.3g | %zu points differ (%.4f %%) |\n", te,
+                    double(pointCount) / te, differ, 100.0 * double(differ) / double(pointCount));
+        std::printf("\nVDS (CPU, 2 threads) / exact: %.1fx; GL compute / exact: %.1fx\n", te / t2, te / tg);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "vds_bench: error: %s\n", e.what());
         return 1;

@@ -8,6 +8,8 @@
 // content's fault (FormatError).
 #include <vds/vds_file.h>
 
+#include <vds/atomic_file.h>
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -300,72 +302,25 @@ std::vector<char> readWholeFile(const std::string& path) {
     return bytes;
 }
 
-/// A uniquely named file beside `path`, created with O_EXCL and the usual
-/// permissions (0666 less the umask); removed on destruction unless kept.
-class TemporaryFile {
-public:
-    explicit TemporaryFile(const std::string& path) {
-        static std::atomic<std::uint64_t> counter{0};
-        const std::uint64_t seed = std::uint64_t(::getpid()) * 0x9e3779b97f4a7c15ull ^
-                                   std::uint64_t(std::chrono::steady_clock::now().time_since_epoch().count());
-        for (int attempt = 0; attempt < 100; ++attempt) {
-            // splitmix64 of seed + counter: a different name per attempt and thread.
-            std::uint64_t z = seed + (counter.fetch_add(1) + 1) * 0x9e3779b97f4a7c15ull;
-            z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-            z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-            z ^= z >> 31;
-            std::string name = path + ".tmp-";
-            for (int k = 0; k < 6; ++k, z /= 36) name += "0123456789abcdefghijklmnopqrstuvwxyz"[z % 36];
-            fd_ = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-            if (fd_ >= 0) {
-                name_ = name;
-                return;
-            }
-            if (errno != EEXIST) throw IoError(path + ": cannot write: " + errnoText(errno));
-        }
-        throw IoError(path + ": cannot write: no free temporary name beside it");
-    }
-    ~TemporaryFile() {
-        if (fd_ >= 0) ::close(fd_);
-        if (!kept_) ::unlink(name_.c_str());
-    }
-    TemporaryFile(const TemporaryFile&) = delete;
-    TemporaryFile& operator=(const TemporaryFile&) = delete;
-
-    int fd() const { return fd_; }
-    const std::string& name() const { return name_; }
-    int close() {
-        const int fd = fd_;
-        fd_ = -1;
-        return ::close(fd);
-    }
-    void keep() { kept_ = true; }
-
-private:
-    int fd_ = -1;
-    std::string name_;
-    bool kept_ = false;
-};
-
 void writeFileAtomically(const std::string& path, const std::vector<char>& bytes) {
-    TemporaryFile tmp(path);
+    AtomicFile tmp(path);
+    const int fd = ::open(tmp.path().c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+    if (fd < 0) throw IoError(path + ": cannot write: " + errnoText(errno));
     const char* p = bytes.data();
     std::size_t left = bytes.size();
     while (left > 0) {
-        const ssize_t n = ::write(tmp.fd(), p, left);
+        const ssize_t n = ::write(fd, p, left);
         if (n < 0) {
             if (errno == EINTR) continue;
-            throw IoError(path + ": cannot write: " + errnoText(errno));
+            const int e = errno;
+            ::close(fd);
+            throw IoError(path + ": cannot write: " + errnoText(e));
         }
         p += n;
         left -= std::size_t(n);
     }
-    // fsync before rename, so a crash cannot leave an empty file under the name.
-    if (::fsync(tmp.fd()) != 0) throw IoError(path + ": cannot write: " + errnoText(errno));
-    if (tmp.close() != 0) throw IoError(path + ": cannot write: " + errnoText(errno));
-    if (std::rename(tmp.name().c_str(), path.c_str()) != 0)
-        throw IoError(path + ": cannot replace: " + errnoText(errno));
-    tmp.keep();
+    if (::close(fd) != 0) throw IoError(path + ": cannot write: " + errnoText(errno));
+    tmp.commit();
 }
 
 // ---------------------------------------------------------------- encoding
