@@ -87,21 +87,36 @@ SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution) {
     return g;
 }
 
-bool Sprite::contains(const glm::vec3& world, Rule rule) const {
-    const glm::vec3 t = grid.toTexture(world);
-    if (!(t.z >= 0.0f && t.z <= 1.0f)) return false;
+namespace {
+
+// The column a texture-space point falls in, or -1 outside the box.
+inline std::ptrdiff_t columnOf(const SpriteGrid& grid, const glm::vec3& t) {
+    if (!(t.z >= 0.0f && t.z <= 1.0f)) return -1;
     const float fs = std::floor(t.x * float(grid.width));
     const float ft = std::floor(t.y * float(grid.height));
-    if (!(fs >= 0.0f && fs < float(grid.width) && ft >= 0.0f && ft < float(grid.height))) return false;
-    const std::size_t column = std::size_t(ft) * grid.width + std::size_t(fs);
+    if (!(fs >= 0.0f && fs < float(grid.width) && ft >= 0.0f && ft < float(grid.height))) return -1;
+    return std::ptrdiff_t(ft) * std::ptrdiff_t(grid.width) + std::ptrdiff_t(fs);
+}
+
+// The VPT on one column: crossings strictly in front of depth r.
+inline bool testColumn(const float* begin, const float* end, float r, Rule rule) {
     int parity = 0, winding = 0;
-    for (std::uint32_t k = offsets[column], end = offsets[column + 1]; k < end; ++k) {
-        const float e = crossings[k];
-        if (!(std::fabs(e) < t.z)) break;
+    for (const float* e = begin; e != end; ++e) {
+        if (!(std::fabs(*e) < r)) break;
         parity ^= 1;
-        winding += crossingEnters(e) ? 1 : -1;
+        winding += crossingEnters(*e) ? 1 : -1;
     }
     return rule == Rule::Parity ? parity != 0 : winding != 0;
+}
+
+} // namespace
+
+bool Sprite::contains(const glm::vec3& world, Rule rule) const {
+    const glm::vec3 t = grid.toTexture(world);
+    const std::ptrdiff_t column = columnOf(grid, t);
+    if (column < 0) return false;
+    return testColumn(crossings.data() + offsets[std::size_t(column)],
+                      crossings.data() + offsets[std::size_t(column) + 1], t.z, rule);
 }
 
 void Sprite::transform(const glm::mat4& model) {
@@ -156,8 +171,37 @@ void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count, 
               const ClassifyOptions& options) {
     unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     threads = unsigned(std::min<std::size_t>(threads, std::max<std::size_t>(1, count / 4096)));
+    // Random points miss the cache twice each (offsets, then crossings), so
+    // points go in small batches whose loads are prefetched one stage ahead:
+    // the same answers as Sprite::contains, at memory-level parallelism.
     auto work = [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) labels[k] = sprite.contains(points[k], options.rule) ? 1 : 0;
+        constexpr std::size_t kBatch = 32;
+        const SpriteGrid& grid = sprite.grid;
+        const std::uint32_t* offsets = sprite.offsets.data();
+        const float* crossings = sprite.crossings.data();
+        std::ptrdiff_t column[kBatch];
+        float depth[kBatch];
+        std::uint32_t first[kBatch], last[kBatch];
+        for (std::size_t base = begin; base < end; base += kBatch) {
+            const std::size_t n = std::min(kBatch, end - base);
+            for (std::size_t i = 0; i < n; ++i) {
+                const glm::vec3 t = grid.toTexture(points[base + i]);
+                column[i] = columnOf(grid, t);
+                depth[i] = t.z;
+                if (column[i] >= 0) __builtin_prefetch(offsets + column[i]);
+            }
+            for (std::size_t i = 0; i < n; ++i) {
+                if (column[i] < 0) continue;
+                first[i] = offsets[column[i]];
+                last[i] = offsets[column[i] + 1];
+                __builtin_prefetch(crossings + first[i]);
+            }
+            for (std::size_t i = 0; i < n; ++i)
+                labels[base + i] = column[i] >= 0 && testColumn(crossings + first[i], crossings + last[i], depth[i],
+                                                                options.rule)
+                                       ? 1
+                                       : 0;
+        }
     };
     if (threads <= 1) {
         work(0, count);
