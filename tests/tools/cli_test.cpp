@@ -181,6 +181,10 @@ TEST_F(Cli, BadInputFilesExitOneWithOneLineAndLoseNothing) {
         "classify " + p("truncated.vds") + " " + p("points.txt") + " -o " + p("labels.txt"),
         "classify " + p("box.vds") + " " + p("nan.txt") + " -o " + p("labels.txt"),
         "classify " + p("box.vds") + " " + p("missing.txt") + " -o " + p("labels.txt"),
+        "classify --exact --mesh " + p("box.obj") + " " + p("nan.txt") + " -o " + p("labels.txt"),
+        "classify --exact --mesh " + p("empty.obj") + " " + p("points.txt") + " -o " + p("labels.txt"),
+        "eval " + p("empty.obj") + " --resolutions 16",
+        "eval " + p("nan.obj") + " --resolutions 16",
     };
     for (const auto& args : bad) {
         const Result r = vds(args + " --quiet");
@@ -204,6 +208,16 @@ TEST_F(Cli, OpenMeshIsBakedWithAWarningAndRecorded) {
     EXPECT_NE(r.output.find("3 boundary edges"), std::string::npos) << r.output;
     r = vds("info " + p("open.vds"));
     EXPECT_NE(r.output.find("NOT A SOLID"), std::string::npos) << r.output;
+    // Exact answers and accuracy need a solid: refused, unless asked for.
+    r = vds("classify --exact --mesh " + p("open.obj") + " " + p("points.txt") + " -o " + p("l.txt") + " --quiet");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("--allow-open"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "l.txt"));
+    r = vds("classify --exact --allow-open --mesh " + p("open.obj") + " " + p("points.txt") + " -o " + p("l.txt") + " --quiet");
+    EXPECT_EQ(r.code, 0) << r.output;
+    r = vds("eval " + p("open.obj") + " --resolutions 16 --points 100 --surface-points 100 --quiet");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
 }
 
 TEST_F(Cli, NoGlGivesAClearErrorAndTheCpuBakerStillWorks) {

@@ -33,7 +33,8 @@ const char* kHelp =
     "  --rule parity|winding crossings rule: the paper's parity (default) or non-zero winding\n"
     "  --gpu                 classify with the GL compute shader instead of the CPU\n"
     "  --threads N           CPU threads (default: all)\n"
-    "  --exact               exact classification on the mesh's triangles (needs --mesh)\n"
+    "  --exact               exact classification on the mesh's triangles (needs --mesh);\n"
+    "                        an open mesh is refused unless --allow-open is given\n"
     "  --mesh MESH           classify against a mesh: --exact, or --with REPRESENTATION\n"
     "  --with REPRESENTATION build it from the mesh in memory first, at --resolution:\n"
     "                        vds (a sprite), slicemap, slicemap-local (front/back slicemap pair,\n"
@@ -60,7 +61,7 @@ void writeLabels(const std::string& path, const std::vector<std::uint8_t>& label
 
 int classify(int argc, char** argv) {
     const Args args(argc, argv, {"-o", "--rule", "--threads", "--mesh", "--with", "--resolution"},
-                    {"--help", "--gpu", "--exact", "--quiet"});
+                    {"--help", "--gpu", "--exact", "--quiet", "--allow-open"});
     if (args.has("--help")) {
         std::fputs(kHelp, stdout);
         return 0;
@@ -106,9 +107,13 @@ int classify(int argc, char** argv) {
         const vds::TriangleMesh mesh = vds::loadMesh(args.get("--mesh"));
         const vds::MeshReport report = vds::validateMesh(mesh);
         vds::requireUsable(report, args.get("--mesh"));
-        if (!report.closed())
+        if (!report.closed()) {
+            if (!args.has("--allow-open"))
+                throw vds::InvalidMesh(args.get("--mesh") + " is " + report.summary() +
+                                       ": inside is not defined (--allow-open classifies by crossing count anyway)");
             std::fprintf(stderr, "vds classify: warning: %s is %s; inside is not well defined\n",
                          args.get("--mesh").c_str(), report.summary().c_str());
+        }
         const vds::ExactClassifier exact(mesh);
         startClock();
         exact.classify(points.data(), points.size(), labels.data(), options);

@@ -83,8 +83,8 @@ int eval(int argc, char** argv) {
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, path);
     if (!report.closed())
-        std::fprintf(stderr, "vds eval: warning: %s is %s; inside is not well defined\n", path.c_str(),
-                     report.summary().c_str());
+        throw vds::InvalidMesh(path + " is " + report.summary() +
+                               ": inside is not defined, so there is no exact answer to compare with");
     const vds::EvalReport r =
         vds::evaluate(mesh, options, nullptr, [quiet](const std::string& s) { progress(quiet, s); });
 
