@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <vds/distance.h>
 #include <vds/error.h>
 #include <vds/eval.h>
 #include <vds/solids.h>
@@ -39,12 +40,18 @@ TEST_F(EvalTest, ErrorsLiveWithinATexelDiagonalOfTheSurface) {
     EXPECT_EQ(std::count(json.begin(), json.end(), '{'), std::count(json.begin(), json.end(), '}'));
 }
 
-TEST(PointTriangleDistance, MatchesHandComputedCases) {
-    const glm::vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
-    EXPECT_FLOAT_EQ(pointTriangleDistance({0.25f, 0.25f, 2.0f}, a, b, c), 2.0f);  // above the face
-    EXPECT_FLOAT_EQ(pointTriangleDistance({-3.0f, 0.0f, 4.0f}, a, b, c), 5.0f);  // nearest a vertex
-    EXPECT_FLOAT_EQ(pointTriangleDistance({0.5f, -1.0f, 0.0f}, a, b, c), 1.0f);  // nearest an edge
-    EXPECT_NEAR(pointTriangleDistance({1.0f, 1.0f, 0.0f}, a, b, c), std::sqrt(0.5f), 1e-6f); // hypotenuse
+TEST(Distance, MatchesHandComputedCases) {
+    const glm::dvec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+    EXPECT_DOUBLE_EQ(pointTriangleDistance({0.25, 0.25, 2.0}, a, b, c), 2.0); // above the face
+    EXPECT_DOUBLE_EQ(pointTriangleDistance({-3.0, 0.0, 4.0}, a, b, c), 5.0);  // nearest a vertex
+    EXPECT_DOUBLE_EQ(pointTriangleDistance({0.5, -1.0, 0.0}, a, b, c), 1.0);  // nearest an edge
+    EXPECT_NEAR(pointTriangleDistance({1.0, 1.0, 0.0}, a, b, c), std::sqrt(0.5), 1e-12); // hypotenuse
+    // Through the grid, on a box: distances to its faces, edges and corners.
+    const auto box = solids::box({0, 0, 0}, {1, 2, 3});
+    const SurfaceDistance d(box.mesh);
+    EXPECT_NEAR(d.distance({0.5f, 1.0f, 1.5f}), 0.5, 1e-6); // centre: nearest face x = 0 or 1
+    EXPECT_NEAR(d.distance({2.0f, 1.0f, 1.5f}), 1.0, 1e-6);
+    EXPECT_NEAR(d.distance({-3.0f, -4.0f, 1.5f}), 5.0, 1e-6);
 }
 
 TEST(Eval, RefusesUnusableMeshes) {

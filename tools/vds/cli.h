@@ -41,6 +41,9 @@ private:
     std::vector<std::string> positional_;
 };
 
+/// Parses "256,512,1024": each 1..vds::kMaxResolution; throws UsageError.
+std::vector<std::uint32_t> parseResolutions(const std::string& list);
+
 /// Prints "vds: <what>" progress lines to stderr unless quiet.
 void progress(bool quiet, const std::string& what);
 

@@ -53,18 +53,7 @@ int compare(int argc, char** argv) {
     args.expectPositional(1, "one mesh file");
     const bool quiet = args.has("--quiet");
     vds::voxel::CompareOptions options;
-    if (args.has("--resolutions")) {
-        options.resolutions.clear();
-        std::stringstream in(args.get("--resolutions"));
-        std::string item;
-        while (std::getline(in, item, ',')) {
-            char* end = nullptr;
-            const unsigned long v = std::strtoul(item.c_str(), &end, 10);
-            if (item.empty() || *end || v == 0 || v > vds::kMaxResolution)
-                throw UsageError("--resolutions expects numbers 1.." + std::to_string(vds::kMaxResolution));
-            options.resolutions.push_back(std::uint32_t(v));
-        }
-    }
+    if (args.has("--resolutions")) options.resolutions = parseResolutions(args.get("--resolutions"));
     options.uniformPoints = args.getUint("--points", 100000);
     options.surfacePoints = args.getUint("--surface-points", 50000);
     options.seed = args.getUint("--seed", 1);

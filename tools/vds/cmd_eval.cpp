@@ -36,21 +36,6 @@ const char* kHelp =
     "  --seed N             random seed (default 1)\n"
     "  --quiet              no progress messages\n";
 
-std::vector<std::uint32_t> parseResolutions(const std::string& s) {
-    std::vector<std::uint32_t> out;
-    std::stringstream in(s);
-    std::string item;
-    while (std::getline(in, item, ',')) {
-        char* end = nullptr;
-        const unsigned long v = std::strtoul(item.c_str(), &end, 10);
-        if (item.empty() || *end || v == 0 || v > vds::kMaxResolution)
-            throw UsageError("--resolutions expects numbers 1.." + std::to_string(vds::kMaxResolution) + ", not '" +
-                             item + "'");
-        out.push_back(std::uint32_t(v));
-    }
-    if (out.empty()) throw UsageError("--resolutions is empty");
-    return out;
-}
 } // namespace
 
 int eval(int argc, char** argv) {

@@ -6,9 +6,11 @@
 #include <cstring>
 #include <exception>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 #include <vds/error.h>
+#include <vds/sprite.h>
 
 #include "cli.h"
 
@@ -56,6 +58,22 @@ std::uint32_t Args::getUint(const std::string& name, std::uint32_t fallback) con
 
 void Args::expectPositional(std::size_t n, const std::string& what) const {
     if (positional_.size() != n) throw UsageError("expected " + what);
+}
+
+std::vector<std::uint32_t> parseResolutions(const std::string& list) {
+    std::vector<std::uint32_t> out;
+    std::stringstream in(list);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        char* end = nullptr;
+        const unsigned long v = std::strtoul(item.c_str(), &end, 10);
+        if (item.empty() || *end || v == 0 || v > vds::kMaxResolution)
+            throw UsageError("--resolutions expects numbers 1.." + std::to_string(vds::kMaxResolution) + ", not '" +
+                             item + "'");
+        out.push_back(std::uint32_t(v));
+    }
+    if (out.empty()) throw UsageError("--resolutions is empty");
+    return out;
 }
 
 void progress(bool quiet, const std::string& what) {

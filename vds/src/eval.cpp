@@ -18,6 +18,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <vds/distance.h>
 #include <vds/error.h>
 #include <vds/exact.h>
 #include <vds/gl_context.h>
@@ -26,92 +27,9 @@
 
 namespace vds {
 
-float pointTriangleDistance(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-    // Closest point on a triangle by Voronoi regions (Ericson, Real-Time Collision Detection, 5.1.5).
-    const glm::vec3 ab = b - a, ac = c - a, ap = p - a;
-    const float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return glm::length(p - a);
-    const glm::vec3 bp = p - b;
-    const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return glm::length(p - b);
-    const float vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return glm::length(p - (a + ab * (d1 / (d1 - d3))));
-    const glm::vec3 cp = p - c;
-    const float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return glm::length(p - c);
-    const float vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return glm::length(p - (a + ac * (d2 / (d2 - d6))));
-    const float va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-        return glm::length(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
-    const float denom = 1.0f / (va + vb + vc);
-    return glm::length(p - (a + ab * (vb * denom) + ac * (vc * denom)));
-}
-
 namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-// Unsigned distance to the mesh, through a uniform grid of triangle boxes
-// searched in growing rings around the point.
-class DistanceField {
-public:
-    DistanceField(MeshView mesh, const Box& box) : mesh_(mesh), lo_(box.lo) {
-        const glm::vec3 size = glm::max(box.hi - box.lo, glm::vec3(1e-6f));
-        const float n = std::cbrt(float(mesh.triangleCount)) * 1.5f + 1.0f;
-        cell_ = std::max(size.x, std::max(size.y, size.z)) / std::min(n, 128.0f);
-        for (int k = 0; k < 3; ++k) dims_[k] = std::max(1, int(std::ceil(size[k] / cell_)));
-        cells_.resize(std::size_t(dims_[0]) * dims_[1] * dims_[2]);
-        for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-            const glm::uvec3 tri = mesh.triangles[t];
-            glm::vec3 lo = mesh.positions[tri.x], hi = lo;
-            for (int k = 1; k < 3; ++k) {
-                lo = glm::min(lo, mesh.positions[tri[k]]);
-                hi = glm::max(hi, mesh.positions[tri[k]]);
-            }
-            const glm::ivec3 a = cellOf(lo), b = cellOf(hi);
-            for (int z = a.z; z <= b.z; ++z)
-                for (int y = a.y; y <= b.y; ++y)
-                    for (int x = a.x; x <= b.x; ++x) cells_[index({x, y, z})].push_back(std::uint32_t(t));
-        }
-    }
-
-    float distance(const glm::vec3& p) const {
-        const glm::ivec3 c = cellOf(p);
-        float best = std::numeric_limits<float>::infinity();
-        const int maxRing = std::max(dims_[0], std::max(dims_[1], dims_[2]));
-        for (int r = 0; r <= maxRing; ++r) {
-            for (int z = c.z - r; z <= c.z + r; ++z)
-                for (int y = c.y - r; y <= c.y + r; ++y)
-                    for (int x = c.x - r; x <= c.x + r; ++x) {
-                        if (std::max(std::abs(x - c.x), std::max(std::abs(y - c.y), std::abs(z - c.z))) != r) continue;
-                        if (x < 0 || y < 0 || z < 0 || x >= dims_[0] || y >= dims_[1] || z >= dims_[2]) continue;
-                        for (std::uint32_t t : cells_[index({x, y, z})]) {
-                            const glm::uvec3 tri = mesh_.triangles[t];
-                            best = std::min(best, pointTriangleDistance(p, mesh_.positions[tri.x],
-                                                                        mesh_.positions[tri.y], mesh_.positions[tri.z]));
-                        }
-                    }
-            // Everything not yet searched is at least r cells away.
-            if (best <= float(r) * cell_) break;
-        }
-        return best;
-    }
-
-private:
-    glm::ivec3 cellOf(const glm::vec3& p) const {
-        glm::ivec3 c;
-        for (int k = 0; k < 3; ++k) c[k] = std::clamp(int(std::floor((p[k] - lo_[k]) / cell_)), 0, dims_[k] - 1);
-        return c;
-    }
-    std::size_t index(const glm::ivec3& c) const { return (std::size_t(c.z) * dims_[1] + c.y) * dims_[0] + c.x; }
-
-    MeshView mesh_;
-    glm::vec3 lo_;
-    float cell_ = 1.0f;
-    int dims_[3] = {1, 1, 1};
-    std::vector<std::vector<std::uint32_t>> cells_;
-};
 
 std::vector<glm::vec3> uniformPoints(const Box& box, std::size_t n, std::mt19937& rng) {
     const glm::vec3 size = box.hi - box.lo;
@@ -223,7 +141,7 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
 
     say("building the exact classifier");
     const ExactClassifier exact(mesh, options.axis);
-    const DistanceField field(mesh, box);
+    const SurfaceDistance field(mesh);
     std::mt19937 rng(options.seed);
     const std::vector<glm::vec3> uniform = uniformPoints(box, options.uniformPoints, rng);
     std::vector<std::uint8_t> uniformExact(uniform.size());

@@ -19,7 +19,7 @@
 #include <vds/voxel/representation.h>
 
 #include "gl_util.h"
-#include "surface_distance.h"
+#include <vds/distance.h>
 
 namespace vds::voxel {
 namespace {
@@ -83,7 +83,7 @@ public:
     }
 
 private:
-    detail::SurfaceDistance surface_;
+    SurfaceDistance surface_;
     std::vector<double> distance_;
 };
 

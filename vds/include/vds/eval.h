@@ -76,7 +76,4 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
 /// The report as JSON (one object; rows as an array).
 std::string toJson(const EvalReport& report);
 
-/// Distance from `p` to triangle (a, b, c), in the units of the inputs.
-float pointTriangleDistance(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
-
 } // namespace vds

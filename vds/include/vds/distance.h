@@ -1,4 +1,4 @@
-// vds::voxel internal: the distance of a point to a triangle mesh's surface,
+// vds: the distance of a point to a triangle mesh's surface,
 // exact (closest point on each nearby triangle, Ericson, "Real-Time Collision
 // Detection", 2005, section 5.1.5), found through a uniform grid of the
 // triangles' boxes searched in growing rings.
@@ -11,8 +11,10 @@
 
 #include <vds/mesh.h>
 
-namespace vds::voxel::detail {
+namespace vds {
 
+/// Used by `vds eval` and `vds::voxel::compare` to measure how far wrong
+/// answers lie from the surface.
 class SurfaceDistance {
 public:
     /// Copies the triangles (those with valid indices). Thread safe to query.
@@ -30,4 +32,4 @@ private:
 /// Distance from p to the triangle (a, b, c).
 double pointTriangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
 
-} // namespace vds::voxel::detail
+} // namespace vds

@@ -1,4 +1,4 @@
-#include "surface_distance.h"
+#include <vds/distance.h>
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-namespace vds::voxel::detail {
+namespace vds {
 
 double pointTriangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
     // Ericson 2005, ClosestPtPointTriangle: Voronoi regions of the vertices,
@@ -117,4 +117,4 @@ double SurfaceDistance::distance(const glm::vec3& point) const {
     return best;
 }
 
-} // namespace vds::voxel::detail
+} // namespace vds
