@@ -20,6 +20,7 @@
 
 #include <vds/error.h>
 #include <vds/gl_context.h>
+#include <vds/gpu_mesh.h>
 #include <vds/gpu_sprite.h>
 #include <vds/image.h>
 #include <vds/mesh_io.h>
@@ -87,16 +88,7 @@ int run(const Options& o) {
     if (glCheckNamedFramebufferStatus(fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw vds::GlError("offscreen framebuffer is incomplete");
 
-    // Mesh.
-    vds::VertexArray vao = vds::VertexArray::create();
-    vds::Buffer positions = vds::Buffer::create(), indices = vds::Buffer::create();
-    glNamedBufferStorage(positions.id(), GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)), mesh.positions.data(), 0);
-    glNamedBufferStorage(indices.id(), GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)), mesh.triangles.data(), 0);
-    glVertexArrayVertexBuffer(vao.id(), 0, positions.id(), 0, sizeof(glm::vec3));
-    glVertexArrayAttribFormat(vao.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao.id(), 0, 0);
-    glEnableVertexArrayAttrib(vao.id(), 0);
-    glVertexArrayElementBuffer(vao.id(), indices.id());
+    const vds::GpuMesh gpuMesh(mesh);
 
     glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
     glViewport(0, 0, n, n);
@@ -120,9 +112,7 @@ int run(const Options& o) {
     // Unused sampler slots still need a 3D texture bound; point them at the first sprite's unit.
     for (std::size_t i = gpuSprites.size(); i < 8; ++i)
         glUniform1i(glGetUniformLocation(program.id(), ("u_ldi[" + std::to_string(i) + "]").c_str()), 0);
-    glBindVertexArray(vao.id());
-    glDrawElements(GL_TRIANGLES, GLsizei(mesh.triangles.size() * 3), GL_UNSIGNED_INT, nullptr);
-    glBindVertexArray(0);
+    gpuMesh.draw();
     vds::checkGl("rendering");
 
     vds::Image image(o.size, o.size);

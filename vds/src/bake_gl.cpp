@@ -16,6 +16,7 @@
 #include <GL/glext.h>
 
 #include <vds/error.h>
+#include <vds/gpu_mesh.h>
 #include <vds/shader.h>
 
 namespace vds::detail {
@@ -32,37 +33,6 @@ bool hasClipControl(const GlContext& gl) {
 }
 
 std::string bakeDefines(const GlContext& gl) { return hasClipControl(gl) ? "#define VDS_CLIP_CONTROL\n" : ""; }
-
-// The mesh on the GPU plus the state both bakers rasterize with.
-struct MeshDraw {
-    VertexArray vao;
-    Buffer positions;
-    Buffer indices;
-    GLsizei indexCount = 0;
-
-    explicit MeshDraw(MeshView mesh) {
-        if (mesh.triangleCount * 3 > std::size_t(std::numeric_limits<GLsizei>::max()))
-            throw OutOfMemory("mesh has too many triangles for one GL draw");
-        vao = VertexArray::create();
-        positions = Buffer::create();
-        indices = Buffer::create();
-        glNamedBufferStorage(positions.id(), GLsizeiptr(mesh.positionCount * sizeof(glm::vec3)), mesh.positions, 0);
-        glNamedBufferStorage(indices.id(), GLsizeiptr(mesh.triangleCount * sizeof(glm::uvec3)), mesh.triangles, 0);
-        checkGl("uploading the mesh");
-        glVertexArrayVertexBuffer(vao.id(), 0, positions.id(), 0, sizeof(glm::vec3));
-        glVertexArrayAttribFormat(vao.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(vao.id(), 0, 0);
-        glEnableVertexArrayAttrib(vao.id(), 0);
-        glVertexArrayElementBuffer(vao.id(), indices.id());
-        indexCount = GLsizei(mesh.triangleCount * 3);
-    }
-
-    void draw() const {
-        glBindVertexArray(vao.id());
-        glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
-        glBindVertexArray(0);
-    }
-};
 
 void setRasterState(const GlContext& gl, const SpriteGrid& grid, GLuint program) {
     if (hasClipControl(gl)) glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -109,7 +79,7 @@ void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const 
         return buildProgram({{GL_VERTEX_SHADER, "vds/bake.vert", ""}, {GL_FRAGMENT_SHADER, "vds/peel.frag", ""}},
                             bakeDefines(gl));
     });
-    MeshDraw draw(mesh);
+    const GpuMesh draw(mesh);
     const std::size_t pixels = std::size_t(grid.width) * grid.height;
     Texture depth[2] = {makeTexture2D(GL_R32F, grid), makeTexture2D(GL_R32F, grid)};
     Texture key[2] = {makeTexture2D(GL_R32UI, grid), makeTexture2D(GL_R32UI, grid)};
@@ -200,7 +170,7 @@ void bakeLists(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const
     if (options.maxListNodes) maxNodes = std::min<std::uint64_t>(maxNodes, options.maxListNodes);
     maxNodes = std::min<std::uint64_t>(maxNodes, 0xfffffff0u);
 
-    MeshDraw draw(mesh);
+    const GpuMesh draw(mesh);
     Texture heads = makeTexture2D(GL_R32UI, grid);
     Buffer counter = Buffer::create();
     glNamedBufferStorage(counter.id(), sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);

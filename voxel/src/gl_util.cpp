@@ -10,36 +10,15 @@
 
 namespace vds::voxel::detail {
 
-MeshBuffers::MeshBuffers(MeshView mesh) : triangleCount(mesh.triangleCount) {
-    if (mesh.triangleCount * 3 > std::size_t(std::numeric_limits<GLsizei>::max()))
-        throw OutOfMemory("mesh has too many triangles for one GL draw");
+namespace {
+MeshView checkedForStorage(MeshView mesh) {
     requireStorageSize(mesh.positionCount * sizeof(glm::vec3), "the mesh positions");
     requireStorageSize(mesh.triangleCount * sizeof(glm::uvec3), "the mesh indices");
-    positions = Buffer::create();
-    indices = Buffer::create();
-    vao = VertexArray::create();
-    glNamedBufferStorage(positions.id(), GLsizeiptr(std::max<std::size_t>(1, mesh.positionCount) * sizeof(glm::vec3)),
-                         mesh.positions, 0);
-    glNamedBufferStorage(indices.id(), GLsizeiptr(std::max<std::size_t>(1, mesh.triangleCount) * sizeof(glm::uvec3)),
-                         mesh.triangles, 0);
-    checkGl("uploading the mesh");
-    glVertexArrayVertexBuffer(vao.id(), 0, positions.id(), 0, sizeof(glm::vec3));
-    glVertexArrayAttribFormat(vao.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao.id(), 0, 0);
-    glEnableVertexArrayAttrib(vao.id(), 0);
-    glVertexArrayElementBuffer(vao.id(), indices.id());
+    return mesh;
 }
+} // namespace
 
-void MeshBuffers::bindStorage() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, positions.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, indices.id());
-}
-
-void MeshBuffers::draw(GLsizei instances) const {
-    glBindVertexArray(vao.id());
-    glDrawElementsInstanced(GL_TRIANGLES, GLsizei(triangleCount * 3), GL_UNSIGNED_INT, nullptr, instances);
-    glBindVertexArray(0);
-}
+MeshBuffers::MeshBuffers(MeshView mesh) : GpuMesh(checkedForStorage(mesh)) {}
 
 void setGridUniform(GLuint program, const std::string& name, const VoxelGrid& grid) {
     glProgramUniform3fv(program, glGetUniformLocation(program, (name + ".origin").c_str()), 1, &grid.origin[0]);

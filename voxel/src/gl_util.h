@@ -10,25 +10,16 @@
 
 #include <vds/gl_context.h>
 #include <vds/gl_objects.h>
+#include <vds/gpu_mesh.h>
 #include <vds/mesh.h>
 #include <vds/voxel/grid.h>
 
 namespace vds::voxel::detail {
 
-/// The mesh on the GPU: one buffer of positions (x y z floats) and one of
-/// indices, usable both as vertex/index buffers (`draw`) and as the shader
+/// The mesh on the GPU (vds::GpuMesh), checked first to fit the shader
 /// storage of voxel/triangles.glsl (`bindStorage`).
-struct MeshBuffers {
-    Buffer positions;
-    Buffer indices;
-    VertexArray vao;
-    std::size_t triangleCount = 0;
-
+struct MeshBuffers : GpuMesh {
     explicit MeshBuffers(MeshView mesh);
-    /// Binds positions and indices to shader storage bindings 0 and 1.
-    void bindStorage() const;
-    /// glDrawElements over every triangle (`instances` > 1: instanced).
-    void draw(GLsizei instances = 1) const;
 };
 
 /// Sets the VdsVoxelGrid uniform `name` of `program` (in use).

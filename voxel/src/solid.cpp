@@ -55,11 +55,11 @@ void computeFlips(const GlContext& gl, const detail::MeshBuffers& mesh, const Vo
         return buildProgram({{GL_COMPUTE_SHADER, "voxel/solid_propagate.comp", ""}});
     });
     detail::setGridUniform(flip.id(), "u_grid", grid);
-    glProgramUniform1ui(flip.id(), glGetUniformLocation(flip.id(), "u_triangleCount"), GLuint(mesh.triangleCount));
+    glProgramUniform1ui(flip.id(), glGetUniformLocation(flip.id(), "u_triangleCount"), GLuint(mesh.triangleCount()));
     mesh.bindStorage();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, voxels.id());
     glUseProgram(flip.id());
-    detail::dispatchLinear(mesh.triangleCount, 64);
+    detail::dispatchLinear(mesh.triangleCount(), 64);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glProgramUniform3i(propagate.id(), glGetUniformLocation(propagate.id(), "u_size"), GLint(grid.size.x),
                        GLint(grid.size.y), GLint(grid.size.z));
