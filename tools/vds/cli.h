@@ -44,6 +44,9 @@ private:
 /// Parses "256,512,1024": each 1..vds::kMaxResolution; throws UsageError.
 std::vector<std::uint32_t> parseResolutions(const std::string& list);
 
+/// Writes `text` to `path` whole or not at all (vds::AtomicFile); throws vds::IoError.
+void writeTextFile(const std::string& path, const std::string& text);
+
 /// Prints "vds: <what>" progress lines to stderr unless quiet.
 void progress(bool quiet, const std::string& what);
 

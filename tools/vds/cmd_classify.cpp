@@ -3,7 +3,6 @@
 #include <memory>
 #include <vector>
 
-#include <vds/atomic_file.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
@@ -45,17 +44,9 @@ const char* kHelp =
     "  --quiet               no progress messages\n";
 
 void writeLabels(const std::string& path, const std::vector<std::uint8_t>& labels) {
-    vds::AtomicFile out(path);
-    std::FILE* f = std::fopen(out.path().c_str(), "wb");
-    if (!f) throw vds::IoError(path + ": cannot write");
-    std::vector<char> text(labels.size() * 2);
-    for (std::size_t i = 0; i < labels.size(); ++i) {
-        text[2 * i] = labels[i] ? '1' : '0';
-        text[2 * i + 1] = '\n';
-    }
-    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    if (std::fclose(f) != 0 || !ok) throw vds::IoError(path + ": cannot write (disk full?)");
-    out.commit();
+    std::string text(labels.size() * 2, '\n');
+    for (std::size_t i = 0; i < labels.size(); ++i) text[2 * i] = labels[i] ? '1' : '0';
+    writeTextFile(path, text);
 }
 } // namespace
 

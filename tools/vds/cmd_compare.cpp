@@ -3,7 +3,6 @@
 #include <sstream>
 #include <vector>
 
-#include <vds/atomic_file.h>
 #include <vds/error.h>
 #include <vds/image.h>
 #include <vds/mesh_io.h>
@@ -33,14 +32,6 @@ const char* kHelp =
     "  --seed N             random seed (default 1)\n"
     "  --quiet              no progress messages\n";
 
-void writeText(const std::string& path, const std::string& text) {
-    vds::AtomicFile out(path);
-    std::FILE* f = std::fopen(out.path().c_str(), "wb");
-    if (!f) throw vds::IoError(path + ": cannot write");
-    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    if (std::fclose(f) != 0 || !ok) throw vds::IoError(path + ": cannot write");
-    out.commit();
-}
 } // namespace
 
 int compare(int argc, char** argv) {
@@ -64,7 +55,7 @@ int compare(int argc, char** argv) {
     const vds::voxel::CompareResult result = vds::voxel::compare(mesh, options);
     std::fputs(result.table().c_str(), stdout);
     if (args.has("--json")) {
-        writeText(args.get("--json"), result.json());
+        writeTextFile(args.get("--json"), result.json());
         std::printf("wrote %s\n", args.get("--json").c_str());
     }
     if (args.has("--chart")) {

@@ -3,7 +3,6 @@
 #include <sstream>
 #include <vector>
 
-#include <vds/atomic_file.h>
 #include <vds/error.h>
 #include <vds/eval.h>
 #include <vds/mesh_io.h>
@@ -89,13 +88,7 @@ int eval(int argc, char** argv) {
                     w.distancesMeasured, w.bakeSeconds, w.fileBytes, w.memoryBytes, w.denseBytes,
                     w.vdsPointsPerSecond, w.exactPointsPerSecond);
     if (args.has("--json")) {
-        vds::AtomicFile out(args.get("--json"));
-        std::FILE* f = std::fopen(out.path().c_str(), "wb");
-        if (!f) throw vds::IoError(args.get("--json") + ": cannot write");
-        const std::string json = vds::toJson(r);
-        const bool ok = std::fwrite(json.data(), 1, json.size(), f) == json.size();
-        if (std::fclose(f) != 0 || !ok) throw vds::IoError(args.get("--json") + ": cannot write");
-        out.commit();
+        writeTextFile(args.get("--json"), vds::toJson(r));
         std::printf("\nwrote %s\n", args.get("--json").c_str());
     }
     for (const auto& w : r.rows)

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include <vds/atomic_file.h>
 #include <vds/error.h>
 #include <vds/sprite.h>
 
@@ -74,6 +75,15 @@ std::vector<std::uint32_t> parseResolutions(const std::string& list) {
     }
     if (out.empty()) throw UsageError("--resolutions is empty");
     return out;
+}
+
+void writeTextFile(const std::string& path, const std::string& text) {
+    vds::AtomicFile out(path);
+    std::FILE* f = std::fopen(out.path().c_str(), "wb");
+    if (!f) throw vds::IoError(path + ": cannot write");
+    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    if (std::fclose(f) != 0 || !ok) throw vds::IoError(path + ": cannot write (disk full?)");
+    out.commit();
 }
 
 void progress(bool quiet, const std::string& what) {

@@ -20,6 +20,7 @@
 
 #include <vds/distance.h>
 #include <vds/error.h>
+#include <vds/json.h>
 #include <vds/exact.h>
 #include <vds/gl_context.h>
 #include <vds/image.h>
@@ -224,20 +225,7 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
 }
 
 std::string toJson(const EvalReport& r) {
-    auto quote = [](const std::string& s) {
-        std::string out = "\"";
-        for (char c : s) {
-            if (c == '"' || c == '\\') out += '\\';
-            if (static_cast<unsigned char>(c) < 0x20) {
-                char buf[8];
-                std::snprintf(buf, sizeof buf, "\\u%04x", c);
-                out += buf;
-                continue;
-            }
-            out += c;
-        }
-        return out + "\"";
-    };
+    const auto quote = jsonString;
     std::ostringstream o;
     o.precision(9);
     o << "{\n  \"mesh\": " << quote(r.mesh) << ",\n  \"triangles\": " << r.triangles

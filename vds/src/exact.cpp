@@ -75,6 +75,7 @@
 #include <thread>
 
 #include <vds/error.h>
+#include <vds/parallel.h>
 
 #include "bake_common.h"
 
@@ -405,37 +406,6 @@ void CellGrid::fill(const std::vector<Box2>& boxes) {
                 entries_[next[std::size_t(j) * dims_[0] + i]++] = e;
             }
     }
-}
-
-/// Runs body(begin, end) over [0, count) in chunks on `threads` threads (0:
-/// one per hardware thread), the calling thread included. Rethrows the first
-/// exception a chunk threw.
-template <class Body>
-void parallelFor(unsigned threads, std::size_t count, std::size_t chunk, const Body& body) {
-    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-    const std::size_t chunks = (count + chunk - 1) / chunk;
-    threads = unsigned(std::min<std::size_t>(threads, chunks));
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr error;
-    std::mutex errorMutex;
-    const auto work = [&] {
-        try {
-            for (std::size_t c; (c = next.fetch_add(1)) < chunks;) body(c * chunk, std::min(count, (c + 1) * chunk));
-        } catch (...) {
-            const std::lock_guard<std::mutex> lock(errorMutex);
-            if (!error) error = std::current_exception();
-            next = chunks;
-        }
-    };
-    std::vector<std::thread> pool;
-    try {
-        for (unsigned k = 1; k < threads; ++k) pool.emplace_back(work);
-    } catch (const std::system_error&) {
-        // Fewer threads than asked: the ones started and this one do the work.
-    }
-    work();
-    for (auto& t : pool) t.join();
-    if (error) std::rethrow_exception(error);
 }
 
 // ---- The projected triangles, indexed --------------------------------------

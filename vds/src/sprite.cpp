@@ -10,6 +10,7 @@
 #include <glm/matrix.hpp>
 
 #include <vds/error.h>
+#include <vds/parallel.h>
 
 namespace vds {
 
@@ -169,8 +170,6 @@ void Sprite::checkConsistent() const {
 
 void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count, std::uint8_t* labels,
               const ClassifyOptions& options) {
-    unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-    threads = unsigned(std::min<std::size_t>(threads, std::max<std::size_t>(1, count / 4096)));
     // Random points miss the cache twice each (offsets, then crossings), so
     // points go in small batches whose loads are prefetched one stage ahead:
     // the same answers as Sprite::contains, at memory-level parallelism.
@@ -203,17 +202,7 @@ void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count, 
                                        : 0;
         }
     };
-    if (threads <= 1) {
-        work(0, count);
-        return;
-    }
-    std::vector<std::thread> pool;
-    const std::size_t chunk = (count + threads - 1) / threads;
-    for (unsigned t = 0; t < threads; ++t) {
-        const std::size_t begin = std::min(count, t * chunk), end = std::min(count, begin + chunk);
-        pool.emplace_back(work, begin, end);
-    }
-    for (auto& th : pool) th.join();
+    parallelFor(options.threads, count, std::size_t(1) << 16, work);
 }
 
 } // namespace vds

@@ -20,6 +20,7 @@
 
 #include "gl_util.h"
 #include <vds/distance.h>
+#include <vds/json.h>
 
 namespace vds::voxel {
 namespace {
@@ -174,21 +175,6 @@ std::string formatBytes(std::size_t b) {
     else
         std::snprintf(buf, sizeof buf, "%zu B", b);
     return buf;
-}
-
-std::string jsonString(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\';
-        if (static_cast<unsigned char>(c) < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", c);
-            out += buf;
-            continue;
-        }
-        out += c;
-    }
-    return out + "\"";
 }
 
 std::string number(double v) {

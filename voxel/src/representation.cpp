@@ -9,6 +9,7 @@
 #include <GL/glext.h>
 
 #include <vds/error.h>
+#include <vds/parallel.h>
 #include <vds/shader.h>
 #include <vds/voxel/solid.h>
 
@@ -47,22 +48,9 @@ bool Model::contains(const glm::vec3& p) const {
 }
 
 void Model::classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels, unsigned threads) const {
-    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-    threads = unsigned(std::min<std::size_t>(threads, std::max<std::size_t>(1, count / 4096)));
-    const auto work = [&](std::size_t begin, std::size_t end) {
+    parallelFor(threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) labels[k] = contains(points[k]) ? 1 : 0;
-    };
-    if (threads <= 1) {
-        work(0, count);
-        return;
-    }
-    std::vector<std::thread> pool;
-    const std::size_t chunk = (count + threads - 1) / threads;
-    for (unsigned t = 0; t < threads; ++t) {
-        const std::size_t begin = std::min(count, t * chunk), end = std::min(count, begin + chunk);
-        pool.emplace_back(work, begin, end);
-    }
-    for (auto& th : pool) th.join();
+    });
 }
 
 std::size_t Model::memoryBytes() const {
