@@ -20,7 +20,7 @@
 #include <vds/exact.h>
 #include <vds/mesh.h>
 #include <vds/mesh_io.h>
-#include <vds/solids.h>
+#include "solids.h"
 
 namespace {
 

@@ -28,7 +28,7 @@
 #include <vds/gl_context.h>
 #include <vds/gpu_sprite.h>
 #include <vds/mesh_io.h>
-#include <vds/solids.h>
+#include "solids.h"
 #include <vds/vds_file.h>
 
 namespace {

@@ -1,17 +1,17 @@
-# Turns the files under shaders/ into a C++ table compiled into the library.
-# Run in script mode: cmake -DSHADER_DIR=... -DOUTPUT=... -DFILES="a;b" -P embed_shaders.cmake
+# Turns shader files into a C++ table (see VdsEmbedShaders.cmake). Script mode:
+# cmake -DSHADER_DIR=... -DFILES="a;b" -DNAMESPACE=ns -DSYMBOL=name -DOUTPUT=... -P embed_shaders.cmake
 set(out "// Generated from shaders/ by cmake/embed_shaders.cmake. Do not edit.\n")
-string(APPEND out "#include \"shader_table.h\"\nnamespace vds::detail {\nnamespace {\n")
+string(APPEND out "#include <cstddef>\n#include <vds/shader.h>\nnamespace ${NAMESPACE} {\nnamespace {\n")
 set(entries "")
 set(i 0)
 foreach(rel IN LISTS FILES)
   file(READ "${SHADER_DIR}/${rel}" hex HEX)
   string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," bytes "${hex}")
-  string(APPEND out "const unsigned char kShader${i}[] = {${bytes}0};\n")
-  string(APPEND entries "    {\"${rel}\", reinterpret_cast<const char*>(kShader${i}), sizeof(kShader${i}) - 1},\n")
+  string(APPEND out "const unsigned char kFile${i}[] = {${bytes}0};\n")
+  string(APPEND entries "    {\"${rel}\", reinterpret_cast<const char*>(kFile${i}), sizeof(kFile${i}) - 1},\n")
   math(EXPR i "${i} + 1")
 endforeach()
-string(APPEND out "} // namespace\nconst EmbeddedShader kEmbeddedShaders[] = {\n${entries}};\n")
-string(APPEND out "const std::size_t kEmbeddedShaderCount = ${i};\n} // namespace vds::detail\n")
+string(APPEND out "} // namespace\nextern const vds::ShaderFile ${SYMBOL}[] = {\n${entries}};\n")
+string(APPEND out "extern const std::size_t ${SYMBOL}Count = ${i};\n} // namespace ${NAMESPACE}\n")
 file(WRITE "${OUTPUT}.tmp" "${out}")
 file(RENAME "${OUTPUT}.tmp" "${OUTPUT}")

@@ -22,10 +22,16 @@
 #include <vds/gl_context.h>
 #include <vds/gpu_mesh.h>
 #include <vds/gpu_sprite.h>
-#include <vds/image.h>
+#include <vds/eval/image.h>
 #include <vds/mesh_io.h>
 #include <vds/shader.h>
 #include <vds/vds_file.h>
+
+namespace vds::samples {
+// This sample's shaders (shaders/samples/clip.*), embedded by vds_embed_shaders.
+extern const vds::ShaderFile kSampleShaders[];
+extern const std::size_t kSampleShadersCount;
+} // namespace vds::samples
 
 namespace {
 
@@ -74,6 +80,7 @@ int run(const Options& o) {
     vds::GlContext gl;
     std::vector<vds::GpuSprite> gpuSprites;
     for (const auto& s : sprites) gpuSprites.emplace_back(s);
+    vds::registerShaders(vds::samples::kSampleShaders, vds::samples::kSampleShadersCount);
     const vds::Program program = vds::buildProgram(
         {{GL_VERTEX_SHADER, "samples/clip.vert", ""}, {GL_FRAGMENT_SHADER, "samples/clip.frag", ""}});
 
@@ -115,14 +122,14 @@ int run(const Options& o) {
     gpuMesh.draw();
     vds::checkGl("rendering");
 
-    vds::Image image(o.size, o.size);
+    vds::eval::Image image(o.size, o.size);
     std::vector<std::uint8_t> pixels(image.rgba.size());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glGetTextureImage(colour.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()), pixels.data());
     const std::size_t row = std::size_t(o.size) * 4;
     for (std::uint32_t y = 0; y < o.size; ++y) // GL rows run bottom to top, PNG rows top to bottom
         std::memcpy(image.at(0, y), &pixels[(o.size - 1 - y) * row], row);
-    vds::writePng(image, o.output);
+    vds::eval::writePng(image, o.output);
     std::printf("wrote %s: %ux%u, %s clipped by %zu sprite(s), GL %s\n", o.output.c_str(), o.size, o.size,
                 o.mesh.c_str(), sprites.size(), gl.info().renderer.c_str());
     return 0;

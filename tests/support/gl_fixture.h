@@ -1,4 +1,6 @@
-// Test support: a real headless GL context per test suite. Tests skip with
+// Test support: one real headless GL context per test program, owned by a
+// GoogleTest environment (gl_main.cpp) that destroys it in TearDown, before
+// main returns: no GL call happens during static destruction. Tests skip with
 // the reason when no GL can be had, unless VDS_REQUIRE_GL=1 (as CI sets),
 // where a missing GL is a failure.
 #pragma once
@@ -14,32 +16,15 @@
 
 namespace vds::test {
 
-class GlTest : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() {
-        if (!context()) {
-            std::string why;
-            if (glAvailable(&why)) context() = std::make_unique<GlContext>();
-            else reason() = why;
-        }
-    }
+class GlEnvironment : public ::testing::Environment {
+public:
     void SetUp() override {
-        if (!context()) {
-            const char* require = std::getenv("VDS_REQUIRE_GL");
-            if (require && std::string(require) == "1") FAIL() << "GL required but unavailable: " << reason();
-            GTEST_SKIP() << "no GL: " << reason();
-        }
-        context()->makeCurrent();
-        while (glGetError() != GL_NO_ERROR) {}
+        std::string why;
+        if (glAvailable(&why)) context() = std::make_unique<GlContext>();
+        else reason() = why;
     }
-    void TearDown() override {
-        if (context()) {
-            EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)) << "a GL error was left behind";
-        }
-    }
-    static GlContext& gl() { return *context(); }
+    void TearDown() override { context().reset(); }
 
-private:
     static std::unique_ptr<GlContext>& context() {
         static std::unique_ptr<GlContext> c;
         return c;
@@ -48,6 +33,26 @@ private:
         static std::string r;
         return r;
     }
+};
+
+class GlTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!GlEnvironment::context()) {
+            const char* require = std::getenv("VDS_REQUIRE_GL");
+            if (require && std::string(require) == "1")
+                FAIL() << "GL required but unavailable: " << GlEnvironment::reason();
+            GTEST_SKIP() << "no GL: " << GlEnvironment::reason();
+        }
+        GlEnvironment::context()->makeCurrent();
+        while (glGetError() != GL_NO_ERROR) {}
+    }
+    void TearDown() override {
+        if (GlEnvironment::context()) {
+            EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)) << "a GL error was left behind";
+        }
+    }
+    static GlContext& gl() { return *GlEnvironment::context(); }
 };
 
 } // namespace vds::test

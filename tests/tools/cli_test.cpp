@@ -12,8 +12,8 @@
 
 #include <gtest/gtest.h>
 
-#include <vds/image.h>
-#include <vds/solids.h>
+#include <vds/eval/image.h>
+#include "solids.h"
 
 namespace {
 
@@ -112,7 +112,7 @@ TEST_F(Cli, EvalReportsAndWritesJsonAndSlices) {
     const std::string json = readFile(dir / "eval.json");
     EXPECT_NE(json.find("\"rows\": ["), std::string::npos) << json;
     for (const char* axis : {"x", "y", "z"}) {
-        const vds::Image slice = vds::readPng(p(std::string("slice-32-") + axis + ".png"));
+        const vds::eval::Image slice = vds::eval::readPng(p(std::string("slice-32-") + axis + ".png"));
         EXPECT_GT(slice.width, 100u);
     }
     EXPECT_EQ(vds("eval " + p("box.obj") + " --resolutions 0").code, 2);
@@ -138,7 +138,7 @@ TEST_F(Cli, CompareWritesTableJsonAndChart) {
     for (const char* method : {"vds-parity", "vds-winding", "slicemap", "slicemap-local", "solid", "solid-compute"})
         EXPECT_NE(r.output.find(method), std::string::npos) << method;
     EXPECT_NE(readFile(dir / "c.json").find("solid-compute"), std::string::npos);
-    EXPECT_GT(vds::readPng(p("c.png")).width, 100u);
+    EXPECT_GT(vds::eval::readPng(p("c.png")).width, 100u);
 }
 
 TEST_F(Cli, EveryCommandHasHelp) {
@@ -245,7 +245,7 @@ TEST_F(Cli, ClipSampleRemovesExactlyThePixelsInsideTheSprite) {
     const Result r = run(std::string(VDS_CLIP) + " " + p("plate.obj") + " --clip " + p("sphere.vds") + " -o " +
                          p("clip.png") + " --size 200 --view z");
     ASSERT_EQ(r.code, 0) << r.output;
-    const vds::Image image = vds::readPng(p("clip.png"));
+    const vds::eval::Image image = vds::eval::readPng(p("clip.png"));
     ASSERT_EQ(image.width, 200u);
     // The camera fits the plate's box: its bounding sphere's radius spans half the image.
     const float radius = 0.5f * std::sqrt(2.0f * 2.0f * 2 + 0.04f * 0.04f);

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include <vds/solids.h>
+#include "solids.h"
 #include <vds/voxel/representation.h>
 
 #include "../support/gl_fixture.h"

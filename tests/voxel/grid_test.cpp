@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <vds/error.h>
-#include <vds/solids.h>
+#include "solids.h"
 #include <vds/sprite.h>
 #include <vds/voxel/grid.h>
 

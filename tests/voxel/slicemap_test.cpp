@@ -8,7 +8,7 @@
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
-#include <vds/solids.h>
+#include "solids.h"
 #include <vds/voxel/slicemap.h>
 
 #include "../support/gl_fixture.h"

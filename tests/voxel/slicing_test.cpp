@@ -9,7 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include <vds/error.h>
-#include <vds/solids.h>
+#include "solids.h"
 #include <vds/voxel/slicing.h>
 
 #include "../support/gl_fixture.h"

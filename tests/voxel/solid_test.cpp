@@ -9,7 +9,7 @@
 
 #include <vds/error.h>
 #include <vds/exact.h>
-#include <vds/solids.h>
+#include "solids.h"
 #include <vds/voxel/representation.h>
 #include <vds/voxel/solid.h>
 

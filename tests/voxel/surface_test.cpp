@@ -11,7 +11,7 @@
 #include <glm/common.hpp>
 
 #include <vds/error.h>
-#include <vds/solids.h>
+#include "solids.h"
 #include <vds/voxel/surface.h>
 
 #include "../support/gl_fixture.h"

@@ -4,10 +4,10 @@
 #include <vector>
 
 #include <vds/error.h>
-#include <vds/image.h>
+#include <vds/eval/image.h>
 #include <vds/mesh_io.h>
 #include <vds/sprite.h>
-#include <vds/voxel/compare.h>
+#include <vds/eval/compare.h>
 
 #include "cli.h"
 
@@ -43,7 +43,7 @@ int compare(int argc, char** argv) {
     }
     args.expectPositional(1, "one mesh file");
     const bool quiet = args.has("--quiet");
-    vds::voxel::CompareOptions options;
+    vds::eval::CompareOptions options;
     if (args.has("--resolutions")) options.resolutions = parseResolutions(args.get("--resolutions"));
     options.uniformPoints = args.getUint("--points", 100000);
     options.surfacePoints = args.getUint("--surface-points", 50000);
@@ -52,14 +52,14 @@ int compare(int argc, char** argv) {
     const std::string& path = args.positional()[0];
     const vds::TriangleMesh mesh = vds::loadMesh(path);
     options.meshName = mesh.name;
-    const vds::voxel::CompareResult result = vds::voxel::compare(mesh, options);
+    const vds::eval::CompareResult result = vds::eval::compare(mesh, options);
     std::fputs(result.table().c_str(), stdout);
     if (args.has("--json")) {
         writeTextFile(args.get("--json"), result.json());
         std::printf("wrote %s\n", args.get("--json").c_str());
     }
     if (args.has("--chart")) {
-        vds::writePng(vds::voxel::errorChart(result), args.get("--chart"));
+        vds::eval::writePng(vds::eval::errorChart(result), args.get("--chart"));
         std::printf("wrote %s\n", args.get("--chart").c_str());
     }
     return 0;

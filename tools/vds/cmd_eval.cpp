@@ -4,7 +4,7 @@
 #include <vector>
 
 #include <vds/error.h>
-#include <vds/eval.h>
+#include <vds/eval/accuracy.h>
 #include <vds/mesh_io.h>
 
 #include "cli.h"
@@ -48,7 +48,7 @@ int eval(int argc, char** argv) {
     }
     args.expectPositional(1, "one mesh file");
     const bool quiet = args.has("--quiet");
-    vds::EvalOptions options;
+    vds::eval::EvalOptions options;
     if (args.has("--resolutions")) options.resolutions = parseResolutions(args.get("--resolutions"));
     options.uniformPoints = args.getUint("--points", 1000000);
     options.surfacePoints = args.getUint("--surface-points", 1000000);
@@ -69,8 +69,8 @@ int eval(int argc, char** argv) {
     if (!report.closed())
         throw vds::InvalidMesh(path + " is " + report.summary() +
                                ": inside is not defined, so there is no exact answer to compare with");
-    const vds::EvalReport r =
-        vds::evaluate(mesh, options, nullptr, [quiet](const std::string& s) { progress(quiet, s); });
+    const vds::eval::EvalReport r =
+        vds::eval::evaluate(mesh, options, nullptr, [quiet](const std::string& s) { progress(quiet, s); });
 
     std::printf("%s: %zu triangles, %s, rule %s, axis %s\n\n", r.mesh.c_str(), r.triangles, r.validation.c_str(),
                 vds::toString(r.rule), vds::toString(r.axis));
@@ -88,7 +88,7 @@ int eval(int argc, char** argv) {
                     w.distancesMeasured, w.bakeSeconds, w.fileBytes, w.memoryBytes, w.denseBytes,
                     w.vdsPointsPerSecond, w.exactPointsPerSecond);
     if (args.has("--json")) {
-        writeTextFile(args.get("--json"), vds::toJson(r));
+        writeTextFile(args.get("--json"), vds::eval::toJson(r));
         std::printf("\nwrote %s\n", args.get("--json").c_str());
     }
     for (const auto& w : r.rows)

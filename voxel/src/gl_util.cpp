@@ -3,12 +3,23 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <mutex>
 
 #include <GL/glext.h>
 
 #include <vds/error.h>
 
 namespace vds::voxel::detail {
+
+// Generated from shaders/voxel by cmake/embed_shaders.cmake.
+extern const ShaderFile kVoxelShaders[];
+extern const std::size_t kVoxelShadersCount;
+
+Program buildVoxelProgram(const std::vector<ShaderStage>& stages, const std::string& defines) {
+    static std::once_flag once;
+    std::call_once(once, [] { registerShaders(kVoxelShaders, kVoxelShadersCount); });
+    return buildProgram(stages, defines);
+}
 
 namespace {
 MeshView checkedForStorage(MeshView mesh) {

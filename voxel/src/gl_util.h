@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <GL/gl.h>
 
@@ -12,9 +13,14 @@
 #include <vds/gl_objects.h>
 #include <vds/gpu_mesh.h>
 #include <vds/mesh.h>
+#include <vds/shader.h>
 #include <vds/voxel/grid.h>
 
 namespace vds::voxel::detail {
+
+/// vds::buildProgram for shaders/voxel files: registers vds::voxel's embedded
+/// shaders (once) before building.
+Program buildVoxelProgram(const std::vector<ShaderStage>& stages, const std::string& defines = "");
 
 /// The mesh on the GPU (vds::GpuMesh), checked first to fit the shader
 /// storage of voxel/triangles.glsl (`bindStorage`).

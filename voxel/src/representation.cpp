@@ -3,6 +3,7 @@
 #include <vds/voxel/representation.h>
 
 #include <algorithm>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -86,10 +87,10 @@ Model buildModel(MeshView mesh, Representation representation, const ModelOption
         representation == Representation::Slicemap || representation == Representation::SlicemapLocal;
     // Grid checks before any GL work, so bad arguments fail fast.
     const VoxelGrid grid = makeVoxelGrid(box, options.resolution, isSlicemap ? ~std::uint64_t(0) : kMaxCells);
-    std::unique_ptr<GlContext> own;
+    const CurrentContext restore; // the caller's context is current again on return
+    std::optional<GlContext> own;
     if (!gl) {
-        own = std::make_unique<GlContext>();
-        gl = own.get();
+        gl = &own.emplace();
     }
     gl->makeCurrent();
     const std::uint64_t start = detail::nowNanoseconds();
@@ -167,7 +168,7 @@ void classifyOnGpu(const GlContext& gl, const Model& model, const glm::vec3* poi
                          : map->slicing == Slicing::Uniform ? "VDS_CLASSIFY_SLICEMAP"
                                                             : "VDS_CLASSIFY_SLICEMAP_LOCAL";
     const Program& program = gl.program(std::string("voxel.classify.") + define, [&] {
-        return buildProgram({{GL_COMPUTE_SHADER, "voxel/classify.comp", ""}}, std::string("#define ") + define + "\n");
+        return detail::buildVoxelProgram({{GL_COMPUTE_SHADER, "voxel/classify.comp", ""}}, std::string("#define ") + define + "\n");
     });
     const GLuint id = program.id();
     Buffer words;

@@ -1,0 +1,104 @@
+// vds::voxel: the VDS against slicemaps and solid voxels as point-in-solid
+// tests, on one mesh: error, build time, query throughput and memory, at
+// equal resolution and at equal memory budgets (the table of docs/voxel.md,
+// `vds compare MESH`).
+//
+// Ground truth is vds::ExactClassifier (Axis::Z) on the mesh itself: parity
+// for every row but "vds-winding", which is held to the exact winding rule.
+// Points: `uniformPoints` uniform in the mesh box grown by `padding` of its
+// size on each side, and `surfacePoints` near the surface (a uniformly random
+// point of the surface, by area, moved along its face normal by a uniform
+// offset in [-band, band], band = `surfaceBand` times the longest box side).
+// For each wrong answer the distance of the point to the surface (exact, to
+// the nearest triangle) is taken; the worst is reported in mesh units and in
+// cells of the row's representation.
+//
+// Rows ("method"):
+//  - vds-parity, vds-winding: a sprite baked with BakeMethod::Lists along z,
+//    its texels the size of the voxel grid's cells, classified by `vds::classify`;
+//  - slicemap, slicemap-local, solid, solid-compute: `buildModel`.
+// Series "resolution": every method at each of `resolutions` (cells along the
+// box's longest side; the VDS at the same texel size). Series "memory": every
+// method at the largest resolution whose `memoryBytes` fits each budget.
+// Builds are timed after one untimed warm-up build per method (shader
+// compilation is not counted), as the fastest of up to three builds while
+// they take under 0.3 s together; throughput is whole passes over all points
+// for at least 0.1 s on `threads` CPU threads.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include <vds/gl_context.h>
+#include <vds/eval/image.h>
+#include <vds/mesh.h>
+
+namespace vds::eval {
+
+struct CompareOptions {
+    std::vector<std::uint32_t> resolutions = {32, 64, 128};
+    /// Memory budgets in bytes; empty: the solid voxel grid's size at each resolution.
+    std::vector<std::size_t> memoryBudgets;
+    std::size_t uniformPoints = 100000;
+    std::size_t surfacePoints = 50000;
+    float padding = 0.1f;             ///< of the box size, on each side, for the uniform points
+    float surfaceBand = 1.0f / 64.0f; ///< of the longest box side, for the near-surface points
+    std::uint32_t seed = 1;
+    unsigned threads = 0;                             ///< CPU threads for queries, 0: one per hardware thread
+    std::string meshName;                             ///< recorded in the result
+    std::function<void(const std::string&)> progress; ///< called with what is being done
+};
+
+struct CompareRow {
+    std::string method;           ///< vds-parity, vds-winding, slicemap, slicemap-local, solid, solid-compute
+    std::string series;           ///< "resolution" or "memory"
+    std::uint64_t target = 0;     ///< the series' value: resolution, or budget in bytes
+    std::uint32_t resolution = 0; ///< the builder's resolution (the VDS: its bake resolution)
+    glm::uvec3 cells{0u};         ///< columns x, y; and slices, voxels or d_S along z
+    double cellSize = 0.0;        ///< column (texel) edge, mesh units
+    std::size_t memoryBytes = 0;  ///< what the CPU query reads (the VDS: its CSR layers)
+    std::size_t gpuBytes = 0;     ///< what the GLSL lookup reads (the VDS: its dense 3D texture)
+    double buildSeconds = 0.0;
+    double pointsPerSecond = 0.0; ///< query throughput on the CPU
+    std::size_t uniformWrong = 0;
+    std::size_t surfaceWrong = 0;
+    double uniformErrorRate = 0.0;   ///< uniformWrong / uniformPoints
+    double surfaceErrorRate = 0.0;   ///< surfaceWrong / surfacePoints
+    double errorRate = 0.0;          ///< over all points
+    double worstErrorDistance = 0.0; ///< mesh units; 0 when nothing is wrong
+    double worstErrorCells = 0.0;    ///< worstErrorDistance / cellSize
+};
+
+struct CompareResult {
+    std::string meshName;
+    std::size_t triangles = 0;
+    Box bounds;
+    std::size_t uniformPoints = 0, surfacePoints = 0;
+    std::size_t uniformInside = 0;     ///< exact parity answers "inside" among the uniform points
+    double exactBuildSeconds = 0.0;    ///< the exact classifier's construction
+    double exactPointsPerSecond = 0.0; ///< and its throughput, for scale
+    std::vector<CompareRow> rows;
+
+    /// A text table, one row per line, with a header.
+    std::string table() const;
+    /// The whole result as a JSON object.
+    std::string json() const;
+};
+
+/// Runs the comparison on a closed mesh. Uses `gl` if given (made current),
+/// else makes a context. Throws `InvalidMesh` for an open or unusable mesh,
+/// `InvalidArgument` for an empty or out-of-range resolution list, and what
+/// the builders throw.
+CompareResult compare(MeshView mesh, const CompareOptions& options = {}, GlContext* gl = nullptr);
+
+/// A chart of error rate (all points, %) against memory (bytes, log scale):
+/// one colour per method, resolution series as solid lines with dots, memory
+/// series as dots with a ring, axis ticks with values, a legend.
+Image errorChart(const CompareResult& result, std::uint32_t width = 900, std::uint32_t height = 560);
+
+} // namespace vds::eval

@@ -1,0 +1,382 @@
+// The VDS (Trapp & Döllner 2008) against slicemaps (Eisemann & Décoret 2006)
+// and solid voxelizations (Schwarz 2012) as point-in-solid tests: see
+// <vds/eval/compare.h>.
+#include <vds/eval/compare.h>
+
+#include <algorithm>
+#include <optional>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <random>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include <vds/bake.h>
+#include <vds/error.h>
+#include <vds/exact.h>
+#include <vds/sprite.h>
+#include <vds/voxel/representation.h>
+
+#include <vds/eval/distance.h>
+
+namespace vds::eval {
+
+using namespace vds::voxel;
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+const char* const kMethods[] = {"vds-parity", "vds-winding", "slicemap", "slicemap-local", "solid", "solid-compute"};
+
+struct Samples {
+    std::vector<glm::vec3> points; // uniform first, then near the surface
+    std::size_t uniform = 0;
+    std::vector<std::uint8_t> parity, winding; // exact answers
+};
+
+Samples samplePoints(MeshView mesh, const Box& box, const CompareOptions& o) {
+    Samples s;
+    std::mt19937 rng(o.seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const glm::vec3 size = box.hi - box.lo;
+    s.uniform = o.uniformPoints;
+    s.points.reserve(o.uniformPoints + o.surfacePoints);
+    for (std::size_t k = 0; k < o.uniformPoints; ++k) {
+        const glm::vec3 u(unit(rng), unit(rng), unit(rng));
+        s.points.push_back(box.lo + (u * (1.0f + 2.0f * o.padding) - o.padding) * size);
+    }
+    // Surface points: triangles by area, uniform within, then along the normal.
+    std::vector<double> area(mesh.triangleCount);
+    double total = 0.0;
+    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
+        const glm::dvec3 a(mesh.positions[mesh.triangles[t].x]), b(mesh.positions[mesh.triangles[t].y]),
+            c(mesh.positions[mesh.triangles[t].z]);
+        total += 0.5 * glm::length(glm::cross(b - a, c - a));
+        area[t] = total;
+    }
+    const float band = o.surfaceBand * std::max({size.x, size.y, size.z});
+    std::uniform_real_distribution<double> pick(0.0, total);
+    std::uniform_real_distribution<float> offset(-band, band);
+    for (std::size_t k = 0; k < o.surfacePoints && total > 0.0; ++k) {
+        const std::size_t t = std::min<std::size_t>(
+            std::size_t(std::lower_bound(area.begin(), area.end(), pick(rng)) - area.begin()), mesh.triangleCount - 1);
+        const glm::vec3 a = mesh.positions[mesh.triangles[t].x], b = mesh.positions[mesh.triangles[t].y],
+                        c = mesh.positions[mesh.triangles[t].z];
+        float u = unit(rng), v = unit(rng);
+        if (u + v > 1.0f) {
+            u = 1.0f - u;
+            v = 1.0f - v;
+        }
+        const glm::vec3 n = glm::cross(b - a, c - a);
+        const float len = glm::length(n);
+        const glm::vec3 normal = len > 0.0f ? n / len : glm::vec3(0.0f);
+        s.points.push_back(a + u * (b - a) + v * (c - a) + offset(rng) * normal);
+    }
+    return s;
+}
+
+/// Distances of points to the surface, computed on first use.
+class DistanceCache {
+public:
+    DistanceCache(MeshView mesh, std::size_t count) : surface_(mesh), distance_(count, -1.0) {}
+    double operator()(const std::vector<glm::vec3>& points, std::size_t k) {
+        if (distance_[k] < 0.0) distance_[k] = surface_.distance(points[k]);
+        return distance_[k];
+    }
+
+private:
+    SurfaceDistance surface_;
+    std::vector<double> distance_;
+};
+
+struct Built {
+    std::unique_ptr<Model> model;   // voxel representations
+    std::unique_ptr<Sprite> sprite; // the VDS
+    double seconds = 0.0;
+    std::size_t memoryBytes() const { return model ? model->memoryBytes() : sprite->memoryBytes(); }
+};
+
+bool isVds(const std::string& method) { return method.rfind("vds", 0) == 0; }
+
+// The VDS bake resolution giving texels of the voxel grid's cell size.
+std::uint32_t vdsResolution(const Box& box, std::uint32_t resolution) {
+    const glm::vec3 e = box.hi - box.lo;
+    const double ratio = double(std::max(e.x, e.y)) / double(std::max({e.x, e.y, e.z}));
+    return std::max<std::uint32_t>(1, std::uint32_t(std::lround(ratio * resolution)));
+}
+
+Built buildOnce(MeshView mesh, const std::string& method, std::uint32_t resolution, GlContext& gl,
+                const std::string& name) {
+    Built b;
+    if (isVds(method)) {
+        BakeOptions o;
+        o.method = BakeMethod::Lists;
+        o.axis = Axis::Z;
+        o.resolution = resolution;
+        o.sourceName = name;
+        const auto start = std::chrono::steady_clock::now();
+        b.sprite = std::make_unique<Sprite>(bake(mesh, o, &gl));
+        b.seconds = secondsSince(start);
+    } else {
+        ModelOptions o;
+        o.resolution = resolution;
+        b.model = std::make_unique<Model>(buildModel(mesh, parseRepresentation(method), o, &gl));
+        b.seconds = b.model->buildSeconds();
+    }
+    return b;
+}
+
+// Builds up to three times while the builds are quick (under 0.3 s in all),
+// keeping the fastest time: single builds of a few milliseconds are noise.
+Built build(MeshView mesh, const std::string& method, std::uint32_t resolution, GlContext& gl,
+            const std::string& name) {
+    Built best = buildOnce(mesh, method, resolution, gl, name);
+    double total = best.seconds;
+    for (int k = 1; k < 3 && total < 0.3; ++k) {
+        Built again = buildOnce(mesh, method, resolution, gl, name);
+        total += again.seconds;
+        if (again.seconds < best.seconds) best = std::move(again);
+    }
+    return best;
+}
+
+// Memory of a voxel representation at a resolution, without building it.
+std::size_t voxelMemory(const Box& box, const std::string& method, std::uint32_t resolution) {
+    if (method == "solid" || method == "solid-compute")
+        return makeVoxelGrid(box, resolution, ~std::uint64_t(0)).wordCount() * 4;
+    const VoxelGrid columns = makeVoxelGrid(box, resolution, ~std::uint64_t(0));
+    const std::size_t n = std::size_t(columns.size.x) * columns.size.y;
+    const std::size_t words = defaultSlices(box, resolution) / 32;
+    return n * 2 * words * 4 + (method == "slicemap-local" ? n * 12 : 0);
+}
+
+// Largest resolution in [1, 4096] whose estimate fits `budget`; 0 if none.
+template <class Estimate> std::uint32_t largestWithin(std::size_t budget, const Estimate& estimate) {
+    std::uint32_t lo = 0, hi = 4096;
+    while (lo < hi) {
+        const std::uint32_t mid = lo + (hi - lo + 1) / 2;
+        if (estimate(mid) <= budget)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
+}
+
+void report(const CompareOptions& o, const std::string& what) {
+    if (o.progress) o.progress(what);
+}
+
+std::string formatBytes(std::size_t b) {
+    char buf[32];
+    if (b >= (std::size_t(1) << 20))
+        std::snprintf(buf, sizeof buf, "%.2f MiB", double(b) / double(1 << 20));
+    else if (b >= 1024)
+        std::snprintf(buf, sizeof buf, "%.1f KiB", double(b) / 1024.0);
+    else
+        std::snprintf(buf, sizeof buf, "%zu B", b);
+    return buf;
+}
+
+
+} // namespace
+
+CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* gl) {
+    requireClosed(mesh, options.meshName.empty() ? "mesh" : options.meshName.c_str());
+    if (options.resolutions.empty()) throw InvalidArgument("compare needs at least one resolution");
+    for (std::uint32_t r : options.resolutions)
+        if (r == 0 || r > 4096)
+            throw InvalidArgument("compare resolution " + std::to_string(r) + " is out of range (1 to 4096)");
+    const CurrentContext restore; // the caller's context is current again on return
+    std::optional<GlContext> own;
+    if (!gl) {
+        gl = &own.emplace();
+    }
+    CompareResult result;
+    result.meshName = options.meshName;
+    result.triangles = mesh.triangleCount;
+    result.bounds = meshBounds(mesh);
+    const Box& box = result.bounds;
+
+    report(options, "sampling points and classifying them exactly");
+    Samples samples = samplePoints(mesh, box, options);
+    const std::size_t count = samples.points.size();
+    result.uniformPoints = samples.uniform;
+    result.surfacePoints = count - samples.uniform;
+    auto start = std::chrono::steady_clock::now();
+    const ExactClassifier exact(mesh, Axis::Z);
+    result.exactBuildSeconds = secondsSince(start);
+    samples.parity.resize(count);
+    samples.winding.resize(count);
+    ClassifyOptions parity;
+    parity.threads = options.threads;
+    start = std::chrono::steady_clock::now();
+    exact.classify(samples.points.data(), count, samples.parity.data(), parity);
+    result.exactPointsPerSecond = double(count) / std::max(secondsSince(start), 1e-9);
+    ClassifyOptions winding = parity;
+    winding.rule = Rule::Winding;
+    exact.classify(samples.points.data(), count, samples.winding.data(), winding);
+    for (std::size_t k = 0; k < samples.uniform; ++k) result.uniformInside += samples.parity[k];
+    DistanceCache distances(mesh, count);
+
+    report(options, "warming up (shader compilation)");
+    for (const char* method : kMethods)
+        if (std::string(method) != "vds-winding") buildOnce(mesh, method, 8, *gl, options.meshName);
+
+    std::vector<std::uint8_t> labels(count);
+    // Builds `method` at `resolution` (a VDS: at its bake resolution) and scores it.
+    const auto measure = [&](const std::string& method, const std::string& series, std::uint64_t target,
+                             std::uint32_t resolution, Built* prebuilt) {
+        Built built = prebuilt ? std::move(*prebuilt) : build(mesh, method, resolution, *gl, options.meshName);
+        CompareRow row;
+        row.method = method;
+        row.series = series;
+        row.target = target;
+        row.resolution = resolution;
+        row.buildSeconds = built.seconds;
+        // Throughput: whole passes over the points for at least 0.1 s.
+        const auto queryStart = std::chrono::steady_clock::now();
+        std::size_t passes = 0;
+        do {
+            if (built.sprite) {
+                ClassifyOptions o;
+                o.threads = options.threads;
+                o.rule = method == "vds-winding" ? Rule::Winding : Rule::Parity;
+                vds::classify(*built.sprite, samples.points.data(), count, labels.data(), o);
+            } else {
+                built.model->classify(samples.points.data(), count, labels.data(), options.threads);
+            }
+            ++passes;
+        } while (secondsSince(queryStart) < 0.1);
+        row.pointsPerSecond = double(passes * count) / std::max(secondsSince(queryStart), 1e-9);
+        if (built.sprite) {
+            row.cells = glm::uvec3(built.sprite->width(), built.sprite->height(), built.sprite->depthComplexity);
+            row.cellSize = built.sprite->grid.texelSize;
+            row.memoryBytes = built.sprite->memoryBytes();
+            row.gpuBytes = built.sprite->denseBytes();
+        } else {
+            row.cells = built.model->cells();
+            row.cellSize = built.model->cellSize();
+            row.memoryBytes = built.model->memoryBytes();
+            row.gpuBytes = built.model->gpuBytes();
+        }
+        const std::vector<std::uint8_t>& truth = method == "vds-winding" ? samples.winding : samples.parity;
+        for (std::size_t k = 0; k < count; ++k) {
+            if (labels[k] == truth[k]) continue;
+            (k < samples.uniform ? row.uniformWrong : row.surfaceWrong) += 1;
+            row.worstErrorDistance = std::max(row.worstErrorDistance, distances(samples.points, k));
+        }
+        row.uniformErrorRate = samples.uniform ? double(row.uniformWrong) / double(samples.uniform) : 0.0;
+        row.surfaceErrorRate =
+            count > samples.uniform ? double(row.surfaceWrong) / double(count - samples.uniform) : 0.0;
+        row.errorRate = count ? double(row.uniformWrong + row.surfaceWrong) / double(count) : 0.0;
+        row.worstErrorCells = row.cellSize > 0.0 ? row.worstErrorDistance / row.cellSize : 0.0;
+        result.rows.push_back(row);
+        return built;
+    };
+
+    std::vector<std::size_t> budgets = options.memoryBudgets;
+    for (std::uint32_t r : options.resolutions) {
+        report(options, "resolution " + std::to_string(r));
+        if (options.memoryBudgets.empty()) budgets.push_back(voxelMemory(box, "solid", r));
+        const std::uint32_t vds = vdsResolution(box, r);
+        Built sprite = measure("vds-parity", "resolution", r, vds, nullptr);
+        measure("vds-winding", "resolution", r, vds, &sprite);
+        for (const char* method : {"slicemap", "slicemap-local", "solid", "solid-compute"})
+            measure(method, "resolution", r, r, nullptr);
+    }
+
+    // A VDS probe bake gives the crossings per column, to pick bake resolutions
+    // for the budgets (then shrunk until the bake fits).
+    const std::uint32_t probeResolution = vdsResolution(box, options.resolutions.front());
+    const Built probe = buildOnce(mesh, "vds-parity", probeResolution, *gl, options.meshName);
+    const double columns0 = double(probe.sprite->width()) * probe.sprite->height();
+    const double perColumn = 4.0 + 4.0 * double(probe.sprite->crossings.size()) / columns0;
+    for (std::size_t budget : budgets) {
+        report(options, "memory budget " + formatBytes(budget));
+        std::uint32_t vds = largestWithin(budget, [&](std::uint32_t n) {
+            const SpriteGrid g = makeGrid(box, Axis::Z, n);
+            return std::size_t(double(g.width) * g.height * perColumn + 4.0);
+        });
+        for (int attempt = 0; vds > 0 && attempt < 4; ++attempt) {
+            Built sprite = buildOnce(mesh, "vds-parity", vds, *gl, options.meshName);
+            if (sprite.memoryBytes() > budget) {
+                vds = std::uint32_t(double(vds) * std::sqrt(double(budget) / double(sprite.memoryBytes())) * 0.98);
+                continue;
+            }
+            sprite = build(mesh, "vds-parity", vds, *gl, options.meshName); // timed
+            Built used = measure("vds-parity", "memory", budget, vds, &sprite);
+            measure("vds-winding", "memory", budget, vds, &used);
+            break;
+        }
+        for (const char* method : {"slicemap", "slicemap-local", "solid", "solid-compute"}) {
+            const std::uint32_t r = largestWithin(budget, [&](std::uint32_t n) { return voxelMemory(box, method, n); });
+            if (r > 0) measure(method, "memory", budget, r, nullptr);
+        }
+    }
+    report(options, "done");
+    return result;
+}
+
+std::string CompareResult::table() const {
+    std::ostringstream out;
+    char line[512];
+    std::snprintf(line, sizeof line, "%-15s %-10s %9s %5s %-16s %10s %10s %9s %10s %8s %8s %8s %9s\n", "method",
+                  "series", "target", "res", "cells", "memory", "gpu", "build ms", "Mpts/s", "err %", "unif %",
+                  "surf %", "worst cl");
+    out << line;
+    for (const CompareRow& r : rows) {
+        const std::string target = r.series == "memory" ? formatBytes(std::size_t(r.target)) : std::to_string(r.target);
+        const std::string cells =
+            std::to_string(r.cells.x) + "x" + std::to_string(r.cells.y) + "x" + std::to_string(r.cells.z);
+        std::snprintf(line, sizeof line, "%-15s %-10s %9s %5u %-16s %10s %10s %9.1f %10.2f %8.3f %8.3f %8.3f %9.2f\n",
+                      r.method.c_str(), r.series.c_str(), target.c_str(), r.resolution, cells.c_str(),
+                      formatBytes(r.memoryBytes).c_str(), formatBytes(r.gpuBytes).c_str(), r.buildSeconds * 1e3,
+                      r.pointsPerSecond * 1e-6, 100.0 * r.errorRate, 100.0 * r.uniformErrorRate,
+                      100.0 * r.surfaceErrorRate, r.worstErrorCells);
+        out << line;
+    }
+    return out.str();
+}
+
+std::string CompareResult::json() const {
+    nlohmann::json rowList = nlohmann::json::array();
+    for (const CompareRow& r : rows)
+        rowList.push_back({{"method", r.method},
+                           {"series", r.series},
+                           {"target", r.target},
+                           {"resolution", r.resolution},
+                           {"cells", {r.cells.x, r.cells.y, r.cells.z}},
+                           {"cell_size", r.cellSize},
+                           {"memory_bytes", r.memoryBytes},
+                           {"gpu_bytes", r.gpuBytes},
+                           {"build_seconds", r.buildSeconds},
+                           {"points_per_second", r.pointsPerSecond},
+                           {"uniform_wrong", r.uniformWrong},
+                           {"surface_wrong", r.surfaceWrong},
+                           {"uniform_error_rate", r.uniformErrorRate},
+                           {"surface_error_rate", r.surfaceErrorRate},
+                           {"error_rate", r.errorRate},
+                           {"worst_error_distance", r.worstErrorDistance},
+                           {"worst_error_cells", r.worstErrorCells}});
+    const nlohmann::json result = {
+        {"mesh", meshName},
+        {"triangles", triangles},
+        {"bounds", {{"lo", {bounds.lo.x, bounds.lo.y, bounds.lo.z}}, {"hi", {bounds.hi.x, bounds.hi.y, bounds.hi.z}}}},
+        {"uniform_points", uniformPoints},
+        {"surface_points", surfacePoints},
+        {"uniform_inside", uniformInside},
+        {"exact_build_seconds", exactBuildSeconds},
+        {"exact_points_per_second", exactPointsPerSecond},
+        {"rows", rowList}};
+    // Non-finite numbers are written as null (nlohmann's rule): the output is always valid JSON.
+    return result.dump(2) + "\n";
+}
+
+} // namespace vds::eval

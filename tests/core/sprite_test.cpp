@@ -1,0 +1,144 @@
+// The sprite's grid and the VPT on the CPU, on sprites built by hand.
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <vds/bake.h>
+#include <vds/error.h>
+#include "solids.h"
+#include <vds/sprite.h>
+
+namespace vds {
+namespace {
+
+// A 4x2 sprite over the box [0,4]x[0,2]x[0,10] along z with hand-made columns.
+Sprite handMade() {
+    Sprite s;
+    s.grid = makeGrid(Box{{0, 0, 0}, {4, 2, 10}}, Axis::Z, 4);
+    s.offsets.assign(9, 0);
+    // column 0: one solid interval [0.2, 0.4]; column 5: two nested shells.
+    std::vector<std::vector<float>> columns(8);
+    columns[0] = {encodeCrossing(0.2f, true), encodeCrossing(0.4f, false)};
+    columns[5] = {encodeCrossing(0.1f, true), encodeCrossing(0.2f, true), encodeCrossing(0.3f, false),
+                  encodeCrossing(0.5f, false)};
+    for (std::size_t c = 0; c < 8; ++c) {
+        s.offsets[c + 1] = s.offsets[c] + std::uint32_t(columns[c].size());
+        s.crossings.insert(s.crossings.end(), columns[c].begin(), columns[c].end());
+    }
+    s.depthComplexity = 4;
+    s.checkConsistent();
+    return s;
+}
+
+TEST(SpriteGrid, TexelsAreSquareAndCoverTheBox) {
+    const SpriteGrid g = makeGrid(Box{{-1, 0, 2}, {3, 1, 4}}, Axis::Z, 100);
+    EXPECT_EQ(g.width, 100u);
+    EXPECT_EQ(g.height, 25u);
+    EXPECT_FLOAT_EQ(g.texelSize, 0.04f);
+    EXPECT_EQ(g.toTexture({-1, 0, 2}), glm::vec3(0, 0, 0));
+    const glm::vec3 far = g.toTexture({3, 1, 4});
+    EXPECT_NEAR(far.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(far.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(far.z, 1.0f, 1e-6f);
+    const SpriteGrid gx = makeGrid(Box{{0, 0, 0}, {1, 2, 4}}, Axis::X, 64); // s = y, t = z
+    EXPECT_EQ(gx.width, 32u);
+    EXPECT_EQ(gx.height, 64u);
+    const glm::vec3 c = gx.texelCentre(0, 0, 0.5f);
+    EXPECT_FLOAT_EQ(c.x, 0.5f);
+    EXPECT_FLOAT_EQ(c.y, 0.5f * gx.texelSize);
+    EXPECT_FLOAT_EQ(c.z, 0.5f * gx.texelSize);
+}
+
+TEST(SpriteGrid, AbsurdResolutionsAndFlatBoxesAreRefused) {
+    const Box box{{0, 0, 0}, {1, 1, 1}};
+    EXPECT_THROW(makeGrid(box, Axis::Z, 0), InvalidArgument);
+    EXPECT_THROW(makeGrid(box, Axis::Z, kMaxResolution + 1), InvalidArgument);
+    EXPECT_NO_THROW(makeGrid(box, Axis::Z, 1));
+    EXPECT_THROW(makeGrid(Box{{0, 0, 0}, {1, 1, 0}}, Axis::Z, 8), InvalidArgument);
+    EXPECT_THROW(makeGrid(Box{{0, 0, 0}, {0, 0, 1}}, Axis::Z, 8), InvalidArgument);
+    EXPECT_THROW(makeGrid(Box{{0, 0, 0}, {INFINITY, 1, 1}}, Axis::Z, 8), InvalidArgument);
+}
+
+TEST(Sprite, ParityAndWindingCountOnlyCrossingsInFront) {
+    const Sprite s = handMade();
+    // column 0 = texel (0,0): x in [0,1), y in [0,1); depth r = z / 10.
+    EXPECT_FALSE(s.contains({0.5f, 0.5f, 1.0f}));
+    EXPECT_TRUE(s.contains({0.5f, 0.5f, 3.0f}));
+    EXPECT_FALSE(s.contains({0.5f, 0.5f, 5.0f}));
+    EXPECT_FALSE(s.contains({0.5f, 0.5f, 2.0f})); // on an entering surface: outside
+    EXPECT_TRUE(s.contains({0.5f, 0.5f, 4.0f}));  // on a leaving surface: inside
+    // column 5 = texel (1,1): nested shells, winding 2 between 0.2 and 0.3.
+    const glm::vec3 deep(1.5f, 1.5f, 2.5f);
+    EXPECT_FALSE(s.contains(deep, Rule::Parity));
+    EXPECT_TRUE(s.contains(deep, Rule::Winding));
+    EXPECT_TRUE(s.contains({1.5f, 1.5f, 1.5f}, Rule::Parity));
+    EXPECT_TRUE(s.contains({1.5f, 1.5f, 4.0f}, Rule::Winding));
+    EXPECT_FALSE(s.contains({1.5f, 1.5f, 6.0f}, Rule::Winding));
+    // Outside the box: outside, whatever the column holds.
+    EXPECT_FALSE(s.contains({-0.1f, 0.5f, 3.0f}));
+    EXPECT_FALSE(s.contains({0.5f, 0.5f, -1.0f}));
+    EXPECT_FALSE(s.contains({0.5f, 0.5f, 10.5f}));
+    EXPECT_FALSE(s.contains({4.0f, 0.5f, 3.0f}));
+}
+
+TEST(Sprite, TransformMovesTheAnswers) {
+    Sprite s = handMade();
+    const glm::mat4 m = glm::rotate(glm::translate(glm::mat4(1.0f), {10, 0, 0}), glm::radians(90.0f), {0, 0, 1});
+    s.transform(m);
+    const glm::vec3 inside(0.5f, 0.5f, 3.0f);
+    EXPECT_FALSE(s.contains(inside));
+    EXPECT_TRUE(s.contains(glm::vec3(m * glm::vec4(inside, 1.0f))));
+    EXPECT_THROW(s.transform(glm::mat4(0.0f)), InvalidArgument);
+}
+
+TEST(Sprite, BatchClassifyEqualsSinglePointsOnAnyThreadCount) {
+    const Sprite s = handMade();
+    std::vector<glm::vec3> points;
+    for (int i = 0; i < 20000; ++i)
+        points.push_back({float(i % 41) * 0.1f, float(i % 23) * 0.1f, float(i % 113) * 0.1f});
+    for (unsigned threads : {1u, 2u, 3u}) {
+        std::vector<std::uint8_t> labels(points.size(), 9);
+        ClassifyOptions o;
+        o.threads = threads;
+        o.rule = Rule::Winding;
+        classify(s, points.data(), points.size(), labels.data(), o);
+        for (std::size_t k = 0; k < points.size(); ++k)
+            ASSERT_EQ(labels[k], s.contains(points[k], Rule::Winding) ? 1 : 0) << k;
+    }
+}
+
+TEST(Sprite, InconsistentArraysAreDetected) {
+    Sprite s = handMade();
+    s.depthComplexity = 3;
+    EXPECT_THROW(s.checkConsistent(), FormatError);
+    s = handMade();
+    std::swap(s.crossings[0], s.crossings[1]); // unsorted column
+    EXPECT_THROW(s.checkConsistent(), FormatError);
+    s = handMade();
+    s.crossings[2] = 1.5f;
+    EXPECT_THROW(s.checkConsistent(), FormatError);
+    s = handMade();
+    s.offsets.pop_back();
+    EXPECT_THROW(s.checkConsistent(), FormatError);
+    EXPECT_EQ(handMade().denseBytes(), 8u * 4u * 4u);
+}
+
+TEST(Sprite, CrossingEncodingKeepsFacingAtDepthZero) {
+    EXPECT_TRUE(crossingEnters(encodeCrossing(0.0f, true)));
+    EXPECT_FALSE(crossingEnters(encodeCrossing(0.0f, false)));
+    EXPECT_EQ(crossingDepth(encodeCrossing(0.25f, false)), 0.25f);
+}
+
+TEST(ChooseViewAxis, PicksTheAxisWithTheFewestLayers) {
+    // A torus seen along its symmetry axis has two layers, from the side four.
+    auto torus = solids::torus({0, 0, 0}, 1.0f, 0.3f, 48).mesh;
+    EXPECT_EQ(chooseViewAxis(torus), Axis::Z);
+    for (auto& p : torus.positions) p = glm::vec3(p.z, p.x, p.y); // symmetry axis now x
+    EXPECT_EQ(chooseViewAxis(torus), Axis::X);
+    for (auto& p : torus.positions) p = glm::vec3(p.z, p.x, p.y); // and now y
+    EXPECT_EQ(chooseViewAxis(torus), Axis::Y);
+}
+
+} // namespace
+} // namespace vds

@@ -1,0 +1,207 @@
+// The GL bakers on analytic solids: peeling and fragment lists must agree bit
+// for bit, and the sprites must classify every point farther than two texels
+// from the ideal surface as the analytic solid does.
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include <vds/bake.h>
+#include <vds/error.h>
+#include "solids.h"
+
+#include "../support/gl_fixture.h"
+#include "../support/points.h"
+
+namespace vds {
+namespace {
+
+using test::GlTest;
+
+Sprite bakeWith(GlContext& gl, const TriangleMesh& mesh, BakeMethod method, std::uint32_t resolution,
+                Axis axis = Axis::Z, std::uint64_t maxNodes = 0) {
+    BakeOptions o;
+    o.method = method;
+    o.resolution = resolution;
+    o.axis = axis;
+    o.maxListNodes = maxNodes;
+    return bake(mesh, o, &gl);
+}
+
+void expectIdentical(const Sprite& a, const Sprite& b) {
+    ASSERT_EQ(a.width(), b.width());
+    ASSERT_EQ(a.height(), b.height());
+    EXPECT_EQ(a.depthComplexity, b.depthComplexity);
+    ASSERT_EQ(a.offsets, b.offsets);
+    ASSERT_EQ(a.crossings.size(), b.crossings.size());
+    EXPECT_EQ(0, std::memcmp(a.crossings.data(), b.crossings.data(), a.crossings.size() * sizeof(float)))
+        << "crossings differ";
+}
+
+// Every point whose distance to the ideal surface exceeds two texel
+// diagonals plus the tessellation error is classified as the ideal solid.
+void expectAnalytic(const Sprite& sprite, const solids::Solid& solid, Rule rule, std::size_t n = 20000) {
+    const float margin = 2.0f * std::sqrt(3.0f) * sprite.grid.texelSize + solid.tessellationError;
+    const auto points = test::randomPoints(sprite.grid.box, n, 0.1f, 7);
+    std::size_t checked = 0, wrong = 0;
+    for (const auto& p : points) {
+        const float d = solid.distance(p);
+        if (std::fabs(d) <= margin) continue;
+        ++checked;
+        if (sprite.contains(p, rule) != (d < 0.0f)) ++wrong;
+    }
+    EXPECT_GT(checked, n / 2);
+    EXPECT_EQ(wrong, 0u) << "of " << checked << " points far from the surface";
+}
+
+class BakeTest : public GlTest {};
+
+TEST_F(BakeTest, BoxColumnsHoldOneEnteringAndOneLeavingCrossing) {
+    const auto box = solids::box({-1, -2, -0.5f}, {1, 1, 0.5f});
+    for (BakeMethod m : {BakeMethod::Peel, BakeMethod::Lists}) {
+        const Sprite s = bakeWith(gl(), box.mesh, m, 64);
+        EXPECT_EQ(s.depthComplexity, 2u);
+        EXPECT_EQ(s.status, SolidStatus::Closed);
+        for (std::uint32_t j = 0; j < s.height(); ++j)
+            for (std::uint32_t i = 0; i < s.width(); ++i) {
+                const std::size_t c = std::size_t(j) * s.width() + i;
+                const glm::vec3 centre = s.grid.texelCentre(i, j, 0.5f);
+                const bool covered = centre.x < 1.0f && centre.y < 1.0f;
+                ASSERT_EQ(s.offsets[c + 1] - s.offsets[c], covered ? 2u : 0u) << "column " << i << "," << j;
+                if (!covered) continue;
+                const float front = s.crossings[s.offsets[c]], back = s.crossings[s.offsets[c] + 1];
+                EXPECT_TRUE(crossingEnters(front));
+                EXPECT_FALSE(crossingEnters(back));
+                EXPECT_EQ(crossingDepth(front), 0.0f);
+                EXPECT_EQ(crossingDepth(back), 1.0f);
+            }
+    }
+}
+
+TEST_F(BakeTest, PeelingAndFragmentListsAgreeBitForBit) {
+    const auto torus = solids::torus({0.1f, 0.2f, 0.3f}, 1.0f, 0.35f, 96);
+    const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.6f, 64);
+    for (const TriangleMesh* mesh : {&torus.mesh, &shell.mesh})
+        for (Axis axis : {Axis::X, Axis::Y, Axis::Z})
+            expectIdentical(bakeWith(gl(), *mesh, BakeMethod::Peel, 96, axis),
+                            bakeWith(gl(), *mesh, BakeMethod::Lists, 96, axis));
+}
+
+TEST_F(BakeTest, FragmentListsOverflowRetriesInBandsWithoutLosingCrossings) {
+    const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.6f, 48);
+    const Sprite whole = bakeWith(gl(), shell.mesh, BakeMethod::Lists, 80);
+    const Sprite banded = bakeWith(gl(), shell.mesh, BakeMethod::Lists, 80, Axis::Z, 700);
+    expectIdentical(whole, banded);
+    EXPECT_EQ(whole.depthComplexity, 4u);
+}
+
+// The exact CPU baker and the GL bakers, layer for layer. GL rasterizes
+// vertices snapped to 1/256 texel, so at a texel centre within that distance
+// of a silhouette the two may see 0 and 2 crossings (an even difference),
+// and where a centre lies on a shared edge they may pick the other triangle
+// of the edge (same depth, same facing): allow a handful of such columns.
+TEST_F(BakeTest, CpuBakerMatchesTheGlBakersLayerForLayer) {
+    const auto torus = solids::torus({0.1f, 0.2f, 0.3f}, 1.0f, 0.35f, 96);
+    const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.6f, 64);
+    const auto two = solids::overlappingBoxes({-1, -1, -1}, {0.5f, 0.5f, 0.5f}, {-0.5f, -0.3f, -0.2f}, {1, 1, 1});
+    for (const TriangleMesh* mesh : {&torus.mesh, &shell.mesh, &two.mesh})
+        for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+            BakeOptions o;
+            o.resolution = 128;
+            o.axis = axis;
+            o.method = BakeMethod::Cpu;
+            const Sprite cpu = bake(*mesh, o);
+            const Sprite gpu = bakeWith(gl(), *mesh, BakeMethod::Lists, 128, axis);
+            ASSERT_EQ(cpu.width(), gpu.width());
+            ASSERT_EQ(cpu.height(), gpu.height());
+            EXPECT_EQ(cpu.depthComplexity, gpu.depthComplexity);
+            std::size_t countDiffers = 0, facingDiffers = 0, compared = 0, farDepth = 0;
+            float worstDepth = 0.0f;
+            for (std::size_t c = 0; c + 1 < cpu.offsets.size(); ++c) {
+                const std::uint32_t n = cpu.offsets[c + 1] - cpu.offsets[c], m = gpu.offsets[c + 1] - gpu.offsets[c];
+                if (n != m) {
+                    ++countDiffers;
+                    EXPECT_EQ((n + m) % 2, 0u) << "odd difference in column " << c;
+                    continue;
+                }
+                for (std::uint32_t k = 0; k < n; ++k) {
+                    const float a = cpu.crossings[cpu.offsets[c] + k], b = gpu.crossings[gpu.offsets[c] + k];
+                    facingDiffers += crossingEnters(a) != crossingEnters(b);
+                    const float d = std::fabs(crossingDepth(a) - crossingDepth(b));
+                    worstDepth = std::max(worstDepth, d);
+                    farDepth += d > 1e-5f;
+                    ++compared;
+                }
+            }
+            const std::size_t columns = cpu.offsets.size() - 1;
+            EXPECT_LE(countDiffers, columns / 1000) << mesh->name << " along " << toString(axis);
+            EXPECT_LE(facingDiffers, columns / 1000) << mesh->name << " along " << toString(axis);
+            // Snapping moves a steep triangle's plane by its slope times 1/256 texel.
+            EXPECT_LE(farDepth, compared / 1000) << mesh->name << " along " << toString(axis);
+            EXPECT_LT(worstDepth, 1e-2f) << mesh->name << " along " << toString(axis);
+        }
+}
+
+TEST_F(BakeTest, SphereClassifiesLikeTheAnalyticSolid) {
+    const auto sphere = solids::sphere({0.5f, -0.25f, 2.0f}, 1.5f, 128);
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+        const Sprite s = bakeWith(gl(), sphere.mesh, BakeMethod::Lists, 128, axis);
+        EXPECT_EQ(s.depthComplexity, 2u);
+        expectAnalytic(s, sphere, Rule::Parity);
+        expectAnalytic(s, sphere, Rule::Winding);
+    }
+}
+
+TEST_F(BakeTest, TorusAndShellClassifyLikeTheAnalyticSolids) {
+    const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.4f, 128);
+    const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.5f, 96);
+    const Sprite t = bakeWith(gl(), torus.mesh, BakeMethod::Peel, 160, Axis::X);
+    EXPECT_EQ(t.depthComplexity, 4u); // seen from the side, a ray crosses both tubes
+    expectAnalytic(t, torus, Rule::Parity);
+    const Sprite s = bakeWith(gl(), shell.mesh, BakeMethod::Lists, 160);
+    EXPECT_EQ(s.depthComplexity, 4u);
+    expectAnalytic(s, shell, Rule::Parity);
+    expectAnalytic(s, shell, Rule::Winding);
+}
+
+TEST_F(BakeTest, OverlappingBoxesNeedTheWindingRule) {
+    const auto two = solids::overlappingBoxes({-1, -1, -1}, {0.5f, 0.5f, 0.5f}, {-0.5f, -0.5f, -0.5f}, {1, 1, 1});
+    const Sprite s = bakeWith(gl(), two.mesh, BakeMethod::Lists, 64);
+    EXPECT_EQ(s.depthComplexity, 4u);
+    const glm::vec3 overlap(0.0f, 0.0f, 0.0f), onlyA(-0.8f, -0.8f, -0.8f), outside(0.9f, -0.9f, 0.0f);
+    EXPECT_FALSE(s.contains(overlap, Rule::Parity)); // crossed twice: parity says outside
+    EXPECT_TRUE(s.contains(overlap, Rule::Winding));
+    EXPECT_TRUE(s.contains(onlyA, Rule::Parity));
+    EXPECT_TRUE(s.contains(onlyA, Rule::Winding));
+    EXPECT_FALSE(s.contains(outside, Rule::Winding));
+    expectAnalytic(s, two, Rule::Winding);
+}
+
+TEST_F(BakeTest, OpenMeshIsBakedAndMarkedNotSolid) {
+    auto box = solids::box({0, 0, 0}, {1, 1, 1});
+    box.mesh.triangles.pop_back();
+    const Sprite s = bakeWith(gl(), box.mesh, BakeMethod::Lists, 16);
+    EXPECT_EQ(s.status, SolidStatus::Open);
+    EXPECT_NE(s.validation.find("open"), std::string::npos) << s.validation;
+}
+
+TEST_F(BakeTest, BadInputIsRefusedWithAClearError) {
+    TriangleMesh empty;
+    EXPECT_THROW(bakeWith(gl(), empty, BakeMethod::Lists, 16), InvalidMesh);
+    auto nan = solids::box({0, 0, 0}, {1, 1, 1});
+    nan.mesh.positions[3].y = std::nanf("");
+    EXPECT_THROW(bakeWith(gl(), nan.mesh, BakeMethod::Peel, 16), InvalidMesh);
+    auto badIndex = solids::box({0, 0, 0}, {1, 1, 1});
+    badIndex.mesh.triangles[0].z = 99;
+    EXPECT_THROW(bakeWith(gl(), badIndex.mesh, BakeMethod::Lists, 16), InvalidMesh);
+    const auto box = solids::box({0, 0, 0}, {1, 1, 1});
+    EXPECT_THROW(bakeWith(gl(), box.mesh, BakeMethod::Lists, 0), InvalidArgument);
+    EXPECT_THROW(bakeWith(gl(), box.mesh, BakeMethod::Lists, 1u << 20), InvalidArgument);
+    TriangleMesh flat; // a single triangle in the z = 0 plane has no extent along z
+    flat.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    flat.triangles = {{0, 1, 2}};
+    EXPECT_THROW(bakeWith(gl(), flat, BakeMethod::Lists, 16), InvalidArgument);
+}
+
+} // namespace
+} // namespace vds

@@ -1,0 +1,186 @@
+#include "solids.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include <vds/error.h>
+
+namespace vds::solids {
+namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
+
+float boxDistance(const Solid& s, const glm::vec3& p) {
+    const glm::vec3 q = glm::abs(p - s.centre) - 0.5f * s.size;
+    const glm::vec3 outside = glm::max(q, glm::vec3(0.0f));
+    return glm::length(outside) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0f);
+}
+
+float sphereDistance(const Solid& s, const glm::vec3& p) { return glm::length(p - s.centre) - s.size.x; }
+
+float shellDistance(const Solid& s, const glm::vec3& p) {
+    const float d = glm::length(p - s.centre);
+    return std::max(d - s.size.x, s.size.y - d);
+}
+
+float torusDistance(const Solid& s, const glm::vec3& p) {
+    const glm::vec3 q = p - s.centre;
+    const float ring = std::sqrt(q.x * q.x + q.y * q.y) - s.size.x;
+    return std::sqrt(ring * ring + q.z * q.z) - s.size.y;
+}
+
+// Two boxes: centre/size hold box A, the mesh's second half is box B; the
+// distance is the union's, recomputed from the mesh's vertex ranges.
+float unionDistance(const Solid& s, const glm::vec3& p) {
+    Solid a;
+    a.centre = s.centre;
+    a.size = s.size;
+    const auto& v = s.mesh.positions;
+    glm::vec3 lo = v[8], hi = v[8];
+    for (std::size_t i = 8; i < 16; ++i) {
+        lo = glm::min(lo, v[i]);
+        hi = glm::max(hi, v[i]);
+    }
+    Solid b;
+    b.centre = 0.5f * (lo + hi);
+    b.size = hi - lo;
+    return std::min(boxDistance(a, p), boxDistance(b, p));
+}
+
+void appendBox(TriangleMesh& m, const glm::vec3& lo, const glm::vec3& hi) {
+    const auto base = static_cast<std::uint32_t>(m.positions.size());
+    for (int k = 0; k < 8; ++k)
+        m.positions.emplace_back((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+    // Outward counter-clockwise quads, as corner bit patterns (x=1, y=2, z=4).
+    const std::uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                       {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) {
+        m.triangles.emplace_back(base + q[0], base + q[1], base + q[2]);
+        m.triangles.emplace_back(base + q[0], base + q[2], base + q[3]);
+    }
+}
+
+// UV sphere; `inward` flips the orientation (for a shell's inner surface).
+void appendSphere(TriangleMesh& m, const glm::vec3& c, float r, std::uint32_t segments, bool inward) {
+    const std::uint32_t rings = segments / 2;
+    const auto base = static_cast<std::uint32_t>(m.positions.size());
+    m.positions.push_back(c + glm::vec3(0, 0, r));  // north pole
+    for (std::uint32_t i = 1; i < rings; ++i) {
+        const float phi = kPi * float(i) / float(rings);
+        for (std::uint32_t j = 0; j < segments; ++j) {
+            const float theta = 2.0f * kPi * float(j) / float(segments);
+            m.positions.push_back(c + r * glm::vec3(std::sin(phi) * std::cos(theta),
+                                                    std::sin(phi) * std::sin(theta), std::cos(phi)));
+        }
+    }
+    m.positions.push_back(c - glm::vec3(0, 0, r)); // south pole
+    const std::uint32_t south = base + 1 + (rings - 1) * segments;
+    auto ring = [&](std::uint32_t i, std::uint32_t j) { return base + 1 + (i - 1) * segments + (j % segments); };
+    auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t d) {
+        if (inward)
+            m.triangles.emplace_back(a, d, b);
+        else
+            m.triangles.emplace_back(a, b, d);
+    };
+    for (std::uint32_t j = 0; j < segments; ++j) {
+        add(base, ring(1, j), ring(1, j + 1));
+        add(south, ring(rings - 1, j + 1), ring(rings - 1, j));
+    }
+    for (std::uint32_t i = 1; i + 1 < rings; ++i)
+        for (std::uint32_t j = 0; j < segments; ++j) {
+            add(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1));
+            add(ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
+        }
+}
+
+float chordError(float radius, float angle) { return radius * (1.0f - std::cos(angle)); }
+
+} // namespace
+
+Solid box(const glm::vec3& lo, const glm::vec3& hi) {
+    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+        throw InvalidArgument("box: lo must be below hi on every axis");
+    Solid s;
+    appendBox(s.mesh, lo, hi);
+    s.mesh.name = "box";
+    s.centre = 0.5f * (lo + hi);
+    s.size = hi - lo;
+    s.signedDistance = boxDistance;
+    return s;
+}
+
+Solid sphere(const glm::vec3& centre, float radius, std::uint32_t segments) {
+    if (segments < 8 || !(radius > 0.0f))
+        throw InvalidArgument("sphere: needs radius > 0 and at least 8 segments");
+    Solid s;
+    appendSphere(s.mesh, centre, radius, segments, false);
+    s.mesh.name = "sphere";
+    s.centre = centre;
+    s.size = glm::vec3(radius, 0.0f, 0.0f);
+    s.tessellationError = chordError(radius, std::sqrt(2.0f) * 2.0f * kPi / float(segments));
+    s.signedDistance = sphereDistance;
+    return s;
+}
+
+Solid torus(const glm::vec3& centre, float majorRadius, float minorRadius, std::uint32_t segments) {
+    if (segments < 8 || !(minorRadius > 0.0f) || !(majorRadius > minorRadius))
+        throw InvalidArgument("torus: needs 0 < minor < major radius and at least 8 segments");
+    Solid s;
+    const std::uint32_t tube = std::max<std::uint32_t>(8, segments / 2);
+    for (std::uint32_t i = 0; i < segments; ++i) {
+        const float u = 2.0f * kPi * float(i) / float(segments);
+        for (std::uint32_t j = 0; j < tube; ++j) {
+            const float v = 2.0f * kPi * float(j) / float(tube);
+            const float rr = majorRadius + minorRadius * std::cos(v);
+            s.mesh.positions.push_back(centre + glm::vec3(rr * std::cos(u), rr * std::sin(u), minorRadius * std::sin(v)));
+        }
+    }
+    auto at = [&](std::uint32_t i, std::uint32_t j) { return (i % segments) * tube + (j % tube); };
+    for (std::uint32_t i = 0; i < segments; ++i)
+        for (std::uint32_t j = 0; j < tube; ++j) {
+            s.mesh.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+            s.mesh.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    s.mesh.name = "torus";
+    s.centre = centre;
+    s.size = glm::vec3(majorRadius, minorRadius, 0.0f);
+    const float a = 2.0f * kPi / float(segments), b = 2.0f * kPi / float(tube);
+    s.tessellationError = chordError(majorRadius + minorRadius, a) + chordError(minorRadius, b);
+    s.signedDistance = torusDistance;
+    return s;
+}
+
+Solid shell(const glm::vec3& centre, float outer, float inner, std::uint32_t segments) {
+    if (segments < 8 || !(inner > 0.0f) || !(outer > inner))
+        throw InvalidArgument("shell: needs 0 < inner < outer radius and at least 8 segments");
+    Solid s;
+    appendSphere(s.mesh, centre, outer, segments, false);
+    appendSphere(s.mesh, centre, inner, segments, true);
+    s.mesh.name = "shell";
+    s.centre = centre;
+    s.size = glm::vec3(outer, inner, 0.0f);
+    s.tessellationError = chordError(outer, std::sqrt(2.0f) * 2.0f * kPi / float(segments));
+    s.signedDistance = shellDistance;
+    return s;
+}
+
+Solid overlappingBoxes(const glm::vec3& loA, const glm::vec3& hiA, const glm::vec3& loB, const glm::vec3& hiB) {
+    Solid s = box(loA, hiA);
+    appendBox(s.mesh, loB, hiB);
+    s.mesh.name = "overlapping-boxes";
+    s.signedDistance = unionDistance;
+    return s;
+}
+
+TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b) {
+    TriangleMesh m = a;
+    const auto base = static_cast<std::uint32_t>(a.positions.size());
+    m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+    for (const auto& t : b.triangles) m.triangles.push_back(t + glm::uvec3(base));
+    m.name = a.name + "+" + b.name;
+    return m;
+}
+
+} // namespace vds::solids

@@ -1,0 +1,156 @@
+// vds: the volumetric depth sprite and the volumetric parity test on the CPU.
+//
+// Trapp & Döllner, "Real-Time Volumetric Tests Using Layered Depth Images",
+// Eurographics 2008 short paper, sections 3.1 (the VDS) and 3.2 (the VPT).
+//
+// A sprite VDS_S = (P_S, M_S, LDI_S, d_S). A world point P maps to LDI texture
+// space as T = M_S * (P - P_S), T in [0,1]^3 inside the sprite's box. (T.s,T.t)
+// pick a texel column of the layered depth image; T.r is the depth along the
+// view axis. Each column stores the depths of the surface crossings of the ray
+// through the texel centre, sorted front to back, with whether the surface
+// faced the viewer there (the ray enters the solid) or not (it leaves).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include <vds/enum_names.h>
+#include <vds/mesh.h>
+
+namespace vds {
+
+/// The axis the sprite looks along. The viewer sits at the box's low side and
+/// looks towards +axis. The texture's s and t follow the two other axes in
+/// cyclic order: Z -> (x,y), X -> (y,z), Y -> (z,x), so no view mirrors.
+enum class Axis : std::uint8_t { X = 0, Y = 1, Z = 2 };
+
+/// How crossings in front of a point decide inside.
+enum class Rule : std::uint8_t {
+    Parity,  ///< the paper's rule: an odd number of crossings in front is inside
+    Winding, ///< non-zero winding: entering crossings +1, leaving -1, inside if the sum != 0
+};
+
+template <> struct EnumNames<Axis> {
+    static constexpr const char* kind = "axis";
+    static constexpr EnumName<Axis> table[] = {{"x", Axis::X}, {"y", Axis::Y}, {"z", Axis::Z}};
+};
+template <> struct EnumNames<Rule> {
+    static constexpr const char* kind = "rule";
+    static constexpr EnumName<Rule> table[] = {{"parity", Rule::Parity}, {"winding", Rule::Winding}};
+};
+
+/// Parses "x"/"y"/"z" and "parity"/"winding" (`parseEnum`); throws `InvalidArgument`.
+Axis parseAxis(const std::string& s);
+Rule parseRule(const std::string& s);
+const char* toString(Axis a);
+const char* toString(Rule r);
+
+/// Index of the texture's s, t and r axes in mesh coordinates for a view axis.
+glm::ivec3 axisPermutation(Axis axis);
+
+/// The texel grid of a sprite: how a mesh box becomes an LDI.
+///
+/// Texels are square in world units: `texelSize = max(extent_s, extent_t) /
+/// resolution`, `width = ceil(extent_s / texelSize)`, likewise `height`. Texel
+/// (i, j) covers s in [i, i+1) / width; its ray runs through its centre.
+/// Depth r = (p_axis - lo_axis) / extent_axis, so the box spans r in [0, 1].
+struct SpriteGrid {
+    Box box;                    ///< the baked mesh's bounding box, mesh coordinates
+    Axis axis = Axis::Z;
+    std::uint32_t width = 0;    ///< texels along s
+    std::uint32_t height = 0;   ///< texels along t
+    float texelSize = 0.0f;     ///< world units
+    glm::vec3 position{0.0f};   ///< P_S: world position of LDI texture-space origin
+    glm::mat3 matrix{1.0f};     ///< M_S: world -> LDI texture space, linear part
+
+    /// World point -> LDI texture space, computed exactly as the GLSL include does.
+    glm::vec3 toTexture(const glm::vec3& world) const;
+    /// Centre of texel (i, j) at depth r, in the mesh coordinates of the bake
+    /// (the placement is not applied): the point a baker's ray runs through.
+    glm::vec3 texelCentre(std::uint32_t i, std::uint32_t j, float r) const;
+};
+
+/// Largest resolution accepted anywhere (bake, voxel grids): 16384 texels.
+constexpr std::uint32_t kMaxResolution = 16384;
+
+/// Builds the grid for a box. Throws `InvalidArgument` for resolution 0 or
+/// above `kMaxResolution`, or a box with no extent across or along the view.
+SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution);
+
+/// Encoding of one stored crossing: depth in [0,1], sign bit set when the ray
+/// leaves the solid there (the surface faced away from the viewer). -0.0 is a
+/// leaving crossing at depth 0. GLSL reads the same bits.
+inline float encodeCrossing(float depth, bool entering) { return entering ? depth : -depth; }
+inline bool crossingEnters(float encoded) { return !std::signbit(encoded); }
+inline float crossingDepth(float encoded) { return std::fabs(encoded); }
+
+/// Result of mesh validation recorded in a sprite.
+enum class SolidStatus : std::uint8_t {
+    Closed = 0, ///< closed, manifold, consistently oriented: answers are a solid's
+    Open = 1,   ///< baked with a warning: boundary, non-manifold or flipped edges
+};
+
+/// A volumetric depth sprite held in host memory.
+///
+/// The LDI is stored compressed-row style: column c = j * width + i holds
+/// `crossings[offsets[c] .. offsets[c+1])`, encoded with `encodeCrossing`,
+/// sorted by depth (ties by the triangle order of the baked mesh). The dense
+/// form the paper uses (width x height x depthComplexity, padded with 1.0) is
+/// built only for upload to GL.
+struct Sprite {
+    static constexpr int kFormatVersion = 1;
+
+    SpriteGrid grid;
+    std::uint32_t depthComplexity = 0;      ///< d_S: the most crossings in any column
+    std::vector<std::uint32_t> offsets;     ///< width*height + 1 entries
+    std::vector<float> crossings;           ///< encoded crossings, all columns
+    std::string sourceName;                 ///< mesh file name, informational
+    std::uint64_t sourceTriangles = 0;
+    SolidStatus status = SolidStatus::Closed;
+    std::string validation;                 ///< `MeshReport::summary()` at bake time
+
+    std::uint32_t width() const { return grid.width; }
+    std::uint32_t height() const { return grid.height; }
+
+    /// Inside test of one world point (the sprite's placement applied).
+    /// Points outside the box [0,1]^3 in texture space are outside. A point
+    /// exactly at a stored depth does not count that crossing: on an entering
+    /// surface it is outside, on a leaving one inside.
+    bool contains(const glm::vec3& world, Rule rule = Rule::Parity) const;
+
+    /// Moves the sprite by `model`, on top of its current placement: a sprite
+    /// that answered for solid S answers for model(S) afterwards, without
+    /// re-baking. `model` must be affine and invertible (throws
+    /// `InvalidArgument` otherwise).
+    void transform(const glm::mat4& model);
+
+    /// Bytes of host memory the LDI takes here (offsets + crossings).
+    std::size_t memoryBytes() const;
+    /// Bytes of the paper's dense float texture: width * height * d_S * 4.
+    std::size_t denseBytes() const;
+
+    /// Throws `FormatError` if the arrays disagree with each other or the grid
+    /// (sizes, sorting, depth range, d_S). Used by the reader; cheap, O(n).
+    void checkConsistent() const;
+};
+
+/// Options for batch classification.
+struct ClassifyOptions {
+    Rule rule = Rule::Parity;
+    unsigned threads = 0; ///< 0: one per hardware thread
+};
+
+/// Classifies `count` world points; `labels[k]` becomes 1 inside, 0 outside.
+/// `points` and `labels` hold `count` elements, owned by the caller. Runs on
+/// `options.threads` threads; the sprite is only read (thread safe).
+void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count,
+              std::uint8_t* labels, const ClassifyOptions& options = {});
+
+} // namespace vds

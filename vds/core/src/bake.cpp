@@ -1,0 +1,79 @@
+#include <vds/bake.h>
+
+#include <algorithm>
+
+#include <vds/error.h>
+
+#include "bake_common.h"
+
+namespace vds {
+
+namespace detail {
+namespace {
+// Filled by vds::gl's static initialisation, before main; read-only after.
+// Constant-initialised, so it is valid whatever the order of initialisation.
+LayerBaker gLayerBakers[3] = {nullptr, nullptr, nullptr};
+} // namespace
+
+void registerLayerBaker(BakeMethod method, LayerBaker baker) noexcept {
+    gLayerBakers[std::size_t(method)] = baker;
+}
+
+BakeSetup prepareBake(MeshView mesh, const BakeOptions& options) {
+    BakeSetup setup;
+    setup.report = validateMesh(mesh);
+    requireUsable(setup.report, options.sourceName);
+    setup.grid = makeGrid(setup.report.bounds, options.axis, options.resolution);
+    return setup;
+}
+
+Sprite assembleSprite(const BakeSetup& setup, const BakeOptions& options, MeshView mesh,
+                      std::vector<std::uint32_t> offsets, std::vector<float> crossings) {
+    Sprite s;
+    s.grid = setup.grid;
+    s.offsets = std::move(offsets);
+    s.crossings = std::move(crossings);
+    std::uint32_t most = 0;
+    for (std::size_t c = 0; c + 1 < s.offsets.size(); ++c) most = std::max(most, s.offsets[c + 1] - s.offsets[c]);
+    s.depthComplexity = most;
+    s.sourceName = options.sourceName;
+    s.sourceTriangles = mesh.triangleCount;
+    s.status = setup.report.closed() ? SolidStatus::Closed : SolidStatus::Open;
+    s.validation = setup.report.summary();
+    s.checkConsistent();
+    return s;
+}
+
+} // namespace detail
+
+Axis chooseViewAxis(MeshView mesh, std::uint32_t probeResolution) {
+    Axis best = Axis::Z;
+    std::uint64_t bestKey = ~std::uint64_t(0);
+    for (Axis axis : {Axis::Z, Axis::X, Axis::Y}) {
+        BakeOptions o;
+        o.axis = axis;
+        o.resolution = probeResolution;
+        const Sprite probe = bakeCpu(mesh, o);
+        const std::uint64_t key = (std::uint64_t(probe.depthComplexity) << 40) | probe.crossings.size();
+        if (key < bestKey) {
+            bestKey = key;
+            best = axis;
+        }
+    }
+    return best;
+}
+
+Sprite bake(MeshView mesh, const BakeOptions& options, GlContext* gl) {
+    if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
+    const detail::LayerBaker baker = detail::gLayerBakers[std::size_t(options.method)];
+    if (!baker)
+        throw GlUnavailable(std::string("bake method '") + toString(options.method) +
+                            "' needs vds::gl, which this program does not link (link vds::gl or use the cpu method)");
+    const detail::BakeSetup setup = detail::prepareBake(mesh, options);
+    std::vector<std::uint32_t> offsets;
+    std::vector<float> crossings;
+    baker(mesh, setup.grid, options, gl, offsets, crossings);
+    return detail::assembleSprite(setup, options, mesh, std::move(offsets), std::move(crossings));
+}
+
+} // namespace vds

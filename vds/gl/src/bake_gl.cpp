@@ -1,0 +1,91 @@
+// The GL bakers' shared state handling, and their registration with
+// vds::bake() (see <vds/bake.h>: "Which layer bakes").
+#include "bake_gl.h"
+
+#include <optional>
+
+#include <GL/glext.h>
+
+#include <vds/error.h>
+
+namespace vds::detail {
+namespace {
+
+bool hasClipControl(const GlContext& gl) {
+    const GlInfo& i = gl.info();
+    return i.major > 4 || (i.major == 4 && i.minor >= 5);
+}
+
+// Runs a GL baker on `gl`, or on a private context when `gl` is null; the
+// calling thread's current context is current again on return.
+template <auto Baker>
+void bakeOnContext(MeshView mesh, const SpriteGrid& grid, const BakeOptions& options, GlContext* gl,
+                   std::vector<std::uint32_t>& offsets, std::vector<float>& crossings) {
+    const CurrentContext restore;
+    std::optional<GlContext> own;
+    if (!gl) gl = &own.emplace();
+    gl->makeCurrent();
+    Baker(*gl, mesh, grid, options, offsets, crossings);
+}
+
+// Registers the bakers before main. The --undefined link option of vds::gl
+// names `vds_gl_bakers`, so this object file is linked into every program
+// that links vds::gl, whether or not it calls anything else in it.
+struct Registration {
+    Registration() noexcept {
+        registerLayerBaker(BakeMethod::Peel, &bakeOnContext<bakePeel>);
+        registerLayerBaker(BakeMethod::Lists, &bakeOnContext<bakeLists>);
+    }
+};
+const Registration gRegistration;
+
+} // namespace
+
+std::string bakeDefines(const GlContext& gl) { return hasClipControl(gl) ? "#define VDS_CLIP_CONTROL\n" : ""; }
+
+BakeRasterState::BakeRasterState(const GlContext& gl, const SpriteGrid& grid, GLuint program)
+    : clipControl_(hasClipControl(gl)) {
+    if (clipControl_) glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glViewport(0, 0, GLsizei(grid.width), GLsizei(grid.height));
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glDisable(GL_MULTISAMPLE);
+    glEnable(GL_DEPTH_CLAMP);
+    glFrontFace(GL_CW);
+    glUseProgram(program);
+    // At bake time, world = mesh coordinates: the grid's own placement.
+    glUniformMatrix3fv(glGetUniformLocation(program, "u_placement.matrix"), 1, GL_FALSE, &grid.matrix[0][0]);
+    glUniform3fv(glGetUniformLocation(program, "u_placement.position"), 1, &grid.position[0]);
+}
+
+BakeRasterState::~BakeRasterState() {
+    if (clipControl_) glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_MULTISAMPLE);
+    glFrontFace(GL_CCW);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+Texture makeTexture2D(GLenum format, const SpriteGrid& grid) {
+    Texture t = Texture::create(GL_TEXTURE_2D);
+    glTextureStorage2D(t.id(), 1, format, GLsizei(grid.width), GLsizei(grid.height));
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    checkGl("allocating a bake target");
+    return t;
+}
+
+void report(const BakeOptions& options, const std::string& what) {
+    if (options.progress) options.progress(what);
+}
+
+} // namespace vds::detail
+
+// The anchor the link option of vds::gl names (see above).
+extern "C" {
+extern const int vds_gl_bakers;
+const int vds_gl_bakers = 1;
+}
