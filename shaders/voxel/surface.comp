@@ -80,12 +80,13 @@ void main() {
             int k0 = first[axis], k1 = last[axis];
             if (!degenerate) {
                 // Plane coordinate along `axis` at the column's corners, rounded: widened by a cell.
-                double lowest = 1e300, highest = -1e300;
+                // (No "infinite" start value: 1e300 is no float literal, and GLSL needs the lf suffix.)
+                double lowest = 0.0lf, highest = 0.0lf;
                 for (int corner = 0; corner < 4; ++corner) {
                     double cu = double(i + (corner & 1)) * kCell, cw = double(j + (corner >> 1)) * kCell;
                     double h = v0[axis] - (n[u] * (cu - v0[u]) + n[w] * (cw - v0[w])) / n[axis];
-                    lowest = min(lowest, h);
-                    highest = max(highest, h);
+                    lowest = corner == 0 ? h : min(lowest, h);
+                    highest = corner == 0 ? h : max(highest, h);
                 }
                 k0 = max(k0, int(floor(lowest / kCell)) - 1);
                 k1 = min(k1, int(floor(highest / kCell)) + 1);

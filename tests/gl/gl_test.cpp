@@ -1,11 +1,15 @@
 // The GL foundation: context, RAII objects, embedded shaders and includes.
 #include <gtest/gtest.h>
 
+#include <optional>
+
+#include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/gl_objects.h>
 #include <vds/shader.h>
 
 #include "../support/gl_fixture.h"
+#include "solids.h"
 
 namespace vds {
 namespace {
@@ -18,6 +22,72 @@ TEST_F(GlFoundationTest, ContextIsDesktopCore43OrLater) {
     EXPECT_FALSE(info.renderer.empty());
     std::printf("GL: %s | %s | %s | platform %s\n", info.vendor.c_str(), info.renderer.c_str(),
                 info.version.c_str(), info.platform.c_str());
+}
+
+// Lifetime rules of <vds/gl_context.h>: scopes restore the caller's context;
+// destroying or moving a context never changes which other one is current.
+TEST_F(GlFoundationTest, ScopesAndDestructionKeepTheCallersCurrentContext) {
+    ASSERT_TRUE(gl().isCurrent());
+    {
+        GlContext second; // current on creation
+        EXPECT_TRUE(second.isCurrent());
+        EXPECT_FALSE(gl().isCurrent());
+        {
+            const CurrentContext scope(gl());
+            EXPECT_TRUE(gl().isCurrent());
+        }
+        EXPECT_TRUE(second.isCurrent()) << "the scope restores the context current before it";
+        // Programs cached on `second` are freed on `second` when it goes, without
+        // disturbing the caller's context.
+        second.program("test.empty", [] {
+            return buildProgram({{GL_COMPUTE_SHADER, "c", "layout(local_size_x = 1) in; void main() {}\n"}});
+        });
+        gl().makeCurrent();
+        EXPECT_THROW(second.program("test.other", [] { return Program(); }), GlError)
+            << "a context builds programs only while it is current";
+    }
+    EXPECT_TRUE(gl().isCurrent()) << "destroying a context that is not current leaves the current one alone";
+
+    std::optional<GlContext> moved;
+    {
+        GlContext source;
+        moved.emplace(std::move(source));
+        EXPECT_TRUE(moved->isCurrent()) << "a move does not change the current context";
+        EXPECT_THROW(source.makeCurrent(), GlError); // NOLINT: use after move is the point
+        EXPECT_FALSE(source.isCurrent());
+    }
+    EXPECT_TRUE(moved->isCurrent()) << "destroying a moved-from context changes nothing";
+    moved.reset();
+    EXPECT_FALSE(gl().isCurrent()) << "destroying the current context leaves none current";
+    gl().makeCurrent();
+}
+
+TEST_F(GlFoundationTest, ABakeWithAPrivateContextRestoresTheCallersContext) {
+    const auto box = solids::box({0, 0, 0}, {1, 1, 1});
+    BakeOptions o;
+    o.resolution = 16;
+    o.method = BakeMethod::Lists;
+    const Sprite s = bake(box.mesh, o); // no context given: a private one
+    EXPECT_EQ(s.depthComplexity, 2u);
+    EXPECT_TRUE(gl().isCurrent());
+}
+
+// Every code surfaces by name (not only out-of-memory), and the queue is
+// drained: GL may keep one flag per code, so checkGl reads until it is empty.
+TEST_F(GlFoundationTest, CheckGlNamesTheErrorAndDrainsTheQueue) {
+    glEnable(GL_TEXTURE_2D + 12345);            // GL_INVALID_ENUM
+    glBindBuffer(GL_ARRAY_BUFFER, 0xfffffff0u); // GL_INVALID_OPERATION where GL keeps a flag per code
+    try {
+        checkGl("two mistakes");
+        ADD_FAILURE() << "checkGl did not throw";
+    } catch (const OutOfMemory&) {
+        ADD_FAILURE() << "only GL_OUT_OF_MEMORY is an OutOfMemory";
+    } catch (const GlError& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(what.rfind("two mistakes: GL_INVALID_ENUM", 0), 0u) << what;
+    }
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)) << "checkGl drains the error queue";
+    EXPECT_NO_THROW(checkGl("nothing pending"));
 }
 
 TEST_F(GlFoundationTest, ObjectsAreMoveOnlyAndReleaseTheirName) {

@@ -274,6 +274,7 @@ CurrentContext::~CurrentContext() {
 const GlInfo& GlContext::info() const { return impl_->info; }
 
 const Program& GlContext::program(const std::string& key, const std::function<Program()>& make) const {
+    if (!isCurrent()) throw GlError("program '" + key + "' asked of a GL context that is not current");
     auto it = impl_->programs.find(key);
     if (it == impl_->programs.end()) it = impl_->programs.emplace(key, make()).first;
     return it->second;

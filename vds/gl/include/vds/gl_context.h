@@ -61,6 +61,8 @@ public:
     const GlInfo& info() const;
 
     /// A program built once per context and kept: `make` runs on first use.
+    /// This context must be current (throws `GlError` otherwise): a program
+    /// belongs to the context that built it.
     const Program& program(const std::string& key, const std::function<Program()>& make) const;
 
 private:
