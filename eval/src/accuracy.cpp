@@ -9,13 +9,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <random>
 #include <memory>
 #include <sstream>
 
-#include <unistd.h>
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
@@ -169,13 +167,7 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
         row.texelSize = sprite.grid.texelSize;
         row.memoryBytes = sprite.memoryBytes();
         row.denseBytes = sprite.denseBytes();
-        {
-            const auto file = std::filesystem::temp_directory_path() /
-                              ("vds_eval_" + std::to_string(::getpid()) + "_" + std::to_string(resolution) + ".vds");
-            writeSprite(sprite, file.string());
-            row.fileBytes = std::size_t(std::filesystem::file_size(file));
-            std::filesystem::remove(file);
-        }
+        row.fileBytes = encodeSprite(sprite).size();
 
         say("classifying at " + std::to_string(resolution));
         const std::vector<glm::vec3> near = surfacePoints(mesh, options.surfacePoints, 4.0f * sprite.grid.texelSize, rng);

@@ -231,6 +231,28 @@ TEST_F(VdsFileTest, RoundTripIsBitExact) {
     EXPECT_EQ(r.sourceTriangles, (std::uint64_t(1) << 40) + 7);
 }
 
+// Encoding to memory gives exactly the file's bytes, and decoding them (or a
+// damaged copy) behaves as reading the file does.
+TEST_F(VdsFileTest, EncodeAndDecodeInMemoryMatchTheFile) {
+    const vds::Sprite s = specialSprite();
+    const std::vector<char> bytes = vds::encodeSprite(s);
+    vds::writeSprite(s, path("m.vds"));
+    std::ifstream in(path("m.vds"), std::ios::binary);
+    const std::vector<char> file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(bytes, file);
+    expectSameSprite(s, vds::decodeSprite(bytes.data(), bytes.size()));
+    EXPECT_THROW(vds::decodeSprite(bytes.data(), bytes.size() / 2, "half"), vds::FormatError);
+    EXPECT_THROW(vds::decodeSprite(bytes.data(), 0, "nothing"), vds::FormatError);
+    std::vector<char> flipped = bytes;
+    flipped[flipped.size() - 9] ^= 0x20;
+    try {
+        vds::decodeSprite(flipped.data(), flipped.size(), "flipped");
+        ADD_FAILURE() << "a flipped byte was not noticed";
+    } catch (const vds::FormatError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("flipped: ", 0), 0u) << e.what();
+    }
+}
+
 TEST_F(VdsFileTest, RoundTripEveryAxis) {
     for (vds::Axis axis : {vds::Axis::X, vds::Axis::Y, vds::Axis::Z}) {
         const vds::Sprite s = specialSprite(axis);

@@ -227,16 +227,17 @@ private:
     std::size_t position_ = 0;
 };
 
-/// Read-only view of a loaded file; every read past the end throws.
+/// Read-only view of a file's bytes; every read past the end throws.
 class MemoryIStream final : public Imf::IStream {
 public:
-    MemoryIStream(const std::string& name, std::vector<char>& bytes) : Imf::IStream(name.c_str()), bytes_(bytes) {}
+    MemoryIStream(const std::string& name, const char* data, std::size_t size)
+        : Imf::IStream(name.c_str()), data_(data), size_(size) {}
 
     bool isMemoryMapped() const override { return true; }
     bool read(char c[], int n) override {
         const char* p = take(n);
         if (n > 0) std::memcpy(c, p, std::size_t(n));
-        return position_ < bytes_.size();
+        return position_ < size_;
     }
     char* readMemoryMapped(int n) override { return take(n); }
     std::uint64_t tellg() override { return position_; }
@@ -244,15 +245,17 @@ public:
     void clear() override {}
 
 private:
+    // OpenEXR's memory-mapped reads hand out char* but only read through it.
     char* take(int n) {
-        if (n < 0 || position_ > bytes_.size() || std::uint64_t(n) > bytes_.size() - position_)
+        if (n < 0 || position_ > size_ || std::uint64_t(n) > size_ - position_)
             throw Iex::InputExc("unexpected end of file");
-        char* p = bytes_.data() + position_;
+        char* p = const_cast<char*>(data_) + position_;
         position_ += std::uint64_t(n);
         return p;
     }
 
-    std::vector<char>& bytes_;
+    const char* data_;
+    std::size_t size_;
     std::uint64_t position_ = 0;
 };
 
@@ -388,7 +391,7 @@ Imf::Header makeHeader(const Sprite& sprite) {
     return header;
 }
 
-std::vector<char> encodeSprite(const Sprite& sprite, const std::string& path) {
+std::vector<char> encodeBytes(const Sprite& sprite, const std::string& path) {
     const std::uint32_t width = sprite.width(), height = sprite.height();
     MemoryOStream stream(path);
     {
@@ -631,9 +634,9 @@ void readCrossings(Imf::DeepScanLineInputFile& file, const std::string& path, Sp
     sprite.crossings.resize(offsets.back());
 }
 
-Sprite decodeSprite(std::vector<char>& bytes, const std::string& path) {
-    const std::uint64_t fileSize = bytes.size();
-    MemoryIStream stream(path, bytes);
+Sprite decodeBytes(const char* data, std::size_t size, const std::string& path) {
+    const std::uint64_t fileSize = size;
+    MemoryIStream stream(path, data, size);
     Sprite sprite;
     const std::uint64_t storedChecksum = readHeader(stream, fileSize, path, sprite);
 
@@ -653,32 +656,41 @@ Sprite decodeSprite(std::vector<char>& bytes, const std::string& path) {
 
 } // namespace
 
-void writeSprite(const Sprite& sprite, const std::string& path) {
-    checkWritable(sprite, path);
-    std::vector<char> bytes;
+std::vector<char> encodeSprite(const Sprite& sprite, const std::string& name) {
+    checkWritable(sprite, name);
     try {
-        bytes = encodeSprite(sprite, path);
+        return encodeBytes(sprite, name);
     } catch (const std::bad_alloc&) {
-        throw OutOfMemory(path + ": not enough memory to encode the sprite");
+        throw OutOfMemory(name + ": not enough memory to encode the sprite");
     } catch (const std::exception& e) { // Iex::BaseExc derives from std::exception
-        throw IoError(path + ": cannot encode: " + oneLine(e.what()));
+        throw IoError(name + ": cannot encode: " + oneLine(e.what()));
     }
-    writeFileAtomically(path, bytes);
 }
 
-Sprite readSprite(const std::string& path) {
+Sprite decodeSprite(const void* data, std::size_t size, const std::string& name) {
     try {
-        std::vector<char> bytes = readWholeFile(path);
-        return decodeSprite(bytes, path);
+        return decodeBytes(static_cast<const char*>(data), size, name);
     } catch (const Error&) {
         throw;
     } catch (const std::bad_alloc&) {
-        throw OutOfMemory(path + ": not enough memory to read the sprite");
-    } catch (const Iex::BaseExc& e) {
-        formatFail(path, e.what());
-    } catch (const std::exception& e) {
-        formatFail(path, e.what());
+        throw OutOfMemory(name + ": not enough memory to read the sprite");
+    } catch (const std::exception& e) { // Iex::BaseExc derives from std::exception
+        formatFail(name, e.what());
     }
+}
+
+void writeSprite(const Sprite& sprite, const std::string& path) {
+    writeFileAtomically(path, encodeSprite(sprite, path));
+}
+
+Sprite readSprite(const std::string& path) {
+    std::vector<char> bytes;
+    try {
+        bytes = readWholeFile(path);
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(path + ": not enough memory to read the sprite");
+    }
+    return decodeSprite(bytes.data(), bytes.size(), path);
 }
 
 } // namespace vds

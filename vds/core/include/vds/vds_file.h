@@ -13,11 +13,24 @@
 // program configured it (by default: no threads).
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include <vds/sprite.h>
 
 namespace vds {
+
+/// The bytes of `sprite`'s .vds file, exactly what `writeSprite` writes (to
+/// learn a file's size, send it over a network, or keep it in a database).
+/// `name` only names the sprite in messages. Throws `FormatError` if the
+/// sprite is inconsistent, `OutOfMemory`, `IoError` if OpenEXR fails.
+std::vector<char> encodeSprite(const Sprite& sprite, const std::string& name = "<memory>");
+
+/// The sprite whose .vds file is the `size` bytes at `data` (caller-owned,
+/// only read during the call). Throws exactly as `readSprite` does for a
+/// file, with `name` in place of the path.
+Sprite decodeSprite(const void* data, std::size_t size, const std::string& name = "<memory>");
 
 /// Writes `sprite` to `path` atomically: to a temporary file beside it
 /// (`path` + ".tmp-XXXXXX"), flushed to disk, then renamed over `path`, so an
