@@ -6,6 +6,7 @@
 
 #include <vds/bake.h>
 #include <vds/error.h>
+#include <vds/exact.h>
 #include "solids.h"
 #include <vds/sprite.h>
 
@@ -106,6 +107,31 @@ TEST(Sprite, BatchClassifyEqualsSinglePointsOnAnyThreadCount) {
         for (std::size_t k = 0; k < points.size(); ++k)
             ASSERT_EQ(labels[k], s.contains(points[k], Rule::Winding) ? 1 : 0) << k;
     }
+}
+
+// Points inside larger records (x y z plus a fourth float, stride 16 bytes),
+// for the sprite and the exact classifier: the same answers as one by one.
+TEST(Sprite, StridedPointsGiveTheSameAnswers) {
+    const Sprite s = handMade();
+    const auto box = solids::box({0.5f, 0.25f, 1.0f}, {3.5f, 1.75f, 9.0f});
+    const ExactClassifier exact(box.mesh);
+    std::vector<float> records;
+    for (int i = 0; i < 5000; ++i) {
+        const float p[4] = {float(i % 41) * 0.1f, float(i % 23) * 0.1f, float(i % 113) * 0.1f, -1.0f};
+        records.insert(records.end(), p, p + 4);
+    }
+    const std::size_t n = records.size() / 4;
+    std::vector<std::uint8_t> labels(n, 9), exactLabels(n, 9);
+    classify(s, records.data(), n, 4 * sizeof(float), labels.data(), {Rule::Parity, 2});
+    exact.classify(records.data(), n, 4 * sizeof(float), exactLabels.data(), {Rule::Parity, 2});
+    std::size_t inside = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const glm::vec3 p(records[4 * k], records[4 * k + 1], records[4 * k + 2]);
+        ASSERT_EQ(labels[k], s.contains(p) ? 1 : 0) << k;
+        ASSERT_EQ(exactLabels[k], exact.contains(p) ? 1 : 0) << k;
+        inside += exactLabels[k];
+    }
+    EXPECT_GT(inside, n / 10); // the box holds a good share of the points
 }
 
 TEST(Sprite, InconsistentArraysAreDetected) {

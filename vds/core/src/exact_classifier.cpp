@@ -6,6 +6,7 @@
 #include <vds/exact.h>
 
 #include <cassert>
+#include <cstring>
 
 #include <vds/parallel.h>
 
@@ -51,11 +52,21 @@ bool ExactClassifier::containsBruteForce(const glm::vec3& p, Rule rule) const {
 
 void ExactClassifier::classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels,
                                const ClassifyOptions& options) const {
+    classify(reinterpret_cast<const float*>(points), count, sizeof(glm::vec3), labels, options);
+}
+
+void ExactClassifier::classify(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                               const ClassifyOptions& options) const {
     assert(impl_ && "use of a moved-from ExactClassifier");
-    assert((points && labels) || count == 0);
+    assert(strideBytes >= 3 * sizeof(float) && ((xyz && labels) || count == 0));
     const Impl& impl = *impl_;
+    const char* base = reinterpret_cast<const char*>(xyz);
     parallelFor(options.threads, count, 4096, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) labels[k] = inside(impl.winding(points[k]), options.rule) ? 1 : 0;
+        for (std::size_t k = begin; k < end; ++k) {
+            glm::vec3 p;
+            std::memcpy(&p, base + k * strideBytes, sizeof p);
+            labels[k] = inside(impl.winding(p), options.rule) ? 1 : 0;
+        }
     });
 }
 

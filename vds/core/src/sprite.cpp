@@ -4,7 +4,9 @@
 #include <vds/sprite.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <cstring>
 #include <thread>
 
 #include <glm/matrix.hpp>
@@ -154,6 +156,19 @@ void Sprite::checkConsistent() const {
 
 void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count, std::uint8_t* labels,
               const ClassifyOptions& options) {
+    static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "glm::vec3 must be three packed floats");
+    classify(sprite, reinterpret_cast<const float*>(points), count, sizeof(glm::vec3), labels, options);
+}
+
+void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
+              std::uint8_t* labels, const ClassifyOptions& options) {
+    assert(strideBytes >= 3 * sizeof(float) && ((xyz && labels) || count == 0));
+    const char* base0 = reinterpret_cast<const char*>(xyz);
+    const auto point = [&](std::size_t k) {
+        glm::vec3 p;
+        std::memcpy(&p, base0 + k * strideBytes, sizeof p);
+        return p;
+    };
     // Random points miss the cache twice each (offsets, then crossings), so
     // points go in small batches whose loads are prefetched one stage ahead:
     // the same answers as Sprite::contains, at memory-level parallelism.
@@ -168,7 +183,7 @@ void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count, 
         for (std::size_t base = begin; base < end; base += kBatch) {
             const std::size_t n = std::min(kBatch, end - base);
             for (std::size_t i = 0; i < n; ++i) {
-                const glm::vec3 t = grid.toTexture(points[base + i]);
+                const glm::vec3 t = grid.toTexture(point(base + i));
                 column[i] = columnOf(grid, t);
                 depth[i] = t.z;
                 if (column[i] >= 0) __builtin_prefetch(offsets + column[i]);

@@ -59,6 +59,10 @@ public:
     /// threads (0: one per hardware thread).
     void classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels,
                   const ClassifyOptions& options = {}) const;
+    /// Strided form: point k is the floats (x, y, z) at byte offset
+    /// `k * strideBytes` from `xyz` (`strideBytes` >= 12).
+    void classify(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                  const ClassifyOptions& options = {}) const;
 
     /// Same answer as `contains`, by a loop over every triangle (no
     /// acceleration): the reference the accelerated path is tested against.

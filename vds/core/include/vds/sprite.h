@@ -153,4 +153,10 @@ struct ClassifyOptions {
 void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count,
               std::uint8_t* labels, const ClassifyOptions& options = {});
 
+/// Strided form, for points inside larger records or arrays of another
+/// layout: point k is the three floats (x, y, z) at byte offset
+/// `k * strideBytes` from `xyz` (`strideBytes` >= 12; 12 = packed).
+void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
+              std::uint8_t* labels, const ClassifyOptions& options = {});
+
 } // namespace vds
