@@ -14,6 +14,8 @@
 #include <vds/error.h>
 #include <vds/parallel.h>
 
+#include "sprite_lookup.h"
+
 namespace vds {
 
 glm::ivec3 axisPermutation(Axis axis) {
@@ -74,35 +76,12 @@ SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution) {
     return g;
 }
 
-namespace {
-
-// The column a texture-space point falls in, or -1 outside the box.
-inline std::ptrdiff_t columnOf(const SpriteGrid& grid, const glm::vec3& t) {
-    if (!(t.z >= 0.0f && t.z <= 1.0f)) return -1;
-    const float fs = std::floor(t.x * float(grid.width));
-    const float ft = std::floor(t.y * float(grid.height));
-    if (!(fs >= 0.0f && fs < float(grid.width) && ft >= 0.0f && ft < float(grid.height))) return -1;
-    return std::ptrdiff_t(ft) * std::ptrdiff_t(grid.width) + std::ptrdiff_t(fs);
-}
-
-// The VPT on one column: crossings strictly in front of depth r.
-inline bool testColumn(const float* begin, const float* end, float r, Rule rule) {
-    int parity = 0, winding = 0;
-    for (const float* e = begin; e != end; ++e) {
-        if (!(std::fabs(*e) < r)) break;
-        parity ^= 1;
-        winding += crossingEnters(*e) ? 1 : -1;
-    }
-    return rule == Rule::Parity ? parity != 0 : winding != 0;
-}
-
-} // namespace
 
 bool Sprite::contains(const glm::vec3& world, Rule rule) const {
     const glm::vec3 t = grid.toTexture(world);
-    const std::ptrdiff_t column = columnOf(grid, t);
+    const std::ptrdiff_t column = detail::columnOf(grid, t);
     if (column < 0) return false;
-    return testColumn(crossings.data() + offsets[std::size_t(column)],
+    return detail::testColumn(crossings.data() + offsets[std::size_t(column)],
                       crossings.data() + offsets[std::size_t(column) + 1], t.z, rule);
 }
 
@@ -184,7 +163,7 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
             const std::size_t n = std::min(kBatch, end - base);
             for (std::size_t i = 0; i < n; ++i) {
                 const glm::vec3 t = grid.toTexture(point(base + i));
-                column[i] = columnOf(grid, t);
+                column[i] = detail::columnOf(grid, t);
                 depth[i] = t.z;
                 if (column[i] >= 0) __builtin_prefetch(offsets + column[i]);
             }
@@ -195,7 +174,7 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
                 __builtin_prefetch(crossings + first[i]);
             }
             for (std::size_t i = 0; i < n; ++i)
-                labels[base + i] = column[i] >= 0 && testColumn(crossings + first[i], crossings + last[i], depth[i],
+                labels[base + i] = column[i] >= 0 && detail::testColumn(crossings + first[i], crossings + last[i], depth[i],
                                                                 options.rule)
                                        ? 1
                                        : 0;

@@ -1,0 +1,113 @@
+// Occupancy grids: the exact sweep against the exact classifier on every
+// cell, the sprite sweep against Sprite::contains on every cell.
+#include <vds/occupancy.h>
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <vds/bake.h>
+#include <vds/error.h>
+#include <vds/exact.h>
+
+#include "solids.h"
+
+namespace vds {
+namespace {
+
+// Every cell of `grid`, classified one by one by `answer`.
+template <class Answer> std::vector<std::uint8_t> cellByCell(const OccupancyGrid& grid, const Answer& answer) {
+    std::vector<std::uint8_t> labels(grid.cellCount());
+    for (std::uint32_t i = 0; i < grid.dims.x; ++i)
+        for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+            for (std::uint32_t k = 0; k < grid.dims.z; ++k)
+                labels[grid.index(i, j, k)] = answer(grid.cellCentre(i, j, k)) ? 1 : 0;
+    return labels;
+}
+
+std::size_t differing(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) n += a[k] != b[k];
+    return n;
+}
+
+TEST(Occupancy, ExactSweepEqualsTheExactClassifierOnEveryCell) {
+    const auto torus = solids::torus({0.1f, 0.2f, 0.3f}, 1.0f, 0.35f, 48);
+    const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.6f, 32);
+    const auto two = solids::overlappingBoxes({-1, -1, -1}, {0.5f, 0.5f, 0.5f}, {-0.5f, -0.3f, -0.2f}, {1, 1, 1});
+    // Faces on cell centres: the box [0, 1]^3 in a grid whose centres are
+    // -1, -0.5, 0, 0.5, 1, 1.5, 2 along each axis (points on the surface).
+    const auto unit = solids::box({0, 0, 0}, {1, 1, 1});
+    const struct {
+        const TriangleMesh* mesh;
+        OccupancyGrid grid;
+    } cases[] = {
+        {&torus.mesh, {meshBounds(torus.mesh), {37, 41, 29}}},
+        {&shell.mesh, {Box{{-1.2f, -1.1f, -1.3f}, {1.3f, 1.2f, 1.1f}}, {33, 30, 35}}},
+        {&two.mesh, {meshBounds(two.mesh), {24, 25, 26}}},
+        {&unit.mesh, {Box{{-1.25f, -1.25f, -1.25f}, {2.25f, 2.25f, 2.25f}}, {7, 7, 7}}},
+    };
+    for (const auto& c : cases) {
+        const ExactClassifier exact(*c.mesh, Axis::Z);
+        for (Rule rule : {Rule::Parity, Rule::Winding}) {
+            std::vector<std::uint8_t> swept(c.grid.cellCount(), 7);
+            voxelize(*c.mesh, c.grid, swept.data(), {rule, 2});
+            const auto expected = cellByCell(c.grid, [&](const glm::vec3& p) { return exact.contains(p, rule); });
+            EXPECT_EQ(differing(swept, expected), 0u) << c.mesh->name << " " << toString(rule);
+            std::size_t inside = 0;
+            for (std::uint8_t l : swept) inside += l;
+            EXPECT_GT(inside, 0u);
+            EXPECT_LT(inside, swept.size());
+        }
+    }
+}
+
+TEST(Occupancy, SpriteSweepEqualsContainsOnEveryCell) {
+    const auto torus = solids::torus({0.1f, 0.2f, 0.3f}, 1.0f, 0.35f, 48);
+    const OccupancyGrid grid{meshBounds(torus.mesh), {31, 27, 23}};
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+        BakeOptions o;
+        o.resolution = 40;
+        o.axis = axis;
+        o.method = BakeMethod::Cpu;
+        Sprite sprite = bake(torus.mesh, o);
+        for (int moved = 0; moved < 3; ++moved) {
+            if (moved == 1) sprite.transform(glm::translate(glm::mat4(1.0f), {0.05f, -0.1f, 0.02f})); // still aligned
+            if (moved == 2) sprite.transform(glm::rotate(glm::mat4(1.0f), 0.3f, {0.2f, 1.0f, 0.4f}));  // rotated
+            for (Rule rule : {Rule::Parity, Rule::Winding}) {
+                std::vector<std::uint8_t> swept(grid.cellCount(), 7);
+                occupancy(sprite, grid, swept.data(), {rule, 2});
+                const auto expected = cellByCell(grid, [&](const glm::vec3& p) { return sprite.contains(p, rule); });
+                EXPECT_EQ(differing(swept, expected), 0u) << toString(axis) << " moved " << moved;
+            }
+        }
+    }
+}
+
+TEST(Occupancy, CubicGridsAndPackedLabels) {
+    const OccupancyGrid g = cubicOccupancyGrid(Box{{0, 0, 0}, {4, 2, 1}}, 8);
+    EXPECT_EQ(g.dims, glm::uvec3(8, 4, 2));
+    EXPECT_FLOAT_EQ(g.cellCentre(0, 0, 0).x, 0.25f);
+    EXPECT_FLOAT_EQ(g.cellCentre(7, 3, 1).z, 0.75f);
+    const std::uint8_t cells[11] = {1, 0, 0, 0, 0, 0, 0, 1, 1, 1, 0};
+    std::uint8_t bits[2] = {0xff, 0xff};
+    packLabels(cells, 11, bits);
+    EXPECT_EQ(bits[0], 0x81);
+    EXPECT_EQ(bits[1], 0xc0);
+}
+
+TEST(Occupancy, BadGridsAreRefused) {
+    const auto box = solids::box({0, 0, 0}, {1, 1, 1});
+    std::vector<std::uint8_t> cells(8);
+    EXPECT_THROW(voxelize(box.mesh, {Box{{0, 0, 0}, {1, 1, 1}}, {0, 2, 2}}, cells.data()), InvalidArgument);
+    EXPECT_THROW(voxelize(box.mesh, {Box{{0, 0, 0}, {1, 1, 1}}, {1u << 20, 1u << 20, 1u << 20}}, cells.data()),
+                 InvalidArgument);
+    EXPECT_THROW(voxelize(box.mesh, {Box{{0, 0, 0}, {0, 1, 1}}, {2, 2, 2}}, cells.data()), InvalidArgument);
+    const float nan = std::nanf("");
+    EXPECT_THROW(voxelize(box.mesh, {Box{{nan, 0, 0}, {1, 1, 1}}, {2, 2, 2}}, cells.data()), InvalidArgument);
+    TriangleMesh empty;
+    EXPECT_THROW(voxelize(empty, {Box{{0, 0, 0}, {1, 1, 1}}, {2, 2, 2}}, cells.data()), InvalidMesh);
+}
+
+} // namespace
+} // namespace vds
