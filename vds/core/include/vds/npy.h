@@ -1,0 +1,39 @@
+// vds: numpy's .npy files, for points in and labels out (version 1.0 and
+// 2.0 headers; C order; little- or big-endian scalars).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace vds {
+
+/// A whole .npy array as read: numpy's dtype string (e.g. "<f4", "|b1"),
+/// its shape, and the raw bytes in file order.
+struct NpyArray {
+    std::string descr;
+    std::vector<std::uint64_t> shape;
+    bool fortranOrder = false;
+    std::vector<char> data;
+};
+
+/// Reads a .npy file. Throws `IoError` if it cannot be read and
+/// `FormatError` ("<path>: ...") for a bad magic, header or a data size that
+/// disagrees with the shape; sizes are checked before anything is allocated.
+NpyArray readNpy(const std::string& path);
+
+/// The points of an N x 3 array of float32 or float64 (any byte order, C
+/// order). Throws `FormatError` naming `name` for another shape or type and
+/// for a non-finite coordinate (naming its row).
+std::vector<glm::vec3> npyPoints(const NpyArray& array, const std::string& name);
+
+/// Writes a C-order array atomically (temporary file, then rename): `descr`
+/// numpy's dtype string, `shape` its dimensions, `bytes` bytes of data at
+/// `data` (the product of the shape times the item size). Throws `IoError`.
+void writeNpy(const std::string& path, const std::string& descr, const std::vector<std::uint64_t>& shape,
+              const void* data, std::size_t bytes);
+
+} // namespace vds
