@@ -98,15 +98,18 @@ TEST(Sprite, BatchClassifyEqualsSinglePointsOnAnyThreadCount) {
     std::vector<glm::vec3> points;
     for (int i = 0; i < 20000; ++i)
         points.push_back({float(i % 41) * 0.1f, float(i % 23) * 0.1f, float(i % 113) * 0.1f});
-    for (unsigned threads : {1u, 2u, 3u}) {
-        std::vector<std::uint8_t> labels(points.size(), 9);
-        ClassifyOptions o;
-        o.threads = threads;
-        o.rule = Rule::Winding;
-        classify(s, points.data(), points.size(), labels.data(), o);
-        for (std::size_t k = 0; k < points.size(); ++k)
-            ASSERT_EQ(labels[k], s.contains(points[k], Rule::Winding) ? 1 : 0) << k;
-    }
+    for (unsigned threads : {1u, 2u, 3u})
+        for (QueryLayout layout : {QueryLayout::Auto, QueryLayout::Offsets, QueryLayout::Packed})
+            for (Rule rule : {Rule::Parity, Rule::Winding}) {
+                std::vector<std::uint8_t> labels(points.size(), 9);
+                ClassifyOptions o;
+                o.threads = threads;
+                o.rule = rule;
+                o.layout = layout;
+                classify(s, points.data(), points.size(), labels.data(), o);
+                for (std::size_t k = 0; k < points.size(); ++k)
+                    ASSERT_EQ(labels[k], s.contains(points[k], rule) ? 1 : 0) << k << " layout " << int(layout);
+            }
 }
 
 // Points inside larger records (x y z plus a fourth float, stride 16 bytes),

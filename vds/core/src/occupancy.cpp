@@ -107,7 +107,7 @@ void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* ce
                     c[a] = k;
                     points[k] = grid.cellCentre(c.x, c.y, c.z);
                 }
-                classify(sprite, points.data(), n, labels.data(), {options.rule, 1});
+                classify(sprite, points.data(), n, labels.data(), {options.rule, 1, QueryLayout::Offsets});
                 c[a] = 0;
                 std::uint8_t* out = cells + grid.index(c.x, c.y, c.z);
                 for (std::uint32_t k = 0; k < n; ++k) out[k * step] = labels[k];

@@ -133,6 +133,21 @@ void Sprite::checkConsistent() const {
         throw FormatError("sprite position is not finite");
 }
 
+namespace detail {
+std::vector<PackedColumn> packColumns(const Sprite& sprite, unsigned threads) {
+    const std::size_t columns = sprite.offsets.size() - 1;
+    std::vector<PackedColumn> table(columns);
+    parallelFor(threads, columns, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t c = begin; c < end; ++c) {
+            const std::uint32_t first = sprite.offsets[c], n = sprite.offsets[c + 1] - first;
+            table[c] = {{n > 0 ? sprite.crossings[first] : kPadding, n > 1 ? sprite.crossings[first + 1] : kPadding},
+                        first, n};
+        }
+    });
+    return table;
+}
+} // namespace detail
+
 void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count, std::uint8_t* labels,
               const ClassifyOptions& options) {
     static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "glm::vec3 must be three packed floats");
@@ -148,12 +163,41 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
         std::memcpy(&p, base0 + k * strideBytes, sizeof p);
         return p;
     };
-    // Random points miss the cache twice each (offsets, then crossings), so
-    // points go in small batches whose loads are prefetched one stage ahead:
-    // the same answers as Sprite::contains, at memory-level parallelism.
+    const SpriteGrid& grid = sprite.grid;
+    const std::size_t columns = sprite.offsets.empty() ? 0 : sprite.offsets.size() - 1;
+    // QueryLayout (see <vds/sprite.h>): with the column table each point
+    // misses the cache once, on its column's record, which holds the first
+    // two crossings (most columns have at most two); further crossings are
+    // read from the sprite. Otherwise each point reads its offsets, then its
+    // crossings: two dependent misses, prefetched in batches.
+    const bool packed = options.layout == QueryLayout::Packed ||
+                        (options.layout == QueryLayout::Auto && count >= columns / 4);
+    if (packed && columns > 0) {
+        const std::vector<detail::PackedColumn> table = detail::packColumns(sprite, options.threads);
+        const float* crossings = sprite.crossings.data();
+        parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+            constexpr std::size_t kBatch = 32;
+            std::ptrdiff_t column[kBatch];
+            float depth[kBatch];
+            for (std::size_t base = begin; base < end; base += kBatch) {
+                const std::size_t n = std::min(kBatch, end - base);
+                for (std::size_t i = 0; i < n; ++i) {
+                    const glm::vec3 t = grid.toTexture(point(base + i));
+                    column[i] = detail::columnOf(grid, t);
+                    depth[i] = t.z;
+                    if (column[i] >= 0) __builtin_prefetch(table.data() + column[i]);
+                }
+                for (std::size_t i = 0; i < n; ++i)
+                    labels[base + i] =
+                        column[i] >= 0 && detail::testPacked(table[std::size_t(column[i])], crossings, depth[i], options.rule)
+                            ? 1
+                            : 0;
+            }
+        });
+        return;
+    }
     auto work = [&](std::size_t begin, std::size_t end) {
         constexpr std::size_t kBatch = 32;
-        const SpriteGrid& grid = sprite.grid;
         const std::uint32_t* offsets = sprite.offsets.data();
         const float* crossings = sprite.crossings.data();
         std::ptrdiff_t column[kBatch];

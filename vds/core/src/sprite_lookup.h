@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include <vds/sprite.h>
 
@@ -22,6 +24,32 @@ inline std::ptrdiff_t columnOf(const SpriteGrid& grid, const glm::vec3& t) {
 inline bool testColumn(const float* begin, const float* end, float r, Rule rule) {
     int parity = 0, winding = 0;
     for (const float* e = begin; e != end; ++e) {
+        if (!(std::fabs(*e) < r)) break;
+        parity ^= 1;
+        winding += crossingEnters(*e) ? 1 : -1;
+    }
+    return rule == Rule::Parity ? parity != 0 : winding != 0;
+}
+
+/// A column's record for queries that should miss the cache once: its
+/// first two crossings (`kPadding` where the column has fewer, a depth no
+/// point reaches), where the column starts in the sprite's crossings, and
+/// how many it has. 16 bytes: four records a cache line.
+struct PackedColumn {
+    float first[2];
+    std::uint32_t begin;
+    std::uint32_t count;
+};
+constexpr float kPadding = 2.0f;
+
+std::vector<PackedColumn> packColumns(const Sprite& sprite, unsigned threads);
+
+/// testColumn on a packed record; `crossings` are the sprite's.
+inline bool testPacked(const PackedColumn& c, const float* crossings, float r, Rule rule) {
+    if (!(std::fabs(c.first[0]) < r)) return false; // no crossing in front
+    if (!(std::fabs(c.first[1]) < r)) return true;  // one: odd, and a winding of +-1
+    int parity = 0, winding = (crossingEnters(c.first[0]) ? 1 : -1) + (crossingEnters(c.first[1]) ? 1 : -1);
+    for (const float *e = crossings + c.begin + 2, *end = crossings + c.begin + c.count; e < end; ++e) {
         if (!(std::fabs(*e) < r)) break;
         parity ^= 1;
         winding += crossingEnters(*e) ? 1 : -1;

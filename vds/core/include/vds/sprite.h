@@ -141,10 +141,18 @@ struct Sprite {
     void checkConsistent() const;
 };
 
+/// How batch classification reads the sprite.
+enum class QueryLayout : std::uint8_t {
+    Auto,    ///< Packed when the batch has at least a quarter as many points as the sprite has columns
+    Offsets, ///< the sprite's own arrays: offsets, then crossings (two dependent cache misses a point)
+    Packed,  ///< a table of 16 bytes a column with its first two crossings, built for the call (one miss)
+};
+
 /// Options for batch classification.
 struct ClassifyOptions {
     Rule rule = Rule::Parity;
     unsigned threads = 0; ///< 0: one per hardware thread
+    QueryLayout layout = QueryLayout::Auto;
 };
 
 /// Classifies `count` world points; `labels[k]` becomes 1 inside, 0 outside.
