@@ -1,0 +1,93 @@
+// vds: certified classification — the exact classifier's answers at close
+// to a sprite's speed.
+//
+// A sprite errs only near the surface, and a bake can tell where "near" is.
+// For each texel of a grid over the mesh's box (as a sprite's, along one
+// axis) the bake collects every triangle whose projection meets the texel's
+// footprint (widened by 1/64 texel for the rounding of the texel lookup)
+// and the depth interval that triangle's plane can take over the footprint
+// (its values at the footprint's corners, cut to the triangle's own depth
+// range, computed in double and rounded outwards to float). The union of
+// these intervals, merged, is the column's *uncertain bands*.
+//
+// Why the gaps between bands are certain: take a point p in the footprint
+// whose depth z lies in no band. The horizontal square {footprint} x {z}
+// meets no triangle (every triangle that reaches the footprint stays
+// strictly above or below z there), so, when the mesh bounds a solid, every
+// point of the square is on the same side of the surface as p. One of them
+// is the texel centre at depth z, whose exact answer the bake knows: it
+// counts the triangles the centre's ray claims (the exact classifier's
+// top-left rule, <vds/exact.h>), each of which lies in a band below or
+// above z. So every gap of every column carries a winding number, and a
+// query whose depth falls in a gap is answered from it; a query in a band,
+// on the footprint's outer boundary, or on a mesh that does not bound a
+// solid goes to the exact classifier. Answers therefore equal
+// `ExactClassifier(mesh, axis)` everywhere; points off the surface get the
+// solid's true answer.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#include <glm/vec3.hpp>
+
+#include <vds/exact.h>
+#include <vds/mesh.h>
+#include <vds/sprite.h>
+
+namespace vds {
+
+struct CertifiedOptions {
+    std::uint32_t resolution = 1024; ///< texels on the longer side of the grid, as for a sprite (1..16384)
+    Axis axis = Axis::Z;
+    unsigned threads = 0; ///< for building; 0: one per hardware thread
+};
+
+/// What a batch did: how many points the bands answered and how many went
+/// to the exact classifier.
+struct CertifiedStats {
+    std::size_t certain = 0;
+    std::size_t exact = 0;
+};
+
+class CertifiedClassifier {
+public:
+    /// Copies the mesh's triangles, builds the exact classifier and the
+    /// bands. Throws `InvalidMesh` for an unusable mesh, `InvalidArgument`
+    /// for a resolution out of range. A mesh that does not bound a solid
+    /// (`MeshReport::closed()` false) is accepted: every query then takes
+    /// the exact path.
+    explicit CertifiedClassifier(MeshView mesh, const CertifiedOptions& options = {});
+    ~CertifiedClassifier();
+    CertifiedClassifier(CertifiedClassifier&&) noexcept;
+    CertifiedClassifier& operator=(CertifiedClassifier&&) noexcept;
+
+    /// The exact classifier's answer for `p` (mesh coordinates).
+    bool contains(const glm::vec3& p, Rule rule = Rule::Parity) const;
+
+    /// Batch form: `labels[k]` = 1 inside, 0 outside for `count` points,
+    /// caller-owned; on `options.threads` threads (`options.layout` is
+    /// ignored). Returns how many points each path answered.
+    CertifiedStats classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels,
+                            const ClassifyOptions& options = {}) const;
+    /// Strided form: point k is the floats (x, y, z) at byte offset
+    /// `k * strideBytes` from `xyz` (`strideBytes` >= 12).
+    CertifiedStats classify(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                            const ClassifyOptions& options = {}) const;
+
+    /// False when the mesh does not bound a solid: every answer is then the exact classifier's own.
+    bool certifies() const;
+    /// The grid of the bands (as a sprite baked with the same options would have).
+    const SpriteGrid& grid() const;
+    /// Bytes of the bands (offsets, intervals, windings), without the exact classifier.
+    std::size_t bandBytes() const;
+    /// The exact classifier behind it.
+    const ExactClassifier& exact() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace vds
