@@ -296,13 +296,9 @@ CertifiedClassifier::~CertifiedClassifier() = default;
 CertifiedClassifier::CertifiedClassifier(CertifiedClassifier&&) noexcept = default;
 CertifiedClassifier& CertifiedClassifier::operator=(CertifiedClassifier&&) noexcept = default;
 
-namespace {
-bool inside(int winding, Rule rule) { return rule == Rule::Parity ? (winding & 1) != 0 : winding != 0; }
-} // namespace
-
 bool CertifiedClassifier::contains(const glm::vec3& p, Rule rule) const {
     int winding = 0;
-    if (impl_->certain(p, winding)) return inside(winding, rule);
+    if (impl_->certain(p, winding)) return insideByRule(winding, rule);
     return impl_->exact.contains(p, rule);
 }
 
@@ -351,7 +347,7 @@ CertifiedStats CertifiedClassifier::classify(const float* xyz, std::size_t count
                     winding = impl.exact.winding(p);
                     ++local;
                 }
-                labels[b0 + i] = inside(winding, options.rule) ? 1 : 0;
+                labels[b0 + i] = insideByRule(winding, options.rule) ? 1 : 0;
             }
         }
         exactCount += local;

@@ -35,7 +35,6 @@ std::vector<float> centres(const OccupancyGrid& grid, int axis) {
     return c;
 }
 
-bool inside(int winding, Rule rule) { return rule == Rule::Parity ? (winding & 1) != 0 : winding != 0; }
 
 // True when the sprite's texture s, t and r each depend on one world axis
 // (its permutation's), with depth growing along that axis: then the cells of
@@ -82,6 +81,7 @@ OccupancyGrid cubicOccupancyGrid(const Box& box, std::uint32_t n) {
 
 void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* cells, const OccupancyOptions& options) {
     checkOccupancyGrid(grid);
+    detail::requireAnswerable(sprite.status, options.rule);
     assert(cells);
     const SpriteGrid& sg = sprite.grid;
     const glm::ivec3 p = axisPermutation(sg.axis);
@@ -159,11 +159,11 @@ void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* ce
             for (; e != last && filled < endValid; ++e) {
                 const auto from = std::uint32_t(
                     std::upper_bound(depth.begin() + filled, depth.begin() + endValid, std::fabs(*e)) - depth.begin());
-                fill(filled, from, inside(winding, options.rule) ? 1 : 0);
+                fill(filled, from, insideByRule(winding, options.rule) ? 1 : 0);
                 filled = from;
                 winding += crossingEnters(*e) ? 1 : -1;
             }
-            fill(filled, endValid, inside(winding, options.rule) ? 1 : 0);
+            fill(filled, endValid, insideByRule(winding, options.rule) ? 1 : 0);
             fill(endValid, n, 0);
         }
     });
@@ -172,7 +172,11 @@ void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* ce
 void voxelize(MeshView mesh, const OccupancyGrid& grid, std::uint8_t* cells, const OccupancyOptions& options) {
     checkOccupancyGrid(grid);
     assert(cells);
-    requireUsable(validateMesh(mesh), "mesh");
+    const MeshReport report = validateMesh(mesh);
+    requireUsable(report, "mesh");
+    if (options.rule == Rule::GeneralizedWinding && report.boundaryEdges > 0)
+        throw InvalidArgument("voxelize answers the generalized winding number only for meshes without boundary "
+                              "(classify the cell centres with the exact classifier instead)");
     const detail::ProjectedMesh projected(mesh, Axis::Z); // (s, t, r) = (x, y, z)
     const std::vector<float> xs = centres(grid, 0), ys = centres(grid, 1), zs = centres(grid, 2);
     const std::uint32_t n = grid.dims.z;
@@ -203,11 +207,11 @@ void voxelize(MeshView mesh, const OccupancyGrid& grid, std::uint8_t* cells, con
             int winding = 0;
             std::uint32_t filled = 0;
             for (const auto& [k, delta] : events) {
-                if (k > filled) std::memset(out + filled, inside(winding, options.rule) ? 1 : 0, k - filled);
+                if (k > filled) std::memset(out + filled, insideByRule(winding, options.rule) ? 1 : 0, k - filled);
                 filled = std::max(filled, k);
                 winding += delta;
             }
-            std::memset(out + filled, inside(winding, options.rule) ? 1 : 0, n - filled);
+            std::memset(out + filled, insideByRule(winding, options.rule) ? 1 : 0, n - filled);
         }
     });
 }

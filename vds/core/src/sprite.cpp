@@ -77,7 +77,16 @@ SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution) {
 }
 
 
+namespace detail {
+void requireAnswerable(SolidStatus status, Rule rule) {
+    if (rule == Rule::GeneralizedWinding && status == SolidStatus::Open)
+        throw InvalidArgument("the generalized winding number of a mesh with boundary needs the exact classifier "
+                              "(sprites do not store the boundary yet)");
+}
+} // namespace detail
+
 bool Sprite::contains(const glm::vec3& world, Rule rule) const {
+    detail::requireAnswerable(status, rule);
     const glm::vec3 t = grid.toTexture(world);
     const std::ptrdiff_t column = detail::columnOf(grid, t);
     if (column < 0) return false;
@@ -156,6 +165,7 @@ void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count, 
 
 void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
               std::uint8_t* labels, const ClassifyOptions& options) {
+    detail::requireAnswerable(sprite.status, options.rule);
     assert(strideBytes >= 3 * sizeof(float) && ((xyz && labels) || count == 0));
     const char* base0 = reinterpret_cast<const char*>(xyz);
     const auto point = [&](std::size_t k) {

@@ -11,6 +11,9 @@
 
 namespace vds::detail {
 
+/// Throws `InvalidArgument` for Rule::GeneralizedWinding on an open sprite.
+void requireAnswerable(SolidStatus status, Rule rule);
+
 // The column a texture-space point falls in, or -1 outside the box.
 inline std::ptrdiff_t columnOf(const SpriteGrid& grid, const glm::vec3& t) {
     if (!(t.z >= 0.0f && t.z <= 1.0f)) return -1;
@@ -28,7 +31,7 @@ inline bool testColumn(const float* begin, const float* end, float r, Rule rule)
         parity ^= 1;
         winding += crossingEnters(*e) ? 1 : -1;
     }
-    return rule == Rule::Parity ? parity != 0 : winding != 0;
+    return rule == Rule::Parity ? parity != 0 : insideByRule(winding, rule);
 }
 
 /// A column's record for queries that should miss the cache once: its
@@ -54,7 +57,7 @@ inline bool testPacked(const PackedColumn& c, const float* crossings, float r, R
         parity ^= 1;
         winding += crossingEnters(*e) ? 1 : -1;
     }
-    return rule == Rule::Parity ? parity != 0 : winding != 0;
+    return rule == Rule::Parity ? parity != 0 : insideByRule(winding, rule);
 }
 
 } // namespace vds::detail

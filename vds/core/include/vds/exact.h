@@ -52,7 +52,19 @@ public:
     /// towards -axis) count +1 where the surface faces the viewer (its
     /// outward normal points towards -axis: the ray enters), -1 elsewhere.
     int winding(const glm::vec3& p) const;
-    /// Parity (odd crossings) or non-zero winding.
+    /// The generalized winding number of `p` (see Rule::GeneralizedWinding):
+    /// `winding(p)` plus the boundary term of the Antipodal method (Martens,
+    /// Trettner & Bessmeltsev 2026), the solid angles of the spherical
+    /// triangles (+axis, a - p, b - p) over every boundary edge a -> b, over
+    /// 4 pi, in double. Equals `winding(p)` on a mesh without boundary. On
+    /// the surface or the boundary curve the value is still defined (the
+    /// tie rule decides the integer term; a degenerate spherical triangle
+    /// adds 0) but it need not be continuous there. O(boundary edges) a call.
+    double generalizedWinding(const glm::vec3& p) const;
+    /// Edges whose uses do not cancel, counted with their multiplicity
+    /// (after welding vertices with equal positions).
+    std::size_t boundaryEdgeCount() const;
+    /// Parity (odd crossings), non-zero winding, or generalized winding > 1/2.
     bool contains(const glm::vec3& p, Rule rule = Rule::Parity) const;
     /// Batch form: `points` and `labels` hold `count` elements, owned by the
     /// caller; `labels[k]` = 1 inside, 0 outside. Runs on `options.threads`

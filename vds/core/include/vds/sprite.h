@@ -35,6 +35,13 @@ enum class Axis : std::uint8_t { X = 0, Y = 1, Z = 2 };
 enum class Rule : std::uint8_t {
     Parity,  ///< the paper's rule: an odd number of crossings in front is inside
     Winding, ///< non-zero winding: entering crossings +1, leaving -1, inside if the sum != 0
+    /// The generalized winding number (Jacobson et al. 2013) above 1/2: the
+    /// solid angle the surface subtends, over 4 pi. On a mesh that bounds a
+    /// solid it is the winding number; on open meshes, soups and meshes with
+    /// holes it stays meaningful. The exact classifier answers it for any
+    /// mesh; sprites and voxelizers answer it for meshes that bound a solid
+    /// and refuse it for others (they do not store the mesh's boundary).
+    GeneralizedWinding,
 };
 
 template <> struct EnumNames<Axis> {
@@ -43,7 +50,8 @@ template <> struct EnumNames<Axis> {
 };
 template <> struct EnumNames<Rule> {
     static constexpr const char* kind = "rule";
-    static constexpr EnumName<Rule> table[] = {{"parity", Rule::Parity}, {"winding", Rule::Winding}};
+    static constexpr EnumName<Rule> table[] = {
+        {"parity", Rule::Parity}, {"winding", Rule::Winding}, {"generalized-winding", Rule::GeneralizedWinding}};
 };
 
 /// Parses "x"/"y"/"z" and "parity"/"winding" (`parseEnum`); throws `InvalidArgument`.
@@ -51,6 +59,13 @@ Axis parseAxis(const std::string& s);
 Rule parseRule(const std::string& s);
 const char* toString(Axis a);
 const char* toString(Rule r);
+
+/// Inside or outside by `rule`, from the signed count of crossings in front
+/// of a point (its parity is the count's): for a mesh that bounds a solid
+/// the generalized winding number is this count, so it reads as Winding.
+constexpr bool insideByRule(int winding, Rule rule) {
+    return rule == Rule::Parity ? (winding & 1) != 0 : winding != 0;
+}
 
 /// Index of the texture's s, t and r axes in mesh coordinates for a view axis.
 glm::ivec3 axisPermutation(Axis axis);
