@@ -40,8 +40,11 @@
 
 namespace vds::eval {
 
+/// The largest resolution a comparison builds, at equal resolution or within a budget.
+constexpr std::uint32_t kMaxCompareResolution = 4096;
+
 struct CompareOptions {
-    std::vector<std::uint32_t> resolutions = {32, 64, 128};
+    std::vector<std::uint32_t> resolutions = {32, 64, 128}; ///< each 1..kMaxCompareResolution
     /// Memory budgets in bytes; empty: the solid voxel grid's size at each resolution.
     std::vector<std::size_t> memoryBudgets;
     std::size_t uniformPoints = 100000;
