@@ -72,21 +72,7 @@ int eval(int argc, char** argv) {
     const vds::eval::EvalReport r =
         vds::eval::evaluate(mesh, options, nullptr, [quiet](const std::string& s) { progress(quiet, s); });
 
-    std::printf("%s: %zu triangles, %s, rule %s, axis %s\n\n", r.mesh.c_str(), r.triangles, r.validation.c_str(),
-                vds::toString(r.rule), vds::toString(r.axis));
-    std::printf("| resolution | w x h x d | wrong (uniform) | wrong (near surface) | max / mean wrong distance "
-                "[texels] | beyond sqrt(2) texels | bake [s] | .vds bytes | memory bytes | dense bytes | VDS pts/s | "
-                "exact pts/s |\n");
-    std::printf("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (const auto& w : r.rows)
-        std::printf("| %u | %ux%ux%u | %zu / %zu (%.4f%%) | %zu / %zu (%.3f%%) | %.2f / %.2f | %zu of %zu | %.2f | %zu | "
-                    "%zu | %zu | %.3g | %.3g |\n",
-                    w.resolution, w.width, w.height, w.depthComplexity, w.uniformWrong, w.uniformPoints,
-                    w.uniformPoints ? 100.0 * double(w.uniformWrong) / double(w.uniformPoints) : 0.0, w.surfaceWrong,
-                    w.surfacePoints, w.surfacePoints ? 100.0 * double(w.surfaceWrong) / double(w.surfacePoints) : 0.0,
-                    w.maxWrongDistanceTexels, w.meanWrongDistanceTexels, w.wrongBeyondTexelDiagonal,
-                    w.distancesMeasured, w.bakeSeconds, w.fileBytes, w.memoryBytes, w.denseBytes,
-                    w.vdsPointsPerSecond, w.exactPointsPerSecond);
+    std::fputs(vds::eval::toTable(r).c_str(), stdout);
     if (args.has("--json")) {
         writeTextFile(args.get("--json"), vds::eval::toJson(r));
         std::printf("\nwrote %s\n", args.get("--json").c_str());
