@@ -133,12 +133,17 @@ TEST_F(Cli, EveryRepresentationAnswersTheSameQueries) {
 
 TEST_F(Cli, CompareWritesTableJsonAndChart) {
     const Result r = vds("compare " + p("box.obj") + " --resolutions 16 --points 5000 --surface-points 2000 --json " +
-                         p("c.json") + " --chart " + p("c.png") + " --quiet");
+                         p("c.json") + " --chart " + p("c.svg") + " --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
-    for (const char* method : {"vds-parity", "vds-winding", "slicemap", "slicemap-local", "solid", "solid-compute"})
+    const std::string svg = readFile(dir / "c.svg");
+    EXPECT_EQ(svg.rfind("<svg ", 0), 0u) << svg.substr(0, 100);
+    EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
+    for (const char* method : {"vds-parity", "vds-winding", "slicemap", "slicemap-local", "solid", "solid-compute"}) {
         EXPECT_NE(r.output.find(method), std::string::npos) << method;
+        EXPECT_NE(svg.find(std::string(">") + method + "</text>"), std::string::npos) << method;
+    }
     EXPECT_NE(readFile(dir / "c.json").find("solid-compute"), std::string::npos);
-    EXPECT_GT(vds::eval::readPng(p("c.png")).width, 100u);
+    EXPECT_NE(r.output.find("wrote " + p("c.svg")), std::string::npos) << r.output;
 }
 
 TEST_F(Cli, EveryCommandHasHelp) {

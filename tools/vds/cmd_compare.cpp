@@ -4,7 +4,6 @@
 #include <vector>
 
 #include <vds/error.h>
-#include <vds/eval/image.h>
 #include <vds/mesh_io.h>
 #include <vds/sprite.h>
 #include <vds/eval/compare.h>
@@ -21,14 +20,14 @@ const char* kHelp =
     "and solid voxels (raster and compute) on the same points, at equal\n"
     "resolution and at equal memory: misclassification rate against the exact\n"
     "classifier, worst error distance in cells, build time, query throughput,\n"
-    "memory. Prints a table; writes JSON and a PNG chart of error against memory.\n"
+    "memory. Prints a table; writes JSON and an SVG chart of error against memory.\n"
     "\n"
     "options:\n"
     "  --resolutions LIST   comma-separated (default 32,64,128)\n"
     "  --points N           uniform points in the padded box (default 100000)\n"
     "  --surface-points N   points near the surface (default 50000)\n"
     "  --json FILE          write the result as JSON\n"
-    "  --chart FILE.png     write the error-against-memory chart\n"
+    "  --chart FILE.svg     write the error-against-memory chart (SVG)\n"
     "  --seed N             random seed (default 1)\n"
     "  --quiet              no progress messages\n";
 
@@ -59,7 +58,7 @@ int compare(int argc, char** argv) {
         std::printf("wrote %s\n", args.get("--json").c_str());
     }
     if (args.has("--chart")) {
-        vds::eval::writePng(vds::eval::errorChart(result), args.get("--chart"));
+        writeTextFile(args.get("--chart"), vds::eval::errorChart(result));
         std::printf("wrote %s\n", args.get("--chart").c_str());
     }
     return 0;

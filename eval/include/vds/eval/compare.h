@@ -35,7 +35,6 @@
 #include <glm/vec3.hpp>
 
 #include <vds/gl_context.h>
-#include <vds/eval/image.h>
 #include <vds/mesh.h>
 
 namespace vds::eval {
@@ -99,9 +98,11 @@ struct CompareResult {
 /// the builders throw.
 CompareResult compare(MeshView mesh, const CompareOptions& options = {}, GlContext* gl = nullptr);
 
-/// A chart of error rate (all points, %) against memory (bytes, log scale):
-/// one colour per method, resolution series as solid lines with dots, memory
-/// series as dots with a ring, axis ticks with values, a legend.
-Image errorChart(const CompareResult& result, std::uint32_t width = 900, std::uint32_t height = 560);
+/// A chart of error rate (all points, %) against memory (bytes, log scale)
+/// as a standalone SVG document of `width` x `height` pixels (at least
+/// 400 x 300): one colour per method, resolution series as lines with dots
+/// (one `<polyline>` each), memory series as rings, axis ticks with values,
+/// a legend naming every method, and a tooltip (`<title>`) on each dot.
+std::string errorChart(const CompareResult& result, std::uint32_t width = 900, std::uint32_t height = 560);
 
 } // namespace vds::eval
