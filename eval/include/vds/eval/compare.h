@@ -1,4 +1,4 @@
-// vds::voxel: the VDS against slicemaps and solid voxels as point-in-solid
+// vds::eval: the VDS against slicemaps and solid voxels as point-in-solid
 // tests, on one mesh: error, build time, query throughput and memory, at
 // equal resolution and at equal memory budgets (the table of docs/voxel.md,
 // `vds compare MESH`).
