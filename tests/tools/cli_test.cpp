@@ -157,10 +157,39 @@ TEST_F(Cli, EveryCommandHasHelp) {
         EXPECT_EQ(r.code, 0) << c;
         EXPECT_NE(r.output.find("usage: vds"), std::string::npos) << c;
     }
-    EXPECT_EQ(run(std::string(VDS_CLIP) + " --help").code, 0);
     const Result none = vds("");
     EXPECT_EQ(none.code, 2);
     EXPECT_NE(none.output.find("usage: vds"), std::string::npos) << none.output;
+}
+
+// The sample and the benchmark read their command lines like the tool:
+// help exits 0, a wrong command line 2 with one line.
+TEST_F(Cli, SampleAndBenchmarkCommandLines) {
+    std::vector<std::string> programs = {VDS_CLIP};
+#ifdef VDS_EXACT_BENCH
+    programs.push_back(VDS_EXACT_BENCH);
+#endif
+    for (const std::string& program : programs) {
+        const Result r = run(program + " --help");
+        EXPECT_EQ(r.code, 0) << program << ": " << r.output;
+        EXPECT_NE(r.output.find("usage: vds_"), std::string::npos) << r.output;
+    }
+    const std::string mesh = p("box.obj"), clip = mesh + " --clip a.vds -o x.png";
+    std::vector<std::string> bad;
+    for (const std::string& args : std::vector<std::string>{
+             "", "--clip a.vds -o x.png", mesh + " -o x.png", mesh + " --clip a.vds", clip + " --size 8",
+             clip + " --size=abc", clip + " --view w", clip + " --rule odd", mesh + " " + clip,
+             mesh + " -o x.png --clip 1 --clip 2 --clip 3 --clip 4 --clip 5 --clip 6 --clip 7 --clip 8 --clip 9"})
+        bad.push_back(std::string(VDS_CLIP) + " " + args);
+#ifdef VDS_EXACT_BENCH
+    for (const char* args : {"--points 0", "--sample=-1", "--points abc", "--bogus"})
+        bad.push_back(std::string(VDS_EXACT_BENCH) + " " + args);
+#endif
+    for (const std::string& command : bad) {
+        const Result r = run(command);
+        EXPECT_EQ(r.code, 2) << command << ": " << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << command << ": " << r.output;
+    }
 }
 
 // Defaults in the help are the library's option structs' own, and the
