@@ -152,7 +152,8 @@ TEST_F(Cli, CompareWritesTableJsonAndChart) {
 }
 
 TEST_F(Cli, EveryCommandHasHelp) {
-    for (const char* c : {"--help", "bake --help", "classify --help", "info --help", "eval --help", "compare --help"}) {
+    for (const char* c :
+         {"--help", "help", "bake --help", "classify --help", "info --help", "eval --help", "compare --help"}) {
         const Result r = vds(c);
         EXPECT_EQ(r.code, 0) << c;
         EXPECT_NE(r.output.find("usage: vds"), std::string::npos) << c;

@@ -88,6 +88,9 @@ int main(int argc, char** argv) {
     cli::addInfo(app);
     cli::addEval(app);
     cli::addCompare(app);
+    app.add_subcommand("help", "print this help")->callback([&app] {
+        std::fputs(app.get_formatter()->make_help(&app, "vds", CLI::AppFormatMode::Normal).c_str(), stdout);
+    });
     app.require_subcommand(1);
     app.footer("Run 'vds <command> --help' for a command's options.");
     if (argc < 2) {
