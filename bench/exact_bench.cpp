@@ -9,12 +9,12 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include <vds/error.h>
 #include <vds/exact.h>
@@ -77,21 +77,21 @@ void run(const std::string& name, const vds::TriangleMesh& mesh, std::size_t poi
 int main(int argc, char** argv) {
     std::size_t pointCount = 1000000, sampleCount = 2000;
     std::vector<std::string> paths;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if ((arg == "--points" || arg == "--sample") && i + 1 < argc) {
-            const long long n = std::atoll(argv[++i]);
-            if (n <= 0) {
-                std::fprintf(stderr, "vds_exact_bench: %s needs a positive count\n", arg.c_str());
-                return 2;
-            }
-            (arg == "--points" ? pointCount : sampleCount) = std::size_t(n);
-        } else if (arg == "-h" || arg == "--help") {
-            std::printf("usage: vds_exact_bench [--points N] [--sample N] [mesh.obj ...]\n");
-            return 0;
-        } else {
-            paths.push_back(arg);
-        }
+    CLI::App app("Points per second of the exact classifier on 1 and 2 threads against brute force, on\n"
+                 "generated spheres and on the meshes given.",
+                 "vds_exact_bench");
+    app.get_formatter()->label("Usage", "usage");
+    app.option_defaults()->always_capture_default();
+    const CLI::Range count(std::size_t(1), std::size_t(1000000000));
+    app.add_option("--points", pointCount, "random points in the mesh box + 10%")->check(count);
+    app.add_option("--sample", sampleCount, "points classified by brute force too")->check(count);
+    app.add_option("MESH", paths, "more meshes to measure")->type_name("");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e); // --help
+        std::fprintf(stderr, "vds_exact_bench: %s (try 'vds_exact_bench --help')\n", e.what());
+        return 2;
     }
     try {
         std::printf("exact classifier along z, %zu random points in the mesh box + 10%%; "

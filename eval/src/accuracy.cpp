@@ -217,6 +217,28 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
     return report;
 }
 
+std::string toTable(const EvalReport& r) {
+    std::string out = r.mesh + ": " + std::to_string(r.triangles) + " triangles, " + r.validation + ", rule " +
+                      toString(r.rule) + ", axis " + toString(r.axis) + "\n\n";
+    out += "| resolution | w x h x d | wrong (uniform) | wrong (near surface) | max / mean wrong distance [texels] | "
+           "beyond sqrt(2) texels | bake [s] | .vds bytes | memory bytes | dense bytes | VDS pts/s | exact pts/s |\n"
+           "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    const auto percent = [](std::size_t part, std::size_t whole) { return whole ? 100.0 * part / whole : 0.0; };
+    for (const EvalRow& w : r.rows) {
+        char row[512]; // numbers only
+        std::snprintf(row, sizeof row,
+                      "| %u | %ux%ux%u | %zu / %zu (%.4f%%) | %zu / %zu (%.3f%%) | %.2f / %.2f | %zu of %zu | %.2f | "
+                      "%zu | %zu | %zu | %.3g | %.3g |\n",
+                      w.resolution, w.width, w.height, w.depthComplexity, w.uniformWrong, w.uniformPoints,
+                      percent(w.uniformWrong, w.uniformPoints), w.surfaceWrong, w.surfacePoints,
+                      percent(w.surfaceWrong, w.surfacePoints), w.maxWrongDistanceTexels, w.meanWrongDistanceTexels,
+                      w.wrongBeyondTexelDiagonal, w.distancesMeasured, w.bakeSeconds, w.fileBytes, w.memoryBytes,
+                      w.denseBytes, w.vdsPointsPerSecond, w.exactPointsPerSecond);
+        out += row;
+    }
+    return out;
+}
+
 std::string toJson(const EvalReport& r) {
     nlohmann::json rows = nlohmann::json::array();
     for (const EvalRow& w : r.rows)

@@ -1,111 +1,56 @@
-// The error-against-memory chart of a comparison, drawn into an RGBA image:
-// axes with ticks and values, one polyline per method, a legend. Text uses a
-// built-in 3x5 pixel font (digits, letters, a few signs), drawn twice as large.
+// The error-against-memory chart of a comparison as an SVG document: axes
+// with ticks and values, one line per method, a legend. The viewer draws the
+// lines and the text, so the chart stays sharp at any size and its numbers
+// can be read (each dot has a tooltip with its row's figures).
 #include <vds/eval/compare.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <map>
+#include <iomanip>
+#include <locale>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace vds::eval {
 namespace {
 
-struct Colour {
-    std::uint8_t r, g, b;
-};
-
-const std::map<std::string, Colour>& methodColours() {
-    static const std::map<std::string, Colour> colours = {
-        {"vds-parity", {31, 119, 180}},    {"vds-winding", {23, 190, 207}}, {"slicemap", {255, 127, 14}},
-        {"slicemap-local", {214, 39, 40}}, {"solid", {44, 160, 44}},        {"solid-compute", {148, 103, 189}}};
-    return colours;
+const char* methodColour(const std::string& method) {
+    static const std::pair<const char*, const char*> colours[] = {
+        {"vds-parity", "#1f77b4"},     {"vds-winding", "#17becf"}, {"slicemap", "#ff7f0e"},
+        {"slicemap-local", "#d62728"}, {"solid", "#2ca02c"},       {"solid-compute", "#9467bd"}};
+    for (const auto& [name, colour] : colours)
+        if (method == name) return colour;
+    return "#5a5a5a";
 }
 
-// 3x5 glyphs, rows top to bottom, '#' set.
-const std::map<char, const char*>& font() {
-    static const std::map<char, const char*> glyphs = {
-        {'0', "####.##.##.####"}, {'1', ".#.##..#..#.###"}, {'2', "###..#####..###"}, {'3', "###..####..####"},
-        {'4', "#.##.####..#..#"}, {'5', "####..###..####"}, {'6', "####..####.####"}, {'7', "###..#..#.#..#."},
-        {'8', "####.#####.####"}, {'9', "####.####..####"}, {'a', ".#.#.#####.##.#"}, {'b', "##.#.###.#.###."},
-        {'c', ".###..#..#...##"}, {'d', "##.#.##.##.###."}, {'e', "####..##.#..###"}, {'f', "####..##.#..#.."},
-        {'g', ".###..#.##.#.##"}, {'h', "#.##.#####.##.#"}, {'i', "###.#..#..#.###"}, {'j', "..#..#..##.#.#."},
-        {'k', "#.##.###.#.##.#"}, {'l', "#..#..#..#..###"}, {'m', "#.########.##.#"}, {'n', "##.#.##.##.##.#"},
-        {'o', ".#.#.##.##.#.#."}, {'p', "##.#.###.#..#.."}, {'q', ".#.#.##.###..##"}, {'r', "##.#.###.#.##.#"},
-        {'s', ".###...#...###."}, {'t', "###.#..#..#..#."}, {'u', "#.##.##.##.####"}, {'v', "#.##.##.##.#.#."},
-        {'w', "#.##.########.#"}, {'x', "#.##.#.#.#.##.#"}, {'y', "#.##.#.#..#..#."}, {'z', "###..#.#.#..###"},
-        {'.', ".............#."}, {'-', "......###......"}, {'%', "#.#..#.#.#..#.#"}, {':', "....#.....#...."},
-        {'/', "..#..#.#.#..#.."}, {'(', ".#.#..#..#...#."}, {')', ".#...#..#..#.#."}, {' ', "..............."},
-    };
-    return glyphs;
+std::string escapeXml(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        default: out += c;
+        }
+    }
+    return out;
 }
 
-class Canvas {
-public:
-    explicit Canvas(Image& image) : image_(image) {}
-
-    void pixel(int x, int y, Colour c) {
-        if (x < 0 || y < 0 || x >= int(image_.width) || y >= int(image_.height)) return;
-        std::uint8_t* p = image_.at(std::uint32_t(x), std::uint32_t(y));
-        p[0] = c.r;
-        p[1] = c.g;
-        p[2] = c.b;
-        p[3] = 255;
-    }
-    void fill(int x0, int y0, int x1, int y1, Colour c) {
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) pixel(x, y, c);
-    }
-    void line(double x0, double y0, double x1, double y1, Colour c, int thickness = 1) {
-        const int steps = int(std::max(std::fabs(x1 - x0), std::fabs(y1 - y0))) + 1;
-        for (int k = 0; k <= steps; ++k) {
-            const double t = double(k) / steps;
-            const int x = int(std::lround(x0 + t * (x1 - x0))), y = int(std::lround(y0 + t * (y1 - y0)));
-            fill(x - thickness / 2, y - thickness / 2, x + (thickness - 1) / 2, y + (thickness - 1) / 2, c);
-        }
-    }
-    void disc(double cx, double cy, double r, Colour c) {
-        for (int y = int(cy - r); y <= int(cy + r) + 1; ++y)
-            for (int x = int(cx - r); x <= int(cx + r) + 1; ++x)
-                if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) pixel(x, y, c);
-    }
-    void ring(double cx, double cy, double r, Colour c) {
-        for (int y = int(cy - r) - 1; y <= int(cy + r) + 1; ++y)
-            for (int x = int(cx - r) - 1; x <= int(cx + r) + 1; ++x) {
-                const double d = std::sqrt((x - cx) * (x - cx) + (y - cy) * (y - cy));
-                if (std::fabs(d - r) <= 1.0) pixel(x, y, c);
-            }
-    }
-    // Text at (x, y) top-left, glyphs 3x5 scaled by 2, 8 pixels apart.
-    void text(int x, int y, const std::string& s, Colour c) {
-        for (char ch : s) {
-            const auto it = font().find(char(std::tolower(static_cast<unsigned char>(ch))));
-            if (it != font().end())
-                for (int k = 0; it->second[k]; ++k)
-                    if (it->second[k] == '#')
-                        fill(x + 2 * (k % 3), y + 2 * (k / 3), x + 2 * (k % 3) + 1, y + 2 * (k / 3) + 1, c);
-            x += 8;
-        }
-    }
-    static int textWidth(const std::string& s) { return int(s.size()) * 8; }
-
-private:
-    Image& image_;
-};
+std::string format(const char* spec, double value) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, spec, value);
+    return buf;
+}
 
 std::string byteLabel(double bytes) {
-    char buf[32];
-    if (bytes >= double(1 << 30))
-        std::snprintf(buf, sizeof buf, "%gg", bytes / double(1 << 30));
-    else if (bytes >= double(1 << 20))
-        std::snprintf(buf, sizeof buf, "%gm", bytes / double(1 << 20));
-    else if (bytes >= 1024.0)
-        std::snprintf(buf, sizeof buf, "%gk", bytes / 1024.0);
-    else
-        std::snprintf(buf, sizeof buf, "%g", bytes);
-    return buf;
+    if (bytes >= double(1 << 30)) return format("%.4g GiB", bytes / double(1 << 30));
+    if (bytes >= double(1 << 20)) return format("%.4g MiB", bytes / double(1 << 20));
+    if (bytes >= 1024.0) return format("%.4g KiB", bytes / 1024.0);
+    return format("%.4g B", bytes);
 }
 
 // A "nice" upper bound: 1, 2 or 5 times a power of ten, at least v.
@@ -117,19 +62,69 @@ double niceCeil(double v) {
     return 10.0 * p;
 }
 
+// SVG elements, coordinates in pixels with one decimal.
+class Svg {
+public:
+    Svg(std::uint32_t width, std::uint32_t height) {
+        out_.imbue(std::locale::classic());
+        out_ << std::fixed << std::setprecision(1);
+        out_ << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+             << "\" viewBox=\"0 0 " << width << ' ' << height << "\" font-family=\"sans-serif\" font-size=\"13\">\n"
+             << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+    }
+    void line(double x0, double y0, double x1, double y1, const char* colour, double width) {
+        out_ << "<line x1=\"" << x0 << "\" y1=\"" << y0 << "\" x2=\"" << x1 << "\" y2=\"" << y1 << "\" stroke=\""
+             << colour << "\" stroke-width=\"" << width << "\"/>\n";
+    }
+    void polyline(const std::vector<std::pair<double, double>>& points, const char* colour, double width) {
+        out_ << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"" << width
+             << "\" stroke-linejoin=\"round\" points=\"";
+        for (std::size_t k = 0; k < points.size(); ++k)
+            out_ << (k ? " " : "") << points[k].first << ',' << points[k].second;
+        out_ << "\"/>\n";
+    }
+    /// A filled dot, or with `ring` an open circle; `tooltip` may be empty.
+    void circle(double x, double y, double r, const char* colour, bool ring, const std::string& tooltip) {
+        out_ << "<circle cx=\"" << x << "\" cy=\"" << y << "\" r=\"" << r << '"'
+             << (ring ? " fill=\"none\" stroke-width=\"2\" stroke=\"" : " fill=\"") << colour << '"';
+        if (tooltip.empty())
+            out_ << "/>\n";
+        else
+            out_ << "><title>" << escapeXml(tooltip) << "</title></circle>\n";
+    }
+    /// `anchor`: start, middle or end; y is the text's baseline.
+    void text(double x, double y, const std::string& text, const char* anchor, const char* colour = "black") {
+        out_ << "<text x=\"" << x << "\" y=\"" << y << "\" text-anchor=\"" << anchor << "\" fill=\"" << colour << "\">"
+             << escapeXml(text) << "</text>\n";
+    }
+    std::string finish() {
+        out_ << "</svg>\n";
+        return out_.str();
+    }
+
+private:
+    std::ostringstream out_;
+};
+
+std::string tooltip(const CompareRow& r) {
+    return r.method + (r.series == "memory" ? ", budget " + byteLabel(double(r.target)) : std::string()) +
+           ", resolution " + std::to_string(r.resolution) + ": " + byteLabel(double(r.memoryBytes)) + ", " +
+           format("%.3f", 100.0 * r.errorRate) + " % wrong";
+}
+
 } // namespace
 
-Image errorChart(const CompareResult& result, std::uint32_t width, std::uint32_t height) {
+std::string errorChart(const CompareResult& result, std::uint32_t width, std::uint32_t height) {
     width = std::max<std::uint32_t>(width, 400);
     height = std::max<std::uint32_t>(height, 300);
-    Image image(width, height);
-    Canvas canvas(image);
-    const Colour white{255, 255, 255}, black{0, 0, 0}, grey{215, 215, 215}, dark{90, 90, 90};
-    canvas.fill(0, 0, int(width) - 1, int(height) - 1, white);
-    const int left = 70, right = int(width) - 190, top = 40, bottom = int(height) - 50;
+    Svg svg(width, height);
+    const char *black = "black", *grey = "#d7d7d7", *dark = "#5a5a5a";
+    const double left = 70, right = double(width) - 190, top = 40, bottom = double(height) - 50;
 
     double lo = 1e300, hi = 0.0, errMax = 0.0;
+    std::vector<std::string> methods; // in the order of the rows
     for (const CompareRow& r : result.rows) {
+        if (std::find(methods.begin(), methods.end(), r.method) == methods.end()) methods.push_back(r.method);
         if (r.memoryBytes == 0) continue;
         lo = std::min(lo, double(r.memoryBytes));
         hi = std::max(hi, double(r.memoryBytes));
@@ -149,60 +144,59 @@ Image errorChart(const CompareResult& result, std::uint32_t width, std::uint32_t
     const int xStep = x1 - x0 > 12 ? 2 : 1;
     for (double e = x0; e <= x1; e += xStep) {
         const double x = px(std::exp2(e));
-        canvas.line(x, top, x, bottom, grey);
-        canvas.line(x, bottom, x, bottom + 5, black);
-        const std::string label = byteLabel(std::exp2(e));
-        canvas.text(int(x) - Canvas::textWidth(label) / 2, bottom + 10, label, black);
+        svg.line(x, top, x, bottom, grey, 1);
+        svg.line(x, bottom, x, bottom + 5, black, 1);
+        svg.text(x, bottom + 19, byteLabel(std::exp2(e)), "middle");
     }
     for (int k = 0; k <= 5; ++k) {
         const double v = yMax * k / 5.0, y = py(v);
-        canvas.line(left, y, right, y, grey);
-        canvas.line(left - 5, y, left, y, black);
-        char buf[16];
-        std::snprintf(buf, sizeof buf, "%g", v);
-        canvas.text(left - 10 - Canvas::textWidth(buf), int(y) - 5, buf, black);
+        svg.line(left, y, right, y, grey, 1);
+        svg.line(left - 5, y, left, y, black, 1);
+        svg.text(left - 9, y + 4, format("%g", v), "end");
     }
-    canvas.line(left, top, left, bottom, black, 2);
-    canvas.line(left, bottom, right, bottom, black, 2);
-    canvas.text(left, top - 28, "error % (all points) against memory (bytes): " + result.meshName, black);
-    canvas.text((left + right) / 2 - Canvas::textWidth("memory") / 2, bottom + 30, "memory", dark);
+    svg.line(left, top, left, bottom, black, 2);
+    svg.line(left, bottom, right, bottom, black, 2);
+    svg.text(left, top - 16, "error % (all points) against memory (bytes, log scale): " + result.meshName, "start");
+    svg.text((left + right) / 2, bottom + 40, "memory", "middle", dark);
 
     // Series: resolution rows as lines with dots, memory rows as rings. The
     // twins that often coincide (parity/winding, raster/compute) are drawn
     // thick first and thin on top, so both stay visible.
     const auto thick = [](const std::string& method) { return method == "vds-parity" || method == "solid"; };
-    for (const auto& [method, colour] : methodColours()) {
-        std::vector<const CompareRow*> line;
+    for (const std::string& method : methods) {
+        const char* colour = methodColour(method);
+        std::vector<const CompareRow*> series;
         for (const CompareRow& r : result.rows)
-            if (r.method == method && r.series == "resolution" && r.memoryBytes > 0) line.push_back(&r);
-        std::sort(line.begin(), line.end(),
+            if (r.method == method && r.series == "resolution" && r.memoryBytes > 0) series.push_back(&r);
+        std::sort(series.begin(), series.end(),
                   [](const CompareRow* a, const CompareRow* b) { return a->memoryBytes < b->memoryBytes; });
-        for (std::size_t k = 1; k < line.size(); ++k)
-            canvas.line(px(double(line[k - 1]->memoryBytes)), py(100.0 * line[k - 1]->errorRate),
-                        px(double(line[k]->memoryBytes)), py(100.0 * line[k]->errorRate), colour,
-                        thick(method) ? 6 : 2);
-        for (const CompareRow* r : line)
-            canvas.disc(px(double(r->memoryBytes)), py(100.0 * r->errorRate), thick(method) ? 6.0 : 4.0, colour);
+        std::vector<std::pair<double, double>> points;
+        for (const CompareRow* r : series) points.emplace_back(px(double(r->memoryBytes)), py(100.0 * r->errorRate));
+        if (!points.empty()) svg.polyline(points, colour, thick(method) ? 6 : 2);
+        for (std::size_t k = 0; k < series.size(); ++k)
+            svg.circle(points[k].first, points[k].second, thick(method) ? 6 : 4, colour, false, tooltip(*series[k]));
         for (const CompareRow& r : result.rows)
             if (r.method == method && r.series == "memory" && r.memoryBytes > 0)
-                canvas.ring(px(double(r.memoryBytes)), py(100.0 * r.errorRate), thick(method) ? 9.0 : 7.0, colour);
+                svg.circle(px(double(r.memoryBytes)), py(100.0 * r.errorRate), thick(method) ? 9 : 7, colour, true,
+                           tooltip(r));
     }
 
     // Legend.
-    int y = top;
-    for (const auto& [method, colour] : methodColours()) {
-        canvas.line(right + 20, y + 4, right + 44, y + 4, colour, thick(method) ? 6 : 2);
-        canvas.disc(right + 32, y + 4, thick(method) ? 6.0 : 4.0, colour);
-        canvas.text(right + 52, y, method, black);
+    double y = top;
+    for (const std::string& method : methods) {
+        const char* colour = methodColour(method);
+        svg.line(right + 20, y, right + 44, y, colour, thick(method) ? 6 : 2);
+        svg.circle(right + 32, y, thick(method) ? 6 : 4, colour, false, "");
+        svg.text(right + 52, y + 4, method, "start");
         y += 22;
     }
     y += 10;
-    canvas.disc(right + 32, y + 4, 4.0, dark);
-    canvas.text(right + 52, y, "resolution", black);
+    svg.circle(right + 32, y, 4, dark, false, "");
+    svg.text(right + 52, y + 4, "resolution", "start");
     y += 22;
-    canvas.ring(right + 32, y + 4, 7.0, dark);
-    canvas.text(right + 52, y, "memory budget", black);
-    return image;
+    svg.circle(right + 32, y, 7, dark, true, "");
+    svg.text(right + 52, y + 4, "memory budget", "start");
+    return svg.finish();
 }
 
 } // namespace vds::eval

@@ -156,9 +156,9 @@ std::size_t voxelMemory(const Box& box, const std::string& method, std::uint32_t
     return n * 2 * words * 4 + (method == "slicemap-local" ? n * 12 : 0);
 }
 
-// Largest resolution in [1, 4096] whose estimate fits `budget`; 0 if none.
+// Largest resolution in [1, kMaxCompareResolution] whose estimate fits `budget`; 0 if none.
 template <class Estimate> std::uint32_t largestWithin(std::size_t budget, const Estimate& estimate) {
-    std::uint32_t lo = 0, hi = 4096;
+    std::uint32_t lo = 0, hi = kMaxCompareResolution;
     while (lo < hi) {
         const std::uint32_t mid = lo + (hi - lo + 1) / 2;
         if (estimate(mid) <= budget)
@@ -191,8 +191,9 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
     requireClosed(mesh, options.meshName.empty() ? "mesh" : options.meshName.c_str());
     if (options.resolutions.empty()) throw InvalidArgument("compare needs at least one resolution");
     for (std::uint32_t r : options.resolutions)
-        if (r == 0 || r > 4096)
-            throw InvalidArgument("compare resolution " + std::to_string(r) + " is out of range (1 to 4096)");
+        if (r == 0 || r > kMaxCompareResolution)
+            throw InvalidArgument("compare resolution " + std::to_string(r) + " is out of range (1 to " +
+                                  std::to_string(kMaxCompareResolution) + ")");
     const CurrentContext restore; // the caller's context is current again on return
     std::optional<GlContext> own;
     if (!gl) {

@@ -3,16 +3,17 @@
 // through the GLSL include shaders/vds/vpt.glsl, and write a PNG.
 //
 //   vds_clip MESH --clip A.vds [--clip B.vds ...] -o out.png [--size N] [--view iso|x|y|z] [--rule parity|winding]
+//   (vds_clip --help lists the defaults)
 //
 // Every fragment of MESH inside any sprite is discarded; back faces seen
 // through the cut are drawn in red. The camera is orthographic, fitted to
 // MESH's bounding box.
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -35,29 +36,12 @@ extern const std::size_t kSampleShadersCount;
 
 namespace {
 
-const char* kUsage =
-    "usage: vds_clip MESH --clip SPRITE.vds [--clip ...] -o OUT.png [options]\n"
-    "\n"
-    "Renders MESH with every fragment inside any of the sprites (at most 8)\n"
-    "discarded, pixel-precisely, in one pass; back faces seen through the cut\n"
-    "are red.\n"
-    "\n"
-    "options:\n"
-    "  --size N                image width and height in pixels (default 800)\n"
-    "  --view iso|x|y|z        look along -x, -y, -z or diagonally (default iso)\n"
-    "  --rule parity|winding   inside rule for the sprites (default parity)\n";
-
 struct Options {
     std::string mesh, output, view = "iso";
     std::vector<std::string> clips;
     std::uint32_t size = 800;
-    vds::Rule rule = vds::Rule::Parity;
+    std::string rule = vds::enumName(vds::Rule::Parity);
 };
-
-int usage(const std::string& message) {
-    std::fprintf(stderr, "vds_clip: %s (try 'vds_clip --help')\n", message.c_str());
-    return 2;
-}
 
 glm::mat4 camera(const vds::Box& box, const std::string& view) {
     const glm::vec3 centre = 0.5f * (box.lo + box.hi);
@@ -111,7 +95,7 @@ int run(const Options& o) {
     glUniform3f(glGetUniformLocation(program.id(), "u_lightDirection"), 0.40f, 0.58f, 0.71f);
     glUniform3f(glGetUniformLocation(program.id(), "u_frontColour"), 0.85f, 0.82f, 0.74f);
     glUniform3f(glGetUniformLocation(program.id(), "u_cutColour"), 0.85f, 0.15f, 0.12f);
-    glUniform1i(glGetUniformLocation(program.id(), "u_rule"), o.rule == vds::Rule::Winding ? 1 : 0);
+    glUniform1i(glGetUniformLocation(program.id(), "u_rule"), vds::parseRule(o.rule) == vds::Rule::Winding ? 1 : 0);
     glUniform1i(glGetUniformLocation(program.id(), "u_clipCount"), GLint(gpuSprites.size()));
     for (std::size_t i = 0; i < gpuSprites.size(); ++i)
         gpuSprites[i].setUniforms(program.id(), "u_ldi[" + std::to_string(i) + "]",
@@ -139,32 +123,28 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
-            return argv[++i];
-        };
-        try {
-            if (a == "--help" || a == "-h") {
-                std::fputs(kUsage, stdout);
-                return 0;
-            } else if (a == "-o") o.output = value();
-            else if (a == "--clip") o.clips.push_back(value());
-            else if (a == "--view") o.view = value();
-            else if (a == "--size") o.size = std::uint32_t(std::strtoul(value().c_str(), nullptr, 10));
-            else if (a == "--rule") o.rule = vds::parseRule(value());
-            else if (!a.empty() && a[0] == '-') return usage("unknown option " + a);
-            else if (o.mesh.empty()) o.mesh = a;
-            else return usage("more than one mesh given");
-        } catch (const std::exception& e) {
-            return usage(e.what());
-        }
+    CLI::App app("Renders MESH with every fragment inside any of the sprites discarded, pixel-precisely, in one\n"
+                 "pass; back faces seen through the cut are red.",
+                 "vds_clip");
+    app.get_formatter()->label("Usage", "usage");
+    app.option_defaults()->always_capture_default();
+    app.add_option("MESH", o.mesh, "mesh to render (OBJ, PLY, STL, OFF)")->required()->type_name("");
+    app.add_option("--clip", o.clips, "a sprite that cuts the mesh; 1 to 8 of them")
+        ->required()
+        ->expected(1, 8)
+        ->allow_extra_args(false)
+        ->type_name("SPRITE.vds");
+    app.add_option("-o,--output", o.output, "the picture")->required()->type_name("OUT.png");
+    app.add_option("--size", o.size, "image width and height in pixels")->check(CLI::Range(16u, 8192u));
+    app.add_option("--view", o.view, "look along -x, -y, -z or diagonally")->check(CLI::IsMember({"iso", "x", "y", "z"}));
+    app.add_option("--rule", o.rule, "inside rule for the sprites")->check(CLI::IsMember(vds::enumNames<vds::Rule>()));
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e); // --help
+        std::fprintf(stderr, "vds_clip: %s (try 'vds_clip --help')\n", e.what());
+        return 2;
     }
-    if (o.mesh.empty() || o.output.empty()) return usage("needs a mesh and -o OUT.png");
-    if (o.clips.empty() || o.clips.size() > 8) return usage("needs 1 to 8 --clip sprites");
-    if (o.size < 16 || o.size > 8192) return usage("--size must be 16..8192");
-    if (o.view != "iso" && o.view != "x" && o.view != "y" && o.view != "z") return usage("--view must be iso, x, y or z");
     try {
         return run(o);
     } catch (const std::exception& e) {

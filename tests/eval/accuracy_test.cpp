@@ -38,6 +38,13 @@ TEST_F(EvalTest, ErrorsLiveWithinATexelDiagonalOfTheSurface) {
     const std::string json = toJson(r);
     EXPECT_NE(json.find("\"resolution\": 96"), std::string::npos);
     EXPECT_EQ(std::count(json.begin(), json.end(), '{'), std::count(json.begin(), json.end(), '}'));
+    const std::string table = toTable(r);
+    EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 4 + 2);
+    EXPECT_EQ(table.rfind(r.mesh + ": " + std::to_string(torus.mesh.triangles.size()) + " triangles, ", 0), 0u) << table;
+    const EvalRow& w = r.rows[1];
+    const std::string row = "\n| 96 | " + std::to_string(w.width) + "x" + std::to_string(w.height) + "x" +
+                            std::to_string(w.depthComplexity) + " | " + std::to_string(w.uniformWrong) + " / 40000 (";
+    EXPECT_NE(table.find(row), std::string::npos) << row << "\nin\n" << table;
 }
 
 TEST(Distance, MatchesHandComputedCases) {

@@ -3,12 +3,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -73,12 +76,14 @@ protected:
 };
 
 TEST_F(Cli, BakeInfoClassifyRoundTrip) {
-    Result r = vds("bake " + p("box.obj") + " -o " + p("box.vds") + " --resolution 64 --quiet");
+    // --opt=value, and a leading zero read as decimal (not octal 52).
+    Result r = vds("bake " + p("box.obj") + " -o " + p("box.vds") + " --resolution=064 --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
     r = vds("info " + p("box.vds"));
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("depth complexity:  2"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("box.obj, 12 triangles"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("resolution:        64 x 48 texels"), std::string::npos) << r.output;
     for (const char* extra : {"", " --gpu", " --rule winding", " --threads 1"}) {
         r = vds("classify " + p("box.vds") + " " + p("points.txt") + " -o " + p("labels.txt") + extra + " --quiet");
         ASSERT_EQ(r.code, 0) << extra << ": " << r.output;
@@ -132,30 +137,116 @@ TEST_F(Cli, EveryRepresentationAnswersTheSameQueries) {
 }
 
 TEST_F(Cli, CompareWritesTableJsonAndChart) {
-    const Result r = vds("compare " + p("box.obj") + " --resolutions 16 --points 5000 --surface-points 2000 --json " +
-                         p("c.json") + " --chart " + p("c.png") + " --quiet");
+    const Result r = vds("compare " + p("box.obj") + " --resolutions 16 --points=5000 --surface-points 2000 --json " +
+                         p("c.json") + " --chart " + p("c.svg") + " --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
-    for (const char* method : {"vds-parity", "vds-winding", "slicemap", "slicemap-local", "solid", "solid-compute"})
+    const std::string svg = readFile(dir / "c.svg");
+    EXPECT_EQ(svg.rfind("<svg ", 0), 0u) << svg.substr(0, 100);
+    EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
+    for (const char* method : {"vds-parity", "vds-winding", "slicemap", "slicemap-local", "solid", "solid-compute"}) {
         EXPECT_NE(r.output.find(method), std::string::npos) << method;
+        EXPECT_NE(svg.find(std::string(">") + method + "</text>"), std::string::npos) << method;
+    }
     EXPECT_NE(readFile(dir / "c.json").find("solid-compute"), std::string::npos);
-    EXPECT_GT(vds::eval::readPng(p("c.png")).width, 100u);
+    EXPECT_NE(r.output.find("wrote " + p("c.svg")), std::string::npos) << r.output;
 }
 
 TEST_F(Cli, EveryCommandHasHelp) {
-    for (const char* c : {"--help", "bake --help", "classify --help", "info --help", "eval --help", "compare --help"}) {
+    for (const char* c :
+         {"--help", "help", "bake --help", "classify --help", "info --help", "eval --help", "compare --help"}) {
         const Result r = vds(c);
         EXPECT_EQ(r.code, 0) << c;
         EXPECT_NE(r.output.find("usage: vds"), std::string::npos) << c;
     }
-    EXPECT_EQ(run(std::string(VDS_CLIP) + " --help").code, 0);
+    const Result none = vds("");
+    EXPECT_EQ(none.code, 2);
+    EXPECT_NE(none.output.find("usage: vds"), std::string::npos) << none.output;
+}
+
+// The sample and the benchmark read their command lines like the tool:
+// help exits 0, a wrong command line 2 with one line.
+TEST_F(Cli, SampleAndBenchmarkCommandLines) {
+    std::vector<std::string> programs = {VDS_CLIP};
+#ifdef VDS_EXACT_BENCH
+    programs.push_back(VDS_EXACT_BENCH);
+#endif
+    for (const std::string& program : programs) {
+        const Result r = run(program + " --help");
+        EXPECT_EQ(r.code, 0) << program << ": " << r.output;
+        EXPECT_NE(r.output.find("usage: vds_"), std::string::npos) << r.output;
+    }
+    const std::string mesh = p("box.obj"), clip = mesh + " --clip a.vds -o x.png";
+    std::vector<std::string> bad;
+    for (const std::string& args : std::vector<std::string>{
+             "", "--clip a.vds -o x.png", mesh + " -o x.png", mesh + " --clip a.vds", clip + " --size 8",
+             clip + " --size=abc", clip + " --view w", clip + " --rule odd", mesh + " " + clip,
+             mesh + " -o x.png --clip 1 --clip 2 --clip 3 --clip 4 --clip 5 --clip 6 --clip 7 --clip 8 --clip 9"})
+        bad.push_back(std::string(VDS_CLIP) + " " + args);
+#ifdef VDS_EXACT_BENCH
+    for (const char* args : {"--points 0", "--sample=-1", "--points abc", "--bogus"})
+        bad.push_back(std::string(VDS_EXACT_BENCH) + " " + args);
+#endif
+    for (const std::string& command : bad) {
+        const Result r = run(command);
+        EXPECT_EQ(r.code, 2) << command << ": " << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << command << ": " << r.output;
+    }
+}
+
+// Defaults in the help are the library's option structs' own, and the
+// choices are the enums' names.
+TEST_F(Cli, HelpShowsDefaultsAndChoices) {
+    const std::string bake = vds("bake --help").output;
+    for (const char* shown : {"--resolution 1..16384=1024", "--axis x|y|z|auto=z", "--method lists|peel|cpu=lists"})
+        EXPECT_NE(bake.find(shown), std::string::npos) << shown << " in\n" << bake;
+    const std::string eval = vds("eval --help").output;
+    for (const char* shown :
+         {"--resolutions N,N=[256,512,1024,2048]", "--points N=1000000", "--rule parity|winding=parity", "--seed N=1"})
+        EXPECT_NE(eval.find(shown), std::string::npos) << shown << " in\n" << eval;
+    const std::string compare = vds("compare --help").output;
+    for (const char* shown :
+         {"--resolutions N,N=[32,64,128]", "each 1..4096", "--points N=100000", "--surface-points N=50000"})
+        EXPECT_NE(compare.find(shown), std::string::npos) << shown << " in\n" << compare;
+    const std::string classify = vds("classify --help").output;
+    for (const char* shown : {"--with vds|slicemap|slicemap-local|solid|solid-compute=vds",
+                              "=1024 for vds, 256 for the others", "--threads N=0"})
+        EXPECT_NE(classify.find(shown), std::string::npos) << shown << " in\n" << classify;
 }
 
 TEST_F(Cli, BadCommandLinesExitTwoWithOneLine) {
-    for (const std::string& args :
-         {std::string("bake"), "bake " + p("box.obj"), "bake " + p("box.obj") + " -o x.vds --resolution 0",
-          "bake " + p("box.obj") + " -o x.vds --resolution 100000", "bake " + p("box.obj") + " -o x.vds --resolution abc",
-          "bake " + p("box.obj") + " -o x.vds --axis w", "bake " + p("box.obj") + " -o x.vds --bogus",
-          "classify " + p("box.vds"), "classify --exact " + p("points.txt") + " -o x.txt", std::string("frobnicate")}) {
+    const std::string box = p("box.obj"), points = p("points.txt"), sprite = p("box.vds");
+    const std::vector<std::string> bad = {
+        "bake",
+        "bake " + box,
+        "bake " + box + " -o x.vds --resolution 0",
+        "bake " + box + " -o x.vds --resolution 100000",
+        "bake " + box + " -o x.vds --resolution abc",
+        "bake " + box + " -o x.vds --resolution=-3",
+        "bake " + box + " -o x.vds --resolution 0x40",
+        "bake " + box + " -o x.vds --axis w",
+        "bake " + box + " -o x.vds --method=gpu",
+        "bake " + box + " -o x.vds --bogus",
+        "bake " + box + " " + box + " -o x.vds",
+        "classify " + sprite,
+        "classify --exact " + points + " -o x.txt",
+        "classify --mesh " + box + " " + points + " -o x.txt",
+        "classify --mesh " + box + " --with solid --rule winding " + points + " -o x.txt",
+        "classify --with solid " + sprite + " " + points + " -o x.txt",
+        "classify --mesh " + box + " --with solid --resolution 20000 " + points + " -o x.txt",
+        "classify " + sprite + " " + points + " -o x.txt --threads -1",
+        "info",
+        "info " + sprite + " --resolution 4",
+        "eval " + box + " --resolutions 16,0",
+        "eval " + box + " --resolutions=",
+        "eval " + box + " --points -5",
+        "eval " + box + " --points 99999999999999999999999",
+        "eval " + box + " --rule even-odd",
+        "compare " + box + " --resolutions 5000", // above kMaxCompareResolution, within kMaxResolution
+        "compare " + box + " --resolutions=0",
+        "compare " + box + " --seed x",
+        "frobnicate",
+    };
+    for (const std::string& args : bad) {
         const Result r = vds(args);
         EXPECT_EQ(r.code, 2) << args << ": " << r.output;
         EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;

@@ -4,6 +4,7 @@
 // on the surface within rounding.
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include <vds/exact.h>
 #include "solids.h"
 #include <vds/voxel/representation.h>
+#include <vds/voxel/slicemap.h>
 #include <vds/voxel/solid.h>
 
 #include "../support/gl_fixture.h"
@@ -119,6 +121,27 @@ TEST_F(SolidTest, BadInputIsRejectedWithAClearError) {
     EXPECT_THROW(buildModel(sphere.mesh, Representation::Solid, {100000}, &gl()), InvalidArgument);
     EXPECT_THROW(buildModel(sphere.mesh, Representation::Solid, {kMaxResolution}, &gl()), InvalidArgument);
     EXPECT_THROW(parseSolidMethod("xor"), InvalidArgument);
+}
+
+// The voxel enums read their names from one table each (<vds/enum_names.h>),
+// like the core's: the parsers, the printers and the tool's choices agree.
+TEST(VoxelNames, ParseAndPrintFromOneTable) {
+    EXPECT_EQ(enumNames<Representation>(),
+              (std::vector<std::string>{"slicemap", "slicemap-local", "solid", "solid-compute"}));
+    EXPECT_EQ(enumNames<SolidMethod>(), (std::vector<std::string>{"raster", "compute"}));
+    EXPECT_EQ(enumNames<Slicing>(), (std::vector<std::string>{"uniform", "local"}));
+    for (const auto& name : enumNames<Representation>()) EXPECT_EQ(toString(parseRepresentation(name)), name);
+    EXPECT_EQ(parseSolidMethod("compute"), SolidMethod::Compute);
+    EXPECT_STREQ(toString(SolidMethod::Raster), "raster");
+    EXPECT_EQ(parseSlicing("local"), Slicing::Local);
+    EXPECT_STREQ(toString(Slicing::Uniform), "uniform");
+    try {
+        parseRepresentation("voxels");
+        ADD_FAILURE() << "no exception";
+    } catch (const InvalidArgument& e) {
+        EXPECT_STREQ(e.what(),
+                     "unknown voxel representation 'voxels' (expected slicemap, slicemap-local, solid or solid-compute)");
+    }
 }
 
 TEST_F(SolidTest, ModelsAnswerPointQueriesLikeTheirGrid) {

@@ -1,59 +1,99 @@
-// The vds command-line tool: shared argument handling. Only main() and the
-// command functions turn errors into exit codes and one-line messages.
+// The vds command-line tool. Each command (cmd_*.cpp) adds a CLI11
+// subcommand whose options are bound straight into the library's option
+// structs, and runs from the subcommand's callback. main() turns errors into
+// exit codes and one-line messages: 0 done, 1 the work failed (a vds::Error:
+// bad file, bad mesh, no GL...), 2 the command line is wrong (a CLI::ParseError).
 #pragma once
 
 #include <cstdint>
-#include <map>
-#include <stdexcept>
+#include <functional>
+#include <limits>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include <vds/enum_names.h>
+#include <vds/error.h>
+#include <vds/sprite.h>
 
 namespace cli {
 
-/// Exit codes: 0 success, 1 the work failed (bad file, bad mesh, no GL...),
-/// 2 the command line is wrong.
-constexpr int kFailure = 1;
-constexpr int kUsage = 2;
+/// A whole number in [lo, hi], in decimal digits (CLI11 alone would take
+/// -1 as the largest number, and 0x10 and 010 as hexadecimal and octal).
+CLI::Validator wholeNumber(std::uint64_t lo, std::uint64_t hi);
 
-/// A command-line mistake; main prints it with the usage hint and exits 2.
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+/// Adds the subcommand `name`: `summary` is its line in `vds --help`,
+/// `details` closes its own help. Its options are bound into a fresh `Args`
+/// that lives as long as `app`, `--quiet` (no progress messages) into
+/// `Args::quiet`; after parsing, its callback runs `run(args)`.
+template <class Args> std::pair<CLI::App*, Args*> addCommand(CLI::App& app, const std::string& name,
+                                                             const std::string& summary, const std::string& details,
+                                                             void (*run)(Args&)) {
+    auto args = std::make_shared<Args>();
+    CLI::App* command = app.add_subcommand(name, summary);
+    command->footer(details);
+    command->add_flag("--quiet", args->quiet, "no progress messages");
+    command->callback([args, run] { run(*args); });
+    return {command, args.get()};
+}
 
-/// Parsed arguments: options that take a value, flags, and positionals.
-class Args {
-public:
-    /// `valued` lists options that take a value ("-o", "--resolution"),
-    /// `flags` those that do not ("--gpu"). Anything else starting with '-'
-    /// is a UsageError.
-    Args(int argc, char** argv, const std::vector<std::string>& valued, const std::vector<std::string>& flags);
+/// The MESH positional: a closed triangle mesh file.
+CLI::Option* addMesh(CLI::App& command, std::string& path);
 
-    bool has(const std::string& name) const { return values_.count(name) || flagsSet_.count(name); }
-    std::string get(const std::string& name, const std::string& fallback = "") const;
-    std::uint32_t getUint(const std::string& name, std::uint32_t fallback) const;
-    const std::vector<std::string>& positional() const { return positional_; }
-    /// Throws UsageError unless there are exactly `n` positionals, naming them.
-    void expectPositional(std::size_t n, const std::string& what) const;
+/// "a|b|c": the choices, for the help.
+std::string joinChoices(const std::vector<std::string>& names);
 
-private:
-    std::map<std::string, std::string> values_;
-    std::map<std::string, bool> flagsSet_;
-    std::vector<std::string> positional_;
-};
+/// `--name` taking one of `names` as text.
+CLI::Option* addChoice(CLI::App& command, const std::string& name, std::string& value,
+                       const std::vector<std::string>& names, const std::string& help);
 
-/// Parses "256,512,1024": each 1..vds::kMaxResolution; throws UsageError.
-std::vector<std::uint32_t> parseResolutions(const std::string& list);
+/// `--name` choosing a value of `E` by the names in `EnumNames<E>`; the help
+/// lists them and shows the current value as the default.
+template <class E> CLI::Option* addEnum(CLI::App& command, const std::string& name, E& value, const std::string& help) {
+    // A name becomes the enum's number, which CLI11 then stores in `value`;
+    // an unknown name gets the library's message, which lists the names.
+    const CLI::Validator byName(
+        [](std::string& text) -> std::string {
+            try {
+                text = std::to_string(unsigned(vds::parseEnum<E>(text)));
+                return {};
+            } catch (const vds::InvalidArgument& e) {
+                return e.what();
+            }
+        },
+        "");
+    return command.add_option(name, value, help)
+        ->transform(byName)
+        ->type_name(joinChoices(vds::enumNames<E>()))
+        ->default_str(vds::enumName(value));
+}
+
+/// `--resolution N`, 1..vds::kMaxResolution.
+CLI::Option* addResolution(CLI::App& command, std::uint32_t& resolution, const std::string& help);
+/// `--resolutions N,N,...`, each 1..max.
+CLI::Option* addResolutions(CLI::App& command, std::vector<std::uint32_t>& resolutions,
+                            std::uint32_t max = vds::kMaxResolution);
+/// `--name N`, a whole number.
+template <class T>
+CLI::Option* addCount(CLI::App& command, const std::string& name, T& value, const std::string& help) {
+    return command.add_option(name, value, help)
+        ->transform(wholeNumber(0, std::numeric_limits<T>::max()))
+        ->type_name("N");
+}
 
 /// Writes `text` to `path` whole or not at all (vds::AtomicFile); throws vds::IoError.
 void writeTextFile(const std::string& path, const std::string& text);
 
-/// Prints "vds: <what>" progress lines to stderr unless quiet.
-void progress(bool quiet, const std::string& what);
+/// Prints "vds: <what>" progress lines to stderr, unless quiet.
+std::function<void(const std::string&)> progressPrinter(bool quiet);
 
-int bake(int argc, char** argv);
-int classify(int argc, char** argv);
-int info(int argc, char** argv);
-int eval(int argc, char** argv);
-int compare(int argc, char** argv);
+void addBake(CLI::App& app);
+void addClassify(CLI::App& app);
+void addInfo(CLI::App& app);
+void addEval(CLI::App& app);
+void addCompare(CLI::App& app);
 
 } // namespace cli

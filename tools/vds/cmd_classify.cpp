@@ -1,10 +1,8 @@
 #include <chrono>
 #include <cstdio>
-#include <memory>
 #include <vector>
 
 #include <vds/bake.h>
-#include <vds/error.h>
 #include <vds/exact.h>
 #include <vds/gl_context.h>
 #include <vds/gpu_sprite.h>
@@ -17,148 +15,151 @@
 namespace cli {
 
 namespace {
-const char* kHelp =
-    "usage: vds classify SPRITE.vds POINTS -o LABELS.txt [options]\n"
-    "       vds classify --exact --mesh MESH POINTS -o LABELS.txt [options]\n"
-    "       vds classify --mesh MESH --with REPRESENTATION --resolution N POINTS -o LABELS.txt [options]\n"
-    "\n"
-    "Labels each point 1 (inside) or 0 (outside), one line per point, in the\n"
-    "order given. POINTS is a text file of lines 'x y z' in the mesh's\n"
-    "coordinates ('#' comments and blank lines skipped) or a PLY file's vertices.\n"
-    "Points outside the sprite's box are outside.\n"
-    "\n"
-    "options:\n"
-    "  -o FILE               output labels (written whole or not at all)\n"
-    "  --rule parity|winding crossings rule: the paper's parity (default) or non-zero winding\n"
-    "  --gpu                 classify with the GL compute shader instead of the CPU\n"
-    "  --threads N           CPU threads (default: all)\n"
-    "  --exact               exact classification on the mesh's triangles (needs --mesh);\n"
-    "                        an open mesh is refused unless --allow-open is given\n"
-    "  --mesh MESH           classify against a mesh: --exact, or --with REPRESENTATION\n"
-    "  --with REPRESENTATION build it from the mesh in memory first, at --resolution:\n"
-    "                        vds (a sprite), slicemap, slicemap-local (front/back slicemap pair,\n"
-    "                        uniform or local slicing), solid, solid-compute (solid voxels by\n"
-    "                        rasterization or in compute); see docs/voxel.md\n"
-    "  --resolution N        texels or voxels on the box's longest side for --with\n"
-    "                        (default 1024 for vds, 256 for the others)\n"
-    "  --quiet               no progress messages\n";
+
+// --with's default resolution for the voxel representations: their memory
+// grows with its cube, a sprite's with its square.
+constexpr std::uint32_t kVoxelResolution = 256;
+
+struct ClassifyArgs {
+    std::vector<std::string> files; // [SPRITE] POINTS
+    std::string output, mesh, with = "vds";
+    std::uint32_t resolution = 0; // 0: not given (CLI11 refuses 0 given)
+    vds::ClassifyOptions options;
+    bool gpu = false, exact = false, allowOpen = false, quiet = false;
+    const CLI::Option* withGiven = nullptr;
+};
 
 void writeLabels(const std::string& path, const std::vector<std::uint8_t>& labels) {
     std::string text(labels.size() * 2, '\n');
     for (std::size_t i = 0; i < labels.size(); ++i) text[2 * i] = labels[i] ? '1' : '0';
     writeTextFile(path, text);
 }
-} // namespace
 
-int classify(int argc, char** argv) {
-    const Args args(argc, argv, {"-o", "--rule", "--threads", "--mesh", "--with", "--resolution"},
-                    {"--help", "--gpu", "--exact", "--quiet", "--allow-open"});
-    if (args.has("--help")) {
-        std::fputs(kHelp, stdout);
-        return 0;
-    }
-    const bool quiet = args.has("--quiet");
-    const bool fromMesh = args.has("--mesh");
-    if (fromMesh) args.expectPositional(1, "one points file (with --mesh)");
-    else args.expectPositional(2, "a sprite file and a points file");
-    if (!args.has("-o")) throw UsageError("missing -o LABELS.txt");
-    if (args.has("--exact") && !fromMesh) throw UsageError("--exact needs --mesh MESH");
-    if (fromMesh && !args.has("--exact") && !args.has("--with"))
-        throw UsageError("--mesh needs --exact or --with REPRESENTATION");
-    vds::ClassifyOptions options;
-    try {
-        options.rule = vds::parseRule(args.get("--rule", "parity"));
-    } catch (const vds::InvalidArgument& e) {
-        throw UsageError(e.what());
-    }
-    options.threads = args.getUint("--threads", 0);
-    const std::string with = args.get("--with", "vds");
-    vds::voxel::Representation representation{};
-    if (with != "vds") {
-        try {
-            representation = vds::voxel::parseRepresentation(with);
-        } catch (const vds::InvalidArgument& e) {
-            throw UsageError(std::string(e.what()) + " (or vds)");
-        }
-    }
-    const std::uint32_t resolution = args.getUint("--resolution", with == "vds" ? 1024 : 256);
-    if (resolution == 0 || resolution > vds::kMaxResolution)
-        throw UsageError("--resolution must be 1.." + std::to_string(vds::kMaxResolution));
+// What CLI11's option relations cannot say.
+void checkCombination(ClassifyArgs& a) {
+    const bool fromMesh = !a.mesh.empty();
+    if (a.files.size() != (fromMesh ? 1u : 2u))
+        throw CLI::ValidationError(fromMesh ? "expected one points file (with --mesh)"
+                                            : "expected a sprite file and a points file");
+    if (fromMesh && !a.exact && !a.withGiven->count())
+        throw CLI::ValidationError("--mesh needs --exact or --with REPRESENTATION");
+    if (a.with != "vds" && a.options.rule == vds::Rule::Winding)
+        throw CLI::ValidationError("--rule winding needs a sprite (--with vds)");
+    if (a.resolution == 0) a.resolution = a.with == "vds" ? vds::BakeOptions{}.resolution : kVoxelResolution;
+}
 
-    const std::string pointsPath = args.positional().back();
+void classify(ClassifyArgs& a) {
+    checkCombination(a);
+    const auto progress = progressPrinter(a.quiet);
+    const std::string& pointsPath = a.files.back();
     const std::vector<glm::vec3> points = vds::loadPoints(pointsPath);
-    progress(quiet, "read " + std::to_string(points.size()) + " points from " + pointsPath);
+    progress("read " + std::to_string(points.size()) + " points from " + pointsPath);
     std::vector<std::uint8_t> labels(points.size());
     // Only the classification is timed; loading, baking and building are not.
     std::chrono::steady_clock::time_point start;
     auto startClock = [&start] { start = std::chrono::steady_clock::now(); };
     std::string method;
+    vds::TriangleMesh mesh;
+    if (!a.mesh.empty()) mesh = vds::loadMesh(a.mesh);
 
-    if (args.has("--exact")) {
-        const vds::TriangleMesh mesh = vds::loadMesh(args.get("--mesh"));
+    if (a.exact) {
         const vds::MeshReport report = vds::validateMesh(mesh);
-        vds::requireUsable(report, args.get("--mesh"));
+        vds::requireUsable(report, a.mesh);
         if (!report.closed()) {
-            if (!args.has("--allow-open"))
-                throw vds::InvalidMesh(args.get("--mesh") + " is " + report.summary() +
+            if (!a.allowOpen)
+                throw vds::InvalidMesh(a.mesh + " is " + report.summary() +
                                        ": inside is not defined (--allow-open classifies by crossing count anyway)");
-            std::fprintf(stderr, "vds classify: warning: %s is %s; inside is not well defined\n",
-                         args.get("--mesh").c_str(), report.summary().c_str());
+            std::fprintf(stderr, "vds classify: warning: %s is %s; inside is not well defined\n", a.mesh.c_str(),
+                         report.summary().c_str());
         }
         const vds::ExactClassifier exact(mesh);
         startClock();
-        exact.classify(points.data(), points.size(), labels.data(), options);
+        exact.classify(points.data(), points.size(), labels.data(), a.options);
         method = "exact";
-    } else if (with != "vds") {
-        if (options.rule == vds::Rule::Winding) throw UsageError("--rule winding needs a sprite (--with vds)");
-        const vds::TriangleMesh mesh = vds::loadMesh(args.get("--mesh"));
+    } else if (a.with != "vds") {
         vds::GlContext gl;
         vds::voxel::ModelOptions modelOptions;
-        modelOptions.resolution = resolution;
-        const vds::voxel::Model model = vds::voxel::buildModel(mesh, representation, modelOptions, &gl);
-        progress(quiet, "built " + model.summary());
+        modelOptions.resolution = a.resolution;
+        const vds::voxel::Model model =
+            vds::voxel::buildModel(mesh, vds::voxel::parseRepresentation(a.with), modelOptions, &gl);
+        progress("built " + model.summary());
         startClock();
-        if (args.has("--gpu")) {
+        if (a.gpu) {
             vds::voxel::classifyOnGpu(gl, model, points.data(), points.size(), labels.data());
-            method = with + " on the GPU (" + gl.info().renderer + ")";
+            method = a.with + " on the GPU (" + gl.info().renderer + ")";
         } else {
-            model.classify(points.data(), points.size(), labels.data(), options.threads);
-            method = with + " on the CPU";
+            model.classify(points.data(), points.size(), labels.data(), a.options.threads);
+            method = a.with + " on the CPU";
         }
     } else {
         vds::Sprite sprite;
-        if (fromMesh) {
-            const vds::TriangleMesh mesh = vds::loadMesh(args.get("--mesh"));
+        if (!a.mesh.empty()) {
             vds::BakeOptions bakeOptions;
-            bakeOptions.resolution = resolution;
+            bakeOptions.resolution = a.resolution;
             bakeOptions.sourceName = mesh.name;
             sprite = vds::bake(mesh, bakeOptions);
         } else {
-            sprite = vds::readSprite(args.positional()[0]);
+            sprite = vds::readSprite(a.files.front());
         }
         if (sprite.status == vds::SolidStatus::Open)
             std::fprintf(stderr, "vds classify: warning: the sprite was baked from an open mesh (%s)\n",
                          sprite.validation.c_str());
-        if (args.has("--gpu")) {
+        if (a.gpu) {
             vds::GlContext gl;
             const vds::GpuSprite gpu(sprite);
             const vds::GpuClassifier classifier(gl);
             startClock();
-            classifier.classify(gpu, points.data(), points.size(), labels.data(), options.rule);
+            classifier.classify(gpu, points.data(), points.size(), labels.data(), a.options.rule);
             method = "GPU (" + gl.info().renderer + ")";
         } else {
             startClock();
-            vds::classify(sprite, points.data(), points.size(), labels.data(), options);
+            vds::classify(sprite, points.data(), points.size(), labels.data(), a.options);
             method = "CPU";
         }
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    writeLabels(args.get("-o"), labels);
+    writeLabels(a.output, labels);
     std::size_t inside = 0;
     for (auto l : labels) inside += l;
-    std::printf("wrote %s: %zu points, %zu inside, %s, %s rule, classified in %.3f s\n", args.get("-o").c_str(), points.size(),
-                inside, method.c_str(), vds::toString(options.rule), seconds);
-    return 0;
+    std::printf("wrote %s: %zu points, %zu inside, %s, %s rule, classified in %.3f s\n", a.output.c_str(),
+                points.size(), inside, method.c_str(), vds::toString(a.options.rule), seconds);
+}
+
+} // namespace
+
+void addClassify(CLI::App& app) {
+    const auto [c, a] = addCommand<ClassifyArgs>(
+        app, "classify", "label points 1 inside / 0 outside",
+        "  vds classify SPRITE.vds POINTS -o LABELS.txt\n"
+        "  vds classify --exact --mesh MESH POINTS -o LABELS.txt\n"
+        "  vds classify --mesh MESH --with REPRESENTATION POINTS -o LABELS.txt\n"
+        "Labels each point 1 (inside) or 0 (outside), one line per point, in the order given. POINTS\n"
+        "is a text file of lines 'x y z' in the mesh's coordinates ('#' comments and blank lines\n"
+        "skipped) or a PLY file's vertices. Points outside the sprite's box are outside. --with builds\n"
+        "the representation from the mesh in memory first: vds (a sprite), slicemap, slicemap-local\n"
+        "(front/back slicemap pair, uniform or local slicing), solid, solid-compute (solid voxels by\n"
+        "rasterization or in compute); see docs/voxel.md.",
+        classify);
+    c->add_option("FILES", a->files, "a sprite file and a points file; with --mesh, the points file")
+        ->required()
+        ->option_text("[SPRITE.vds] POINTS");
+    c->add_option("-o,--output", a->output, "output labels (written whole or not at all)")
+        ->required()
+        ->type_name("FILE");
+    addEnum(*c, "--rule", a->options.rule, "crossings rule: the paper's parity or non-zero winding");
+    c->add_flag("--gpu", a->gpu, "classify with the GL compute shader instead of the CPU");
+    addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
+    CLI::Option* mesh =
+        c->add_option("--mesh", a->mesh, "classify against a mesh: --exact, or --with")->type_name("MESH");
+    CLI::Option* exact = c->add_flag("--exact", a->exact, "exact classification on the mesh's triangles")->needs(mesh);
+    c->add_flag("--allow-open", a->allowOpen, "let --exact classify an open mesh by crossing count");
+    std::vector<std::string> with = vds::enumNames<vds::voxel::Representation>();
+    with.insert(with.begin(), "vds");
+    a->withGiven =
+        addChoice(*c, "--with", a->with, with, "build this from the mesh first")->needs(mesh)->excludes(exact);
+    addResolution(*c, a->resolution, "texels or voxels on the box's longest side for --with")
+        ->default_str(std::to_string(vds::BakeOptions{}.resolution) + " for vds, " + std::to_string(kVoxelResolution) +
+                      " for the others");
 }
 
 } // namespace cli

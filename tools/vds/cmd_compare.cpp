@@ -1,68 +1,52 @@
 #include <cstdio>
-#include <cstdlib>
-#include <sstream>
-#include <vector>
 
-#include <vds/error.h>
-#include <vds/eval/image.h>
-#include <vds/mesh_io.h>
-#include <vds/sprite.h>
 #include <vds/eval/compare.h>
+#include <vds/mesh_io.h>
 
 #include "cli.h"
 
 namespace cli {
 
 namespace {
-const char* kHelp =
-    "usage: vds compare MESH [options]\n"
-    "\n"
-    "Compares the VDS (parity and winding) with slicemaps (uniform and local)\n"
-    "and solid voxels (raster and compute) on the same points, at equal\n"
-    "resolution and at equal memory: misclassification rate against the exact\n"
-    "classifier, worst error distance in cells, build time, query throughput,\n"
-    "memory. Prints a table; writes JSON and a PNG chart of error against memory.\n"
-    "\n"
-    "options:\n"
-    "  --resolutions LIST   comma-separated (default 32,64,128)\n"
-    "  --points N           uniform points in the padded box (default 100000)\n"
-    "  --surface-points N   points near the surface (default 50000)\n"
-    "  --json FILE          write the result as JSON\n"
-    "  --chart FILE.png     write the error-against-memory chart\n"
-    "  --seed N             random seed (default 1)\n"
-    "  --quiet              no progress messages\n";
+
+struct CompareArgs {
+    std::string mesh, json, chart;
+    vds::eval::CompareOptions options;
+    bool quiet = false;
+};
+
+void compare(CompareArgs& a) {
+    a.options.progress = progressPrinter(a.quiet);
+    const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
+    a.options.meshName = mesh.name;
+    const vds::eval::CompareResult result = vds::eval::compare(mesh, a.options);
+    std::fputs(result.table().c_str(), stdout);
+    for (const auto& [path, text] : {std::pair{a.json, result.json()}, std::pair{a.chart, errorChart(result)}})
+        if (!path.empty()) {
+            writeTextFile(path, text);
+            std::printf("wrote %s\n", path.c_str());
+        }
+}
 
 } // namespace
 
-int compare(int argc, char** argv) {
-    const Args args(argc, argv, {"--resolutions", "--points", "--surface-points", "--json", "--chart", "--seed"},
-                    {"--help", "--quiet"});
-    if (args.has("--help")) {
-        std::fputs(kHelp, stdout);
-        return 0;
-    }
-    args.expectPositional(1, "one mesh file");
-    const bool quiet = args.has("--quiet");
-    vds::eval::CompareOptions options;
-    if (args.has("--resolutions")) options.resolutions = parseResolutions(args.get("--resolutions"));
-    options.uniformPoints = args.getUint("--points", 100000);
-    options.surfacePoints = args.getUint("--surface-points", 50000);
-    options.seed = args.getUint("--seed", 1);
-    options.progress = [quiet](const std::string& s) { progress(quiet, s); };
-    const std::string& path = args.positional()[0];
-    const vds::TriangleMesh mesh = vds::loadMesh(path);
-    options.meshName = mesh.name;
-    const vds::eval::CompareResult result = vds::eval::compare(mesh, options);
-    std::fputs(result.table().c_str(), stdout);
-    if (args.has("--json")) {
-        writeTextFile(args.get("--json"), result.json());
-        std::printf("wrote %s\n", args.get("--json").c_str());
-    }
-    if (args.has("--chart")) {
-        vds::eval::writePng(vds::eval::errorChart(result), args.get("--chart"));
-        std::printf("wrote %s\n", args.get("--chart").c_str());
-    }
-    return 0;
+void addCompare(CLI::App& app) {
+    const auto [c, a] = addCommand<CompareArgs>(
+        app, "compare", "the VDS against slicemaps and solid voxels: error, memory, speed",
+        "Compares the VDS (parity and winding) with slicemaps (uniform and local) and solid voxels\n"
+        "(raster and compute) on the same points, at equal resolution and at equal memory:\n"
+        "misclassification rate against the exact classifier, worst error distance in cells, build\n"
+        "time, query throughput, memory. Prints a table; writes JSON and an SVG chart of error\n"
+        "against memory.",
+        compare);
+    addMesh(*c, a->mesh);
+    vds::eval::CompareOptions& o = a->options;
+    addResolutions(*c, o.resolutions, vds::eval::kMaxCompareResolution);
+    addCount(*c, "--points", o.uniformPoints, "uniform points in the padded box");
+    addCount(*c, "--surface-points", o.surfacePoints, "points near the surface");
+    c->add_option("--json", a->json, "write the result as JSON")->type_name("FILE");
+    c->add_option("--chart", a->chart, "write the error-against-memory chart (SVG)")->type_name("FILE.svg");
+    addCount(*c, "--seed", o.seed, "random seed");
 }
 
 } // namespace cli

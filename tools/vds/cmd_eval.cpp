@@ -1,9 +1,5 @@
 #include <cstdio>
-#include <cstdlib>
-#include <sstream>
-#include <vector>
 
-#include <vds/error.h>
 #include <vds/eval/accuracy.h>
 #include <vds/mesh_io.h>
 
@@ -12,88 +8,55 @@
 namespace cli {
 
 namespace {
-const char* kHelp =
-    "usage: vds eval MESH [options]\n"
-    "\n"
-    "How wrong is a sprite, and where? Bakes MESH at each resolution and\n"
-    "classifies the same points with the sprite and with the exact classifier:\n"
-    "uniform random points in the box grown by 10%, and points within 4 texels\n"
-    "of the surface. Reports the misclassification rate, how far the wrong\n"
-    "points are from the surface (in texels), bake time, memory, file size and\n"
-    "query throughput; writes JSON and slice images (grey inside, white outside,\n"
-    "red: sprite says inside wrongly, blue: sprite says outside wrongly).\n"
-    "\n"
-    "options:\n"
-    "  --resolutions LIST   comma-separated (default 256,512,1024,2048)\n"
-    "  --points N           uniform points (default 1000000)\n"
-    "  --surface-points N   near-surface points per resolution (default 1000000)\n"
-    "  --axis x|y|z         view axis (default z)\n"
-    "  --rule parity|winding (default parity)\n"
-    "  --method lists|peel|cpu  baker (default lists)\n"
-    "  --json FILE          write the report as JSON\n"
-    "  --images PREFIX      write PREFIX-<resolution>-<x|y|z>.png slices through the box centre\n"
-    "  --seed N             random seed (default 1)\n"
-    "  --quiet              no progress messages\n";
 
-} // namespace
-
-int eval(int argc, char** argv) {
-    const Args args(argc, argv,
-                    {"--resolutions", "--points", "--surface-points", "--axis", "--rule", "--method", "--json",
-                     "--images", "--seed"},
-                    {"--help", "--quiet"});
-    if (args.has("--help")) {
-        std::fputs(kHelp, stdout);
-        return 0;
-    }
-    args.expectPositional(1, "one mesh file");
-    const bool quiet = args.has("--quiet");
+struct EvalArgs {
+    std::string mesh, json;
     vds::eval::EvalOptions options;
-    if (args.has("--resolutions")) options.resolutions = parseResolutions(args.get("--resolutions"));
-    options.uniformPoints = args.getUint("--points", 1000000);
-    options.surfacePoints = args.getUint("--surface-points", 1000000);
-    options.seed = args.getUint("--seed", 1);
-    try {
-        options.axis = vds::parseAxis(args.get("--axis", "z"));
-        options.rule = vds::parseRule(args.get("--rule", "parity"));
-        options.method = vds::parseBakeMethod(args.get("--method", "lists"));
-    } catch (const vds::InvalidArgument& e) {
-        throw UsageError(e.what());
-    }
-    options.imagePrefix = args.get("--images");
+    bool quiet = false;
+};
 
-    const std::string& path = args.positional()[0];
-    const vds::TriangleMesh mesh = vds::loadMesh(path);
+void eval(EvalArgs& a) {
+    const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
     const vds::MeshReport report = vds::validateMesh(mesh);
-    vds::requireUsable(report, path);
+    vds::requireUsable(report, a.mesh);
     if (!report.closed())
-        throw vds::InvalidMesh(path + " is " + report.summary() +
+        throw vds::InvalidMesh(a.mesh + " is " + report.summary() +
                                ": inside is not defined, so there is no exact answer to compare with");
-    const vds::eval::EvalReport r =
-        vds::eval::evaluate(mesh, options, nullptr, [quiet](const std::string& s) { progress(quiet, s); });
+    const vds::eval::EvalReport r = vds::eval::evaluate(mesh, a.options, nullptr, progressPrinter(a.quiet));
 
-    std::printf("%s: %zu triangles, %s, rule %s, axis %s\n\n", r.mesh.c_str(), r.triangles, r.validation.c_str(),
-                vds::toString(r.rule), vds::toString(r.axis));
-    std::printf("| resolution | w x h x d | wrong (uniform) | wrong (near surface) | max / mean wrong distance "
-                "[texels] | beyond sqrt(2) texels | bake [s] | .vds bytes | memory bytes | dense bytes | VDS pts/s | "
-                "exact pts/s |\n");
-    std::printf("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (const auto& w : r.rows)
-        std::printf("| %u | %ux%ux%u | %zu / %zu (%.4f%%) | %zu / %zu (%.3f%%) | %.2f / %.2f | %zu of %zu | %.2f | %zu | "
-                    "%zu | %zu | %.3g | %.3g |\n",
-                    w.resolution, w.width, w.height, w.depthComplexity, w.uniformWrong, w.uniformPoints,
-                    w.uniformPoints ? 100.0 * double(w.uniformWrong) / double(w.uniformPoints) : 0.0, w.surfaceWrong,
-                    w.surfacePoints, w.surfacePoints ? 100.0 * double(w.surfaceWrong) / double(w.surfacePoints) : 0.0,
-                    w.maxWrongDistanceTexels, w.meanWrongDistanceTexels, w.wrongBeyondTexelDiagonal,
-                    w.distancesMeasured, w.bakeSeconds, w.fileBytes, w.memoryBytes, w.denseBytes,
-                    w.vdsPointsPerSecond, w.exactPointsPerSecond);
-    if (args.has("--json")) {
-        writeTextFile(args.get("--json"), vds::eval::toJson(r));
-        std::printf("\nwrote %s\n", args.get("--json").c_str());
+    std::fputs(vds::eval::toTable(r).c_str(), stdout);
+    if (!a.json.empty()) {
+        writeTextFile(a.json, vds::eval::toJson(r));
+        std::printf("\nwrote %s\n", a.json.c_str());
     }
     for (const auto& w : r.rows)
         for (const auto& image : w.images) std::printf("wrote %s\n", image.c_str());
-    return 0;
+}
+
+} // namespace
+
+void addEval(CLI::App& app) {
+    const auto [c, a] = addCommand<EvalArgs>(
+        app, "eval", "accuracy of sprites against the exact classifier",
+        "How wrong is a sprite, and where? Bakes MESH at each resolution and classifies the same points\n"
+        "with the sprite and with the exact classifier: uniform random points in the box grown by 10%,\n"
+        "and points within 4 texels of the surface. Reports the misclassification rate, how far the\n"
+        "wrong points are from the surface (in texels), bake time, memory, file size and query\n"
+        "throughput; writes JSON and slice images (grey inside, white outside, red: sprite says inside\n"
+        "wrongly, blue: sprite says outside wrongly).",
+        eval);
+    addMesh(*c, a->mesh);
+    vds::eval::EvalOptions& o = a->options;
+    addResolutions(*c, o.resolutions);
+    addCount(*c, "--points", o.uniformPoints, "uniform points");
+    addCount(*c, "--surface-points", o.surfacePoints, "near-surface points per resolution");
+    addEnum(*c, "--axis", o.axis, "view axis");
+    addEnum(*c, "--rule", o.rule, "crossings rule");
+    addEnum(*c, "--method", o.method, "baker");
+    c->add_option("--json", a->json, "write the report as JSON")->type_name("FILE");
+    c->add_option("--images", o.imagePrefix, "write PREFIX-<resolution>-<x|y|z>.png slices through the box centre")
+        ->type_name("PREFIX");
+    addCount(*c, "--seed", o.seed, "random seed");
 }
 
 } // namespace cli

@@ -9,16 +9,15 @@
 
 namespace cli {
 
-int info(int argc, char** argv) {
-    const Args args(argc, argv, {}, {"--help", "--quiet"});
-    if (args.has("--help")) {
-        std::fputs("usage: vds info SPRITE.vds\n\nPrints what a sprite file holds: size, depth complexity,\n"
-                   "placement (P_S, M_S), source mesh, validation, and memory figures.\n",
-                   stdout);
-        return 0;
-    }
-    args.expectPositional(1, "one sprite file");
-    const std::string& path = args.positional()[0];
+namespace {
+
+struct InfoArgs {
+    std::string path;
+    bool quiet = false; // accepted like every command's; info prints no progress
+};
+
+void info(InfoArgs& a) {
+    const std::string& path = a.path;
     const vds::Sprite s = vds::readSprite(path);
     const auto& g = s.grid;
     std::printf("file:              %s (%ju bytes)\n", path.c_str(), std::uintmax_t(std::filesystem::file_size(path)));
@@ -40,7 +39,16 @@ int info(int argc, char** argv) {
                 double(m[2][2]));
     std::printf("memory:            %zu bytes in memory, %zu bytes as the paper's dense texture\n", s.memoryBytes(),
                 s.denseBytes());
-    return 0;
+}
+
+} // namespace
+
+void addInfo(CLI::App& app) {
+    const auto [c, a] = addCommand<InfoArgs>(app, "info", "describe a sprite file",
+                                             "Prints what a sprite file holds: size, depth complexity, placement\n"
+                                             "(P_S, M_S), source mesh, validation, and memory figures.",
+                                             info);
+    c->add_option("SPRITE", a->path, "sprite file (.vds)")->required()->type_name("");
 }
 
 } // namespace cli

@@ -1,12 +1,9 @@
 // vds: bake meshes into volumetric depth sprites and ask what is inside.
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <exception>
-#include <iostream>
-#include <sstream>
+#include <new>
 #include <string>
 
 #include <vds/atomic_file.h>
@@ -17,64 +14,50 @@
 
 namespace cli {
 
-Args::Args(int argc, char** argv, const std::vector<std::string>& valued, const std::vector<std::string>& flags) {
-    auto in = [](const std::vector<std::string>& list, const std::string& s) {
-        for (const auto& x : list)
-            if (x == s) return true;
-        return false;
-    };
-    for (int i = 0; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a.size() > 1 && a[0] == '-' && !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.'))) {
-            if (in(valued, a)) {
-                if (i + 1 >= argc) throw UsageError("option " + a + " needs a value");
-                values_[a] = argv[++i];
-            } else if (in(flags, a)) {
-                flagsSet_[a] = true;
-            } else {
-                throw UsageError("unknown option " + a);
-            }
-        } else {
-            positional_.push_back(a);
-        }
-    }
+CLI::Validator wholeNumber(std::uint64_t lo, std::uint64_t hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            errno = 0;
+            const unsigned long long value = std::strtoull(text.c_str(), nullptr, 10);
+            if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || errno == ERANGE ||
+                value < lo || value > hi)
+                return "expects a whole number " + std::to_string(lo) + ".." + std::to_string(hi) + ", not '" + text +
+                       "'";
+            text = std::to_string(value);
+            return {};
+        },
+        "");
 }
 
-std::string Args::get(const std::string& name, const std::string& fallback) const {
-    auto it = values_.find(name);
-    return it == values_.end() ? fallback : it->second;
+CLI::Option* addMesh(CLI::App& command, std::string& path) {
+    return command.add_option("MESH", path, "closed triangle mesh (OBJ, PLY, STL, OFF)")->required()->type_name("");
 }
 
-std::uint32_t Args::getUint(const std::string& name, std::uint32_t fallback) const {
-    auto it = values_.find(name);
-    if (it == values_.end()) return fallback;
-    const std::string& s = it->second;
-    char* end = nullptr;
-    errno = 0;
-    const unsigned long long v = std::strtoull(s.c_str(), &end, 10);
-    if (s.empty() || *end || s[0] == '-' || errno || v > 0xffffffffull)
-        throw UsageError(name + " expects a whole number, not '" + s + "'");
-    return std::uint32_t(v);
+std::string joinChoices(const std::vector<std::string>& names) {
+    std::string joined;
+    for (const std::string& name : names) joined += (joined.empty() ? "" : "|") + name;
+    return joined;
 }
 
-void Args::expectPositional(std::size_t n, const std::string& what) const {
-    if (positional_.size() != n) throw UsageError("expected " + what);
+CLI::Option* addChoice(CLI::App& command, const std::string& name, std::string& value,
+                       const std::vector<std::string>& names, const std::string& help) {
+    return command.add_option(name, value, help)
+        ->check(CLI::IsMember(names).description(""))
+        ->type_name(joinChoices(names));
 }
 
-std::vector<std::uint32_t> parseResolutions(const std::string& list) {
-    std::vector<std::uint32_t> out;
-    std::stringstream in(list);
-    std::string item;
-    while (std::getline(in, item, ',')) {
-        char* end = nullptr;
-        const unsigned long v = std::strtoul(item.c_str(), &end, 10);
-        if (item.empty() || *end || v == 0 || v > vds::kMaxResolution)
-            throw UsageError("--resolutions expects numbers 1.." + std::to_string(vds::kMaxResolution) + ", not '" +
-                             item + "'");
-        out.push_back(std::uint32_t(v));
-    }
-    if (out.empty()) throw UsageError("--resolutions is empty");
-    return out;
+CLI::Option* addResolution(CLI::App& command, std::uint32_t& resolution, const std::string& help) {
+    return command.add_option("--resolution", resolution, help)
+        ->transform(wholeNumber(1, vds::kMaxResolution))
+        ->type_name("1.." + std::to_string(vds::kMaxResolution));
+}
+
+CLI::Option* addResolutions(CLI::App& command, std::vector<std::uint32_t>& resolutions, std::uint32_t max) {
+    return command.add_option("--resolutions", resolutions, "comma-separated, each 1.." + std::to_string(max))
+        ->delimiter(',')
+        ->allow_extra_args(false)
+        ->transform(wholeNumber(1, max))
+        ->type_name("N,N");
 }
 
 void writeTextFile(const std::string& path, const std::string& text) {
@@ -86,57 +69,51 @@ void writeTextFile(const std::string& path, const std::string& text) {
     out.commit();
 }
 
-void progress(bool quiet, const std::string& what) {
-    if (!quiet) std::fprintf(stderr, "vds: %s\n", what.c_str());
+std::function<void(const std::string&)> progressPrinter(bool quiet) {
+    return [quiet](const std::string& what) {
+        if (!quiet) std::fprintf(stderr, "vds: %s\n", what.c_str());
+    };
 }
 
 } // namespace cli
 
-namespace {
-
-const char* kUsage =
-    "usage: vds <command> [options]\n"
-    "\n"
-    "Volumetric depth sprites: bake a closed triangle mesh once, then ask which\n"
-    "points are inside it.\n"
-    "\n"
-    "commands:\n"
-    "  bake      MESH -o OUT.vds        bake a mesh (OBJ, PLY, STL, OFF) into a sprite\n"
-    "  classify  SPRITE.vds POINTS -o LABELS.txt\n"
-    "                                   label points 1 inside / 0 outside\n"
-    "  info      SPRITE.vds             describe a sprite file\n"
-    "  eval      MESH                   accuracy of sprites vs the exact classifier\n"
-    "  compare   MESH                   VDS vs slicemaps and solid voxels: error, memory, speed\n"
-    "\n"
-    "Run 'vds <command> --help' for a command's options.\n";
-
-} // namespace
-
 int main(int argc, char** argv) {
-    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
-        std::fputs(kUsage, argc < 2 ? stderr : stdout);
-        return argc < 2 ? cli::kUsage : 0;
+    CLI::App app("Volumetric depth sprites: bake a closed triangle mesh once, then ask which points are inside it.",
+                 "vds");
+    app.get_formatter()->label("Usage", "usage");
+    app.get_formatter()->column_width(36);
+    app.option_defaults()->always_capture_default();
+    cli::addBake(app);
+    cli::addClassify(app);
+    cli::addInfo(app);
+    cli::addEval(app);
+    cli::addCompare(app);
+    app.add_subcommand("help", "print this help")->callback([&app] {
+        std::fputs(app.get_formatter()->make_help(&app, "vds", CLI::AppFormatMode::Normal).c_str(), stdout);
+    });
+    app.require_subcommand(1);
+    app.footer("Run 'vds <command> --help' for a command's options.");
+    if (argc < 2) {
+        std::fputs(app.help().c_str(), stderr);
+        return 2;
     }
-    const std::string command = argv[1];
+    // The command whose callback runs, or which the error is about.
+    const auto who = [&app] {
+        const auto chosen = app.get_subcommands();
+        return chosen.empty() ? std::string("vds") : "vds " + chosen.front()->get_name();
+    };
     try {
-        if (command == "bake") return cli::bake(argc - 2, argv + 2);
-        if (command == "classify") return cli::classify(argc - 2, argv + 2);
-        if (command == "info") return cli::info(argc - 2, argv + 2);
-        if (command == "eval") return cli::eval(argc - 2, argv + 2);
-        if (command == "compare") return cli::compare(argc - 2, argv + 2);
-        std::fprintf(stderr, "vds: unknown command '%s' (try 'vds --help')\n", command.c_str());
-        return cli::kUsage;
-    } catch (const cli::UsageError& e) {
-        std::fprintf(stderr, "vds %s: %s (try 'vds %s --help')\n", command.c_str(), e.what(), command.c_str());
-        return cli::kUsage;
-    } catch (const vds::Error& e) {
-        std::fprintf(stderr, "vds %s: error: %s\n", command.c_str(), e.what());
-        return cli::kFailure;
+        app.parse(argc, argv);
+        return 0;
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e); // --help
+        std::fprintf(stderr, "%s: %s (try '%s --help')\n", who().c_str(), e.what(), who().c_str());
+        return 2;
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "vds %s: error: out of memory\n", command.c_str());
-        return cli::kFailure;
+        std::fprintf(stderr, "%s: error: out of memory\n", who().c_str());
+        return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "vds %s: error: %s\n", command.c_str(), e.what());
-        return cli::kFailure;
+        std::fprintf(stderr, "%s: error: %s\n", who().c_str(), e.what());
+        return 1;
     }
 }

@@ -18,24 +18,8 @@
 
 namespace vds::voxel {
 
-Representation parseRepresentation(const std::string& name) {
-    if (name == "slicemap") return Representation::Slicemap;
-    if (name == "slicemap-local") return Representation::SlicemapLocal;
-    if (name == "solid") return Representation::Solid;
-    if (name == "solid-compute") return Representation::SolidCompute;
-    throw InvalidArgument("unknown voxel representation '" + name +
-                          "' (expected slicemap, slicemap-local, solid or solid-compute)");
-}
-
-const char* toString(Representation r) {
-    switch (r) {
-    case Representation::Slicemap: return "slicemap";
-    case Representation::SlicemapLocal: return "slicemap-local";
-    case Representation::Solid: return "solid";
-    case Representation::SolidCompute: break;
-    }
-    return "solid-compute";
-}
+Representation parseRepresentation(const std::string& name) { return parseEnum<Representation>(name); }
+const char* toString(Representation r) { return enumName(r); }
 
 Model::Model(Representation representation, Slicemap slicemap, double buildSeconds)
     : representation_(representation), data_(std::move(slicemap)), buildSeconds_(buildSeconds) {}

@@ -19,13 +19,8 @@
 
 namespace vds::voxel {
 
-Slicing parseSlicing(const std::string& s) {
-    if (s == "uniform") return Slicing::Uniform;
-    if (s == "local") return Slicing::Local;
-    throw InvalidArgument("unknown slicing '" + s + "' (expected uniform or local)");
-}
-
-const char* toString(Slicing s) { return s == Slicing::Uniform ? "uniform" : "local"; }
+Slicing parseSlicing(const std::string& s) { return parseEnum<Slicing>(s); }
+const char* toString(Slicing s) { return enumName(s); }
 
 bool Slicemap::frontBit(std::uint32_t x, std::uint32_t y, std::uint32_t s) const {
     return (front[(std::size_t(y) * grid.size.x + x) * words + (s >> 5)] >> (s & 31u)) & 1u;

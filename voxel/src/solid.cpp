@@ -12,13 +12,8 @@
 
 namespace vds::voxel {
 
-SolidMethod parseSolidMethod(const std::string& s) {
-    if (s == "raster") return SolidMethod::Raster;
-    if (s == "compute") return SolidMethod::Compute;
-    throw InvalidArgument("unknown solid voxelization method '" + s + "' (expected raster or compute)");
-}
-
-const char* toString(SolidMethod m) { return m == SolidMethod::Raster ? "raster" : "compute"; }
+SolidMethod parseSolidMethod(const std::string& s) { return parseEnum<SolidMethod>(s); }
+const char* toString(SolidMethod m) { return enumName(m); }
 
 namespace {
 

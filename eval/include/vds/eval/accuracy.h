@@ -78,4 +78,9 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
 /// The report as JSON (one object; rows as an array).
 std::string toJson(const EvalReport& report);
 
+/// The report as text, what `vds eval` prints: a line naming the mesh, rule
+/// and axis, a blank line, then a Markdown table with a header and one row
+/// per resolution.
+std::string toTable(const EvalReport& report);
+
 } // namespace vds::eval

@@ -1,4 +1,4 @@
-// vds::voxel: the VDS against slicemaps and solid voxels as point-in-solid
+// vds::eval: the VDS against slicemaps and solid voxels as point-in-solid
 // tests, on one mesh: error, build time, query throughput and memory, at
 // equal resolution and at equal memory budgets (the table of docs/voxel.md,
 // `vds compare MESH`).
@@ -35,13 +35,15 @@
 #include <glm/vec3.hpp>
 
 #include <vds/gl_context.h>
-#include <vds/eval/image.h>
 #include <vds/mesh.h>
 
 namespace vds::eval {
 
+/// The largest resolution a comparison builds, at equal resolution or within a budget.
+constexpr std::uint32_t kMaxCompareResolution = 4096;
+
 struct CompareOptions {
-    std::vector<std::uint32_t> resolutions = {32, 64, 128};
+    std::vector<std::uint32_t> resolutions = {32, 64, 128}; ///< each 1..kMaxCompareResolution
     /// Memory budgets in bytes; empty: the solid voxel grid's size at each resolution.
     std::vector<std::size_t> memoryBudgets;
     std::size_t uniformPoints = 100000;
@@ -96,9 +98,11 @@ struct CompareResult {
 /// the builders throw.
 CompareResult compare(MeshView mesh, const CompareOptions& options = {}, GlContext* gl = nullptr);
 
-/// A chart of error rate (all points, %) against memory (bytes, log scale):
-/// one colour per method, resolution series as solid lines with dots, memory
-/// series as dots with a ring, axis ticks with values, a legend.
-Image errorChart(const CompareResult& result, std::uint32_t width = 900, std::uint32_t height = 560);
+/// A chart of error rate (all points, %) against memory (bytes, log scale)
+/// as a standalone SVG document of `width` x `height` pixels (at least
+/// 400 x 300): one colour per method, resolution series as lines with dots
+/// (one `<polyline>` each), memory series as rings, axis ticks with values,
+/// a legend naming every method, and a tooltip (`<title>`) on each dot.
+std::string errorChart(const CompareResult& result, std::uint32_t width = 900, std::uint32_t height = 560);
 
 } // namespace vds::eval

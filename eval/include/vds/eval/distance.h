@@ -13,7 +13,7 @@
 
 namespace vds::eval {
 
-/// Used by `vds eval` and `vds::voxel::compare` to measure how far wrong
+/// Used by `vds eval` and `vds::eval::compare` to measure how far wrong
 /// answers lie from the surface.
 class SurfaceDistance {
 public:

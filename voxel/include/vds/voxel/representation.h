@@ -21,6 +21,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <vds/enum_names.h>
 #include <vds/gl_context.h>
 #include <vds/mesh.h>
 #include <vds/voxel/grid.h>
@@ -30,10 +31,22 @@ namespace vds::voxel {
 
 enum class Representation : std::uint8_t { Slicemap, SlicemapLocal, Solid, SolidCompute };
 
-/// Parses "slicemap", "slicemap-local", "solid", "solid-compute"; throws
-/// `InvalidArgument` naming the accepted names.
+} // namespace vds::voxel
+
+template <> struct vds::EnumNames<vds::voxel::Representation> {
+    static constexpr const char* kind = "voxel representation";
+    static constexpr EnumName<voxel::Representation> table[] = {{"slicemap", voxel::Representation::Slicemap},
+                                                                {"slicemap-local", voxel::Representation::SlicemapLocal},
+                                                                {"solid", voxel::Representation::Solid},
+                                                                {"solid-compute", voxel::Representation::SolidCompute}};
+};
+
+namespace vds::voxel {
+
+/// Parses "slicemap", "slicemap-local", "solid", "solid-compute" (`parseEnum`);
+/// throws `InvalidArgument` naming the accepted names.
 Representation parseRepresentation(const std::string& name);
-/// The name `parseRepresentation` accepts.
+/// The name `parseRepresentation` accepts (`enumName`).
 const char* toString(Representation r);
 
 struct ModelOptions {

@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include <vds/enum_names.h>
 #include <vds/gl_context.h>
 #include <vds/mesh.h>
 #include <vds/voxel/grid.h>
@@ -49,7 +50,17 @@ enum class Slicing : std::uint8_t {
     Local,   ///< slices divide each column's [near, far] fragment range
 };
 
-/// Parses "uniform" / "local"; throws `InvalidArgument`.
+} // namespace vds::voxel
+
+template <> struct vds::EnumNames<vds::voxel::Slicing> {
+    static constexpr const char* kind = "slicing";
+    static constexpr EnumName<voxel::Slicing> table[] = {{"uniform", voxel::Slicing::Uniform},
+                                                         {"local", voxel::Slicing::Local}};
+};
+
+namespace vds::voxel {
+
+/// Parses "uniform" / "local" (`parseEnum`); throws `InvalidArgument`.
 Slicing parseSlicing(const std::string& s);
 const char* toString(Slicing s);
 

@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <string>
 
+#include <vds/enum_names.h>
 #include <vds/gl_context.h>
 #include <vds/mesh.h>
 #include <vds/voxel/grid.h>
@@ -43,7 +44,17 @@ enum class SolidMethod : std::uint8_t {
     Compute, ///< per-triangle first-voxel flip + prefix XOR (section 2.5)
 };
 
-/// Parses "raster" / "compute"; throws `InvalidArgument`.
+} // namespace vds::voxel
+
+template <> struct vds::EnumNames<vds::voxel::SolidMethod> {
+    static constexpr const char* kind = "solid voxelization method";
+    static constexpr EnumName<voxel::SolidMethod> table[] = {{"raster", voxel::SolidMethod::Raster},
+                                                             {"compute", voxel::SolidMethod::Compute}};
+};
+
+namespace vds::voxel {
+
+/// Parses "raster" / "compute" (`parseEnum`); throws `InvalidArgument`.
 SolidMethod parseSolidMethod(const std::string& s);
 const char* toString(SolidMethod m);
 
