@@ -201,7 +201,7 @@ TEST_F(Cli, HelpShowsDefaultsAndChoices) {
         EXPECT_NE(bake.find(shown), std::string::npos) << shown << " in\n" << bake;
     const std::string eval = vds("eval --help").output;
     for (const char* shown :
-         {"--resolutions N,N=[256,512,1024,2048]", "--points N=1000000", "--rule parity|winding=parity", "--seed N=1"})
+         {"--resolutions N,N=[256,512,1024,2048]", "--points N=1000000", "--rule parity|winding|generalized-winding=parity", "--seed N=1"})
         EXPECT_NE(eval.find(shown), std::string::npos) << shown << " in\n" << eval;
     const std::string compare = vds("compare --help").output;
     for (const char* shown :
