@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,6 +17,12 @@
 #include <gtest/gtest.h>
 
 #include <vds/eval/image.h>
+#include <vds/exact.h>
+#include <vds/mesh_io.h>
+#include <vds/npy.h>
+#include <vds/occupancy.h>
+#include <vds/vds_file.h>
+
 #include "solids.h"
 
 namespace {
@@ -356,6 +363,94 @@ TEST_F(Cli, ClipSampleRemovesExactlyThePixelsInsideTheSprite) {
     EXPECT_GT(clipped, 5000u);
     EXPECT_GT(kept, 5000u);
     EXPECT_EQ(wrong, 0u);
+}
+
+} // namespace
+
+namespace {
+
+// `vds voxelize` from a mesh writes the exact classifier's answers at the
+// cell centres; from a sprite, the sprite's; --packed the same bits.
+TEST_F(Cli, VoxelizeWritesExactGridsAsNpy) {
+    writeObj(dir / "torus.obj", vds::solids::torus({0.1f, 0.2f, 0.3f}, 1.0f, 0.35f, 40).mesh);
+    const vds::TriangleMesh mesh = vds::loadMesh(p("torus.obj"));
+    Result r = vds("voxelize " + p("torus.obj") + " --dims-xyz 23 19 11 -o " + p("grid.npy") + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const vds::NpyArray grid = vds::readNpy(p("grid.npy"));
+    EXPECT_EQ(grid.descr, "|b1");
+    ASSERT_EQ(grid.shape, (std::vector<std::uint64_t>{23, 19, 11}));
+    const vds::OccupancyGrid cells{vds::meshBounds(mesh), {23, 19, 11}};
+    const vds::ExactClassifier exact(mesh);
+    std::size_t wrong = 0, inside = 0;
+    for (std::uint32_t i = 0; i < 23; ++i)
+        for (std::uint32_t j = 0; j < 19; ++j)
+            for (std::uint32_t k = 0; k < 11; ++k) {
+                const bool expected = exact.contains(cells.cellCentre(i, j, k));
+                wrong += (grid.data[cells.index(i, j, k)] != 0) != expected;
+                inside += expected;
+            }
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_GT(inside, 100u);
+
+    r = vds("voxelize " + p("torus.obj") + " --dims-xyz 23 19 11 --packed -o " + p("bits.npy") + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const vds::NpyArray bits = vds::readNpy(p("bits.npy"));
+    std::vector<std::uint8_t> expectedBits((grid.data.size() + 7) / 8);
+    vds::packLabels(reinterpret_cast<const std::uint8_t*>(grid.data.data()), grid.data.size(), expectedBits.data());
+    EXPECT_EQ(std::vector<std::uint8_t>(bits.data.begin(), bits.data.end()), expectedBits);
+
+    ASSERT_EQ(vds("bake " + p("torus.obj") + " -o " + p("torus.vds") + " --method cpu --resolution 64 --quiet").code, 0);
+    r = vds("voxelize " + p("torus.vds") + " --dims 16 -o " + p("sprite.npy") + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const vds::Sprite sprite = vds::readSprite(p("torus.vds"));
+    const vds::NpyArray fromSprite = vds::readNpy(p("sprite.npy"));
+    const vds::OccupancyGrid g16{sprite.grid.box, {16, 16, 16}};
+    wrong = 0;
+    for (std::uint32_t i = 0; i < 16; ++i)
+        for (std::uint32_t j = 0; j < 16; ++j)
+            for (std::uint32_t k = 0; k < 16; ++k)
+                wrong += (fromSprite.data[g16.index(i, j, k)] != 0) != sprite.contains(g16.cellCentre(i, j, k));
+    EXPECT_EQ(wrong, 0u);
+
+    for (const char* bad : {"--dims 0", "--dims 8 --dims-xyz 1 2 3", "", "--dims-xyz 1 2", "--dims 99999"}) {
+        r = vds("voxelize " + p("torus.obj") + " " + bad + " -o " + p("bad.npy"));
+        EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
+    }
+    r = vds("voxelize " + p("missing.obj") + " --dims 4 -o " + p("bad.npy"));
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_FALSE(fs::exists(p("bad.npy")));
+}
+
+// Points from .npy, labels to .npy; --certified answers as --exact does.
+TEST_F(Cli, ClassifyReadsAndWritesNpyAndCertifiedEqualsExact) {
+    writeObj(dir / "shell.obj", vds::solids::shell({0, 0, 0}, 1.0f, 0.6f, 24).mesh);
+    std::vector<float> xyz;
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> u(-1.2f, 1.2f);
+    for (int k = 0; k < 9000; ++k) xyz.push_back(u(rng));
+    vds::writeNpy(p("points.npy"), "<f4", {3000, 3}, xyz.data(), xyz.size() * sizeof(float));
+    for (const char* rule : {"parity", "winding"}) {
+        Result r = vds(std::string("classify --exact --mesh ") + p("shell.obj") + " " + p("points.npy") + " -o " +
+                       p("exact.npy") + " --quiet --rule " + rule);
+        ASSERT_EQ(r.code, 0) << r.output;
+        r = vds(std::string("classify --certified --resolution 64 --mesh ") + p("shell.obj") + " " + p("points.npy") +
+                " -o " + p("certified.npy") + " --quiet --rule " + rule);
+        ASSERT_EQ(r.code, 0) << r.output;
+        const vds::NpyArray a = vds::readNpy(p("exact.npy")), b = vds::readNpy(p("certified.npy"));
+        EXPECT_EQ(a.shape, std::vector<std::uint64_t>{3000});
+        EXPECT_EQ(a.data, b.data) << rule;
+        EXPECT_GT(std::count(a.data.begin(), a.data.end(), 1), 100);
+    }
+    // An open mesh: refused by crossing rules, answered by the generalized winding number.
+    auto cup = vds::solids::sphere({0, 0, 0}, 1.0f, 16).mesh;
+    cup.triangles.resize(cup.triangles.size() - 8);
+    writeObj(dir / "cup.obj", cup);
+    Result r = vds("classify --exact --mesh " + p("cup.obj") + " " + p("points.npy") + " -o " + p("cup.npy"));
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("generalized-winding"), std::string::npos) << r.output;
+    r = vds("classify --exact --rule generalized-winding --mesh " + p("cup.obj") + " " + p("points.npy") + " -o " +
+            p("cup.npy") + " --quiet");
+    EXPECT_EQ(r.code, 0) << r.output;
 }
 
 } // namespace

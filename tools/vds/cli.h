@@ -95,5 +95,6 @@ void addClassify(CLI::App& app);
 void addInfo(CLI::App& app);
 void addEval(CLI::App& app);
 void addCompare(CLI::App& app);
+void addVoxelize(CLI::App& app);
 
 } // namespace cli

@@ -3,10 +3,12 @@
 #include <vector>
 
 #include <vds/bake.h>
+#include <vds/certified.h>
 #include <vds/exact.h>
 #include <vds/gl_context.h>
 #include <vds/gpu_sprite.h>
 #include <vds/mesh_io.h>
+#include <vds/npy.h>
 #include <vds/vds_file.h>
 #include <vds/voxel/representation.h>
 
@@ -25,11 +27,26 @@ struct ClassifyArgs {
     std::string output, mesh, with = "vds";
     std::uint32_t resolution = 0; // 0: not given (CLI11 refuses 0 given)
     vds::ClassifyOptions options;
-    bool gpu = false, exact = false, allowOpen = false, quiet = false;
+    bool gpu = false, exact = false, certified = false, allowOpen = false, quiet = false;
     const CLI::Option* withGiven = nullptr;
 };
 
+bool endsWith(const std::string& s, const std::string& tail) {
+    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// A .npy file (N x 3 float32 or float64) or what vds::loadPoints reads.
+std::vector<glm::vec3> readPoints(const std::string& path) {
+    if (endsWith(path, ".npy")) return vds::npyPoints(vds::readNpy(path), path);
+    return vds::loadPoints(path);
+}
+
+// Labels as a boolean .npy array, or one "0"/"1" line per point.
 void writeLabels(const std::string& path, const std::vector<std::uint8_t>& labels) {
+    if (endsWith(path, ".npy")) {
+        vds::writeNpy(path, "|b1", {labels.size()}, labels.data(), labels.size());
+        return;
+    }
     std::string text(labels.size() * 2, '\n');
     for (std::size_t i = 0; i < labels.size(); ++i) text[2 * i] = labels[i] ? '1' : '0';
     writeTextFile(path, text);
@@ -41,10 +58,12 @@ void checkCombination(ClassifyArgs& a) {
     if (a.files.size() != (fromMesh ? 1u : 2u))
         throw CLI::ValidationError(fromMesh ? "expected one points file (with --mesh)"
                                             : "expected a sprite file and a points file");
-    if (fromMesh && !a.exact && !a.withGiven->count())
-        throw CLI::ValidationError("--mesh needs --exact or --with REPRESENTATION");
-    if (a.with != "vds" && a.options.rule == vds::Rule::Winding)
-        throw CLI::ValidationError("--rule winding needs a sprite (--with vds)");
+    if (fromMesh && !a.exact && !a.certified && !a.withGiven->count())
+        throw CLI::ValidationError("--mesh needs --exact, --certified or --with REPRESENTATION");
+    if (a.exact && a.certified) throw CLI::ValidationError("--exact and --certified exclude each other");
+    if (!a.exact && !a.certified && a.with != "vds" && a.options.rule != vds::Rule::Parity)
+        throw CLI::ValidationError(std::string("--rule ") + vds::toString(a.options.rule) +
+                                   " needs a sprite (--with vds), --exact or --certified");
     if (a.resolution == 0) a.resolution = a.with == "vds" ? vds::BakeOptions{}.resolution : kVoxelResolution;
 }
 
@@ -52,7 +71,7 @@ void classify(ClassifyArgs& a) {
     checkCombination(a);
     const auto progress = progressPrinter(a.quiet);
     const std::string& pointsPath = a.files.back();
-    const std::vector<glm::vec3> points = vds::loadPoints(pointsPath);
+    const std::vector<glm::vec3> points = readPoints(pointsPath);
     progress("read " + std::to_string(points.size()) + " points from " + pointsPath);
     std::vector<std::uint8_t> labels(points.size());
     // Only the classification is timed; loading, baking and building are not.
@@ -62,20 +81,35 @@ void classify(ClassifyArgs& a) {
     vds::TriangleMesh mesh;
     if (!a.mesh.empty()) mesh = vds::loadMesh(a.mesh);
 
-    if (a.exact) {
+    if (a.exact || a.certified) {
         const vds::MeshReport report = vds::validateMesh(mesh);
         vds::requireUsable(report, a.mesh);
-        if (!report.closed()) {
+        // The generalized winding number answers for open meshes too.
+        if (!report.closed() && a.options.rule != vds::Rule::GeneralizedWinding) {
             if (!a.allowOpen)
                 throw vds::InvalidMesh(a.mesh + " is " + report.summary() +
-                                       ": inside is not defined (--allow-open classifies by crossing count anyway)");
+                                       ": inside is not defined by crossings (--rule generalized-winding answers; "
+                                       "--allow-open classifies by crossing count anyway)");
             std::fprintf(stderr, "vds classify: warning: %s is %s; inside is not well defined\n", a.mesh.c_str(),
                          report.summary().c_str());
         }
-        const vds::ExactClassifier exact(mesh);
-        startClock();
-        exact.classify(points.data(), points.size(), labels.data(), a.options);
-        method = "exact";
+        if (a.certified) {
+            vds::CertifiedOptions certifiedOptions;
+            certifiedOptions.resolution = a.resolution;
+            certifiedOptions.threads = a.options.threads;
+            const vds::CertifiedClassifier certified(mesh, certifiedOptions);
+            progress("built the certified bands at " + std::to_string(a.resolution));
+            startClock();
+            const vds::CertifiedStats stats =
+                certified.classify(points.data(), points.size(), labels.data(), a.options);
+            method = "certified (" + std::to_string(stats.exact) + " of " + std::to_string(points.size()) +
+                     " points by the exact path)";
+        } else {
+            const vds::ExactClassifier exact(mesh);
+            startClock();
+            exact.classify(points.data(), points.size(), labels.data(), a.options);
+            method = "exact";
+        }
     } else if (a.with != "vds") {
         vds::GlContext gl;
         vds::voxel::ModelOptions modelOptions;
@@ -132,10 +166,13 @@ void addClassify(CLI::App& app) {
         app, "classify", "label points 1 inside / 0 outside",
         "  vds classify SPRITE.vds POINTS -o LABELS.txt\n"
         "  vds classify --exact --mesh MESH POINTS -o LABELS.txt\n"
+        "  vds classify --certified --mesh MESH POINTS -o LABELS.npy\n"
         "  vds classify --mesh MESH --with REPRESENTATION POINTS -o LABELS.txt\n"
-        "Labels each point 1 (inside) or 0 (outside), one line per point, in the order given. POINTS\n"
-        "is a text file of lines 'x y z' in the mesh's coordinates ('#' comments and blank lines\n"
-        "skipped) or a PLY file's vertices. Points outside the sprite's box are outside. --with builds\n"
+        "Labels each point 1 (inside) or 0 (outside), one line per point, in the order given (or a\n"
+        "boolean .npy array when LABELS ends in .npy). POINTS is a .npy array of N x 3 float32 or\n"
+        "float64, a text file of lines 'x y z' in the mesh's coordinates ('#' comments and blank lines\n"
+        "skipped) or a PLY file's vertices. Points outside the sprite's box are outside. --certified\n"
+        "gives the exact classifier's answers at close to a sprite's speed (docs/accuracy.md). --with builds\n"
         "the representation from the mesh in memory first: vds (a sprite), slicemap, slicemap-local\n"
         "(front/back slicemap pair, uniform or local slicing), solid, solid-compute (solid voxels by\n"
         "rasterization or in compute); see docs/voxel.md.",
@@ -146,18 +183,21 @@ void addClassify(CLI::App& app) {
     c->add_option("-o,--output", a->output, "output labels (written whole or not at all)")
         ->required()
         ->type_name("FILE");
-    addEnum(*c, "--rule", a->options.rule, "crossings rule: the paper's parity or non-zero winding");
+    addEnum(*c, "--rule", a->options.rule,
+            "the paper's parity, non-zero winding, or the generalized winding number (open meshes; --exact)");
     c->add_flag("--gpu", a->gpu, "classify with the GL compute shader instead of the CPU");
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
     CLI::Option* mesh =
         c->add_option("--mesh", a->mesh, "classify against a mesh: --exact, or --with")->type_name("MESH");
     CLI::Option* exact = c->add_flag("--exact", a->exact, "exact classification on the mesh's triangles")->needs(mesh);
+    CLI::Option* certified =
+        c->add_flag("--certified", a->certified, "exact answers, most from certified bands at --resolution")->needs(mesh);
     c->add_flag("--allow-open", a->allowOpen, "let --exact classify an open mesh by crossing count");
     std::vector<std::string> with = vds::enumNames<vds::voxel::Representation>();
     with.insert(with.begin(), "vds");
     a->withGiven =
-        addChoice(*c, "--with", a->with, with, "build this from the mesh first")->needs(mesh)->excludes(exact);
-    addResolution(*c, a->resolution, "texels or voxels on the box's longest side for --with")
+        addChoice(*c, "--with", a->with, with, "build this from the mesh first")->needs(mesh)->excludes(exact)->excludes(certified);
+    addResolution(*c, a->resolution, "texels or voxels on the box's longest side for --with and --certified")
         ->default_str(std::to_string(vds::BakeOptions{}.resolution) + " for vds, " + std::to_string(kVoxelResolution) +
                       " for the others");
 }

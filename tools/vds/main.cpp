@@ -88,6 +88,7 @@ int main(int argc, char** argv) {
     cli::addInfo(app);
     cli::addEval(app);
     cli::addCompare(app);
+    cli::addVoxelize(app);
     app.add_subcommand("help", "print this help")->callback([&app] {
         std::fputs(app.get_formatter()->make_help(&app, "vds", CLI::AppFormatMode::Normal).c_str(), stdout);
     });
