@@ -19,7 +19,7 @@ bool hasClipControl(const GlContext& gl) {
 // Runs a GL baker on `gl`, or on a private context when `gl` is null; the
 // calling thread's current context is current again on return.
 template <auto Baker>
-void bakeOnContext(MeshView mesh, const SpriteGrid& grid, const BakeOptions& options, GlContext* gl,
+void bakeOnContext(MeshView mesh, const SpriteGrid& grid, const BakeOptions& options, const GlContext* gl,
                    std::vector<std::uint32_t>& offsets, std::vector<float>& crossings) {
     const CurrentContext restore;
     std::optional<GlContext> own;
