@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
         std::puts("| mesh | w x h x d | VDS CPU 1 thread | VDS CPU 2 threads | VDS GL compute | exact, 2 threads | "
                   "VDS CPU 2 thr / exact | GL / exact | CPU == GL | VDS differs from exact |");
         std::puts("|---|---|---:|---:|---:|---:|---:|---:|---|---:|");
-        const vds::GpuClassifier classifier(gl);
+        vds::GpuClassifier classifier(gl);
         std::vector<glm::vec3> points(pointCount);
         std::vector<std::uint8_t> a(pointCount), b(pointCount), c(pointCount), e(pointCount);
         for (const auto& mesh : meshes) {

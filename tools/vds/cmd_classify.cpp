@@ -142,7 +142,7 @@ int classify(int argc, char** argv) {
         if (args.has("--gpu")) {
             vds::GlContext gl;
             const vds::GpuSprite gpu(sprite);
-            const vds::GpuClassifier classifier(gl);
+            vds::GpuClassifier classifier(gl);
             startClock();
             classifier.classify(gpu, points.data(), points.size(), labels.data(), options.rule);
             method = "GPU (" + gl.info().renderer + ")";
