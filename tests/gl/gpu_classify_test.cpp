@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <vds/bake.h>
+#include <vds/gpu_bake.h>
 #include <vds/gpu_sprite.h>
 #include <vds/shader.h>
 #include "solids.h"
@@ -123,6 +124,31 @@ TEST_F(GpuClassifyTest, ResidentBuffersMatchCppOnEveryPoint) {
             }
         }
     }
+}
+
+// The renderer's path: bake into GL, classify points already in GL.
+TEST_F(GpuClassifyTest, SpriteBakedOnTheGpuClassifiesLikeTheHostSprite) {
+    const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.55f, 64);
+    BakeOptions o;
+    o.resolution = 128;
+    const Sprite host = bake(shell.mesh, o, &gl());
+    const GpuBake baked = bakeToGpu(shell.mesh, o, gl());
+    const auto points = test::randomPoints(host.grid.box, 100001, 0.1f, 5);
+    Buffer pointBuffer = Buffer::create(), labelBuffer = Buffer::create();
+    glNamedBufferStorage(pointBuffer.id(), GLsizeiptr(points.size() * 12), points.data(), 0);
+    glNamedBufferStorage(labelBuffer.id(), GLsizeiptr((points.size() + 3) / 4 * 4), nullptr, 0);
+    GpuClassifier classifier;
+    classifier.classify(baked.sprite, pointBuffer.id(), labelBuffer.id(), points.size());
+    std::vector<std::uint8_t> labels((points.size() + 3) / 4 * 4), cpu(points.size());
+    glGetNamedBufferSubData(labelBuffer.id(), 0, GLsizeiptr(labels.size()), labels.data());
+    classify(host, points.data(), points.size(), cpu.data());
+    std::size_t differ = 0, inside = 0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        differ += cpu[k] != labels[k];
+        inside += cpu[k];
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_GT(inside, points.size() / 10);
 }
 
 // The host-array call in batches of every size, its staging buffers kept and
