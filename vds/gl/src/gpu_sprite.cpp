@@ -171,14 +171,16 @@ GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
 
 void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr pointsOffset, GLuint labels,
                              GLintptr labelsOffset, std::size_t count, Rule rule) {
-    const bool columns = sprite.hasColumns() && (std::uint64_t(sprite.size().x) * sprite.size().y + 1) * 4 <= maxBlock_ &&
-                         sprite.crossingCount() * 4 <= maxBlock_;
+    const std::uint64_t offsetBytes = (std::uint64_t(sprite.size().x) * sprite.size().y + 1) * 4;
+    const std::uint64_t crossingBytes = std::max<std::uint64_t>(sprite.crossingCount(), 1) * 4;
+    const bool columns = sprite.hasColumns() && offsetBytes <= maxBlock_ && crossingBytes <= maxBlock_;
     if (!columns && !sprite.hasTexture()) throw InvalidArgument("GpuClassifier: the sprite holds nothing to classify with");
     const Program& program = columns ? columns_ : texture_;
     glUseProgram(program.id());
     if (columns) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, sprite.offsets().id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, sprite.crossings().id());
+        // The ranges the shader reads: a baked sprite's buffers may be padded.
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 3, sprite.offsets().id(), 0, GLsizeiptr(offsetBytes));
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 4, sprite.crossings().id(), 0, GLsizeiptr(crossingBytes));
         glUniform2i(glGetUniformLocation(program.id(), "u_size"), GLint(sprite.size().x), GLint(sprite.size().y));
         glUniformMatrix3fv(glGetUniformLocation(program.id(), "u_placement.matrix"), 1, GL_FALSE, &sprite.matrix()[0][0]);
         glUniform3fv(glGetUniformLocation(program.id(), "u_placement.position"), 1, &sprite.position()[0]);
