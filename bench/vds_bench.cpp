@@ -131,22 +131,20 @@ std::string phaseCell(const vds::BakeTimings& t, vds::BakePhase p) {
     return s;
 }
 
-// GPU time of the GL commands `f` issues (GL_TIME_ELAPSED); < 0 where the
+// GPU time of the GL commands `f` sends (GL_TIME_ELAPSED); < 0 where the
 // driver's timer gives more than the wall time or less than a thousandth of
 // it (llvmpipe: about 0 for compute).
 double gpuSeconds(const std::function<void()>& f, double* wall) {
-    GLuint query = 0;
-    glCreateQueries(GL_TIME_ELAPSED, 1, &query);
+    const vds::Query query = vds::Query::create(GL_TIME_ELAPSED);
     glFinish();
     const auto t0 = std::chrono::steady_clock::now();
-    glBeginQuery(GL_TIME_ELAPSED, query);
+    glBeginQuery(GL_TIME_ELAPSED, query.id());
     f();
     glEndQuery(GL_TIME_ELAPSED);
     glFinish();
     *wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     GLuint64 ns = 0;
-    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
-    glDeleteQueries(1, &query);
+    glGetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &ns);
     vds::checkGl("timing a dispatch");
     const double s = 1e-9 * double(ns);
     return s < 1e-3 * *wall || s > *wall ? -1.0 : s;
