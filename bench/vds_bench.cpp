@@ -1,35 +1,47 @@
-// Benchmark: prints figures, asserts nothing about speed.
+// Benchmark: prints figures, asserts nothing about speed. It does check that
+// the answers agree (fragment lists and peeling bit for bit; every GPU
+// classification point for point with the CPU's) and says so in the tables.
 //
-//   vds_bench [--resolutions 512,1024,2048] [--points N] [--no-cpu-bake] [MESH ...]
+//   vds_bench [--quick | --full] [options] [MESH ...]      (vds_bench --help)
 //
-// 1. Bake time, depth peeling vs fragment lists (and the exact CPU baker), at
-//    each resolution, on the meshes given (default: ../shared/meshes/*.obj)
-//    and a generated sphere of about 1M triangles; the two GL bakers' layers
-//    are compared bit for bit on every bake.
-// 2. Classification throughput for N uniform random points (default 10M) in
-//    each mesh's padded box, sprites at 1024: CPU with 1 and 2 threads, GL
-//    compute (upload, dispatch and read-back included), and the exact
-//    classifier on the same points.
-// 3. File size of the .vds (OpenEXR deep, ZIPS) vs the dense w*h*d float texture.
+// 1. Bake time: the exact CPU baker, fragment lists (to the host, and
+//    straight into a GpuSprite) and depth peeling, in one run, with their
+//    ratios; then the fragment-list bake phase by phase (wall and GPU time).
+//    Meshes: the bundled ones (../shared/meshes, samples/data), a generated
+//    torus knot of 230,400 triangles and a UV sphere of 1,002,000.
+// 2. Classification throughput in G points/s: the CPU on 1 and on all
+//    threads; the GPU from host arrays to host arrays (upload, dispatch and
+//    read-back included); the GPU on points already in a GL buffer (random,
+//    and column-coherent: 32 points a column, columns in raster order).
+// 3. File size of the .vds (OpenEXR deep) against the dense float texture.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <functional>
 #include <random>
-#include <algorithm>
-#include <sstream>
-#include <thread>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include <sys/resource.h>
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <CLI/CLI.hpp>
+
 #include <vds/bake.h>
+#include <vds/error.h>
 #include <vds/exact.h>
 #include <vds/gl_context.h>
+#include <vds/gpu_bake.h>
 #include <vds/gpu_sprite.h>
 #include <vds/mesh_io.h>
-#include "solids.h"
 #include <vds/vds_file.h>
+#include "solids.h"
 
 namespace {
 
@@ -41,141 +53,457 @@ double seconds(const std::function<void()>& f) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// User + system time of every thread of this process (llvmpipe's included).
+double processSeconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// Best (least) wall time of `runs` runs; `cpu`, if given, receives the least
+// process CPU time of them, which other programs on a shared machine disturb less.
+double best(unsigned runs, const std::function<void()>& f, double* cpu = nullptr) {
+    double t = 1e300, c = 1e300;
+    for (unsigned k = 0; k < std::max(1u, runs); ++k) {
+        const double c0 = processSeconds();
+        t = std::min(t, seconds(f));
+        c = std::min(c, processSeconds() - c0);
+    }
+    if (cpu) *cpu = c;
+    return t;
+}
+
 bool identical(const vds::Sprite& a, const vds::Sprite& b) {
     return a.offsets == b.offsets && a.crossings.size() == b.crossings.size() &&
            std::memcmp(a.crossings.data(), b.crossings.data(), a.crossings.size() * sizeof(float)) == 0;
 }
 
-std::vector<std::uint32_t> parseList(const std::string& s) {
-    std::vector<std::uint32_t> v;
-    std::stringstream in(s);
-    std::string item;
-    while (std::getline(in, item, ',')) v.push_back(std::uint32_t(std::stoul(item)));
-    return v;
+struct BenchMesh {
+    vds::TriangleMesh mesh;
+    bool bundled = false;                   ///< a file, not generated
+    std::vector<std::uint32_t> resolutions; ///< of the bake table
+};
+
+struct Settings {
+    std::string mode = "default";
+    std::vector<std::uint32_t> resolutions{1024};
+    std::vector<std::uint32_t> knotResolutions{1024};
+    std::vector<std::uint32_t> sphereResolutions{2048};
+    std::size_t points = 10000000;
+    std::size_t exactPoints = 1000000;
+    std::uint32_t classifyResolution = 2048;
+    unsigned bakeRuns = 2;
+    unsigned classifyRuns = 2;
+    bool cpuBake = true, peel = true, bakeTable = true, classifyTable = true, sizes = true;
+    std::string meshDir;
+    std::vector<std::string> meshFiles;
+};
+
+std::string sizeText(std::uint32_t w, std::uint32_t h, std::uint32_t d) {
+    return std::to_string(w) + "x" + std::to_string(h) + "x" + std::to_string(d);
+}
+
+std::string ms(double s) {
+    char b[32];
+    std::snprintf(b, sizeof b, s >= 10.0 ? "%.0f" : s >= 0.1 ? "%.1f" : "%.2f", 1e3 * s);
+    return b;
+}
+
+std::string ratio(double a, double b) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.2fx", a / b);
+    return t;
+}
+
+std::string rate(double points, double s) { // G points/s
+    char b[32];
+    std::snprintf(b, sizeof b, "%.3g", points / s * 1e-9);
+    return b;
+}
+
+// A phase cell: "wall" or "wall / GPU" in ms, "-" when the phase did not run.
+std::string phaseCell(const vds::BakeTimings& t, vds::BakePhase p) {
+    const vds::BakeTimings::Phase& ph = t[p];
+    if (ph.runs == 0) return "-";
+    std::string s = ms(ph.wallSeconds);
+    if (ph.gpuSeconds >= 0.0) s += " / " + ms(ph.gpuSeconds);
+    if (ph.runs > 1) s += " (x" + std::to_string(ph.runs) + ")";
+    return s;
+}
+
+// GPU time of the GL commands `f` sends (GL_TIME_ELAPSED); < 0 where the
+// driver's timer gives more than the wall time or less than a thousandth of
+// it (llvmpipe: about 0 for compute).
+double gpuSeconds(const std::function<void()>& f, double* wall) {
+    const vds::Query query = vds::Query::create(GL_TIME_ELAPSED);
+    glFinish();
+    const auto t0 = std::chrono::steady_clock::now();
+    glBeginQuery(GL_TIME_ELAPSED, query.id());
+    f();
+    glEndQuery(GL_TIME_ELAPSED);
+    glFinish();
+    *wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &ns);
+    vds::checkGl("timing a dispatch");
+    const double s = 1e-9 * double(ns);
+    return s < 1e-3 * *wall || s > *wall ? -1.0 : s;
+}
+
+std::vector<BenchMesh> loadMeshes(const Settings& set) {
+    std::vector<BenchMesh> meshes;
+    std::vector<std::string> files = set.meshFiles;
+    if (files.empty()) {
+        std::vector<std::string> dirs;
+        if (!set.meshDir.empty()) dirs.push_back(set.meshDir);
+        for (const char* d : {VDS_SHARED_MESHES, "../shared/meshes", "../../shared/meshes", "../../../shared/meshes"})
+            dirs.emplace_back(d);
+        for (const auto& dir : dirs)
+            if (fs::is_directory(dir)) {
+                for (const auto& e : fs::directory_iterator(dir))
+                    if (e.path().extension() == ".obj") files.push_back(e.path().string());
+                break;
+            }
+        std::sort(files.begin(), files.end());
+        // The sample's mesh, unless the same file (name and size) is there already.
+        const fs::path sample = fs::path(VDS_SOURCE_DIR) / "samples" / "data" / "spot.obj";
+        if (fs::exists(sample)) {
+            bool seen = false;
+            for (const auto& f : files)
+                seen |= fs::path(f).filename() == sample.filename() && fs::file_size(f) == fs::file_size(sample);
+            if (!seen) files.push_back(sample.string());
+        }
+    }
+    for (const auto& f : files) {
+        BenchMesh m;
+        m.mesh = vds::loadMesh(f);
+        m.bundled = true;
+        m.resolutions = set.resolutions;
+        meshes.push_back(std::move(m));
+    }
+    if (set.meshFiles.empty()) {
+        BenchMesh knot;
+        knot.mesh = vds::solids::torusKnot({0, 0, 0}, 1.0f, 2, 3, 0.15f, 1800, 64).mesh; // 230,400 triangles
+        knot.mesh.name = "trefoil knot (generated)";
+        knot.resolutions = set.knotResolutions;
+        meshes.push_back(std::move(knot));
+        BenchMesh sphere;
+        sphere.mesh = vds::solids::sphere({0, 0, 0}, 1.0f, 1002).mesh; // 1,002,000 triangles
+        sphere.mesh.name = "UV sphere (generated)";
+        sphere.resolutions = set.sphereResolutions;
+        meshes.push_back(std::move(sphere));
+    }
+    return meshes;
+}
+
+struct SizeRow {
+    std::string mesh;
+    std::uint32_t res;
+    std::size_t file, dense, crossings;
+};
+
+void bakeTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMesh>& meshes,
+               std::vector<SizeRow>& sizes) {
+    std::printf("## Bake time: CPU vs fragment lists vs depth peeling (ms, best of %u after an untimed bake; "
+                "peeling: one run)\n\n",
+                set.bakeRuns);
+    std::puts("`cpu`: exact ray casting on every core. `lists`: fragment lists, the sprite read back to the host.");
+    std::puts("`to GPU`: fragment lists into a GpuSprite (3D texture + columns), nothing read back (`bakeToGpu`).");
+    std::puts("Ratios above 1 mean lists are faster. `CPU time`: the same ratio in process CPU time (every thread,");
+    std::puts("llvmpipe's too), which other programs on a shared machine disturb less than wall time.");
+    std::puts("`lists == peel`: the two GL bakers' layers, bit for bit.\n");
+    std::puts("| mesh | triangles | res | w x h x d | cpu | lists | to GPU | peel | cpu / lists | (CPU time) | "
+              "peel / lists | lists == peel |");
+    std::puts("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|");
+    struct PhaseRow {
+        std::string mesh;
+        std::uint32_t res;
+        vds::BakeTimings host, gpu;
+    };
+    std::vector<PhaseRow> phases;
+    std::vector<double> bundledRatios, bundledCpuRatios;
+    for (const auto& m : meshes)
+        for (std::uint32_t res : m.resolutions) {
+            vds::BakeOptions o;
+            o.resolution = res;
+            o.sourceName = m.mesh.name;
+            vds::Sprite lists, peel, cpu;
+            // Untimed first bakes: the GL bakers' scratch space grows to this
+            // size once, and the allocator warms up for the CPU baker.
+            o.method = vds::BakeMethod::Lists;
+            vds::bake(m.mesh, o, &gl);
+            if (set.cpuBake) {
+                o.method = vds::BakeMethod::Cpu;
+                vds::bake(m.mesh, o);
+                o.method = vds::BakeMethod::Lists;
+            }
+            double cLists = 0, cCpu = 0;
+            const double tLists = best(set.bakeRuns, [&] { lists = vds::bake(m.mesh, o, &gl); }, &cLists);
+            const double tGpu = best(set.bakeRuns, [&] {
+                const vds::GpuBake b = vds::bakeToGpu(m.mesh, o, gl);
+                glFinish();
+            });
+            double tPeel = -1, tCpu = -1;
+            if (set.peel) {
+                o.method = vds::BakeMethod::Peel;
+                tPeel = seconds([&] { peel = vds::bake(m.mesh, o, &gl); });
+            }
+            if (set.cpuBake) {
+                o.method = vds::BakeMethod::Cpu;
+                tCpu = best(set.bakeRuns, [&] { cpu = vds::bake(m.mesh, o); }, &cCpu);
+                if (m.bundled) {
+                    bundledRatios.push_back(tCpu / tLists);
+                    bundledCpuRatios.push_back(cCpu / cLists);
+                }
+            }
+            PhaseRow row{m.mesh.name, res, {}, {}};
+            o.method = vds::BakeMethod::Lists;
+            o.timings = &row.host;
+            vds::bake(m.mesh, o, &gl);
+            o.timings = &row.gpu;
+            vds::bakeToGpu(m.mesh, o, gl);
+            phases.push_back(row);
+            std::printf("| %s | %zu | %u | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", m.mesh.name.c_str(),
+                        m.mesh.triangles.size(), res, sizeText(lists.width(), lists.height(), lists.depthComplexity).c_str(),
+                        tCpu < 0 ? "-" : ms(tCpu).c_str(), ms(tLists).c_str(), ms(tGpu).c_str(),
+                        tPeel < 0 ? "-" : ms(tPeel).c_str(), tCpu < 0 ? "-" : ratio(tCpu, tLists).c_str(),
+                        tCpu < 0 ? "-" : ratio(cCpu, cLists).c_str(), tPeel < 0 ? "-" : ratio(tPeel, tLists).c_str(),
+                        tPeel < 0 ? "-" : identical(peel, lists) ? "yes" : "NO");
+            std::fflush(stdout);
+            if (set.sizes && m.bundled) {
+                const fs::path file = fs::temp_directory_path() / "vds_bench.vds";
+                vds::writeSprite(lists, file.string());
+                sizes.push_back({m.mesh.name, res, std::size_t(fs::file_size(file)), lists.denseBytes(),
+                                 lists.crossings.size()});
+                fs::remove(file);
+            }
+        }
+    auto summary = [](const char* what, const std::vector<double>& ratios) {
+        double logSum = 0;
+        std::size_t faster = 0;
+        for (double r : ratios) {
+            logSum += std::log(r);
+            faster += r >= 1.0;
+        }
+        const auto [lo, hi] = std::minmax_element(ratios.begin(), ratios.end());
+        std::printf("- %s: lists as fast or faster on %zu of %zu; cpu / lists from %.2fx to %.2fx, geometric mean "
+                    "%.2fx.\n",
+                    what, faster, ratios.size(), *lo, *hi, std::exp(logSum / double(ratios.size())));
+    };
+    if (!bundledRatios.empty()) {
+        std::puts("\nFragment lists vs the CPU baker on the bundled meshes, this run:");
+        summary("wall time", bundledRatios);
+        summary("process CPU time", bundledCpuRatios);
+    }
+
+    std::puts("\n## Fragment-list bake, phase by phase (ms: wall / GPU timer; one measured run)\n");
+    std::puts("Measured runs wait for GL at the end of each phase, so the phases add up to about the total; GPU");
+    std::puts("times are GL timer queries (none where the driver's timer reports nothing usable, as llvmpipe's).");
+    std::puts("`host`: read back into a Sprite; `GPU`: bakeToGpu, the 3D texture filled in compute.\n");
+    std::puts("| mesh | res | to | validation | compile | upload | raster | scan | sort | texture | read-back | "
+              "assembly | total | GPU total | crossings | nodes | bands |");
+    std::puts("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    using P = vds::BakePhase;
+    for (const auto& r : phases)
+        for (const auto* t : {&r.host, &r.gpu})
+            std::printf("| %s | %u | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %llu | %llu | %u |\n",
+                        r.mesh.c_str(), r.res, t == &r.host ? "host" : "GPU", phaseCell(*t, P::Validation).c_str(),
+                        phaseCell(*t, P::Compile).c_str(), phaseCell(*t, P::Upload).c_str(),
+                        phaseCell(*t, P::Raster).c_str(), phaseCell(*t, P::Scan).c_str(), phaseCell(*t, P::Sort).c_str(),
+                        phaseCell(*t, P::TextureFill).c_str(), phaseCell(*t, P::ReadBack).c_str(),
+                        phaseCell(*t, P::Assembly).c_str(), ms(t->wallSeconds).c_str(),
+                        t->gpuSeconds() > 0 ? ms(t->gpuSeconds()).c_str() : "-", (unsigned long long)t->crossings,
+                        (unsigned long long)t->listNodes, t->bands);
+}
+
+// `n` points, 32 to a column: columns spread evenly over the image, in
+// raster order, each point at a random place in its texel and a random
+// depth in the box grown by 5% (the sprite as baked, not moved).
+void coherentPoints(const vds::SpriteGrid& grid, std::vector<glm::vec3>& points) {
+    constexpr std::size_t kPerColumn = 32;
+    const std::size_t columns = std::size_t(grid.width) * grid.height;
+    const std::size_t used = std::max<std::size_t>(1, (points.size() + kPerColumn - 1) / kPerColumn);
+    const double stride = double(columns) / double(used);
+    const glm::ivec3 axes = vds::axisPermutation(grid.axis);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> jitter(-0.49f, 0.49f), depth(-0.05f, 1.05f);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const std::size_t c = std::min(columns - 1, std::size_t(double(k / kPerColumn) * stride));
+        glm::vec3 p = grid.texelCentre(std::uint32_t(c % grid.width), std::uint32_t(c / grid.width), depth(rng));
+        p[axes.x] += jitter(rng) * grid.texelSize;
+        p[axes.y] += jitter(rng) * grid.texelSize;
+        points[k] = p;
+    }
+}
+
+void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMesh>& meshes) {
+    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t n = set.points;
+    std::printf("\n## Classification: %zu points a mesh, sprites at %u (G points/s)\n\n", n, set.classifyResolution);
+    std::puts("`random`: uniform in the mesh box grown by 10%. `coherent`: 32 points a column, columns in raster order.");
+    std::printf("CPU: vds::classify on 1 and %u threads. GPU host -> host: GpuClassifier from and to host arrays, the\n"
+                "transfers included. GPU resident: points and labels in GL buffers (wall time with glFinish, and the\n"
+                "GL timer), best of %u. `exact`: the exact classifier on the first %zu random points, %u threads;\n"
+                "`VDS vs exact`: share of those points where the sprite answers otherwise (all near the surface).\n\n",
+                threads, set.classifyRuns, std::min(n, set.exactPoints), threads);
+    std::printf("| mesh | w x h x d | CPU 1 thr | CPU %u thr | GPU host -> host | GPU resident random | "
+                "(GPU timer) | GPU resident coherent | (GPU timer) | exact | GPU == CPU | VDS vs exact |\n",
+                threads);
+    std::puts("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|");
+    vds::GpuClassifier classifier(gl);
+    std::vector<glm::vec3> unit(n), random(n), coherent(n);
+    {
+        std::mt19937 rng(42);
+        std::uniform_real_distribution<float> u(-0.1f, 1.1f);
+        for (auto& p : unit) p = glm::vec3(u(rng), u(rng), u(rng));
+    }
+    std::vector<std::uint8_t> cpu1(n), cpuN(n), hostToHost(n), resident(n), coherentCpu(n), coherentGpu(n);
+    const std::size_t labelBytes = (n + 3) / 4 * 4;
+    for (const auto& m : meshes) {
+        vds::BakeOptions o;
+        o.resolution = set.classifyResolution;
+        const vds::Sprite sprite = vds::bake(m.mesh, o, &gl);
+        const vds::GpuSprite gpu(sprite, vds::GpuSpriteParts::ColumnsOnly);
+        const vds::Box box = sprite.grid.box;
+        for (std::size_t k = 0; k < n; ++k) random[k] = box.lo + unit[k] * (box.hi - box.lo);
+        coherentPoints(sprite.grid, coherent);
+
+        vds::ClassifyOptions one, all;
+        one.threads = 1;
+        all.threads = threads;
+        const double t1 = best(1, [&] { vds::classify(sprite, random.data(), n, cpu1.data(), one); });
+        const double tN = best(set.classifyRuns, [&] { vds::classify(sprite, random.data(), n, cpuN.data(), all); });
+        classifier.classify(gpu, random.data(), std::min<std::size_t>(n, 4096), hostToHost.data()); // warm-up
+        const double tHost = best(set.classifyRuns, [&] { classifier.classify(gpu, random.data(), n, hostToHost.data()); });
+
+        // Resident: the points uploaded once, the labels left in GL.
+        double residentWall = 1e300, residentGpu = 1e300, coherentWall = 1e300, coherentGpu_ = 1e300;
+        {
+            vds::Buffer randomBuffer = vds::Buffer::create(), coherentBuffer = vds::Buffer::create(),
+                        labels = vds::Buffer::create();
+            glNamedBufferStorage(randomBuffer.id(), GLsizeiptr(n * 12), random.data(), 0);
+            glNamedBufferStorage(coherentBuffer.id(), GLsizeiptr(n * 12), coherent.data(), 0);
+            glNamedBufferStorage(labels.id(), GLsizeiptr(labelBytes), nullptr, 0);
+            vds::checkGl("allocating the benchmark's buffers");
+            auto measure = [&](const vds::Buffer& points, double& wall, double& gpuTime, std::vector<std::uint8_t>& out) {
+                classifier.classify(gpu, points.id(), labels.id(), n); // warm-up
+                for (unsigned k = 0; k < std::max(1u, set.classifyRuns); ++k) {
+                    double w = 0;
+                    const double g = gpuSeconds([&] { classifier.classify(gpu, points.id(), labels.id(), n); }, &w);
+                    wall = std::min(wall, w);
+                    if (g > 0) gpuTime = std::min(gpuTime, g);
+                }
+                std::vector<std::uint8_t> bytes(labelBytes);
+                glGetNamedBufferSubData(labels.id(), 0, GLsizeiptr(labelBytes), bytes.data());
+                std::copy(bytes.begin(), bytes.begin() + std::ptrdiff_t(n), out.begin());
+            };
+            measure(randomBuffer, residentWall, residentGpu, resident);
+            measure(coherentBuffer, coherentWall, coherentGpu_, coherentGpu);
+        }
+        vds::classify(sprite, coherent.data(), n, coherentCpu.data(), all);
+
+        const std::size_t ne = std::min(n, set.exactPoints);
+        std::vector<std::uint8_t> exactLabels(ne);
+        const vds::ExactClassifier exact(m.mesh);
+        const double tExact = seconds([&] { exact.classify(random.data(), ne, exactLabels.data(), all); });
+        std::size_t differ = 0;
+        for (std::size_t k = 0; k < ne; ++k) differ += cpuN[k] != exactLabels[k];
+        const bool equal = cpu1 == cpuN && cpuN == hostToHost && cpuN == resident && coherentCpu == coherentGpu;
+        const double points = double(n);
+        std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.4f %% |\n", m.mesh.name.c_str(),
+                    sizeText(sprite.width(), sprite.height(), sprite.depthComplexity).c_str(), rate(points, t1).c_str(),
+                    rate(points, tN).c_str(), rate(points, tHost).c_str(), rate(points, residentWall).c_str(),
+                    residentGpu < 1e300 ? rate(points, residentGpu).c_str() : "-", rate(points, coherentWall).c_str(),
+                    coherentGpu_ < 1e300 ? rate(points, coherentGpu_).c_str() : "-", rate(double(ne), tExact).c_str(),
+                    equal ? "yes" : "NO", 100.0 * double(differ) / double(std::max<std::size_t>(ne, 1)));
+        std::fflush(stdout);
+    }
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    std::vector<std::uint32_t> resolutions = {512, 1024, 2048};
-    std::size_t pointCount = 10000000;
-    bool cpuBake = true;
-    std::vector<std::string> meshPaths;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--resolutions" && i + 1 < argc) resolutions = parseList(argv[++i]);
-        else if (a == "--points" && i + 1 < argc) pointCount = std::stoull(argv[++i]);
-        else if (a == "--no-cpu-bake") cpuBake = false;
-        else if (a == "--classify-only") resolutions.clear();
-        else if (a == "--help") {
-            std::puts("usage: vds_bench [--resolutions 512,1024,2048] [--points N] [--no-cpu-bake] [--classify-only] [MESH ...]");
-            return 0;
-        } else meshPaths.push_back(a);
-    }
-    if (meshPaths.empty()) {
-        for (const char* dir : {"../shared/meshes", "../../shared/meshes", "../../../shared/meshes"})
-            if (fs::is_directory(dir)) {
-                for (const auto& e : fs::directory_iterator(dir))
-                    if (e.path().extension() == ".obj") meshPaths.push_back(e.path().string());
-                break;
-            }
-        std::sort(meshPaths.begin(), meshPaths.end());
-    }
-    try {
-        std::vector<vds::TriangleMesh> meshes;
-        for (const auto& p : meshPaths) meshes.push_back(vds::loadMesh(p));
-        meshes.push_back(vds::solids::sphere({0, 0, 0}, 1.0f, 1002).mesh); // 1,002,000 triangles
-        meshes.back().name = "sphere-1M (generated)";
+    Settings set;
+    CLI::App app{"vds_bench: bake time, bake phases, classification throughput and file size, printed as tables"};
+    bool quick = false, full = false, bakeOnly = false, classifyOnly = false, noCpuBake = false, noPeel = false;
+    std::vector<std::uint32_t> resolutions;
+    std::size_t points = 0;
+    std::uint32_t classifyResolution = 0;
+    unsigned runs = 0;
+    auto* quickFlag = app.add_flag("--quick", quick,
+                                   "bundled meshes at 512, knot at 512, sphere at 1024, 1M points, one run each (about a "
+                                   "minute on llvmpipe)");
+    app.add_flag("--full", full,
+                 "bundled meshes at 512, 1024 and 2048, knot and sphere at 1024 and 2048, 100M points, best of 3 "
+                 "(for GPUs)")
+        ->excludes(quickFlag);
+    app.add_option("--resolutions", resolutions, "bake resolutions of the bundled meshes (default 1024)")->delimiter(',');
+    app.add_option("--points", points, "points classified per mesh (default 10M)");
+    app.add_option("--classify-resolution", classifyResolution, "resolution of the sprites classified against (default 2048)");
+    app.add_option("--runs", runs, "runs of each timed step; the best is reported (default 2)");
+    app.add_option("--meshes", set.meshDir, "folder of .obj meshes (default ../shared/meshes)");
+    app.add_flag("--no-cpu-bake", noCpuBake, "skip the exact CPU baker");
+    app.add_flag("--no-peel", noPeel, "skip depth peeling");
+    auto* bakeFlag = app.add_flag("--bake-only", bakeOnly, "bake tables only");
+    app.add_flag("--classify-only", classifyOnly, "classification table only")->excludes(bakeFlag);
+    app.add_option("meshes", set.meshFiles, "mesh files instead of the bundled and generated meshes");
+    CLI11_PARSE(app, argc, argv);
 
+    if (quick) {
+        set.mode = "quick";
+        set.resolutions = {512};
+        set.knotResolutions = {512};
+        set.sphereResolutions = {1024};
+        set.points = 1000000;
+        set.classifyResolution = 1024;
+        set.bakeRuns = 1;
+        set.classifyRuns = 1;
+        set.sizes = false;
+    } else if (full) {
+        set.mode = "full";
+        set.resolutions = {512, 1024, 2048};
+        set.knotResolutions = {1024, 2048};
+        set.sphereResolutions = {1024, 2048};
+        set.points = 100000000;
+        set.bakeRuns = 3;
+        set.classifyRuns = 5;
+    }
+    if (!resolutions.empty()) set.resolutions = resolutions;
+    if (points) set.points = points;
+    if (classifyResolution) set.classifyResolution = classifyResolution;
+    if (runs) set.bakeRuns = set.classifyRuns = runs;
+    set.cpuBake = !noCpuBake;
+    set.peel = !noPeel;
+    set.bakeTable = !classifyOnly;
+    set.classifyTable = !bakeOnly;
+    set.sizes = set.sizes && set.bakeTable;
+    try {
+        const std::vector<BenchMesh> meshes = loadMeshes(set);
         vds::GlContext gl;
         const vds::GlInfo& info = gl.info();
-        std::printf("GL: %s | %s | platform %s\n", info.renderer.c_str(), info.version.c_str(), info.platform.c_str());
-        std::printf("CPU threads available: %u\n\n", std::thread::hardware_concurrency());
-        { // warm-up: compile the programs once
+        std::printf("# vds_bench (%s)\n\nGL: %s | %s | %s | platform %s\n", set.mode.c_str(), info.vendor.c_str(),
+                    info.renderer.c_str(), info.version.c_str(), info.platform.c_str());
+        std::printf("CPU threads: %u\n\n", std::max(1u, std::thread::hardware_concurrency()));
+        { // compile every program once, outside the figures
             vds::BakeOptions o;
             o.resolution = 16;
-            for (auto m : {vds::BakeMethod::Peel, vds::BakeMethod::Lists}) {
-                o.method = m;
-                vds::bake(vds::solids::box({0, 0, 0}, {1, 1, 1}).mesh, o, &gl);
+            const auto box = vds::solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+            for (auto method : {vds::BakeMethod::Peel, vds::BakeMethod::Lists}) {
+                o.method = method;
+                vds::bake(box, o, &gl);
             }
+            vds::bakeToGpu(box, o, gl);
         }
-
-        if (!resolutions.empty()) {
-            std::puts("## Bake time (seconds), one run each\n");
-            std::puts("| mesh | triangles | resolution | w x h x d | peel | lists | peel / lists | cpu (exact) | identical |");
-            std::puts("|---|---:|---:|---|---:|---:|---:|---:|---|");
-        }
-        struct SizeRow { std::string mesh; std::uint32_t res; std::size_t file, dense, crossings; };
         std::vector<SizeRow> sizes;
-        for (const auto& mesh : meshes)
-            for (std::uint32_t res : resolutions) {
-                vds::BakeOptions o;
-                o.resolution = res;
-                o.sourceName = mesh.name;
-                vds::Sprite peel, lists, cpu;
-                o.method = vds::BakeMethod::Peel;
-                const double tPeel = seconds([&] { peel = vds::bake(mesh, o, &gl); });
-                o.method = vds::BakeMethod::Lists;
-                const double tLists = seconds([&] { lists = vds::bake(mesh, o, &gl); });
-                double tCpu = -1;
-                if (cpuBake) {
-                    o.method = vds::BakeMethod::Cpu;
-                    tCpu = seconds([&] { cpu = vds::bake(mesh, o); });
-                }
-                char cpuText[32] = "-";
-                if (tCpu >= 0) std::snprintf(cpuText, sizeof cpuText, "%.2f", tCpu);
-                std::printf("| %s | %zu | %u | %ux%ux%u | %.2f | %.2f | %.1fx | %s | %s |\n", mesh.name.c_str(),
-                            mesh.triangles.size(), res, lists.width(), lists.height(), lists.depthComplexity, tPeel,
-                            tLists, tPeel / tLists, cpuText, identical(peel, lists) ? "yes" : "NO");
-                std::fflush(stdout);
-                const fs::path file = fs::temp_directory_path() / "vds_bench.vds";
-                vds::writeSprite(lists, file.string());
-                sizes.push_back({mesh.name, res, std::size_t(fs::file_size(file)), lists.denseBytes(), lists.crossings.size()});
-                fs::remove(file);
-            }
-
+        if (set.bakeTable) bakeTable(set, gl, meshes, sizes);
+        if (set.classifyTable) classifyTable(set, gl, meshes);
         if (!sizes.empty()) {
             std::puts("\n## File size: .vds (OpenEXR deep, ZIPS) vs the paper's dense float texture\n");
             std::puts("| mesh | resolution | crossings | .vds bytes | dense bytes | dense / .vds |");
             std::puts("|---|---:|---:|---:|---:|---:|");
-        }
-        for (const auto& s : sizes)
-            std::printf("| %s | %u | %zu | %zu | %zu | %.1fx |\n", s.mesh.c_str(), s.res, s.crossings, s.file, s.dense,
-                        double(s.dense) / double(s.file));
-
-        std::printf("\n## Classification: %zu uniform random points in each mesh's box grown by 10%%, sprites at 1024\n\n",
-                    pointCount);
-        std::puts("Points per second; every classifier answers the same points. VDS CPU answers must equal GL's.\n");
-        std::puts("| mesh | w x h x d | VDS CPU 1 thread | VDS CPU 2 threads | VDS GL compute | exact, 2 threads | "
-                  "VDS CPU 2 thr / exact | GL / exact | CPU == GL | VDS differs from exact |");
-        std::puts("|---|---|---:|---:|---:|---:|---:|---:|---|---:|");
-        const vds::GpuClassifier classifier(gl);
-        std::vector<glm::vec3> points(pointCount);
-        std::vector<std::uint8_t> a(pointCount), b(pointCount), c(pointCount), e(pointCount);
-        for (const auto& mesh : meshes) {
-            vds::BakeOptions o;
-            o.resolution = 1024;
-            const vds::Sprite sprite = vds::bake(mesh, o, &gl);
-            const vds::Box box = sprite.grid.box;
-            std::mt19937 rng(42);
-            std::uniform_real_distribution<float> u(-0.1f, 1.1f);
-            for (auto& p : points) p = box.lo + glm::vec3(u(rng), u(rng), u(rng)) * (box.hi - box.lo);
-            vds::ClassifyOptions one, two;
-            one.threads = 1;
-            two.threads = 2;
-            const double t1 = seconds([&] { vds::classify(sprite, points.data(), points.size(), a.data(), one); });
-            const double t2 = seconds([&] { vds::classify(sprite, points.data(), points.size(), b.data(), two); });
-            const vds::GpuSprite gpu(sprite);
-            const double tg = seconds([&] { classifier.classify(gpu, points.data(), points.size(), c.data()); });
-            const vds::ExactClassifier exact(mesh);
-            const double te = seconds([&] { exact.classify(points.data(), points.size(), e.data(), two); });
-            std::size_t differ = 0;
-            for (std::size_t k = 0; k < pointCount; ++k) differ += a[k] != e[k];
-            const double n = double(pointCount);
-            std::printf("| %s | %ux%ux%u | %.3g | %.3g | %.3g | %.3g | %.1fx | %.1fx | %s | %.4f %% |\n", mesh.name.c_str(),
-                        sprite.width(), sprite.height(), sprite.depthComplexity, n / t1, n / t2, n / tg, n / te, te / t2,
-                        te / tg, (a == b && a == c) ? "yes" : "NO", 100.0 * double(differ) / n);
-            std::fflush(stdout);
+            for (const auto& s : sizes)
+                std::printf("| %s | %u | %zu | %zu | %zu | %.1fx |\n", s.mesh.c_str(), s.res, s.crossings, s.file, s.dense,
+                            double(s.dense) / double(s.file));
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "vds_bench: error: %s\n", e.what());

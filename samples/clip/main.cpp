@@ -95,7 +95,7 @@ int run(const Options& o) {
     glUniform3f(glGetUniformLocation(program.id(), "u_lightDirection"), 0.40f, 0.58f, 0.71f);
     glUniform3f(glGetUniformLocation(program.id(), "u_frontColour"), 0.85f, 0.82f, 0.74f);
     glUniform3f(glGetUniformLocation(program.id(), "u_cutColour"), 0.85f, 0.15f, 0.12f);
-    glUniform1i(glGetUniformLocation(program.id(), "u_rule"), vds::parseRule(o.rule) == vds::Rule::Winding ? 1 : 0);
+    glUniform1i(glGetUniformLocation(program.id(), "u_rule"), vds::parseRule(o.rule) == vds::Rule::Parity ? 0 : 1);
     glUniform1i(glGetUniformLocation(program.id(), "u_clipCount"), GLint(gpuSprites.size()));
     for (std::size_t i = 0; i < gpuSprites.size(); ++i)
         gpuSprites[i].setUniforms(program.id(), "u_ldi[" + std::to_string(i) + "]",

@@ -1,20 +1,23 @@
-// Per-pixel fragment lists, second half: count each pixel's nodes, or copy
-// them to the pixel's slot of the output and sort them by (depth, triangle).
-layout(local_size_x = 16, local_size_y = 16) in;
+// Fragment lists, sort pass: each column's crossings sorted by depth, then
+// triangle index (the order of every baker, so that layers are bit for bit
+// those of depth peeling), and written as the sprite stores them: the depth
+// with the sign bit set where the ray leaves the solid (encodeCrossing in
+// <vds/sprite.h>). A column's first two crossings come from their fixed
+// place; columns of one or two, most columns of most solids, take no loop;
+// longer ones join the scattered rest and are insertion-sorted in place.
+// (A local array for short columns was 4x slower on llvmpipe, which lowers
+// its indexing to chains of selects; and a loop condition of the form
+// `k > 0 && before(item, a[k - 1])` was compiled wrongly by Mesa 22.)
+layout(local_size_x = 256) in; // before the include: it reads gl_WorkGroupSize
+#include "vds/compute.glsl"
 
-layout(binding = 0, r32ui) uniform readonly uimage2D u_heads;
-struct VdsNode {
-    float depth;
-    uint key;
-    uint next;
-};
-layout(std430, binding = 0) readonly buffer Nodes { VdsNode nodes[]; };
-layout(std430, binding = 1) buffer Counts { uint counts[]; };   // COUNT: out; SORT: offsets in
-layout(std430, binding = 2) buffer Sorted { uvec2 sorted[]; };  // SORT: (depth bits, key)
-uniform ivec2 u_size;
-uniform int u_rowBegin;
+layout(std430, binding = 0) readonly restrict buffer Offsets { uint offsets[]; };
+layout(std430, binding = 1) readonly restrict buffer Firsts { uvec4 firsts[]; }; // slots 0 and 1 of a column
+layout(std430, binding = 2) restrict buffer Pairs { uvec2 pairs[]; };           // depth bits, key
+layout(std430, binding = 3) writeonly restrict buffer Crossings { uint crossings[]; };
+uniform uint u_columns;
+uniform uint u_base; // the band's first offset
 
-const uint VDS_NO_NODE = 0xffffffffu;
 const uint VDS_ENTERING_BIT = 0x80000000u;
 
 bool before(uvec2 a, uvec2 b) {
@@ -22,26 +25,42 @@ bool before(uvec2 a, uvec2 b) {
     return da < db || (da == db && (a.y & ~VDS_ENTERING_BIT) < (b.y & ~VDS_ENTERING_BIT));
 }
 
+uint encoded(uvec2 item) { return (item.y & VDS_ENTERING_BIT) != 0u ? item.x : item.x ^ 0x80000000u; }
+
 void main() {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, u_rowBegin);
-    if (p.x >= u_size.x || p.y >= u_size.y) return;
-    uint column = uint(p.y - u_rowBegin) * uint(u_size.x) + uint(p.x);
-    uint node = imageLoad(u_heads, p).r;
-#ifdef VDS_COUNT
-    uint n = 0u;
-    for (; node != VDS_NO_NODE; node = nodes[node].next) ++n;
-    counts[column] = n;
-#else
-    uint begin = counts[column];
-    uint end = begin;
-    for (; node != VDS_NO_NODE; node = nodes[node].next) {
-        uvec2 item = uvec2(floatBitsToUint(nodes[node].depth), nodes[node].key);
-        uint k = end++;
-        while (k > begin && before(item, sorted[k - 1u])) {
-            sorted[k] = sorted[k - 1u];
-            --k;
+    for (uint c = gl_GlobalInvocationID.x; c < u_columns; c = vdsNextIndex(c, u_columns)) {
+        uint begin = offsets[c] - u_base;
+        uint n = offsets[c + 1u] - u_base - begin;
+        if (n == 0u) continue;
+        uvec4 first = firsts[c];
+        uvec2 a = first.xy, b = first.zw;
+        if (n == 1u) {
+            crossings[begin] = encoded(a);
+            continue;
         }
-        sorted[k] = item;
+        if (before(b, a)) {
+            uvec2 t = a;
+            a = b;
+            b = t;
+        }
+        if (n == 2u) {
+            crossings[begin] = encoded(a);
+            crossings[begin + 1u] = encoded(b);
+            continue;
+        }
+        pairs[begin] = a;
+        pairs[begin + 1u] = b;
+        for (uint i = 2u; i < n; ++i) {
+            uvec2 item = pairs[begin + i];
+            uint k = i;
+            while (k > 0u) {
+                uvec2 previous = pairs[begin + k - 1u];
+                if (!before(item, previous)) break;
+                pairs[begin + k] = previous;
+                --k;
+            }
+            pairs[begin + k] = item;
+        }
+        for (uint i = 0u; i < n; ++i) crossings[begin + i] = encoded(pairs[begin + i]);
     }
-#endif
 }

@@ -35,17 +35,26 @@ vec3 vdsToTexture(VdsPlacement placement, vec3 world) {
     return vec3(s, t, r);
 }
 
+// The column (texel) of an LDI of size.x by size.y texels that texture-space
+// point T falls in; false when T lies outside the box [0,1]^3.
+bool vdsColumnOf(vec3 T, ivec2 size, out ivec2 column) {
+    column = ivec2(0);
+    if (!(T.z >= 0.0 && T.z <= 1.0)) return false;
+    precise float fs = floor(T.x * float(size.x));
+    precise float ft = floor(T.y * float(size.y));
+    if (!(fs >= 0.0 && fs < float(size.x) && ft >= 0.0 && ft < float(size.y))) return false;
+    column = ivec2(fs, ft);
+    return true;
+}
+
 // Winding number of the crossings strictly in front of texture-space point T
 // (entering +1, leaving -1); `parity` receives their count modulo 2. Points
 // outside [0,1]^3 have no crossings in front.
 int vdsWinding(sampler3D ldi, vec3 T, out int parity) {
     parity = 0;
     ivec3 size = textureSize(ldi, 0);
-    if (!(T.z >= 0.0 && T.z <= 1.0)) return 0;
-    precise float fs = floor(T.x * float(size.x));
-    precise float ft = floor(T.y * float(size.y));
-    if (!(fs >= 0.0 && fs < float(size.x) && ft >= 0.0 && ft < float(size.y))) return 0;
-    ivec2 column = ivec2(fs, ft);
+    ivec2 column;
+    if (!vdsColumnOf(T, size.xy, column)) return 0;
     int winding = 0;
     for (int k = 0; k < size.z; ++k) {
         float e = texelFetch(ldi, ivec3(column, k), 0).r;

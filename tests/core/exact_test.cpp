@@ -466,6 +466,34 @@ TEST(BakeCpu, DepthComplexityOfSphereAndShell) {
     EXPECT_EQ(vds::bakeCpu(vds::solids::shell({0, 0, 0}, 2.0f, 1.0f, 32).mesh, options).depthComplexity, 4u);
 }
 
+TEST(BakeCpu, FillsTheTimingsOfItsPhases) {
+    const auto torus = vds::solids::torus({0, 0, 0}, 1.0f, 0.4f, 48);
+    vds::BakeTimings timings;
+    timings.bands = 7; // reset by the bake
+    vds::BakeOptions options;
+    options.method = vds::BakeMethod::Cpu;
+    options.resolution = 48;
+    options.timings = &timings;
+    const vds::Sprite s = vds::bake(torus.mesh, options);
+    using vds::BakePhase;
+    for (BakePhase p : {BakePhase::Validation, BakePhase::Upload, BakePhase::Raster, BakePhase::Scan, BakePhase::Assembly}) {
+        EXPECT_EQ(timings[p].runs, 1u) << vds::toString(p);
+        EXPECT_GE(timings[p].wallSeconds, 0.0);
+        EXPECT_LT(timings[p].gpuSeconds, 0.0) << "no GPU time on the CPU";
+    }
+    for (BakePhase p : {BakePhase::Compile, BakePhase::Sort, BakePhase::TextureFill, BakePhase::ReadBack})
+        EXPECT_EQ(timings[p].runs, 0u) << vds::toString(p);
+    EXPECT_EQ(timings.bands, 0u);
+    EXPECT_EQ(timings.crossings, s.crossings.size());
+    EXPECT_GT(timings.wallSeconds, 0.0);
+    EXPECT_EQ(timings.gpuSeconds(), 0.0);
+    const std::string report = timings.report();
+    EXPECT_NE(report.find("raster"), std::string::npos) << report;
+    EXPECT_EQ(report.find("sort"), std::string::npos) << report;
+    EXPECT_NE(report.find("total"), std::string::npos) << report;
+    EXPECT_STREQ(vds::toString(BakePhase::ReadBack), "read-back");
+}
+
 TEST(BakeCpu, RejectsUnusableMeshes) {
     vds::BakeOptions options;
     options.method = vds::BakeMethod::Cpu;

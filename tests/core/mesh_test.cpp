@@ -7,10 +7,15 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
 #include <vds/error.h>
+#include <vds/exact.h>
 #include <vds/mesh.h>
 #include <vds/mesh_io.h>
 #include "solids.h"
+
+#include "../support/points.h"
 
 namespace vds {
 namespace {
@@ -44,6 +49,40 @@ TEST(ValidateMesh, GeneratedSolidsAreClosed) {
         EXPECT_TRUE(r.usable());
         EXPECT_EQ(r.degenerateTriangles, 0u) << s.mesh.name;
     }
+}
+
+// The benchmark's trefoil: closed, facing out (positive volume, about the
+// tube's cross-section times the centre line's length), inside along its
+// centre line and outside away from the tube.
+TEST(ValidateMesh, TorusKnotIsAClosedTubeFacingOut) {
+    const auto knot = solids::torusKnot({0.5f, -0.5f, 0.25f}, 2.0f, 2, 3, 0.2f, 300, 24);
+    EXPECT_EQ(knot.mesh.triangles.size(), 2u * 300u * 24u);
+    const MeshReport r = validateMesh(knot.mesh);
+    EXPECT_TRUE(r.closed()) << r.summary();
+    EXPECT_EQ(r.degenerateTriangles, 0u);
+    double volume = 0.0, length = 0.0;
+    for (const auto& t : knot.mesh.triangles) {
+        const glm::dvec3 a(knot.mesh.positions[t.x]), b(knot.mesh.positions[t.y]), c(knot.mesh.positions[t.z]);
+        volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+    }
+    for (std::size_t i = 0; i < knot.line.size(); ++i)
+        length += glm::length(glm::dvec3(knot.line[(i + 1) % knot.line.size()] - knot.line[i]));
+    const double tube = 3.14159265358979 * 0.2 * 0.2 * length;
+    EXPECT_NEAR(volume, tube, 0.03 * tube);
+    const ExactClassifier exact(knot.mesh);
+    for (std::size_t i = 0; i < knot.line.size(); i += 7) {
+        EXPECT_TRUE(exact.contains(knot.line[i])) << "centre line point " << i;
+        EXPECT_LT(knot.distance(knot.line[i]), -0.19f);
+    }
+    const auto points = test::randomPoints(r.bounds, 3000, 0.1f, 4);
+    std::size_t far = 0;
+    for (const auto& p : points) {
+        const float d = knot.distance(p);
+        if (std::fabs(d) < 0.05f) continue;
+        ++far;
+        EXPECT_EQ(exact.contains(p), d < 0.0f) << "distance " << d;
+    }
+    EXPECT_GT(far, 2000u);
 }
 
 TEST(ValidateMesh, FindsBoundaryNonManifoldFlippedAndDegenerateFaces) {

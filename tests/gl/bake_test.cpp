@@ -1,6 +1,7 @@
 // The GL bakers on analytic solids: peeling and fragment lists must agree bit
 // for bit, and the sprites must classify every point farther than two texels
 // from the ideal surface as the analytic solid does.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -93,6 +94,72 @@ TEST_F(BakeTest, FragmentListsOverflowRetriesInBandsWithoutLosingCrossings) {
     const Sprite banded = bakeWith(gl(), shell.mesh, BakeMethod::Lists, 80, Axis::Z, 700);
     expectIdentical(whole, banded);
     EXPECT_EQ(whole.depthComplexity, 4u);
+}
+
+// Twenty boxes stacked along the view: columns of 40 crossings, 38 of them
+// through the node pool and sorted in place on the GPU (columns of one or
+// two take another path); the pool kept from earlier bakes is freed first,
+// so that it must grow.
+TEST_F(BakeTest, DeepColumnsGrowThePoolAndSortLikePeeling) {
+    TriangleMesh stack = solids::box({0, 0, 0}, {1, 1, 0.02f}).mesh;
+    for (int k = 1; k < 20; ++k)
+        stack = solids::merge(stack, solids::box({0.03f * float(k), 0, 0.05f * float(k)},
+                                                 {1, 1 - 0.02f * float(k), 0.05f * float(k) + 0.02f}).mesh);
+    gl().releaseScratch();
+    BakeTimings timings;
+    BakeOptions o;
+    o.method = BakeMethod::Lists;
+    o.resolution = 48;
+    o.timings = &timings;
+    const Sprite lists = bake(stack, o, &gl());
+    EXPECT_EQ(lists.depthComplexity, 40u);
+    EXPECT_EQ(timings[BakePhase::Raster].runs, 2u) << "the pool should have grown once";
+    std::size_t pooled = 0; // the first two crossings of a column have places of their own
+    for (std::size_t c = 0; c + 1 < lists.offsets.size(); ++c)
+        pooled += std::max<std::uint32_t>(lists.offsets[c + 1] - lists.offsets[c], 2) - 2;
+    EXPECT_EQ(timings.listNodes, pooled) << "grown to the exact need";
+    EXPECT_EQ(timings.bands, 1u);
+    expectIdentical(bakeWith(gl(), stack, BakeMethod::Peel, 48), lists);
+}
+
+// 512 x 512 columns take a prefix sum of four levels (64 values a chunk).
+TEST_F(BakeTest, LargeImagesScanInSeveralLevelsLikePeeling) {
+    const auto sphere = solids::sphere({0, 0, 0}, 1.0f, 64);
+    expectIdentical(bakeWith(gl(), sphere.mesh, BakeMethod::Peel, 512),
+                    bakeWith(gl(), sphere.mesh, BakeMethod::Lists, 512));
+}
+
+TEST_F(BakeTest, TimingsNameEveryPhaseOfEachBaker) {
+    const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.4f, 64);
+    BakeTimings t;
+    BakeOptions o;
+    o.resolution = 64;
+    o.timings = &t;
+    o.method = BakeMethod::Lists;
+    const Sprite lists = bake(torus.mesh, o, &gl());
+    for (BakePhase p : {BakePhase::Validation, BakePhase::Upload, BakePhase::Raster, BakePhase::Scan, BakePhase::Sort,
+                        BakePhase::ReadBack, BakePhase::Assembly}) {
+        EXPECT_EQ(t[p].runs, 1u) << toString(p);
+        EXPECT_GT(t[p].wallSeconds, 0.0) << toString(p);
+    }
+    EXPECT_EQ(t[BakePhase::TextureFill].runs, 0u);
+    EXPECT_EQ(t.crossings, lists.crossings.size());
+    EXPECT_EQ(t.renderer, gl().info().renderer);
+    EXPECT_EQ(t.bands, 1u);
+    EXPECT_GE(t.wallSeconds, t[BakePhase::Raster].wallSeconds + t[BakePhase::Sort].wallSeconds);
+    EXPECT_NE(t.report().find("read-back"), std::string::npos) << t.report();
+
+    o.method = BakeMethod::Peel;
+    const Sprite peel = bake(torus.mesh, o, &gl());
+    EXPECT_EQ(t[BakePhase::Raster].runs, peel.depthComplexity + 1) << "one pass per layer and one that finds none";
+    EXPECT_EQ(t[BakePhase::ReadBack].runs, peel.depthComplexity);
+    EXPECT_EQ(t[BakePhase::Sort].runs, 0u) << "the timings of the lists bake must be reset";
+
+    o.method = BakeMethod::Cpu;
+    bake(torus.mesh, o, &gl());
+    EXPECT_EQ(t[BakePhase::Raster].runs, 1u);
+    EXPECT_TRUE(t.renderer.empty());
+    EXPECT_LT(t[BakePhase::Raster].gpuSeconds, 0.0) << "the CPU baker measures no GPU time";
 }
 
 // The exact CPU baker and the GL bakers, layer for layer. The rasterizer

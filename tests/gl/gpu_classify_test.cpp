@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <vds/bake.h>
+#include <vds/gpu_bake.h>
 #include <vds/gpu_sprite.h>
 #include <vds/shader.h>
 #include "solids.h"
@@ -79,6 +80,91 @@ TEST_F(GpuClassifyTest, ComputeShaderMatchesCppOnEveryPoint) {
                     EXPECT_GT(inside, points.size() / 20); // the test is not vacuous
                 }
             }
+        }
+}
+
+// Points and labels that stay in GL buffers: one byte a point, four to a
+// word; a count that is not a multiple of four leaves the tail bytes 0.
+TEST_F(GpuClassifyTest, ResidentBuffersMatchCppOnEveryPoint) {
+    const auto torus = solids::torus({0.2f, -0.1f, 0.0f}, 1.0f, 0.4f, 96);
+    const auto two = solids::overlappingBoxes({-1, -1, -1}, {0.3f, 0.3f, 0.3f}, {-0.3f, -0.3f, -0.3f}, {1, 1, 1});
+    GpuClassifier classifier;
+    for (const TriangleMesh* mesh : {&torus.mesh, &two.mesh}) {
+        Sprite sprite = bakeSolid(*mesh, 96, Axis::Y);
+        sprite.transform(glm::rotate(glm::mat4(1.0f), 0.4f, glm::vec3(0, 0, 1)));
+        auto points = hardPoints(sprite, 60000);
+        points.resize(points.size() / 4 * 4 + 3);
+        for (auto& q : points) q = glm::vec3(glm::rotate(glm::mat4(1.0f), 0.4f, glm::vec3(0, 0, 1)) * glm::vec4(q, 1.0f));
+        const std::size_t n = points.size(), words = (n + 3) / 4;
+        Buffer pointBuffer = Buffer::create(), labelBuffer = Buffer::create();
+        glNamedBufferStorage(pointBuffer.id(), GLsizeiptr(n * 12), points.data(), 0);
+        glNamedBufferStorage(labelBuffer.id(), GLsizeiptr(words * 4 + 4), nullptr, GL_DYNAMIC_STORAGE_BIT);
+        for (GpuSpriteParts parts : {GpuSpriteParts::Both, GpuSpriteParts::TextureOnly, GpuSpriteParts::ColumnsOnly}) {
+            const GpuSprite gpu(sprite, parts);
+            for (Rule rule : {Rule::Parity, Rule::Winding}) {
+                const std::uint32_t poison = 0x07070707u;
+                std::vector<std::uint32_t> fill(words + 1, poison);
+                glNamedBufferSubData(labelBuffer.id(), 0, GLsizeiptr(fill.size() * 4), fill.data());
+                classifier.classify(gpu, pointBuffer.id(), labelBuffer.id(), n, rule);
+                std::vector<std::uint8_t> labels((words + 1) * 4);
+                glGetNamedBufferSubData(labelBuffer.id(), 0, GLsizeiptr(labels.size()), labels.data());
+                std::vector<std::uint8_t> cpu(n);
+                ClassifyOptions options;
+                options.rule = rule;
+                classify(sprite, points.data(), n, cpu.data(), options);
+                std::size_t differ = 0, inside = 0;
+                for (std::size_t k = 0; k < n; ++k) {
+                    differ += cpu[k] != labels[k];
+                    inside += cpu[k];
+                }
+                EXPECT_EQ(differ, 0u) << mesh->name << ", parts " << int(parts) << ", rule " << toString(rule);
+                EXPECT_GT(inside, n / 20);
+                EXPECT_EQ(labels[n], 0u) << "the tail word's unused byte";
+                EXPECT_EQ(labels[words * 4], 7u) << "written past the last word";
+            }
+        }
+    }
+}
+
+// The renderer's path: bake into GL, classify points already in GL.
+TEST_F(GpuClassifyTest, SpriteBakedOnTheGpuClassifiesLikeTheHostSprite) {
+    const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.55f, 64);
+    BakeOptions o;
+    o.resolution = 128;
+    const Sprite host = bake(shell.mesh, o, &gl());
+    const GpuBake baked = bakeToGpu(shell.mesh, o, gl());
+    const auto points = test::randomPoints(host.grid.box, 100001, 0.1f, 5);
+    Buffer pointBuffer = Buffer::create(), labelBuffer = Buffer::create();
+    glNamedBufferStorage(pointBuffer.id(), GLsizeiptr(points.size() * 12), points.data(), 0);
+    glNamedBufferStorage(labelBuffer.id(), GLsizeiptr((points.size() + 3) / 4 * 4), nullptr, 0);
+    GpuClassifier classifier;
+    classifier.classify(baked.sprite, pointBuffer.id(), labelBuffer.id(), points.size());
+    std::vector<std::uint8_t> labels((points.size() + 3) / 4 * 4), cpu(points.size());
+    glGetNamedBufferSubData(labelBuffer.id(), 0, GLsizeiptr(labels.size()), labels.data());
+    classify(host, points.data(), points.size(), cpu.data());
+    std::size_t differ = 0, inside = 0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        differ += cpu[k] != labels[k];
+        inside += cpu[k];
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_GT(inside, points.size() / 10);
+}
+
+// The host-array call in batches of every size, its staging buffers kept and
+// grown between calls; every point equal to the CPU's answer.
+TEST_F(GpuClassifyTest, HostArraysInManyBatchesMatchCpp) {
+    const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.45f, 64);
+    const Sprite sprite = bakeSolid(torus.mesh, 64, Axis::X);
+    const GpuSprite gpu(sprite);
+    GpuClassifier classifier(gl());
+    for (std::size_t n : {std::size_t(1), std::size_t(1023), std::size_t(5000), std::size_t(70001)})
+        for (std::size_t batch : {std::size_t(1024), std::size_t(4096), std::size_t(1) << 22}) {
+            const auto points = test::randomPoints(sprite.grid.box, n, 0.1f, std::uint32_t(n + batch));
+            std::vector<std::uint8_t> cpu(n), labels(n, 9);
+            classify(sprite, points.data(), n, cpu.data());
+            classifier.classify(gpu, points.data(), n, labels.data(), Rule::Parity, batch);
+            EXPECT_EQ(cpu, labels) << n << " points in batches of " << batch;
         }
 }
 

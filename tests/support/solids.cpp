@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -29,6 +30,19 @@ float torusDistance(const Solid& s, const glm::vec3& p) {
     const glm::vec3 q = p - s.centre;
     const float ring = std::sqrt(q.x * q.x + q.y * q.y) - s.size.x;
     return std::sqrt(ring * ring + q.z * q.z) - s.size.y;
+}
+
+float segmentDistance(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b) {
+    const glm::vec3 ab = b - a;
+    const float t = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
+    return glm::length(p - (a + t * ab));
+}
+
+float knotDistance(const Solid& s, const glm::vec3& p) {
+    float best = std::numeric_limits<float>::infinity();
+    for (std::size_t i = 0; i < s.line.size(); ++i)
+        best = std::min(best, segmentDistance(p, s.line[i], s.line[(i + 1) % s.line.size()]));
+    return best - s.size.y;
 }
 
 // Two boxes: centre/size hold box A, the mesh's second half is box B; the
@@ -171,6 +185,49 @@ Solid overlappingBoxes(const glm::vec3& loA, const glm::vec3& hiA, const glm::ve
     appendBox(s.mesh, loB, hiB);
     s.mesh.name = "overlapping-boxes";
     s.signedDistance = unionDistance;
+    return s;
+}
+
+Solid torusKnot(const glm::vec3& centre, float scale, std::uint32_t p, std::uint32_t q, float tubeRadius,
+                std::uint32_t segments, std::uint32_t tubeSegments) {
+    if (p == 0 || q == 0 || segments < 16 || tubeSegments < 3 || !(scale > 0.0f) || !(tubeRadius > 0.0f) ||
+        !(tubeRadius < 0.4f * scale))
+        throw InvalidArgument("torusKnot: needs p, q > 0, 16 segments, 3 around, 0 < tube radius < 0.4 scale");
+    const float r = 0.4f;
+    auto curve = [&](double t) {
+        const double a = 1.0 + r * std::cos(q * t);
+        return glm::dvec3(a * std::cos(p * t), a * std::sin(p * t), r * std::sin(q * t));
+    };
+    Solid s;
+    const double step = 2.0 * double(kPi) / double(segments), h = 1e-4;
+    for (std::uint32_t i = 0; i < segments; ++i) {
+        const double t = step * double(i);
+        const glm::dvec3 c = curve(t), before = curve(t - h), after = curve(t + h);
+        // The Frenet frame: periodic, since the line closes and never straightens.
+        const glm::dvec3 tangent = glm::normalize(after - before);
+        const glm::dvec3 bend = after - 2.0 * c + before;
+        const glm::dvec3 binormal = glm::normalize(glm::cross(tangent, bend));
+        const glm::dvec3 normal = glm::cross(binormal, tangent);
+        s.line.push_back(centre + scale * glm::vec3(c));
+        for (std::uint32_t j = 0; j < tubeSegments; ++j) {
+            const double v = 2.0 * double(kPi) * double(j) / double(tubeSegments);
+            const glm::dvec3 ring = std::cos(v) * normal + std::sin(v) * binormal;
+            s.mesh.positions.push_back(centre + glm::vec3(double(scale) * c + double(tubeRadius) * ring));
+        }
+    }
+    auto at = [&](std::uint32_t i, std::uint32_t j) { return (i % segments) * tubeSegments + (j % tubeSegments); };
+    for (std::uint32_t i = 0; i < segments; ++i)
+        for (std::uint32_t j = 0; j < tubeSegments; ++j) { // counter-clockwise seen from outside
+            s.mesh.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i + 1, j));
+            s.mesh.triangles.emplace_back(at(i, j), at(i, j + 1), at(i + 1, j + 1));
+        }
+    s.mesh.name = "torus-knot";
+    s.centre = centre;
+    s.size = glm::vec3(scale, tubeRadius, 0.0f);
+    // The polygon around the tube, and the polyline standing in for the line.
+    const float lineStep = scale * 3.0f * float(step) * float(std::max(p, q));
+    s.tessellationError = chordError(tubeRadius, 2.0f * kPi / float(tubeSegments)) + lineStep * lineStep;
+    s.signedDistance = knotDistance;
     return s;
 }
 

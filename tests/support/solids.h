@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -22,7 +23,8 @@ struct Solid {
     /// Signed distance of `p` to the ideal solid (negative inside).
     float (*signedDistance)(const Solid&, const glm::vec3& p) = nullptr;
     glm::vec3 centre{0.0f};
-    glm::vec3 size{0.0f}; ///< box: edge lengths; sphere: (r, inner r or 0, 0); torus: (R, r, 0)
+    glm::vec3 size{0.0f}; ///< box: edge lengths; sphere: (r, inner r or 0, 0); torus: (R, r, 0); knot: (scale, tube r, 0)
+    std::vector<glm::vec3> line; ///< torus knot: its centre line, closed
     float distance(const glm::vec3& p) const { return signedDistance(*this, p); }
 };
 
@@ -39,6 +41,17 @@ Solid shell(const glm::vec3& centre, float outer, float inner, std::uint32_t seg
 /// merged: the overlap is crossed twice, so parity calls it outside while
 /// non-zero winding calls it inside (the ideal solid is the union).
 Solid overlappingBoxes(const glm::vec3& loA, const glm::vec3& hiA, const glm::vec3& loB, const glm::vec3& hiB);
+
+/// A (p, q) torus knot as a closed tube: its centre line winds p times
+/// around the z axis and q times around the core of a torus of radii
+/// (scale, 0.4 scale) centred at `centre`; the tube's radius is
+/// `tubeRadius` (below 0.4 scale: the strands pass 0.8 scale apart for
+/// (2, 3), and bend no tighter than 0.76 scale). `segments` rings of
+/// `tubeSegments` vertices: 2 * segments * tubeSegments triangles (the
+/// benchmark's trefoil, 1800 x 64, has 230,400). The distance is to the
+/// centre line as a polyline of `segments` pieces, minus the radius.
+Solid torusKnot(const glm::vec3& centre, float scale, std::uint32_t p, std::uint32_t q, float tubeRadius,
+                std::uint32_t segments, std::uint32_t tubeSegments);
 
 /// Merges several solids' meshes into one (indices rebased).
 TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b);

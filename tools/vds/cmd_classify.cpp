@@ -141,7 +141,7 @@ void classify(ClassifyArgs& a) {
         if (a.gpu) {
             vds::GlContext gl;
             const vds::GpuSprite gpu(sprite);
-            const vds::GpuClassifier classifier(gl);
+            vds::GpuClassifier classifier(gl);
             startClock();
             classifier.classify(gpu, points.data(), points.size(), labels.data(), a.options.rule);
             method = "GPU (" + gl.info().renderer + ")";

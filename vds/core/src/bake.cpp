@@ -1,6 +1,7 @@
 #include <vds/bake.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include <vds/error.h>
 
@@ -20,6 +21,7 @@ void registerLayerBaker(BakeMethod method, LayerBaker baker) noexcept {
 }
 
 BakeSetup prepareBake(MeshView mesh, const BakeOptions& options) {
+    const HostPhase phase(options.timings, BakePhase::Validation);
     BakeSetup setup;
     setup.report = validateMesh(mesh);
     requireUsable(setup.report, options.sourceName);
@@ -29,6 +31,7 @@ BakeSetup prepareBake(MeshView mesh, const BakeOptions& options) {
 
 Sprite assembleSprite(const BakeSetup& setup, const BakeOptions& options, MeshView mesh,
                       std::vector<std::uint32_t> offsets, std::vector<float> crossings) {
+    const HostPhase phase(options.timings, BakePhase::Assembly);
     Sprite s;
     s.grid = setup.grid;
     s.offsets = std::move(offsets);
@@ -41,10 +44,39 @@ Sprite assembleSprite(const BakeSetup& setup, const BakeOptions& options, MeshVi
     s.status = setup.report.closed() ? SolidStatus::Closed : SolidStatus::Open;
     s.validation = setup.report.summary();
     s.checkConsistent();
+    if (options.timings) options.timings->crossings = s.crossings.size();
     return s;
 }
 
 } // namespace detail
+
+const char* toString(BakePhase p) { return enumName(p); }
+
+double BakeTimings::gpuSeconds() const {
+    double total = 0.0;
+    for (const Phase& p : phases)
+        if (p.gpuSeconds > 0.0) total += p.gpuSeconds;
+    return total;
+}
+
+std::string BakeTimings::report() const {
+    std::string out;
+    char line[160];
+    for (std::size_t k = 0; k < kBakePhaseCount; ++k) {
+        const Phase& p = phases[k];
+        if (p.runs == 0) continue;
+        int n = std::snprintf(line, sizeof line, "  %-10s %9.2f ms", toString(BakePhase(k)), 1e3 * p.wallSeconds);
+        if (p.gpuSeconds >= 0.0)
+            n += std::snprintf(line + n, sizeof line - std::size_t(n), "   GPU %8.2f ms", 1e3 * p.gpuSeconds);
+        if (p.runs > 1) std::snprintf(line + n, sizeof line - std::size_t(n), "   (%u runs)", p.runs);
+        out += line;
+        out += '\n';
+    }
+    std::snprintf(line, sizeof line, "  %-10s %9.2f ms   GPU %8.2f ms", "total", 1e3 * wallSeconds, 1e3 * gpuSeconds());
+    out += line;
+    out += '\n';
+    return out;
+}
 
 Axis chooseViewAxis(MeshView mesh, std::uint32_t probeResolution) {
     Axis best = Axis::Z;
@@ -63,12 +95,13 @@ Axis chooseViewAxis(MeshView mesh, std::uint32_t probeResolution) {
     return best;
 }
 
-Sprite bake(MeshView mesh, const BakeOptions& options, GlContext* gl) {
+Sprite bake(MeshView mesh, const BakeOptions& options, const GlContext* gl) {
     if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
     const detail::LayerBaker baker = detail::gLayerBakers[std::size_t(options.method)];
     if (!baker)
         throw GlUnavailable(std::string("bake method '") + toString(options.method) +
                             "' needs vds::gl, which this program does not link (link vds::gl or use the cpu method)");
+    const detail::BakeClock clock(options.timings);
     const detail::BakeSetup setup = detail::prepareBake(mesh, options);
     std::vector<std::uint32_t> offsets;
     std::vector<float> crossings;

@@ -1,6 +1,7 @@
 // vds internal: what every baker shares (validation, grid, assembly).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -13,11 +14,51 @@ struct BakeSetup {
     SpriteGrid grid;
 };
 
-/// Validates the mesh (throws `InvalidMesh` if unusable) and builds the grid.
+/// Adds the host time of a scope to one phase of `timings`, if set.
+class HostPhase {
+public:
+    HostPhase(BakeTimings* timings, BakePhase phase) noexcept
+        : timings_(timings), phase_(phase), start_(std::chrono::steady_clock::now()) {}
+    ~HostPhase() {
+        if (!timings_) return;
+        BakeTimings::Phase& p = (*timings_)[phase_];
+        p.wallSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        ++p.runs;
+    }
+    HostPhase(const HostPhase&) = delete;
+    HostPhase& operator=(const HostPhase&) = delete;
+
+private:
+    BakeTimings* timings_;
+    BakePhase phase_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+/// Resets `timings` (if set) and, when the scope ends, records the whole call's time.
+class BakeClock {
+public:
+    explicit BakeClock(BakeTimings* timings) : timings_(timings), start_(std::chrono::steady_clock::now()) {
+        if (timings_) *timings_ = BakeTimings{};
+    }
+    ~BakeClock() {
+        if (timings_)
+            timings_->wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+    BakeClock(const BakeClock&) = delete;
+    BakeClock& operator=(const BakeClock&) = delete;
+
+private:
+    BakeTimings* timings_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+/// Validates the mesh (throws `InvalidMesh` if unusable) and builds the grid;
+/// timed as `BakePhase::Validation`.
 BakeSetup prepareBake(MeshView mesh, const BakeOptions& options);
 
 /// Assembles a sprite from per-column crossings in CSR form (already sorted);
-/// fills d_S and the metadata, then checks consistency.
+/// fills d_S and the metadata, then checks consistency; timed as
+/// `BakePhase::Assembly`.
 Sprite assembleSprite(const BakeSetup& setup, const BakeOptions& options, MeshView mesh,
                       std::vector<std::uint32_t> offsets, std::vector<float> crossings);
 

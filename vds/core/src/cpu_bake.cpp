@@ -7,6 +7,7 @@
 #include <array>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -53,12 +54,14 @@ float planeDepth(const Triangle& tri, const float* q, const std::array<float, 3>
 } // namespace
 
 Sprite bakeCpu(MeshView mesh, const BakeOptions& options) {
+    const detail::BakeClock clock(options.timings);
     const detail::BakeSetup setup = detail::prepareBake(mesh, options);
     const SpriteGrid& grid = setup.grid;
     const auto report = [&](const std::string& message) {
         if (options.progress) options.progress(message);
     };
     report("cpu bake: indexing " + std::to_string(mesh.triangleCount) + " triangles");
+    std::optional<detail::HostPhase> phase(std::in_place, options.timings, BakePhase::Upload);
     const ProjectedMesh projected(mesh, options.axis);
 
     // Texture-space depth of every vertex, as the GL bakers' vertex stage computes it.
@@ -69,6 +72,7 @@ Sprite bakeCpu(MeshView mesh, const BakeOptions& options) {
             for (int a = 0; a < 3; ++a) world[projected.perm[a]] = projected.tris[k].v[c][a];
             vertexDepth[k][std::size_t(c)] = grid.toTexture(world).z;
         }
+    phase.emplace(options.timings, BakePhase::Raster);
 
     const std::uint32_t width = grid.width, height = grid.height;
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
@@ -98,6 +102,7 @@ Sprite bakeCpu(MeshView mesh, const BakeOptions& options) {
         }
     });
 
+    phase.emplace(options.timings, BakePhase::Scan); // the column offsets and the rows joined
     std::uint64_t total = 0;
     for (const auto& r : rows) total += r.size();
     if (total > std::numeric_limits<std::uint32_t>::max())
@@ -109,6 +114,7 @@ Sprite bakeCpu(MeshView mesh, const BakeOptions& options) {
         crossings.insert(crossings.end(), r.begin(), r.end());
         std::vector<float>().swap(r);
     }
+    phase.reset();
     report("cpu bake: " + std::to_string(total) + " crossings");
     return detail::assembleSprite(setup, options, mesh, std::move(offsets), std::move(crossings));
 }

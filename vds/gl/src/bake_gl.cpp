@@ -2,6 +2,7 @@
 // vds::bake() (see <vds/bake.h>: "Which layer bakes").
 #include "bake_gl.h"
 
+#include <algorithm>
 #include <optional>
 
 #include <GL/glext.h>
@@ -19,13 +20,16 @@ bool hasClipControl(const GlContext& gl) {
 // Runs a GL baker on `gl`, or on a private context when `gl` is null; the
 // calling thread's current context is current again on return.
 template <auto Baker>
-void bakeOnContext(MeshView mesh, const SpriteGrid& grid, const BakeOptions& options, GlContext* gl,
+void bakeOnContext(MeshView mesh, const SpriteGrid& grid, const BakeOptions& options, const GlContext* gl,
                    std::vector<std::uint32_t>& offsets, std::vector<float>& crossings) {
     const CurrentContext restore;
     std::optional<GlContext> own;
     if (!gl) gl = &own.emplace();
     gl->makeCurrent();
-    Baker(*gl, mesh, grid, options, offsets, crossings);
+    if (options.timings) options.timings->renderer = gl->info().renderer;
+    GlPhaseClock clock(options.timings);
+    Baker(*gl, mesh, grid, options, clock, offsets, crossings);
+    clock.collect();
 }
 
 // Registers the bakers before main. The --undefined link option of vds::gl
@@ -40,6 +44,70 @@ struct Registration {
 const Registration gRegistration;
 
 } // namespace
+
+void GlPhaseClock::begin(BakePhase phase, bool gpu) {
+    end();
+    if (!timings_) return;
+    running_ = true;
+    phase_ = phase;
+    gpu_ = gpu;
+    start_ = std::chrono::steady_clock::now();
+    if (!gpu) return;
+    queries_.push_back({phase, Query::create(GL_TIME_ELAPSED), 0.0});
+    glBeginQuery(GL_TIME_ELAPSED, queries_.back().query.id());
+}
+
+void GlPhaseClock::end() noexcept {
+    if (!running_) return;
+    running_ = false;
+    if (!detail::glUsable()) return;
+    if (gpu_) glEndQuery(GL_TIME_ELAPSED);
+    glFinish();
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (gpu_) queries_.back().wallSeconds = wall;
+    BakeTimings::Phase& p = (*timings_)[phase_];
+    p.wallSeconds += wall;
+    ++p.runs;
+}
+
+void GlPhaseClock::collect() {
+    end();
+    if (!timings_) return;
+    for (const Measured& m : queries_) {
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(m.query.id(), GL_QUERY_RESULT, &ns);
+        const double seconds = 1e-9 * double(ns);
+        if (seconds < 1e-3 * m.wallSeconds || seconds > m.wallSeconds) continue;
+        BakeTimings::Phase& p = (*timings_)[m.phase];
+        p.gpuSeconds = std::max(p.gpuSeconds, 0.0) + seconds;
+    }
+    queries_.clear();
+    checkGl("reading the bake's timer queries");
+}
+
+ValidatedMesh validateForBake(MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
+    const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
+    ValidatedMesh v;
+    v.report = validateMesh(mesh);
+    requireUsable(v.report, options.sourceName);
+    v.grid = makeGrid(v.report.bounds, options.axis, options.resolution);
+    return v;
+}
+
+void dispatchGroups(std::uint64_t groups) {
+    constexpr std::uint64_t kMax = 65535;
+    if (groups <= kMax) {
+        glDispatchCompute(GLuint(std::max<std::uint64_t>(groups, 1)), 1, 1);
+        return;
+    }
+    const std::uint64_t rows = (groups + kMax - 1) / kMax;
+    if (rows > kMax) throw OutOfMemory("a compute pass of " + std::to_string(groups) + " workgroups is too large");
+    glDispatchCompute(GLuint(kMax), GLuint(rows), 1);
+}
+
+GLuint strideGroups(std::uint64_t items, std::uint32_t local) {
+    return GLuint(std::clamp<std::uint64_t>((items + local - 1) / local, 1, 65535));
+}
 
 std::string bakeDefines(const GlContext& gl) { return hasClipControl(gl) ? "#define VDS_CLIP_CONTROL\n" : ""; }
 

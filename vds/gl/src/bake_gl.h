@@ -2,6 +2,7 @@
 // Both fill a CSR LDI (offsets, encoded crossings) on the current context.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,11 +15,77 @@
 
 namespace vds::detail {
 
+/// Times the phases of a GL bake into `timings`, if set (see `BakeTimings`):
+/// host wall time from a phase's start until GL has finished its commands
+/// (glFinish at the phase's end), and GL_TIME_ELAPSED queries around them.
+/// Without timings every call does nothing, so a plain bake never waits.
+/// One phase runs at a time (GL allows one active timer query): `begin`
+/// ends the running one. A query's time is dropped when it is longer than
+/// its phase's wall time or below a thousandth of it, which a working timer
+/// never reports (llvmpipe: about 0 for compute passes).
+class GlPhaseClock {
+public:
+    explicit GlPhaseClock(BakeTimings* timings) noexcept : timings_(timings) {}
+    ~GlPhaseClock() { end(); }
+    GlPhaseClock(const GlPhaseClock&) = delete;
+    GlPhaseClock& operator=(const GlPhaseClock&) = delete;
+
+    /// Starts `phase`; `gpu` = false for host work (no timer query).
+    void begin(BakePhase phase, bool gpu = true);
+    /// Ends the running phase, if any.
+    void end() noexcept;
+    /// Adds the GPU times of the finished phases (waits for their queries).
+    void collect();
+
+    /// One phase for the scope.
+    class Scope {
+    public:
+        Scope(GlPhaseClock& clock, BakePhase phase, bool gpu = true) : clock_(clock) { clock.begin(phase, gpu); }
+        ~Scope() { clock_.end(); }
+        Scope(const Scope&) = delete;
+        Scope& operator=(const Scope&) = delete;
+
+    private:
+        GlPhaseClock& clock_;
+    };
+
+private:
+    BakeTimings* timings_;
+    bool running_ = false;
+    bool gpu_ = false;
+    BakePhase phase_ = BakePhase::Validation;
+    std::chrono::steady_clock::time_point start_;
+    struct Measured {
+        BakePhase phase;
+        Query query;
+        double wallSeconds;
+    };
+    std::vector<Measured> queries_;
+};
+
+/// Runs `BakePhase::Validation`: validates the mesh (throws `InvalidMesh`)
+/// and makes the grid, as vds::bake() does.
+struct ValidatedMesh {
+    MeshReport report;
+    SpriteGrid grid;
+};
+ValidatedMesh validateForBake(MeshView mesh, const BakeOptions& options, GlPhaseClock& clock);
+
+/// `groups` workgroups as a glDispatchCompute grid: x up to 65535, then rows
+/// of y. Shaders number a group `gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x`
+/// and skip numbers past the real count.
+void dispatchGroups(std::uint64_t groups);
+/// Workgroups for a grid-stride loop over `items` with `local` invocations
+/// per group: enough to fill any GPU, at most 65535.
+GLuint strideGroups(std::uint64_t items, std::uint32_t local = 256);
+
+/// The GL bakers behind vds::bake(): fill the CSR layers of `grid` on `gl`
+/// (current), timing their phases on `clock`.
 void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const BakeOptions& options,
-              std::vector<std::uint32_t>& offsets, std::vector<float>& crossings);
+              GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings);
 
 void bakeLists(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const BakeOptions& options,
-               std::vector<std::uint32_t>& offsets, std::vector<float>& crossings);
+               GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings);
 
 constexpr std::uint32_t kEnteringBit = 0x80000000u;
 constexpr std::uint32_t kNoNode = 0xffffffffu;

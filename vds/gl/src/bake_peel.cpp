@@ -2,6 +2,7 @@
 // "Interactive Order-Independent Transparency"): one pass per layer, each
 // keeping the nearest crossing behind the previous layer; an occlusion query
 // finds d_S. Equal depths are ordered by triangle index, as in every baker.
+// Each layer is read back and the columns are built on the host.
 #include "bake_gl.h"
 
 #include <GL/glext.h>
@@ -13,11 +14,13 @@
 namespace vds::detail {
 
 void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const BakeOptions& options,
-              std::vector<std::uint32_t>& offsets, std::vector<float>& crossings) {
+              GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings) {
+    clock.begin(BakePhase::Compile, false);
     const Program& program = gl.program("vds.peel", [&] {
         return buildProgram({{GL_VERTEX_SHADER, "vds/bake.vert", ""}, {GL_FRAGMENT_SHADER, "vds/peel.frag", ""}},
                             bakeDefines(gl));
     });
+    clock.begin(BakePhase::Upload);
     const GpuMesh draw(mesh);
     const std::size_t pixels = std::size_t(grid.width) * grid.height;
     Texture depth[2] = {makeTexture2D(GL_R32F, grid), makeTexture2D(GL_R32F, grid)};
@@ -50,6 +53,7 @@ void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const 
     const float farDepth = 1.0f;
     for (int pass = 0;; ++pass) {
         const int cur = pass & 1, prev = cur ^ 1;
+        clock.begin(BakePhase::Raster);
         glBindFramebuffer(GL_FRAMEBUFFER, fbo[cur].id());
         glClearNamedFramebufferfv(fbo[cur].id(), GL_COLOR, 0, emptyDepth);
         glClearNamedFramebufferuiv(fbo[cur].id(), GL_COLOR, 1, emptyKey);
@@ -64,6 +68,7 @@ void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const 
         glGetQueryObjectuiv(query.id(), GL_QUERY_RESULT, &any);
         checkGl("depth peeling pass");
         if (!any) break;
+        clock.begin(BakePhase::ReadBack);
         glGetTextureImage(depth[cur].id(), 0, GL_RED, GL_FLOAT, GLsizei(pixels * sizeof(float)), layerDepth.data());
         glGetTextureImage(key[cur].id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(pixels * sizeof(std::uint32_t)),
                           layerKey.data());
@@ -77,6 +82,7 @@ void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const 
     glBindTextureUnit(0, 0);
     glBindTextureUnit(1, 0);
 
+    clock.begin(BakePhase::Scan, false); // the layers into columns, on the host
     offsets.assign(pixels + 1, 0);
     for (std::size_t p = 0; p < pixels; ++p) {
         std::uint32_t n = 0;
@@ -86,6 +92,7 @@ void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const 
     crossings.resize(offsets.back());
     for (std::size_t p = 0; p < pixels; ++p)
         for (std::uint32_t k = 0; k < offsets[p + 1] - offsets[p]; ++k) crossings[offsets[p] + k] = layers[k][p];
+    clock.end();
 }
 
 } // namespace vds::detail

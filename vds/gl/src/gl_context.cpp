@@ -1,5 +1,6 @@
 #include <vds/gl_context.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -119,11 +120,17 @@ struct GlContext::Impl {
     EGLSurface surface = EGL_NO_SURFACE;
     GlInfo info;
     mutable std::unordered_map<std::string, Program> programs;
+    struct Scratch {
+        std::size_t bytes = 0;
+        Buffer buffer;
+    };
+    mutable std::unordered_map<std::string, Scratch> scratch;
 
     ~Impl() {
         if (gExiting) {
-            // The driver may be gone: let the programs' names go unfreed.
+            // The driver may be gone: let the programs' and buffers' names go unfreed.
             for (auto& entry : programs) entry.second.release();
+            for (auto& entry : scratch) entry.second.buffer.release();
             return;
         }
         if (display == EGL_NO_DISPLAY) return;
@@ -133,6 +140,7 @@ struct GlContext::Impl {
                 const CurrentContext scope; // the caller's context comes back after the programs go
                 eglMakeCurrent(display, surface, surface, context);
                 programs.clear();
+                scratch.clear();
             }
             if (wasCurrent) eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
             eglDestroyContext(display, context); // deferred by EGL while still current elsewhere
@@ -279,6 +287,22 @@ const Program& GlContext::program(const std::string& key, const std::function<Pr
     if (it == impl_->programs.end()) it = impl_->programs.emplace(key, make()).first;
     return it->second;
 }
+
+const Buffer& GlContext::scratchBuffer(const std::string& key, std::size_t bytes, std::size_t* capacity) const {
+    Impl::Scratch& entry = impl_->scratch[key];
+    if (capacity) *capacity = std::max(entry.bytes, bytes);
+    if (entry.buffer && entry.bytes >= bytes) return entry.buffer;
+    entry.buffer = Buffer(); // free the old storage before asking for the new
+    entry.bytes = 0;
+    Buffer b = Buffer::create();
+    glNamedBufferStorage(b.id(), GLsizeiptr(std::max<std::size_t>(bytes, 4)), nullptr, 0);
+    checkGl(("allocating scratch buffer " + key).c_str());
+    entry.buffer = std::move(b);
+    entry.bytes = bytes;
+    return entry.buffer;
+}
+
+void GlContext::releaseScratch() const { impl_->scratch.clear(); }
 
 bool glAvailable(std::string* reason) {
     static std::once_flag once;

@@ -29,3 +29,29 @@ GLuint ProgramTraits::create() { return checked(glCreateProgram(), "program"); }
 void ProgramTraits::destroy(GLuint id) noexcept { if (glUsable()) glDeleteProgram(id); }
 
 } // namespace vds::detail
+
+namespace vds {
+
+Fence Fence::insert() {
+    Fence f;
+    f.sync_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    if (!f.sync_) throw GlError("cannot create a GL fence");
+    glFlush(); // a fence that never reaches the GPU is never passed
+    return f;
+}
+
+void Fence::wait() const {
+    if (!sync_) return;
+    for (;;) {
+        const GLenum r = glClientWaitSync(sync_, 0, GLuint64(1000000000));
+        if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED) return;
+        if (r == GL_WAIT_FAILED) throw GlError("waiting for a GL fence failed");
+    }
+}
+
+void Fence::reset() noexcept {
+    if (sync_ && detail::glUsable()) glDeleteSync(sync_);
+    sync_ = nullptr;
+}
+
+} // namespace vds

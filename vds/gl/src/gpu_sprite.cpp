@@ -1,47 +1,97 @@
 #include <vds/gpu_sprite.h>
 
 #include <algorithm>
+#include <cassert>
+#include <cstring>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include <GL/glext.h>
 
 #include <vds/error.h>
+#include <vds/parallel.h>
 #include <vds/shader.h>
+
+#include "bake_gl.h"
+#include "sprite_parts.h"
 
 namespace vds {
 
-GpuSprite::GpuSprite(const Sprite& sprite) {
-    const std::uint32_t w = sprite.width(), h = sprite.height(), d = std::max<std::uint32_t>(1, sprite.depthComplexity);
+namespace detail {
+
+Texture makeSpriteTexture(glm::uvec3 size) {
     GLint max3d = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
-    if (w > std::uint32_t(max3d) || h > std::uint32_t(max3d) || d > std::uint32_t(max3d))
-        throw InvalidArgument("sprite " + std::to_string(w) + "x" + std::to_string(h) + "x" + std::to_string(d) +
-                              " exceeds this GL's 3D texture limit " + std::to_string(max3d) +
+    if (size.x > std::uint32_t(max3d) || size.y > std::uint32_t(max3d) || size.z > std::uint32_t(max3d))
+        throw InvalidArgument("sprite " + std::to_string(size.x) + "x" + std::to_string(size.y) + "x" +
+                              std::to_string(size.z) + " exceeds this GL's 3D texture limit " + std::to_string(max3d) +
                               "; bake at a lower resolution");
-    std::vector<float> dense;
-    try {
-        dense.assign(std::size_t(w) * h * d, 1.0f);
-    } catch (const std::bad_alloc&) {
-        throw OutOfMemory("not enough memory for a " + std::to_string(w) + "x" + std::to_string(h) + "x" +
-                          std::to_string(d) + " texture");
-    }
-    const std::size_t layer = std::size_t(w) * h;
-    for (std::size_t c = 0; c < layer; ++c)
-        for (std::uint32_t k = sprite.offsets[c]; k < sprite.offsets[c + 1]; ++k)
-            dense[(k - sprite.offsets[c]) * layer + c] = sprite.crossings[k];
-
-    texture_ = Texture::create(GL_TEXTURE_3D);
-    glTextureStorage3D(texture_.id(), 1, GL_R32F, GLsizei(w), GLsizei(h), GLsizei(d));
+    Texture t = Texture::create(GL_TEXTURE_3D);
+    glTextureStorage3D(t.id(), 1, GL_R32F, GLsizei(size.x), GLsizei(size.y), GLsizei(size.z));
     checkGl("allocating the sprite texture");
-    glTextureSubImage3D(texture_.id(), 0, 0, 0, 0, GLsizei(w), GLsizei(h), GLsizei(d), GL_RED, GL_FLOAT, dense.data());
-    glTextureParameteri(texture_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(texture_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-        glTextureParameteri(texture_.id(), wrap, GL_CLAMP_TO_BORDER);
+        glTextureParameteri(t.id(), wrap, GL_CLAMP_TO_BORDER);
     const float border[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-    glTextureParameterfv(texture_.id(), GL_TEXTURE_BORDER_COLOR, border);
-    checkGl("uploading the sprite texture");
+    glTextureParameterfv(t.id(), GL_TEXTURE_BORDER_COLOR, border);
+    checkGl("setting up the sprite texture");
+    return t;
+}
+
+GpuSprite GpuSpriteAccess::make(Texture texture, Buffer offsets, Buffer crossings, std::uint64_t crossingCount,
+                                glm::uvec3 size, const SpriteGrid& grid, SolidStatus status) {
+    GpuSprite s;
+    s.status_ = status;
+    s.texture_ = std::move(texture);
+    s.offsets_ = std::move(offsets);
+    s.crossings_ = std::move(crossings);
+    s.crossingCount_ = crossingCount;
+    s.size_ = size;
+    s.setPlacement(grid);
+    return s;
+}
+
+} // namespace detail
+
+namespace {
+
+Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what) {
+    Buffer b = Buffer::create();
+    glNamedBufferStorage(b.id(), GLsizeiptr(std::max<std::size_t>(bytes, 4)), bytes ? data : nullptr, 0);
+    checkGl(what);
+    return b;
+}
+
+} // namespace
+
+GpuSprite::GpuSprite(const Sprite& sprite, GpuSpriteParts parts) {
+    const std::uint32_t w = sprite.width(), h = sprite.height(), d = std::max<std::uint32_t>(1, sprite.depthComplexity);
     size_ = {w, h, d};
+    crossingCount_ = sprite.crossings.size();
+    status_ = sprite.status;
+    if (parts != GpuSpriteParts::ColumnsOnly) {
+        texture_ = detail::makeSpriteTexture(size_);
+        std::vector<float> dense;
+        try {
+            dense.assign(std::size_t(w) * h * d, 1.0f);
+        } catch (const std::bad_alloc&) {
+            throw OutOfMemory("not enough memory for a " + std::to_string(w) + "x" + std::to_string(h) + "x" +
+                              std::to_string(d) + " texture");
+        }
+        const std::size_t layer = std::size_t(w) * h;
+        for (std::size_t c = 0; c < layer; ++c)
+            for (std::uint32_t k = sprite.offsets[c]; k < sprite.offsets[c + 1]; ++k)
+                dense[(k - sprite.offsets[c]) * layer + c] = sprite.crossings[k];
+        glTextureSubImage3D(texture_.id(), 0, 0, 0, 0, GLsizei(w), GLsizei(h), GLsizei(d), GL_RED, GL_FLOAT,
+                            dense.data());
+        checkGl("uploading the sprite texture");
+    }
+    if (parts != GpuSpriteParts::TextureOnly) {
+        offsets_ = uploadBuffer(sprite.offsets.data(), sprite.offsets.size() * 4, "uploading the sprite's columns");
+        crossings_ = uploadBuffer(sprite.crossings.data(), sprite.crossings.size() * 4, "uploading the sprite's columns");
+    }
     setPlacement(sprite.grid);
 }
 
@@ -60,38 +110,169 @@ void GpuSprite::setUniforms(GLuint program, const std::string& sampler, const st
     glUniform3fv(glGetUniformLocation(program, (placement + ".position").c_str()), 1, &position_[0]);
 }
 
-GpuClassifier::GpuClassifier(const GlContext& gl) : gl_(&gl) {
-    gl.program("vds.classify", [] { return buildProgram({{GL_COMPUTE_SHADER, "vds/classify.comp", ""}}); });
+// --- GpuClassifier ---------------------------------------------------------
+
+namespace {
+
+constexpr std::size_t kPointBytes = 12;
+
+std::size_t labelBytes(std::size_t points) { return (points + 3) / 4 * 4; }
+
+// Copies big blocks on several threads: one thread's memcpy is slower than
+// the bus the points then cross.
+void copyParallel(void* dst, const void* src, std::size_t bytes) {
+    constexpr std::size_t kChunk = std::size_t(4) << 20;
+    if (bytes <= 2 * kChunk) {
+        std::memcpy(dst, src, bytes);
+        return;
+    }
+    const unsigned threads = std::min(8u, std::max(1u, std::thread::hardware_concurrency()));
+    parallelFor(threads, bytes, kChunk, [&](std::size_t begin, std::size_t end) {
+        std::memcpy(static_cast<char*>(dst) + begin, static_cast<const char*>(src) + begin, end - begin);
+    });
+}
+
+Program buildClassifier(bool columns) {
+    return buildProgram({{GL_COMPUTE_SHADER, "vds/classify.comp", ""}}, columns ? "#define VDS_COLUMNS\n" : "");
+}
+
+} // namespace
+
+GpuClassifier::GpuClassifier() : columns_(buildClassifier(true)), texture_(buildClassifier(false)) {
+    GLint64 maxBlock = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+    maxBlock_ = std::uint64_t(maxBlock);
+    // Dispatches of a power of two of points keep every range's offset aligned.
+    maxDispatch_ = std::size_t(1) << 30;
+    while (maxDispatch_ * kPointBytes > maxBlock_) maxDispatch_ >>= 1;
+    checkGl("building the GPU classifier");
+}
+
+GpuClassifier::GpuClassifier(const GlContext& gl) : GpuClassifier() {
+    static_cast<void>(gl);
+    assert(gl.isCurrent() && "GpuClassifier: the context must be current");
+}
+
+GpuClassifier::~GpuClassifier() = default;
+
+GpuClassifier::GpuClassifier(GpuClassifier&& o) noexcept
+    : columns_(std::move(o.columns_)), texture_(std::move(o.texture_)), maxBlock_(o.maxBlock_),
+      maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)), capacity_(std::exchange(o.capacity_, 0)) {}
+
+GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
+    if (this != &o) {
+        columns_ = std::move(o.columns_);
+        texture_ = std::move(o.texture_);
+        maxBlock_ = o.maxBlock_;
+        maxDispatch_ = o.maxDispatch_;
+        slots_ = std::move(o.slots_);
+        capacity_ = std::exchange(o.capacity_, 0);
+    }
+    return *this;
+}
+
+void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr pointsOffset, GLuint labels,
+                             GLintptr labelsOffset, std::size_t count, Rule rule) {
+    const std::uint64_t offsetBytes = (std::uint64_t(sprite.size().x) * sprite.size().y + 1) * 4;
+    const std::uint64_t crossingBytes = std::max<std::uint64_t>(sprite.crossingCount(), 1) * 4;
+    const bool columns = sprite.hasColumns() && offsetBytes <= maxBlock_ && crossingBytes <= maxBlock_;
+    if (!columns && !sprite.hasTexture()) throw InvalidArgument("GpuClassifier: the sprite holds nothing to classify with");
+    const Program& program = columns ? columns_ : texture_;
+    glUseProgram(program.id());
+    if (columns) {
+        // The ranges the shader reads: a baked sprite's buffers may be padded.
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 3, sprite.offsets().id(), 0, GLsizeiptr(offsetBytes));
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 4, sprite.crossings().id(), 0, GLsizeiptr(crossingBytes));
+        glUniform2i(glGetUniformLocation(program.id(), "u_size"), GLint(sprite.size().x), GLint(sprite.size().y));
+        glUniformMatrix3fv(glGetUniformLocation(program.id(), "u_placement.matrix"), 1, GL_FALSE, &sprite.matrix()[0][0]);
+        glUniform3fv(glGetUniformLocation(program.id(), "u_placement.position"), 1, &sprite.position()[0]);
+    } else {
+        sprite.setUniforms(program.id(), "u_ldi", "u_placement", 0);
+    }
+    if (rule == Rule::GeneralizedWinding && sprite.status() == SolidStatus::Open)
+        throw InvalidArgument("the generalized winding number of a mesh with boundary needs the exact classifier "
+                              "(sprites do not store the boundary yet)");
+    // On a mesh that bounds a solid the generalized winding number is the winding number.
+    glUniform1i(glGetUniformLocation(program.id(), "u_rule"), rule == Rule::Parity ? 0 : 1);
+    const GLint countLoc = glGetUniformLocation(program.id(), "u_count");
+    for (std::size_t first = 0; first < count; first += maxDispatch_) {
+        const std::size_t n = std::min(maxDispatch_, count - first);
+        const GLintptr p = pointsOffset + GLintptr(first * kPointBytes), l = labelsOffset + GLintptr(first);
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, points, p, GLsizeiptr(n * kPointBytes));
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, points, p, GLsizeiptr(n * kPointBytes));
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, labels, l, GLsizeiptr(labelBytes(n)));
+        glUniform1ui(countLoc, GLuint(n));
+        glDispatchCompute(detail::strideGroups((n + 3) / 4), 1, 1);
+    }
+    for (GLuint binding = 0; binding <= 4; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
+    if (!columns) glBindTextureUnit(0, 0);
+    glUseProgram(0);
+}
+
+void GpuClassifier::classify(const GpuSprite& sprite, GLuint points, GLuint labels, std::size_t count, Rule rule) {
+    if (count == 0) return;
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    dispatch(sprite, points, 0, labels, 0, count, rule);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    checkGl("classifying points on the GPU");
+}
+
+// Staging buffers in host memory, mapped for good: the shader reads the points
+// and writes the labels there, so the bus transfer is the dispatch itself.
+void GpuClassifier::reserve(std::size_t points) {
+    if (points <= capacity_) return;
+    for (Slot& slot : slots_) {
+        slot = Slot();
+        slot.points = Buffer::create();
+        slot.labels = Buffer::create();
+        const GLbitfield write = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        const GLbitfield read = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        glNamedBufferStorage(slot.points.id(), GLsizeiptr(points * kPointBytes), nullptr, write | GL_CLIENT_STORAGE_BIT);
+        glNamedBufferStorage(slot.labels.id(), GLsizeiptr(labelBytes(points)), nullptr, read | GL_CLIENT_STORAGE_BIT);
+        checkGl("allocating the classifier's staging buffers");
+        slot.pointsMap = glMapNamedBufferRange(slot.points.id(), 0, GLsizeiptr(points * kPointBytes), write);
+        slot.labelsMap = glMapNamedBufferRange(slot.labels.id(), 0, GLsizeiptr(labelBytes(points)), read);
+        if (!slot.pointsMap || !slot.labelsMap) throw GlError("cannot map the classifier's staging buffers");
+    }
+    capacity_ = points;
+}
+
+void GpuClassifier::finish(Slot& slot, std::uint8_t* labels) {
+    if (slot.count == 0) return;
+    slot.done.wait();
+    copyParallel(labels + slot.first, slot.labelsMap, slot.count);
+    slot.done.reset();
+    slot.count = 0;
 }
 
 void GpuClassifier::classify(const GpuSprite& sprite, const glm::vec3* points, std::size_t count,
-                             std::uint8_t* labels, Rule rule, std::size_t batch) const {
-    const Program& program =
-        gl_->program("vds.classify", [] { return buildProgram({{GL_COMPUTE_SHADER, "vds/classify.comp", ""}}); });
-    batch = std::max<std::size_t>(256, std::min<std::size_t>(batch, std::size_t(65535) * 256));
-    const std::size_t n = std::min(batch, count);
-    Buffer pointBuffer = Buffer::create(), labelBuffer = Buffer::create();
-    glNamedBufferStorage(pointBuffer.id(), GLsizeiptr(std::max<std::size_t>(n, 1) * 12), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    glNamedBufferStorage(labelBuffer.id(), GLsizeiptr(std::max<std::size_t>(n, 1) * 4), nullptr, 0);
-    checkGl("allocating classification buffers");
-    glUseProgram(program.id());
-    sprite.setUniforms(program.id(), "u_ldi", "u_placement", 0);
-    glUniform1i(glGetUniformLocation(program.id(), "u_rule"), rule == Rule::Winding ? 1 : 0);
-    const GLint countLoc = glGetUniformLocation(program.id(), "u_count");
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pointBuffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, labelBuffer.id());
-    std::vector<std::uint32_t> out(n);
-    for (std::size_t begin = 0; begin < count; begin += n) {
-        const std::size_t m = std::min(n, count - begin);
-        glNamedBufferSubData(pointBuffer.id(), 0, GLsizeiptr(m * 12), points + begin);
-        glUniform1ui(countLoc, GLuint(m));
-        glDispatchCompute(GLuint((m + 255) / 256), 1, 1);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        glGetNamedBufferSubData(labelBuffer.id(), 0, GLsizeiptr(m * 4), out.data());
-        for (std::size_t k = 0; k < m; ++k) labels[begin + k] = std::uint8_t(out[k]);
+                             std::uint8_t* labels, Rule rule, std::size_t batch) {
+    if (count == 0) return;
+    batch = std::clamp<std::size_t>(batch, 1024, maxDispatch_) & ~std::size_t(3);
+    reserve(std::min(batch, labelBytes(count)));
+    const std::size_t step = std::min(batch, capacity_);
+    std::size_t next = 0;
+    try {
+        for (std::size_t first = 0; first < count; first += step, ++next) {
+            Slot& slot = slots_[next % 2];
+            finish(slot, labels); // the batch before last: its buffers are free again
+            slot.first = first;
+            slot.count = std::min(step, count - first);
+            copyParallel(slot.pointsMap, points + first, slot.count * kPointBytes);
+            dispatch(sprite, slot.points.id(), 0, slot.labels.id(), 0, slot.count, rule);
+            glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+            slot.done = Fence::insert();
+        }
+        finish(slots_[next % 2], labels);
+        finish(slots_[(next + 1) % 2], labels);
+    } catch (...) {
+        glFinish(); // no batch may still use the staging buffers when they are next written
+        for (Slot& slot : slots_) {
+            slot.done.reset();
+            slot.count = 0;
+        }
+        throw;
     }
-    glUseProgram(0);
-    glBindTextureUnit(0, 0);
     checkGl("classifying points on the GPU");
 }
 

@@ -5,8 +5,10 @@
 // every texel's ray is recorded. Three bakers produce the same layers:
 //  - Peel:  classic depth peeling, one layer per pass, d_S found with an
 //           occlusion query (the paper's method);
-//  - Lists: one pass of per-pixel fragment lists, sorted per pixel in a
-//           compute pass (the default: fastest on llvmpipe and GPUs);
+//  - Lists: one pass of per-pixel fragment lists; counting, a GPU prefix
+//           sum and a per-column sort in compute build the sprite's columns
+//           on the GPU, read back once (the default: fastest on GPUs, and on
+//           llvmpipe faster than the CPU baker on the bundled meshes);
 //  - Cpu:   exact ray casting on the CPU (<vds/exact.h>), no GL needed.
 // Crossings at equal depth are ordered by triangle index in all three.
 //
@@ -18,6 +20,8 @@
 // Lists, with a message that says to link vds::gl or use BakeMethod::Cpu.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -42,16 +46,75 @@ template <> struct EnumNames<BakeMethod> {
 BakeMethod parseBakeMethod(const std::string& s);
 const char* toString(BakeMethod m);
 
+/// The phases of a bake, in the order they run. Not every baker has every
+/// phase; a phase that runs more than once (row bands, peeling passes) adds up.
+enum class BakePhase : std::uint8_t {
+    Validation,  ///< checking the mesh and making the grid (host)
+    Compile,     ///< building the GL programs: the first bake on a context only
+    Upload,      ///< the mesh into GL buffers; the CPU baker: projecting and indexing the triangles
+    Raster,      ///< drawing the mesh (fragment lists, or every peeling pass); the CPU baker: casting the rays
+    Scan,        ///< crossings per column and their prefix sum, the column offsets (GPU scan for lists)
+    Sort,        ///< scattering the crossings into their columns and sorting each column
+    TextureFill, ///< filling the 3D texture from the columns (`bakeToGpu`)
+    ReadBack,    ///< copying the columns (lists) or the layers (peel) from GL to the host
+    Assembly,    ///< the host sprite: d_S, metadata and its consistency check
+};
+constexpr std::size_t kBakePhaseCount = 9;
+
+template <> struct EnumNames<BakePhase> {
+    static constexpr const char* kind = "bake phase";
+    static constexpr EnumName<BakePhase> table[] = {
+        {"validation", BakePhase::Validation}, {"compile", BakePhase::Compile},   {"upload", BakePhase::Upload},
+        {"raster", BakePhase::Raster},         {"scan", BakePhase::Scan},         {"sort", BakePhase::Sort},
+        {"texture", BakePhase::TextureFill},   {"read-back", BakePhase::ReadBack}, {"assembly", BakePhase::Assembly}};
+};
+const char* toString(BakePhase p);
+
+/// Where the time of one bake went, phase by phase: filled by `bake()` (and
+/// `bakeToGpu()`) when `BakeOptions::timings` points at one.
+///
+/// Wall times are host clock (std::chrono::steady_clock). To make them mean
+/// something per phase, a measured GL bake waits for GL (glFinish) at the
+/// end of every phase, which a bake without `timings` does not; GPU times are
+/// GL timer queries (GL_TIME_ELAPSED) around the phase's GL commands, so they
+/// count the GPU's work alone, not the driver's or the transfers' waiting.
+struct BakeTimings {
+    struct Phase {
+        double wallSeconds = 0.0; ///< host time from the phase's start until its GL work was done
+        double gpuSeconds = -1.0; ///< GPU time of the phase's GL commands; < 0 where none was measured
+        std::uint32_t runs = 0;   ///< how often the phase ran (0: not at all)
+    };
+    std::array<Phase, kBakePhaseCount> phases{};
+    double wallSeconds = 0.0;        ///< the whole call
+    std::string renderer;            ///< GL_RENDERER of the context that baked; empty for the CPU baker
+    std::uint32_t bands = 0;         ///< fragment lists: row bands baked (1: the whole image in one pass)
+    std::uint64_t listNodes = 0;     ///< fragment lists: the node pool's final capacity (see maxListNodes)
+    std::uint64_t crossings = 0;     ///< crossings in the sprite
+
+    Phase& operator[](BakePhase p) { return phases[std::size_t(p)]; }
+    const Phase& operator[](BakePhase p) const { return phases[std::size_t(p)]; }
+    /// Sum of the GPU times measured (0 if none).
+    double gpuSeconds() const;
+    /// A few lines for people: one per phase that ran, with wall and GPU
+    /// milliseconds, then the total, e.g. "  raster      3.10 ms   GPU 2.95 ms".
+    std::string report() const;
+};
+
 struct BakeOptions {
     std::uint32_t resolution = 1024;        ///< texels on the longer side of the view, 1..16384
     Axis axis = Axis::Z;                    ///< view direction
     BakeMethod method = BakeMethod::Lists;
     std::string sourceName;                 ///< recorded in the sprite (e.g. the mesh file name)
-    /// Fragment-list node pool limit in nodes; 0 = as many as one GL buffer
-    /// may hold. When a pass needs more, the image is baked in row bands.
+    /// Fragment lists: limit of the node pool, which holds the crossings past
+    /// the first two of each column; 0 = as many as one GL buffer may hold.
+    /// When a pass needs more, the image is baked in row bands.
     std::uint64_t maxListNodes = 0;
     /// Called now and then with a short description of the work in progress.
     std::function<void(const std::string&)> progress;
+    /// If set, reset and filled with the phase times of this bake (see
+    /// `BakeTimings`: measuring adds a wait for GL at each phase's end). The
+    /// caller owns it; it must outlive the call.
+    BakeTimings* timings = nullptr;
 };
 
 /// The view axis with the fewest layers (the least depth complexity d_S; ties
@@ -68,7 +131,7 @@ Axis chooseViewAxis(MeshView mesh, std::uint32_t probeResolution = 64);
 /// current for the call), else make a private context for the call; either
 /// way the calling thread's current context is the same on return. Throws
 /// `GlUnavailable` if no GL can be had or vds::gl is not linked.
-Sprite bake(MeshView mesh, const BakeOptions& options, GlContext* gl = nullptr);
+Sprite bake(MeshView mesh, const BakeOptions& options, const GlContext* gl = nullptr);
 
 /// The CPU baker: the sprite the GL bakers make, by exact ray casting at
 /// texel centres (`bake()` calls this for `BakeMethod::Cpu`). A column holds
@@ -77,14 +140,15 @@ Sprite bake(MeshView mesh, const BakeOptions& options, GlContext* gl = nullptr);
 /// plane there in LDI texture space, sorted by depth, then triangle index.
 /// Validates like `bake()` (throws `InvalidMesh`); `options.maxListNodes` is
 /// ignored. Runs on every hardware thread; `options.progress` is called on
-/// the calling thread.
+/// the calling thread. Fills `options.timings` (validation, upload = indexing
+/// the triangles, raster = casting the rays, assembly) if set.
 Sprite bakeCpu(MeshView mesh, const BakeOptions& options);
 
 namespace detail {
 /// A GL baker as vds::gl registers it: fills the CSR layers (`offsets`,
 /// `crossings`, see `Sprite`) of `grid` for a mesh `bake()` has validated.
 /// `gl` may be null (the baker then makes its own context).
-using LayerBaker = void (*)(MeshView mesh, const SpriteGrid& grid, const BakeOptions& options, GlContext* gl,
+using LayerBaker = void (*)(MeshView mesh, const SpriteGrid& grid, const BakeOptions& options, const GlContext* gl,
                             std::vector<std::uint32_t>& offsets, std::vector<float>& crossings);
 /// Called by vds::gl at load time; not for users.
 void registerLayerBaker(BakeMethod method, LayerBaker baker) noexcept;

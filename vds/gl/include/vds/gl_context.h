@@ -22,6 +22,7 @@
 //    context or program kept in a static therefore cannot crash at exit.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <string>
@@ -64,6 +65,17 @@ public:
     /// This context must be current (throws `GlError` otherwise): a program
     /// belongs to the context that built it.
     const Program& program(const std::string& key, const std::function<Program()>& make) const;
+
+    /// A GL buffer kept with this context for reuse, by key: the bakers'
+    /// scratch space (fragment nodes, counts, prefix sums), which would
+    /// otherwise be allocated, and its memory first touched, on every bake.
+    /// Holds at least `bytes` bytes (contents undefined, GPU-only storage);
+    /// a call asking for more replaces it. Valid until the next call with the
+    /// same key, `releaseScratch()`, or the context's end. `capacity`, if
+    /// given, receives the size the buffer has (>= bytes). Needs this context current.
+    const Buffer& scratchBuffer(const std::string& key, std::size_t bytes, std::size_t* capacity = nullptr) const;
+    /// Frees every scratch buffer (this context must be current).
+    void releaseScratch() const;
 
 private:
     struct Impl;

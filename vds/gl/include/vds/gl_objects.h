@@ -62,4 +62,35 @@ using Query = GlObject<detail::QueryTraits>;             ///< create(GL_SAMPLES_
 using Shader = GlObject<detail::ShaderTraits>;           ///< create(GL_VERTEX_SHADER, ...)
 using Program = GlObject<detail::ProgramTraits>;         ///< create(); see <vds/shader.h>
 
+/// A GL fence sync object (a GLsync, not a GLuint name, hence its own type),
+/// move-only like the others: `insert()` puts one in the command stream and
+/// flushes it to the GPU, the destructor deletes it.
+class Fence {
+public:
+    Fence() noexcept = default;
+    ~Fence() { reset(); }
+    Fence(Fence&& o) noexcept : sync_(std::exchange(o.sync_, nullptr)) {}
+    Fence& operator=(Fence&& o) noexcept {
+        if (this != &o) {
+            reset();
+            sync_ = std::exchange(o.sync_, nullptr);
+        }
+        return *this;
+    }
+    Fence(const Fence&) = delete;
+    Fence& operator=(const Fence&) = delete;
+
+    /// A fence after every GL command issued so far. Throws `GlError` if GL fails.
+    static Fence insert();
+    /// Blocks until the GPU has passed the fence. Throws `GlError` if the
+    /// wait fails (a lost context). A default-built fence is passed already.
+    void wait() const;
+    GLsync get() const noexcept { return sync_; }
+    explicit operator bool() const noexcept { return sync_ != nullptr; }
+    void reset() noexcept;
+
+private:
+    GLsync sync_ = nullptr;
+};
+
 } // namespace vds

@@ -1,0 +1,135 @@
+// vds::bakeToGpu: the sprite baked straight into GL equals, texel for texel
+// and offset for offset, the host bake uploaded with GpuSprite.
+#include <cstring>
+#include <vector>
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <gtest/gtest.h>
+
+#include <vds/bake.h>
+#include <vds/error.h>
+#include <vds/gpu_bake.h>
+#include <vds/gpu_sprite.h>
+#include "solids.h"
+
+#include "../support/gl_fixture.h"
+
+namespace vds {
+namespace {
+
+std::vector<float> textureTexels(const GpuSprite& s) {
+    const glm::uvec3 n = s.size();
+    std::vector<float> texels(std::size_t(n.x) * n.y * n.z);
+    glGetTextureImage(s.texture().id(), 0, GL_RED, GL_FLOAT, GLsizei(texels.size() * 4), texels.data());
+    return texels;
+}
+
+template <class T> std::vector<T> bufferContents(const Buffer& b, std::size_t count) {
+    std::vector<T> v(count);
+    if (count) glGetNamedBufferSubData(b.id(), 0, GLsizeiptr(count * sizeof(T)), v.data());
+    return v;
+}
+
+class GpuBakeTest : public test::GlTest {
+protected:
+    // bakeToGpu against GpuSprite(bake()) for the same options, bit for bit.
+    void expectSameAsHostBake(const TriangleMesh& mesh, const BakeOptions& options) {
+        const Sprite host = bake(mesh, options, &gl());
+        const GpuSprite uploaded(host);
+        const GpuBake baked = bakeToGpu(mesh, options, gl());
+        ASSERT_TRUE(baked.sprite.hasTexture());
+        ASSERT_TRUE(baked.sprite.hasColumns());
+        EXPECT_EQ(baked.depthComplexity, host.depthComplexity);
+        EXPECT_EQ(baked.crossings, host.crossings.size());
+        EXPECT_EQ(baked.status, host.status);
+        EXPECT_EQ(baked.validation, host.validation);
+        EXPECT_EQ(baked.grid.width, host.grid.width);
+        EXPECT_EQ(baked.grid.height, host.grid.height);
+        EXPECT_EQ(baked.grid.matrix, host.grid.matrix);
+        EXPECT_EQ(baked.grid.position, host.grid.position);
+        EXPECT_EQ(baked.sprite.matrix(), uploaded.matrix());
+        EXPECT_EQ(baked.sprite.position(), uploaded.position());
+        ASSERT_EQ(baked.sprite.size(), uploaded.size());
+        const std::vector<float> a = textureTexels(baked.sprite), b = textureTexels(uploaded);
+        ASSERT_EQ(a.size(), b.size());
+        EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * 4)) << "texels differ";
+        EXPECT_EQ(bufferContents<std::uint32_t>(baked.sprite.offsets(), host.offsets.size()), host.offsets);
+        const auto crossings = bufferContents<float>(baked.sprite.crossings(), host.crossings.size());
+        EXPECT_EQ(0, std::memcmp(crossings.data(), host.crossings.data(), crossings.size() * 4)) << "crossings differ";
+        EXPECT_EQ(baked.sprite.crossingCount(), host.crossings.size());
+    }
+};
+
+TEST_F(GpuBakeTest, EqualsTheHostBakeUploadedTexelForTexel) {
+    const auto torus = solids::torus({0.1f, 0.2f, 0.3f}, 1.0f, 0.35f, 96);
+    const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.6f, 64);
+    const auto two = solids::overlappingBoxes({-1, -1, -1}, {0.5f, 0.5f, 0.5f}, {-0.5f, -0.3f, -0.2f}, {1, 1, 1});
+    for (const TriangleMesh* mesh : {&torus.mesh, &shell.mesh, &two.mesh})
+        for (Axis axis : {Axis::X, Axis::Z}) {
+            BakeOptions o;
+            o.resolution = 80;
+            o.axis = axis;
+            SCOPED_TRACE(mesh->name + " along " + toString(axis));
+            expectSameAsHostBake(*mesh, o);
+        }
+}
+
+TEST_F(GpuBakeTest, RowBandsAreJoinedIntoOneSprite) {
+    const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.6f, 48);
+    BakeTimings timings;
+    BakeOptions o;
+    o.resolution = 80;
+    o.maxListNodes = 700;
+    o.timings = &timings;
+    expectSameAsHostBake(shell.mesh, o);
+    EXPECT_GT(timings.bands, 1u);
+}
+
+TEST_F(GpuBakeTest, OtherMethodsBakeOnTheHostAndUpload) {
+    const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.4f, 64);
+    for (BakeMethod m : {BakeMethod::Peel, BakeMethod::Cpu}) {
+        BakeOptions o;
+        o.resolution = 48;
+        o.method = m;
+        SCOPED_TRACE(toString(m));
+        expectSameAsHostBake(torus.mesh, o);
+    }
+}
+
+TEST_F(GpuBakeTest, KeepsOnlyThePartsAskedFor) {
+    const auto sphere = solids::sphere({0, 0, 0}, 1.0f, 48);
+    BakeOptions o;
+    o.resolution = 32;
+    const GpuBake columns = bakeToGpu(sphere.mesh, o, gl(), GpuSpriteParts::ColumnsOnly);
+    EXPECT_FALSE(columns.sprite.hasTexture());
+    EXPECT_TRUE(columns.sprite.hasColumns());
+    EXPECT_EQ(columns.sprite.size(), glm::uvec3(32, 32, 2));
+    const GpuBake texture = bakeToGpu(sphere.mesh, o, gl(), GpuSpriteParts::TextureOnly);
+    EXPECT_TRUE(texture.sprite.hasTexture());
+    EXPECT_FALSE(texture.sprite.hasColumns());
+    EXPECT_EQ(texture.depthComplexity, 2u);
+}
+
+TEST_F(GpuBakeTest, TimesTheTextureFillAndNoReadBack) {
+    const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.4f, 64);
+    BakeTimings t;
+    BakeOptions o;
+    o.resolution = 64;
+    o.timings = &t;
+    const GpuBake baked = bakeToGpu(torus.mesh, o, gl());
+    EXPECT_EQ(t[BakePhase::TextureFill].runs, 1u);
+    EXPECT_EQ(t[BakePhase::ReadBack].runs, 0u);
+    EXPECT_EQ(t[BakePhase::Assembly].runs, 0u);
+    EXPECT_EQ(t[BakePhase::Raster].runs, 1u);
+    EXPECT_EQ(t.crossings, baked.crossings);
+    EXPECT_GT(t.wallSeconds, 0.0);
+}
+
+TEST_F(GpuBakeTest, InvalidMeshesThrowAsBakeDoes) {
+    TriangleMesh empty;
+    EXPECT_THROW(bakeToGpu(empty, {}, gl()), InvalidMesh);
+}
+
+} // namespace
+} // namespace vds

@@ -1,0 +1,23 @@
+// vds internal: building GpuSprites from parts made on the GPU (gpu_bake.cpp).
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include <vds/gpu_sprite.h>
+
+namespace vds::detail {
+
+/// An R32F 3D texture for an LDI of `size` texels: nearest filtering, clamp
+/// to border, border 1.0, contents undefined. Throws `InvalidArgument` past
+/// GL_MAX_3D_TEXTURE_SIZE, `OutOfMemory` if GL cannot hold it.
+Texture makeSpriteTexture(glm::uvec3 size);
+
+struct GpuSpriteAccess {
+    /// A sprite from its parts (either may be empty), placed as `grid` says.
+    static GpuSprite make(Texture texture, Buffer offsets, Buffer crossings, std::uint64_t crossingCount,
+                          glm::uvec3 size, const SpriteGrid& grid, SolidStatus status);
+};
+
+} // namespace vds::detail
