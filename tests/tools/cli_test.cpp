@@ -454,3 +454,14 @@ TEST_F(Cli, ClassifyReadsAndWritesNpyAndCertifiedEqualsExact) {
 }
 
 } // namespace
+
+namespace {
+
+TEST_F(Cli, BakeVerbosePrintsEveryPhase) {
+    const Result r = vds("bake " + p("box.obj") + " -o " + p("v.vds") + " --resolution 32 --verbose --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* phase : {"validation", "upload", "raster", "scan", "sort", "read-back", "total"})
+        EXPECT_NE(r.output.find(phase), std::string::npos) << phase << " missing in:\n" << r.output;
+}
+
+} // namespace

@@ -14,7 +14,7 @@ namespace {
 struct BakeArgs {
     std::string mesh, output, axis = "z";
     vds::BakeOptions options;
-    bool quiet = false;
+    bool quiet = false, verbose = false;
 };
 
 void bake(BakeArgs& a) {
@@ -34,11 +34,14 @@ void bake(BakeArgs& a) {
         std::fprintf(stderr, "vds bake: warning: %s is %s; the sprite answers for a surface, not a solid\n",
                      a.mesh.c_str(), report.summary().c_str());
     a.options.progress = progress;
+    vds::BakeTimings timings;
+    if (a.verbose) a.options.timings = &timings;
     progress("baking " + a.mesh + " (" + std::to_string(mesh.triangles.size()) + " triangles) at " +
              std::to_string(a.options.resolution) + " along " + vds::toString(a.options.axis) + " with " +
              vds::toString(a.options.method));
     const vds::Sprite sprite = vds::bake(mesh, a.options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (a.verbose) std::fputs(timings.report().c_str(), stderr);
     vds::writeSprite(sprite, a.output);
     std::printf("wrote %s: %ux%u texels, depth complexity %u, %zu crossings, baked in %.2f s\n", a.output.c_str(),
                 sprite.width(), sprite.height(), sprite.depthComplexity, sprite.crossings.size(), seconds);
@@ -61,6 +64,7 @@ void addBake(CLI::App& app) {
     axes.push_back("auto");
     addChoice(*c, "--axis", a->axis, axes, "view direction; auto: the axis with the fewest layers");
     addEnum(*c, "--method", a->options.method, "fragment lists, depth peeling, or exact CPU ray casting");
+    c->add_flag("--verbose", a->verbose, "print the time of each phase (validation, upload, raster, scan, sort, read-back...)");
 }
 
 } // namespace cli
