@@ -78,6 +78,9 @@
 //     (given, or made for the call); the caller's current context is the
 //     same afterwards.
 //   Sprite bakeCpu(mesh, options)      the Cpu method, on every core.
+//   BakeOptions::timings -> BakeTimings: wall and GPU time of each phase
+//     (validation, compile, upload, raster, scan, sort, texture, read-back,
+//     assembly); `report()` prints them (`vds bake --verbose`).
 //
 // ---- 3. Keep it ---------------------------------------------------------------
 //
@@ -93,12 +96,28 @@
 //   bool Sprite::contains(p, Rule rule = Rule::Parity)        <vds/sprite.h>
 //     Rule::Parity: odd crossings in front of p (the paper's test);
 //     Rule::Winding: entering crossings +1, leaving -1, inside if non-zero
-//     (nested or overlapping shells). Points outside the sprite's box are
-//     outside. Errors of a sprite lie within about half a texel diagonal of
-//     the surface (docs/accuracy.md).
-//   classify(sprite, points, count, labels, ClassifyOptions{rule, threads})
+//     (nested or overlapping shells); Rule::GeneralizedWinding: the
+//     generalized winding number above 1/2 (open meshes; sprites answer it
+//     for closed meshes only, the exact classifier for any). Points outside
+//     the sprite's box are outside. Errors of a sprite lie within about half
+//     a texel diagonal of the surface (docs/accuracy.md).
+//   classify(sprite, points, count, labels, ClassifyOptions{rule, threads, layout})
 //   classify(sprite, xyz, count, strideBytes, labels, options)
-//     batches on threads; the same answers as `contains`.
+//     batches on threads; the same answers as `contains`. QueryLayout::Auto
+//     builds a 16-byte-a-column table for large batches (one cache miss a
+//     point).
+//
+// ---- 4b. Ask it for a whole grid ------------------------------------------------
+//
+//   OccupancyGrid{box, dims}; cell (i, j, k) centre lo + (i+1/2, j+1/2, k+1/2)
+//     * (hi - lo) / dims, labels in C order [i][j][k]      <vds/occupancy.h>
+//   voxelize(mesh, grid, cells, OccupancyOptions{rule, threads})
+//     exact labels by one sweep per column: equal to the exact classifier
+//     on every cell centre.
+//   occupancy(sprite, grid, cells, options)   the sprite's labels, one walk
+//     per column; equal to `contains` on every cell.
+//   packLabels(cells, count, bits)   eight cells a byte (numpy's packbits).
+//   readNpy / npyPoints / writeNpy   numpy .npy in and out    <vds/npy.h>
 //   Sprite::transform(mat4)  moves, rotates or scales the sprite (affine,
 //     invertible) without baking again.
 //
@@ -106,9 +125,14 @@
 //
 //   ExactClassifier(mesh, axis)                               <vds/exact.h>
 //     the yardstick: exact orientation predicates with a top-left tie rule
-//     on the triangles themselves; `contains`, `winding`, `classify`
-//     (pointer + count, or + stride). Construction O(n log n); queries
-//     thread safe.
+//     on the triangles themselves; `contains`, `winding`,
+//     `generalizedWinding` (the Antipodal split: integer ray count plus a
+//     boundary term over the boundary edges), `classify` (pointer + count,
+//     or + stride). Construction O(n log n); queries thread safe.
+//   CertifiedClassifier(mesh, CertifiedOptions{resolution, axis, threads})
+//     the exact classifier's answers at close to a sprite's speed: per
+//     texel, bands where the surface may be; outside them the answer is
+//     proven, inside them the exact classifier decides. <vds/certified.h>
 //
 // ---- 6. On the GPU (vds::gl) --------------------------------------------------
 //
@@ -119,16 +143,26 @@
 //   GpuSprite(sprite)    the paper's R32F 3D texture and placement, for
 //                        shaders/vds/vpt.glsl (`vdsContains(...)` in any
 //                        stage; the same answers as the CPU). <vds/gpu_sprite.h>
-//   GpuClassifier        the VPT over many points in a compute shader.
+//   GpuClassifier        the VPT over many points in a compute shader: host
+//                        arrays in and out, or points and labels already in
+//                        GL buffers (no host round trip).
+//   bakeToGpu(mesh, options, gl)  a GpuSprite straight from the fragment-list
+//                        bake, nothing read back.            <vds/gpu_bake.h>
+//   Lifetime: a context is current on the thread that made it; destroying
+//   or moving one never changes another current context; `CurrentContext`
+//   scopes restore the caller's; no GL call happens once the process exits.
 #pragma once
 
 #include <vds/atomic_file.h>
 #include <vds/bake.h>
+#include <vds/certified.h>
 #include <vds/enum_names.h>
 #include <vds/error.h>
 #include <vds/exact.h>
 #include <vds/mesh.h>
 #include <vds/mesh_io.h>
+#include <vds/npy.h>
+#include <vds/occupancy.h>
 #include <vds/parallel.h>
 #include <vds/sprite.h>
 #include <vds/vds_file.h>
