@@ -181,7 +181,7 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
     // read from the sprite. Otherwise each point reads its offsets, then its
     // crossings: two dependent misses, prefetched in batches.
     const bool packed = options.layout == QueryLayout::Packed ||
-                        (options.layout == QueryLayout::Auto && count >= columns / 4);
+                        (options.layout == QueryLayout::Auto && count >= 4 * columns);
     if (packed && columns > 0) {
         const std::vector<detail::PackedColumn> table = detail::packColumns(sprite, options.threads);
         const float* crossings = sprite.crossings.data();

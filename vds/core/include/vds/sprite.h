@@ -158,7 +158,7 @@ struct Sprite {
 
 /// How batch classification reads the sprite.
 enum class QueryLayout : std::uint8_t {
-    Auto,    ///< Packed when the batch has at least a quarter as many points as the sprite has columns
+    Auto,    ///< Packed when the batch has at least four times as many points as the sprite has columns
     Offsets, ///< the sprite's own arrays: offsets, then crossings (two dependent cache misses a point)
     Packed,  ///< a table of 16 bytes a column with its first two crossings, built for the call (one miss)
 };
