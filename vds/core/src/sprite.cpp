@@ -182,6 +182,17 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
     // crossings: two dependent misses, prefetched in batches.
     const bool packed = options.layout == QueryLayout::Packed ||
                         (options.layout == QueryLayout::Auto && count >= 4 * columns);
+    // Texel column and texture depth of points [base, base + n), each
+    // column's record (of `recordBytes`, in `records`) prefetched.
+    const auto locate = [&](std::size_t base, std::size_t n, std::ptrdiff_t* column, float* depth, const char* records,
+                            std::size_t recordBytes) {
+        for (std::size_t i = 0; i < n; ++i) {
+            const glm::vec3 t = grid.toTexture(point(base + i));
+            column[i] = detail::columnOf(grid, t);
+            depth[i] = t.z;
+            if (column[i] >= 0) __builtin_prefetch(records + std::size_t(column[i]) * recordBytes);
+        }
+    };
     if (packed && columns > 0) {
         const std::vector<detail::PackedColumn> table = detail::packColumns(sprite, options.threads);
         const float* crossings = sprite.crossings.data();
@@ -191,12 +202,7 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
             float depth[kBatch];
             for (std::size_t base = begin; base < end; base += kBatch) {
                 const std::size_t n = std::min(kBatch, end - base);
-                for (std::size_t i = 0; i < n; ++i) {
-                    const glm::vec3 t = grid.toTexture(point(base + i));
-                    column[i] = detail::columnOf(grid, t);
-                    depth[i] = t.z;
-                    if (column[i] >= 0) __builtin_prefetch(table.data() + column[i]);
-                }
+                locate(base, n, column, depth, reinterpret_cast<const char*>(table.data()), sizeof(detail::PackedColumn));
                 for (std::size_t i = 0; i < n; ++i)
                     labels[base + i] =
                         column[i] >= 0 && detail::testPacked(table[std::size_t(column[i])], crossings, depth[i], options.rule)
@@ -215,12 +221,7 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
         std::uint32_t first[kBatch], last[kBatch];
         for (std::size_t base = begin; base < end; base += kBatch) {
             const std::size_t n = std::min(kBatch, end - base);
-            for (std::size_t i = 0; i < n; ++i) {
-                const glm::vec3 t = grid.toTexture(point(base + i));
-                column[i] = detail::columnOf(grid, t);
-                depth[i] = t.z;
-                if (column[i] >= 0) __builtin_prefetch(offsets + column[i]);
-            }
+            locate(base, n, column, depth, reinterpret_cast<const char*>(offsets), sizeof(std::uint32_t));
             for (std::size_t i = 0; i < n; ++i) {
                 if (column[i] < 0) continue;
                 first[i] = offsets[column[i]];
