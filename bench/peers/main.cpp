@@ -3,7 +3,7 @@
 // classifier. Prints Markdown tables; asserts nothing about speed.
 //
 //   vds_peers_bench [--points N] [--grids 128,256] [--full] [--threads T]
-//                   [--resolution R] [--cgal-limit N] [MESH ...]
+//                   [--resolution R] [--cgal-limit N] [--no-generated] [MESH ...]
 //
 // Methods (a peer is compiled in only when CMake found it):
 //  - vds exact:   ExactClassifier (<vds/exact.h>), the reference for "wrong";
@@ -301,6 +301,7 @@ int main(int argc, char** argv) {
     std::size_t pointCount = 1000000;
     std::vector<std::uint32_t> grids = {128, 256};
     bool full = false;
+    bool generated = true;
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     std::uint32_t resolution = 1024;
     std::size_t cgalLimit = 20000000;
@@ -322,6 +323,7 @@ int main(int argc, char** argv) {
     app.add_option("--cgal-limit", cgalLimit, "skip CGAL on point sets larger than this")->capture_default_str();
     app.add_option("--mesh-dir", meshDir, "where spot.obj, fandisk.obj and rocker-arm.obj are read from")
         ->capture_default_str();
+    app.add_flag("!--no-generated", generated, "leave out the generated boxes, tori and spheres");
     app.add_option("meshes", meshPaths, "closed meshes to use instead of the bundled ones");
     CLI11_PARSE(app, argc, argv);
     if (full)
@@ -351,7 +353,8 @@ int main(int argc, char** argv) {
         if (meshPaths.empty()) meshPaths = defaultMeshPaths(meshDir);
         if (meshPaths.empty()) std::printf("no bundled meshes in %s: generated meshes only\n", meshDir.c_str());
         for (const auto& path : meshPaths) cases.push_back({fs::path(path).filename().string(), vds::loadMesh(path)});
-        for (auto& c : generatedCases()) cases.push_back(std::move(c));
+        if (generated)
+            for (auto& c : generatedCases()) cases.push_back(std::move(c));
 
         std::vector<PointSet> sets;
         sets.push_back({std::to_string(pointCount) + " uniform random points in the mesh box grown by 10 % per side",
