@@ -315,7 +315,7 @@ int main(int argc, char** argv) {
         ->allow_extra_args(false)
         ->capture_default_str()
         ->check(CLI::Range(1u, 4096u));
-    app.add_flag("--full", full, "add the 512^3 and 1024^3 grids (long: hours with CGAL unless --cgal-limit)");
+    app.add_flag("--full", full, "add the 512^3 and 1024^3 grids (an hour and more on two cores)");
     app.add_option("--threads", threads, "query threads for vds and Embree (CGAL runs on one)")
         ->capture_default_str()
         ->check(CLI::Range(1u, 1024u));
