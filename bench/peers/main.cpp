@@ -105,7 +105,7 @@ struct PointSet {
     std::vector<Row> rows;
 };
 
-// Warm-up, then the best of three; the labels are the warm-up's.
+// Warm-up, then the best of three; every run writes the same labels.
 double timeBest(const Method& m, const Slab& slab, std::uint8_t* labels, bool& timedOnce) {
     auto t0 = Clock::now();
     m.run(slab, labels);
