@@ -1,0 +1,394 @@
+// vds_peers_bench: vds against the inside tests people use today, side by
+// side in one run, on the same points, each answer checked against the exact
+// classifier. Prints Markdown tables; asserts nothing about speed.
+//
+//   vds_peers_bench [--points N] [--grids 128,256] [--full] [--threads T]
+//                   [--resolution R] [--cgal-limit N] [--no-generated] [MESH ...]
+//
+// Methods (a peer is compiled in only when CMake found it):
+//  - vds exact:   ExactClassifier (<vds/exact.h>), the reference for "wrong";
+//  - vds sprite:  a sprite baked on the CPU at R (default 1024), queried with
+//                 vds::classify;
+//  - vds sweep:   grids only, the same sprite walked column by column
+//                 (grid_sweep.h), same answers as vds sprite;
+//  - Embree:      ray parity as in trimesh (embree_parity.h), TBB threads;
+//  - CGAL:        Side_of_triangle_mesh on a Surface_mesh<Epick> (cgal_side.h),
+//                 one thread, as users get it.
+// Point sets, per mesh: N uniform random points in the mesh box grown by 10 %
+// on each side, then the centres of n^3 grids over the mesh box.
+//
+// Timing: std::chrono::steady_clock; one warm-up run, then the best of three.
+// A run whose warm-up took more than 1 s is timed on that run alone (marked).
+// Build times are one run each. Grids of more than 2^24 cells are generated
+// and classified in slabs of layers, and their times summed.
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include <vds/bake.h>
+#include <vds/error.h>
+#include <vds/exact.h>
+#include <vds/mesh.h>
+#include <vds/mesh_io.h>
+#include <vds/sprite.h>
+
+#include "grid_sweep.h"
+#include "points.h"
+#include "solids.h"
+#if VDS_PEERS_EMBREE
+#include "embree_parity.h"
+#endif
+#if VDS_PEERS_CGAL
+#include "cgal_side.h"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kTimeOnceAbove = 1.0;               // seconds: warm-up long enough to be the measurement
+constexpr std::size_t kSlabPoints = std::size_t(1) << 24; // grid points held at once
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+struct Case {
+    std::string name;
+    vds::TriangleMesh mesh;
+};
+
+// The points one call classifies: random points, or layers [k0, k1) of a grid
+// (then `points` holds their centres in grid_sweep.h's layout).
+struct Slab {
+    const glm::vec3* points = nullptr;
+    std::size_t count = 0;
+    const vds::peers::CellGrid* cells = nullptr;
+    std::uint32_t k0 = 0, k1 = 0;
+};
+
+struct Method {
+    std::string name;
+    unsigned threads = 1;
+    double buildSeconds = 0.0;
+    bool gridOnly = false;
+    std::function<void(const Slab&, std::uint8_t*)> run;
+};
+
+struct Row {
+    std::string mesh;
+    std::size_t triangles = 0;
+    std::string method;
+    unsigned threads = 0;
+    double build = 0.0;
+    double query = 0.0;
+    std::size_t points = 0;
+    std::size_t wrong = 0;
+    bool timedOnce = false;
+    bool skipped = false;
+    std::string why; // when skipped
+};
+
+struct PointSet {
+    std::string title;
+    std::uint32_t grid = 0; // 0: random points
+    std::vector<Row> rows;
+};
+
+// Warm-up, then the best of three; every run writes the same labels.
+double timeBest(const Method& m, const Slab& slab, std::uint8_t* labels, bool& timedOnce) {
+    auto t0 = Clock::now();
+    m.run(slab, labels);
+    double best = since(t0);
+    if (best > kTimeOnceAbove) {
+        timedOnce = true;
+        return best;
+    }
+    best = 1e300;
+    for (int r = 0; r < 3; ++r) {
+        t0 = Clock::now();
+        m.run(slab, labels);
+        best = std::min(best, since(t0));
+    }
+    return best;
+}
+
+std::string cpuModel() {
+    std::ifstream in("/proc/cpuinfo");
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+    return "unknown CPU";
+}
+
+std::vector<Case> generatedCases() {
+    using namespace vds::solids;
+    std::vector<Case> cases;
+    // Three disjoint boxes: 36 triangles, the smallest closed mesh worth a BVH.
+    vds::TriangleMesh boxes = merge(merge(box({0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}).mesh,
+                                          box({1.5f, 0.2f, 0.3f}, {2.5f, 1.4f, 0.9f}).mesh),
+                                    box({0.4f, 1.6f, 0.1f}, {2.2f, 2.1f, 1.7f}).mesh);
+    cases.push_back({"3 boxes", std::move(boxes)});
+    cases.push_back({"torus 32", torus({0, 0, 0}, 1.0f, 0.35f, 32).mesh});
+    cases.push_back({"sphere 128", sphere({0, 0, 0}, 1.0f, 128).mesh});
+    cases.push_back({"sphere 1002", sphere({0, 0, 0}, 1.0f, 1002).mesh});
+    return cases;
+}
+
+std::vector<std::string> defaultMeshPaths(const std::string& dir) {
+    std::vector<std::string> paths;
+    for (const char* name : {"spot.obj", "fandisk.obj", "rocker-arm.obj"}) {
+        const fs::path p = fs::path(dir) / name;
+        if (fs::exists(p)) paths.push_back(p.string());
+    }
+    return paths;
+}
+
+// The first three are always vds exact (the reference), vds sprite and vds
+// sweep, in this order; the peers compiled in follow.
+constexpr std::size_t kExact = 0, kSprite = 1, kSweep = 2;
+
+std::vector<Method> buildMethods(const vds::TriangleMesh& mesh, unsigned threads, std::uint32_t resolution,
+                                 std::string& spriteShape) {
+    std::vector<Method> methods;
+
+    auto t0 = Clock::now();
+    auto exact = std::make_shared<const vds::ExactClassifier>(mesh, vds::Axis::Z);
+    methods.push_back({"vds exact", threads, since(t0), false, [exact, threads](const Slab& s, std::uint8_t* out) {
+                           exact->classify(s.points, s.count, out, {vds::Rule::Parity, threads});
+                       }});
+
+    vds::BakeOptions bake;
+    bake.resolution = resolution;
+    bake.axis = vds::Axis::Z;
+    bake.method = vds::BakeMethod::Cpu;
+    t0 = Clock::now();
+    auto sprite = std::make_shared<const vds::Sprite>(vds::bake(mesh, bake));
+    const double bakeSeconds = since(t0);
+    spriteShape = std::to_string(sprite->width()) + "x" + std::to_string(sprite->height()) + "x" +
+                  std::to_string(sprite->depthComplexity);
+    const std::string at = " @" + std::to_string(resolution);
+    methods.push_back({"vds sprite" + at, threads, bakeSeconds, false,
+                       [sprite, threads](const Slab& s, std::uint8_t* out) {
+                           vds::classify(*sprite, s.points, s.count, out, {vds::Rule::Parity, threads});
+                       }});
+    methods.push_back({"vds sweep" + at, threads, bakeSeconds, true, [sprite, threads](const Slab& s, std::uint8_t* out) {
+                           vds::peers::sweepSprite(*sprite, *s.cells, s.k0, s.k1, out, threads);
+                       }});
+
+#if VDS_PEERS_EMBREE
+    t0 = Clock::now();
+    std::shared_ptr<const vds::peers::PointClassifier> embree = vds::peers::makeEmbreeParity(mesh, threads);
+    methods.push_back({"Embree parity", embree->threads(), since(t0), false,
+                       [embree](const Slab& s, std::uint8_t* out) { embree->classify(s.points, s.count, out); }});
+#endif
+#if VDS_PEERS_CGAL
+    t0 = Clock::now();
+    std::shared_ptr<const vds::peers::PointClassifier> cgal = vds::peers::makeCgalSide(mesh);
+    methods.push_back({"CGAL Side_of_triangle_mesh", cgal->threads(), since(t0), false,
+                       [cgal](const Slab& s, std::uint8_t* out) { cgal->classify(s.points, s.count, out); }});
+#endif
+    return methods;
+}
+
+bool isCgal(const Method& m) { return m.name.rfind("CGAL", 0) == 0; }
+
+// Runs every method on one point set of one mesh, slab by slab, and appends
+// one row per method to `set`.
+void measureSet(PointSet& set, const Case& c, const std::vector<Method>& methods, const std::vector<glm::vec3>& random,
+                unsigned threads, std::size_t cgalLimit) {
+    const std::size_t total = set.grid ? std::size_t(set.grid) * set.grid * set.grid : random.size();
+    std::vector<Row> rows(methods.size());
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+        rows[m] = {c.name, c.mesh.triangles.size(), methods[m].name, methods[m].threads, methods[m].buildSeconds};
+        rows[m].points = total;
+        if (methods[m].gridOnly && !set.grid) {
+            rows[m].skipped = true;
+            rows[m].why = "grids only";
+        } else if (isCgal(methods[m]) && total > cgalLimit) {
+            rows[m].skipped = true;
+            rows[m].why = "more points than --cgal-limit";
+        }
+    }
+
+    vds::peers::CellGrid cells;
+    std::vector<glm::vec3> centres;
+    std::uint32_t layers = 0;
+    if (set.grid) {
+        cells = {vds::meshBounds(c.mesh), set.grid};
+        const std::size_t perLayer = std::size_t(set.grid) * set.grid;
+        layers = std::uint32_t(std::clamp<std::size_t>(kSlabPoints / perLayer, 1, set.grid));
+        centres.resize(std::size_t(layers) * perLayer);
+    }
+    std::vector<std::vector<std::uint8_t>> labels(methods.size());
+    std::size_t sweepDiffers = 0;
+    const std::uint32_t slabs = set.grid ? (set.grid + layers - 1) / layers : 1;
+    for (std::uint32_t slabIndex = 0; slabIndex < slabs; ++slabIndex) {
+        Slab slab;
+        if (set.grid) {
+            slab.cells = &cells;
+            slab.k0 = slabIndex * layers;
+            slab.k1 = std::min(set.grid, slab.k0 + layers);
+            slab.count = std::size_t(slab.k1 - slab.k0) * set.grid * set.grid;
+            vds::peers::cellCentres(cells, slab.k0, slab.k1, centres.data(), threads);
+            slab.points = centres.data();
+        } else {
+            slab.points = random.data();
+            slab.count = random.size();
+        }
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+            if (rows[m].skipped) continue;
+            labels[m].resize(slab.count);
+            bool once = false;
+            rows[m].query += timeBest(methods[m], slab, labels[m].data(), once);
+            rows[m].timedOnce = rows[m].timedOnce || once;
+            for (std::size_t k = 0; k < slab.count; ++k) rows[m].wrong += labels[m][k] != labels[kExact][k];
+        }
+        // The sweep must give the sprite's answers exactly.
+        if (set.grid)
+            for (std::size_t k = 0; k < slab.count; ++k) sweepDiffers += labels[kSprite][k] != labels[kSweep][k];
+    }
+    if (sweepDiffers)
+        throw std::logic_error("the sweep differs from the sprite on " + std::to_string(sweepDiffers) + " points of " +
+                               c.name + ", " + set.title);
+    set.rows.insert(set.rows.end(), rows.begin(), rows.end());
+}
+
+void printTable(const PointSet& set) {
+    std::printf("\n### %s\n\n", set.title.c_str());
+    const bool grid = set.grid != 0;
+    std::printf("| mesh | triangles | method | threads | build s | M points/s | × Embree | wrong |%s\n",
+                grid ? " query s | build + query s |" : "");
+    std::printf("|---|---:|---|---:|---:|---:|---:|---:|%s\n", grid ? "---:|---:|" : "");
+    bool anyOnce = false;
+    for (const Row& r : set.rows) {
+        if (r.skipped && r.why == "grids only") continue;
+        std::printf("| %s | %zu | %s | %u | %.3f | ", r.mesh.c_str(), r.triangles, r.method.c_str(), r.threads, r.build);
+        if (r.skipped) {
+            std::printf("— (%s) | | |%s\n", r.why.c_str(), grid ? " | |" : "");
+            continue;
+        }
+        const double rate = double(r.points) / r.query;
+        double embreeRate = 0.0;
+        for (const Row& e : set.rows)
+            if (e.mesh == r.mesh && e.method == "Embree parity" && !e.skipped) embreeRate = double(e.points) / e.query;
+        std::printf("%.3g%s | ", rate / 1e6, r.timedOnce ? "*" : "");
+        if (embreeRate > 0.0) std::printf("%.2f | ", rate / embreeRate);
+        else std::printf("— | ");
+        if (r.wrong) std::printf("%zu (%.3g %%) |", r.wrong, 100.0 * double(r.wrong) / double(r.points));
+        else std::printf("0 |");
+        if (grid) std::printf(" %.3f | %.3f |", r.query, r.build + r.query);
+        std::printf("\n");
+        anyOnce = anyOnce || r.timedOnce;
+    }
+    if (anyOnce) std::printf("\n\\* timed once: its warm-up run took more than %.0f s.\n", kTimeOnceAbove);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"vds against Embree ray parity and CGAL Side_of_triangle_mesh, on the same points; "
+                 "wrong answers counted against vds's exact classifier"};
+    std::size_t pointCount = 1000000;
+    std::vector<std::uint32_t> grids = {128, 256};
+    bool full = false;
+    bool generated = true;
+    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::uint32_t resolution = 1024;
+    std::size_t cgalLimit = 20000000;
+    std::string meshDir = VDS_PEERS_MESH_DIR;
+    std::vector<std::string> meshPaths;
+    app.add_option("--points", pointCount, "uniform random points per mesh, in its box grown by 10 % per side")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    app.add_option("--grids", grids, "grid sizes n (n^3 cell centres over the mesh box)")
+        ->delimiter(',')
+        ->allow_extra_args(false)
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 4096u));
+    app.add_flag("--full", full, "add the 512^3 and 1024^3 grids (an hour and more on two cores)");
+    app.add_option("--threads", threads, "query threads for vds and Embree (CGAL runs on one)")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 1024u));
+    app.add_option("--resolution", resolution, "sprite resolution")->capture_default_str()->check(CLI::Range(1u, 16384u));
+    app.add_option("--cgal-limit", cgalLimit, "skip CGAL on point sets larger than this")->capture_default_str();
+    app.add_option("--mesh-dir", meshDir, "where spot.obj, fandisk.obj and rocker-arm.obj are read from")
+        ->capture_default_str();
+    app.add_flag("!--no-generated", generated, "leave out the generated boxes, tori and spheres");
+    app.add_option("meshes", meshPaths, "closed meshes to use instead of the bundled ones");
+    CLI11_PARSE(app, argc, argv);
+    if (full)
+        for (std::uint32_t n : {512u, 1024u})
+            if (std::find(grids.begin(), grids.end(), n) == grids.end()) grids.push_back(n);
+
+    try {
+        std::printf("vds_peers_bench: %s, %u hardware threads; vds and Embree query on %u threads, CGAL on 1\n",
+                    cpuModel().c_str(), std::thread::hardware_concurrency(), threads);
+        std::string compiled, missing;
+#if VDS_PEERS_EMBREE
+        compiled += vds::peers::embreeVersion() + " ray parity (TBB)";
+#else
+        missing += "Embree (libembree-dev, libtbb-dev)";
+#endif
+#if VDS_PEERS_CGAL
+        compiled += (compiled.empty() ? "" : ", ") + vds::peers::cgalVersion() + " Side_of_triangle_mesh";
+#else
+        missing += std::string(missing.empty() ? "" : ", ") + "CGAL (libcgal-dev)";
+#endif
+        std::printf("peers compiled in: %s\n", compiled.empty() ? "none" : compiled.c_str());
+        if (!missing.empty())
+            std::printf("peers missing (not found when this program was built): %s; see bench/install-peers.sh\n",
+                        missing.c_str());
+
+        std::vector<Case> cases;
+        if (meshPaths.empty()) meshPaths = defaultMeshPaths(meshDir);
+        if (meshPaths.empty()) std::printf("no bundled meshes in %s: generated meshes only\n", meshDir.c_str());
+        for (const auto& path : meshPaths) cases.push_back({fs::path(path).filename().string(), vds::loadMesh(path)});
+        if (generated)
+            for (auto& c : generatedCases()) cases.push_back(std::move(c));
+
+        std::vector<PointSet> sets;
+        sets.push_back({std::to_string(pointCount) + " uniform random points in the mesh box grown by 10 % per side",
+                        0,
+                        {}});
+        for (std::uint32_t n : grids)
+            sets.push_back({"grid " + std::to_string(n) + "³ (" + std::to_string(std::size_t(n) * n * n) +
+                                " cell centres over the mesh box)",
+                            n,
+                            {}});
+
+        std::printf("\n| mesh | triangles | sprite w x h x d_S |\n|---|---:|---|\n");
+        for (const Case& c : cases) {
+            const vds::MeshReport report = vds::validateMesh(c.mesh);
+            if (!report.closed()) {
+                std::printf("| %s | %zu | skipped: %s |\n", c.name.c_str(), c.mesh.triangles.size(),
+                            report.summary().c_str());
+                continue;
+            }
+            std::string shape;
+            const std::vector<Method> methods = buildMethods(c.mesh, threads, resolution, shape);
+            std::printf("| %s | %zu | %s |\n", c.name.c_str(), c.mesh.triangles.size(), shape.c_str());
+            std::fflush(stdout);
+            const std::vector<glm::vec3> random = vds::test::randomPoints(vds::meshBounds(c.mesh), pointCount);
+            for (PointSet& set : sets) {
+                const auto t0 = Clock::now();
+                measureSet(set, c, methods, random, threads, cgalLimit);
+                std::fprintf(stderr, "  %s, %s: %.1f s\n", c.name.c_str(), set.title.c_str(), since(t0));
+            }
+        }
+        for (const PointSet& set : sets) printTable(set);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "vds_peers_bench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
