@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/image_compare.h"
+
 #include <vds/error.h>
 #include <vds/eval/image.h>
 
@@ -88,3 +90,18 @@ TEST_F(PngTest, AFailedWriteLeavesNothing) {
 
 } // namespace
 } // namespace vds::eval
+
+namespace {
+
+// The reference-image comparison used by the rendering tests measures what it says.
+TEST(ImageCompare, MeasuresTheLargestAndMeanDifference) {
+    vds::eval::Image a(4, 2), b(4, 2);
+    b.at(1, 1)[0] = 200; // one channel of one pixel
+    b.at(3, 0)[2] = 10;
+    const vds::test::ImageDelta d = vds::test::compareImages(a, b);
+    EXPECT_EQ(d.max, 200);
+    EXPECT_EQ(d.pixels, 2u);
+    EXPECT_DOUBLE_EQ(d.mean, 210.0 / 32.0);
+}
+
+} // namespace

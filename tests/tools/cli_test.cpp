@@ -23,6 +23,7 @@
 #include <vds/occupancy.h>
 #include <vds/vds_file.h>
 
+#include "../support/image_compare.h"
 #include "solids.h"
 
 namespace {
@@ -363,6 +364,10 @@ TEST_F(Cli, ClipSampleRemovesExactlyThePixelsInsideTheSprite) {
     EXPECT_GT(clipped, 5000u);
     EXPECT_GT(kept, 5000u);
     EXPECT_EQ(wrong, 0u);
+    // And against the stored picture (made on llvmpipe): rasterizers may
+    // differ along the cut and the plate's edges only, so a whole pixel may
+    // change there (max 255) but the mean stays small.
+    EXPECT_TRUE(vds::test::imageMatchesReference(image, VDS_TEST_DATA "/clip-plate-sphere.png", 255, 1.0));
 }
 
 } // namespace
