@@ -24,8 +24,14 @@ awk 'BEGIN { n = 64; for (i = 0; i < n; i++) for (j = 0; j < n; j++) for (k = 0;
 $vds classify "$out/spot.vds" "$out/points.txt" -o "$out/labels.txt"
 $vds classify "$out/spot.vds" "$out/points.txt" -o "$out/labels-gpu.txt" --gpu
 $vds classify --exact --mesh samples/data/spot.obj "$out/points.txt" -o "$out/labels-exact.txt"
+$vds classify --certified --mesh samples/data/spot.obj "$out/points.txt" -o "$out/labels-certified.txt"
 cmp -s "$out/labels.txt" "$out/labels-gpu.txt" && echo "CPU and GPU labels are identical"
+cmp -s "$out/labels-exact.txt" "$out/labels-certified.txt" && echo "certified labels equal the exact classifier's"
 echo "labels differing from the exact classifier: $(paste "$out/labels.txt" "$out/labels-exact.txt" | awk '$1 != $2' | wc -l) of $(wc -l < "$out/points.txt")"
+
+echo "== voxelize"
+# An exact 128-cell occupancy grid of Spot as a numpy boolean array (numpy.load reads it).
+$vds voxelize samples/data/spot.obj --dims 128 -o "$out/spot-128.npy" --verbose
 
 echo "== render"
 $vds bake samples/data/lens.obj -o "$out/lens.vds" --resolution 512 --quiet
@@ -35,5 +41,6 @@ echo
 echo "outputs in $out/:"
 echo "  spot.vds          the sprite (OpenEXR deep image; 'vds info' describes it)"
 echo "  points.txt        the points classified"
-echo "  labels*.txt       1 inside / 0 outside per point: CPU, GPU, exact"
+echo "  labels*.txt       1 inside / 0 outside per point: CPU, GPU, exact, certified"
+echo "  spot-128.npy      exact occupancy of 128^3 cells over Spot's box (numpy bool array)"
 echo "  spot-clipped.png  Spot clipped pixel-precisely by lens.vds (cut surface red)"
