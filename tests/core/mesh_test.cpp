@@ -10,6 +10,7 @@
 #include <vds/error.h>
 #include <vds/mesh.h>
 #include <vds/mesh_io.h>
+#include <vds/sprite.h>
 #include "solids.h"
 
 namespace vds {
@@ -59,6 +60,8 @@ TEST(ValidateMesh, FindsBoundaryNonManifoldFlippedAndDegenerateFaces) {
     fin.triangles.push_back({0, 1, std::uint32_t(fin.positions.size() - 1)});
     r = validateMesh(fin);
     EXPECT_EQ(r.nonManifoldEdges, 1u);
+    EXPECT_EQ(r.oddNonManifoldEdges, 1u);
+    EXPECT_EQ(r.boundaryEdges, 2u);
 
     auto flipped = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
     std::swap(flipped.triangles[0].y, flipped.triangles[0].z);
@@ -70,6 +73,94 @@ TEST(ValidateMesh, FindsBoundaryNonManifoldFlippedAndDegenerateFaces) {
     r = validateMesh(degenerate);
     EXPECT_EQ(r.degenerateTriangles, 1u);
     EXPECT_TRUE(r.closed()); // a collapsed triangle adds no edges
+}
+
+TEST(ValidateMesh, SolidsTouchingAlongAnEdgeAreClosedButNotManifold) {
+    const auto boxes = solids::boxesSharingAnEdge({0, 0, 0}, 1.0f);
+    const MeshReport r = validateMesh(boxes.mesh);
+    EXPECT_EQ(r.nonManifoldEdges, 1u);
+    EXPECT_EQ(r.oddNonManifoldEdges, 0u);
+    EXPECT_EQ(r.boundaryEdges, 0u);
+    EXPECT_EQ(r.inconsistentEdges, 0u);
+    EXPECT_TRUE(r.closed());
+    EXPECT_TRUE(r.oriented());
+    EXPECT_FALSE(r.manifold());
+    EXPECT_EQ(r.summary(), "closed, 1 non-manifold edge, 24 triangles, 16 vertices");
+    EXPECT_NO_THROW(requireInsideDefined(r, "boxes.obj", Rule::Parity));
+    EXPECT_NO_THROW(requireInsideDefined(r, "boxes.obj", Rule::Winding));
+    EXPECT_EQ(insideWarning(r, Rule::Parity),
+              "1 non-manifold edge (more than two triangles on an edge); inside is still defined by the parity rule");
+    EXPECT_EQ(insideWarning(validateMesh(solids::box({0, 0, 0}, {1, 1, 1}).mesh), Rule::Winding), "");
+}
+
+TEST(ValidateMesh, AnEdgeOfThreeTrianglesLeavesInsideUndefined) {
+    // Two boxes sharing a wall that is there once: its four edges carry three
+    // triangles each, so a ray's parity changes across them as across a hole.
+    const auto a = solids::box({0, 0, 0}, {1, 1, 1}).mesh, b = solids::box({1, 0, 0}, {2, 1, 1}).mesh;
+    TriangleMesh theta = a; // a whole, the shared wall (a's x = 1 side, triangles 10 and 11) included
+    auto withoutLowXSide = b;
+    withoutLowXSide.triangles.erase(withoutLowXSide.triangles.begin() + 8, withoutLowXSide.triangles.begin() + 10);
+    theta = solids::merge(theta, withoutLowXSide);
+    theta.triangles.erase(theta.triangles.begin() + 10, theta.triangles.begin() + 12);
+    theta.triangles.push_back(a.triangles[10]);
+    theta.triangles.push_back(a.triangles[11]);
+    const MeshReport r = validateMesh(theta);
+    EXPECT_EQ(r.boundaryEdges, 0u);
+    EXPECT_EQ(r.nonManifoldEdges, 4u);
+    EXPECT_EQ(r.oddNonManifoldEdges, 4u);
+    EXPECT_FALSE(r.closed());
+    EXPECT_NE(r.summary().find("open (4 edges shared by an odd number of triangles)"), std::string::npos)
+        << r.summary();
+    EXPECT_THROW(requireInsideDefined(r, "theta.obj", Rule::Parity), InvalidMesh);
+}
+
+TEST(ValidateMesh, CountsDuplicateTrianglesIsolatedVerticesAndOrientationConflicts) {
+    auto m = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    m.triangles.push_back(m.triangles[0]);                                                // same orientation
+    m.triangles.push_back({m.triangles[1].x, m.triangles[1].z, m.triangles[1].y});       // reversed
+    m.positions.push_back({5, 5, 5});                                                     // used by nothing
+    m.positions.push_back(m.positions[0]);                                                // unused, but its twin is used
+    const MeshReport r = validateMesh(m);
+    EXPECT_EQ(r.duplicateTriangles, 2u);
+    EXPECT_EQ(r.isolatedVertices, 1u);
+    EXPECT_EQ(r.vertexCount, 10u);
+    EXPECT_NE(r.summary().find("2 duplicate triangles, 1 isolated vertex"), std::string::npos) << r.summary();
+
+    auto flipped = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    std::swap(flipped.triangles[0].y, flipped.triangles[0].z);
+    const MeshReport f = validateMesh(flipped);
+    EXPECT_EQ(f.inconsistentEdges, 3u);
+    EXPECT_TRUE(f.closed());
+    EXPECT_FALSE(f.oriented());
+    EXPECT_EQ(f.summary(), "closed, 3 inconsistently oriented edges, 12 triangles, 8 vertices");
+    EXPECT_NO_THROW(requireInsideDefined(f, "flipped.obj", Rule::Parity));
+    EXPECT_EQ(insideWarning(f, Rule::Parity),
+              "3 inconsistently oriented edges; inside is still defined by the parity rule");
+    try {
+        requireInsideDefined(f, "flipped.obj", Rule::Winding);
+        FAIL() << "winding accepted with orientation conflicts";
+    } catch (const InvalidMesh& e) {
+        EXPECT_STREQ(e.what(), "flipped.obj has 3 inconsistently oriented edges: inside is not defined by the "
+                               "winding rule; the parity rule defines it");
+    }
+}
+
+TEST(ValidateMesh, OpenMeshesHaveNoInsideAndTheMessageSaysWhatAnswers) {
+    auto open = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    open.triangles.pop_back();
+    for (Rule rule : {Rule::Parity, Rule::Winding}) {
+        try {
+            requireInsideDefined(validateMesh(open), "open.obj", rule);
+            FAIL() << "open mesh accepted";
+        } catch (const InvalidMesh& e) {
+            EXPECT_EQ(std::string(e.what()), std::string("open.obj is open (3 boundary edges): inside is not defined "
+                                                         "by the ") +
+                                                 toString(rule) +
+                                                 " rule; a sprite baked from it still answers by its parity or "
+                                                 "winding rule");
+        }
+    }
+    EXPECT_THROW(requireInsideDefined(validateMesh(TriangleMesh{}), "empty.obj", Rule::Parity), InvalidMesh);
 }
 
 TEST(ValidateMesh, DuplicatedVerticesAreWeldedByPosition) {

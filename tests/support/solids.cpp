@@ -174,6 +174,14 @@ Solid overlappingBoxes(const glm::vec3& loA, const glm::vec3& hiA, const glm::ve
     return s;
 }
 
+Solid boxesSharingAnEdge(const glm::vec3& lo, float size) {
+    Solid s = box(lo, lo + glm::vec3(size));
+    appendBox(s.mesh, lo + glm::vec3(size, size, 0.0f), lo + glm::vec3(2.0f * size, 2.0f * size, size));
+    s.mesh.name = "boxes-sharing-an-edge";
+    s.signedDistance = unionDistance;
+    return s;
+}
+
 TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b) {
     TriangleMesh m = a;
     const auto base = static_cast<std::uint32_t>(a.positions.size());

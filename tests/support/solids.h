@@ -40,6 +40,12 @@ Solid shell(const glm::vec3& centre, float outer, float inner, std::uint32_t seg
 /// non-zero winding calls it inside (the ideal solid is the union).
 Solid overlappingBoxes(const glm::vec3& loA, const glm::vec3& hiA, const glm::vec3& loB, const glm::vec3& hiB);
 
+/// Two cubes of edge `size` in one mesh, the second moved by (size, size, 0):
+/// they touch along one vertical edge, which four triangles use. Closed and
+/// consistently oriented, so both rules define the union, but not manifold:
+/// what users' meshes often look like.
+Solid boxesSharingAnEdge(const glm::vec3& lo, float size);
+
 /// Merges several solids' meshes into one (indices rebased).
 TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b);
 
