@@ -1,40 +1,15 @@
-// Mesh validation and the OpenMesh loaders, on meshes built in code.
+// Mesh validation, on meshes built in code.
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
 #include <vds/error.h>
 #include <vds/mesh.h>
-#include <vds/mesh_io.h>
 #include <vds/sprite.h>
 #include "solids.h"
 
 namespace vds {
 namespace {
-
-namespace fs = std::filesystem;
-
-fs::path tempDir() {
-    const fs::path d = fs::temp_directory_path() / ("vds_mesh_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-}
-
-void writeText(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
-
-std::string boxObj() {
-    const auto box = solids::box({0, 0, 0}, {1, 2, 3});
-    std::string s;
-    for (const auto& v : box.mesh.positions)
-        s += "v " + std::to_string(v.x) + " " + std::to_string(v.y) + " " + std::to_string(v.z) + "\n";
-    for (const auto& t : box.mesh.triangles)
-        s += "f " + std::to_string(t.x + 1) + " " + std::to_string(t.y + 1) + " " + std::to_string(t.z + 1) + "\n";
-    return s;
-}
 
 TEST(ValidateMesh, GeneratedSolidsAreClosed) {
     for (const auto& s : {solids::box({0, 0, 0}, {1, 1, 1}), solids::sphere({0, 0, 0}, 1, 32),
@@ -187,88 +162,6 @@ TEST(ValidateMesh, UnusableMeshesAreRefused) {
     bad.triangles[2].x = 1000;
     EXPECT_EQ(validateMesh(bad).badIndices, 1u);
     EXPECT_THROW(requireUsable(validateMesh(bad), "bad.obj"), InvalidMesh);
-}
-
-TEST(LoadMesh, ReadsObjPlyStlAndOff) {
-    const fs::path d = tempDir();
-    writeText(d / "box.obj", boxObj());
-    const TriangleMesh obj = loadMesh((d / "box.obj").string());
-    EXPECT_EQ(obj.triangles.size(), 12u);
-    EXPECT_TRUE(validateMesh(obj).closed());
-    EXPECT_EQ(obj.name, "box.obj");
-
-    // OFF with quads: fan-triangulated.
-    writeText(d / "cube.off", "OFF\n8 6 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n"
-                              "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n");
-    const TriangleMesh off = loadMesh((d / "cube.off").string());
-    EXPECT_EQ(off.triangles.size(), 12u);
-    EXPECT_TRUE(validateMesh(off).closed()) << validateMesh(off).summary();
-
-    writeText(d / "tet.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                             "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
-                             "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
-    const TriangleMesh ply = loadMesh((d / "tet.ply").string());
-    EXPECT_EQ(ply.triangles.size(), 4u);
-    EXPECT_TRUE(validateMesh(ply).closed());
-
-    std::string stl = "solid t\n";
-    const glm::vec3 v[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-    for (const auto& t : f) {
-        stl += "facet normal 0 0 0\nouter loop\n";
-        for (int k : t)
-            stl += "vertex " + std::to_string(v[k].x) + " " + std::to_string(v[k].y) + " " + std::to_string(v[k].z) + "\n";
-        stl += "endloop\nendfacet\n";
-    }
-    writeText(d / "tet.stl", stl + "endsolid t\n");
-    const TriangleMesh st = loadMesh((d / "tet.stl").string());
-    EXPECT_EQ(st.triangles.size(), 4u);
-    EXPECT_TRUE(validateMesh(st).closed()) << validateMesh(st).summary();
-    fs::remove_all(d);
-}
-
-TEST(LoadMesh, BadFilesGiveOneLineErrors) {
-    const fs::path d = tempDir();
-    EXPECT_THROW(loadMesh((d / "missing.obj").string()), IoError);
-    EXPECT_THROW(loadMesh((d / "mesh.xyz").string()), FormatError);
-    writeText(d / "empty.obj", "");
-    EXPECT_THROW(loadMesh((d / "empty.obj").string()), FormatError);
-    writeText(d / "garbage.ply", "this is not a ply file\n\x01\x02\x03");
-    EXPECT_THROW(loadMesh((d / "garbage.ply").string()), FormatError);
-    writeText(d / "truncated.off", "OFF\n8 6 0\n0 0 0\n1 0 0\n");
-    try {
-        const TriangleMesh m = loadMesh((d / "truncated.off").string());
-        EXPECT_FALSE(validateMesh(m).usable()); // if parsed at all, it cannot be baked
-    } catch (const FormatError& e) {
-        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
-    }
-    fs::remove_all(d);
-}
-
-TEST(LoadPoints, ReadsTextAndPlyAndRejectsBadLines) {
-    const fs::path d = tempDir();
-    writeText(d / "p.txt", "# comment\n1 2 3\n\n  -4.5 5e-1 6\r\n");
-    const auto p = loadPoints((d / "p.txt").string());
-    ASSERT_EQ(p.size(), 2u);
-    EXPECT_EQ(p[1], glm::vec3(-4.5f, 0.5f, 6.0f));
-    writeText(d / "p.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
-                           "property float z\nend_header\n1 2 3\n4 5 6\n");
-    EXPECT_EQ(loadPoints((d / "p.ply").string()).size(), 2u);
-    writeText(d / "nan.txt", "1 2 3\nnan 0 0\n");
-    try {
-        loadPoints((d / "nan.txt").string());
-        FAIL() << "NaN accepted";
-    } catch (const FormatError& e) {
-        EXPECT_NE(std::string(e.what()).find(":2:"), std::string::npos) << e.what();
-    }
-    writeText(d / "two.txt", "1 2\n3 4 5\n");
-    EXPECT_THROW(loadPoints((d / "two.txt").string()), FormatError);
-    writeText(d / "four.txt", "1 2 3 4\n");
-    EXPECT_THROW(loadPoints((d / "four.txt").string()), FormatError);
-    writeText(d / "words.txt", "x y z\n");
-    EXPECT_THROW(loadPoints((d / "words.txt").string()), FormatError);
-    EXPECT_THROW(loadPoints((d / "none.txt").string()), IoError);
-    fs::remove_all(d);
 }
 
 } // namespace

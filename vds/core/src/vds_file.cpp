@@ -10,8 +10,9 @@
 
 #include <vds/atomic_file.h>
 
+#include "file_bytes.h"
+
 #include <fcntl.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -25,7 +26,6 @@
 #include <limits>
 #include <new>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include <ImfChannelList.h>
@@ -49,6 +49,9 @@
 
 namespace vds {
 namespace {
+
+using detail::errnoText;
+using detail::readWholeFile;
 
 // Attribute names (docs/format.md lists types and meaning).
 constexpr const char* kFormatVersionAttr = "vds.formatVersion";
@@ -91,8 +94,6 @@ std::string oneLine(const std::string& text) {
     while (!out.empty() && out.back() == ' ') out.pop_back();
     return out;
 }
-
-std::string errnoText(int error) { return std::error_code(error, std::generic_category()).message(); }
 
 [[noreturn]] void formatFail(const std::string& path, const std::string& what) {
     throw FormatError(path + ": " + oneLine(what));
@@ -257,50 +258,6 @@ private:
 };
 
 // ---------------------------------------------------------------- files
-
-class FileDescriptor {
-public:
-    explicit FileDescriptor(int fd) : fd_(fd) {}
-    ~FileDescriptor() {
-        if (fd_ >= 0) ::close(fd_);
-    }
-    FileDescriptor(const FileDescriptor&) = delete;
-    FileDescriptor& operator=(const FileDescriptor&) = delete;
-    int get() const { return fd_; }
-    /// Closes now and returns close()'s result (errno set on failure).
-    int close() {
-        const int fd = fd_;
-        fd_ = -1;
-        return ::close(fd);
-    }
-
-private:
-    int fd_;
-};
-
-std::vector<char> readWholeFile(const std::string& path) {
-    FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
-    if (fd.get() < 0) throw IoError(path + ": cannot open: " + errnoText(errno));
-    struct stat st;
-    if (::fstat(fd.get(), &st) != 0) throw IoError(path + ": cannot read: " + errnoText(errno));
-    if (S_ISDIR(st.st_mode)) throw IoError(path + ": cannot read: is a directory");
-
-    // One byte more than the size, so reaching the end needs no reallocation.
-    std::vector<char> bytes(S_ISREG(st.st_mode) ? std::size_t(st.st_size) + 1 : std::size_t(1) << 16);
-    std::size_t size = 0;
-    for (;;) {
-        if (size == bytes.size()) bytes.resize(bytes.size() * 2);
-        const ssize_t n = ::read(fd.get(), bytes.data() + size, bytes.size() - size);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            throw IoError(path + ": cannot read: " + errnoText(errno));
-        }
-        if (n == 0) break;
-        size += std::size_t(n);
-    }
-    bytes.resize(size);
-    return bytes;
-}
 
 void writeFileAtomically(const std::string& path, const std::vector<char>& bytes) {
     AtomicFile tmp(path);
@@ -651,6 +608,21 @@ Sprite decodeSprite(std::vector<char>& bytes, const std::string& path) {
     return sprite;
 }
 
+/// Runs `read`; what OpenEXR and the allocator throw becomes the library's errors.
+template <class Read> Sprite readGuarded(const std::string& name, const Read& read) {
+    try {
+        return read();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(name + ": not enough memory to read the sprite");
+    } catch (const Iex::BaseExc& e) {
+        formatFail(name, e.what());
+    } catch (const std::exception& e) {
+        formatFail(name, e.what());
+    }
+}
+
 } // namespace
 
 void writeSprite(const Sprite& sprite, const std::string& path) {
@@ -667,18 +639,17 @@ void writeSprite(const Sprite& sprite, const std::string& path) {
 }
 
 Sprite readSprite(const std::string& path) {
-    try {
+    return readGuarded(path, [&] {
         std::vector<char> bytes = readWholeFile(path);
         return decodeSprite(bytes, path);
-    } catch (const Error&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw OutOfMemory(path + ": not enough memory to read the sprite");
-    } catch (const Iex::BaseExc& e) {
-        formatFail(path, e.what());
-    } catch (const std::exception& e) {
-        formatFail(path, e.what());
-    }
+    });
+}
+
+Sprite parseSprite(const char* data, std::size_t size, const std::string& name) {
+    return readGuarded(name, [&] {
+        std::vector<char> bytes(data, data + size); // OpenEXR's memory-mapped reads want mutable bytes
+        return decodeSprite(bytes, name);
+    });
 }
 
 } // namespace vds

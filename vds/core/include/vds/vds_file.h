@@ -13,6 +13,7 @@
 // program configured it (by default: no threads).
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include <vds/sprite.h>
@@ -35,5 +36,10 @@ void writeSprite(const Sprite& sprite, const std::string& path);
 /// Never crashes on bad input, and refuses sizes the file cannot hold before
 /// allocating for them.
 Sprite readSprite(const std::string& path);
+
+/// `readSprite` on a file's content already in memory: `size` bytes at
+/// `data`, owned by the caller (copied once), `name` in messages in place of
+/// the path. Same checks, same result.
+Sprite parseSprite(const char* data, std::size_t size, const std::string& name);
 
 } // namespace vds
