@@ -315,6 +315,8 @@ TEST(LoadMesh, ObjReadsEveryReferenceFormAndSkipsWhatCarriesNoSurface) {
     const std::vector<glm::uvec3> expected = {{0, 1, 2}, {0, 2, 3}, {0, 2, 1}, {0, 2, 1}, {0, 1, 2}, {0, 2, 3}, {0, 3, 4}};
     EXPECT_EQ(m.triangles, expected);
     EXPECT_EQ(m.name, "test");
+    // A UTF-8 byte order mark in front is no statement.
+    EXPECT_EQ(parse("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", MeshFormat::Obj).triangles.size(), 1u);
 }
 
 TEST(LoadMesh, DuplicateFacesAndIsolatedVerticesAreKeptAndReported) {

@@ -67,6 +67,10 @@ std::string quoted(std::string_view token) {
     return out + "'";
 }
 
+TextScanner::TextScanner(const char* data, std::size_t size) : text_(data, size) {
+    if (text_.substr(0, 3) == "\xEF\xBB\xBF") position_ = 3;
+}
+
 bool TextScanner::nextLine(std::string_view& line) {
     if (position_ >= text_.size()) return false;
     line_ = newlines_ + 1;

@@ -21,10 +21,12 @@ namespace vds::detail {
 std::string quoted(std::string_view token);
 
 /// A cursor over text held in memory, counting lines (LF or CRLF; a last
-/// line without LF counts). Lines and tokens are views into the text.
+/// line without LF counts). Lines and tokens are views into the text. A
+/// UTF-8 byte order mark in front, which some Windows programs write, is
+/// skipped.
 class TextScanner {
 public:
-    TextScanner(const char* data, std::size_t size) : text_(data, size) {}
+    TextScanner(const char* data, std::size_t size);
 
     /// The text from the current position to the end of its line, without
     /// the line break (at a line start: the next line); false at the end.
