@@ -504,7 +504,7 @@ TEST(LoadMesh, MalformedFilesNameTheLineOrByte) {
          "m:4: vertex reference '3/4/5/6' is not v, v/vt, v//vn or v/vt/vn"},
         {MeshFormat::Obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", "m:4: vertex reference 'x' is not an integer"},
         {MeshFormat::Obj, "v 1 2 three\n", "m:1: coordinate 'three' is not a 32-bit float"},
-        {MeshFormat::Obj, "v 1 2 3 4 5 6 7 8\n", "m:1: a vertex has at most 7 numbers (x y z and w or r g b a), this one has 8"},
+        {MeshFormat::Obj, "v 1 2 3 4 5 6 7 8\n", "m:1: a vertex has at most 7 numbers, this one has 8"},
         {MeshFormat::Obj, "cstype bspline\n", "m:1: free-form geometry ('cstype') is not supported; only polygons are read"},
         {MeshFormat::Obj, "v 0 0 0\n\x01\x02 garbage\n", "m:2: '\\x01\\x02' is not an OBJ statement"},
         {MeshFormat::Off, "COFF\n3 1 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n3 0 1 2 1 2 3 4 5\n",

@@ -3,6 +3,7 @@
 #include <vds/mesh_io.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <new>
 
@@ -20,9 +21,35 @@ void appendFan(TriangleMesh& mesh, const std::vector<std::uint32_t>& corners) {
         mesh.triangles.emplace_back(corners[0], corners[k], corners[k + 1]);
 }
 
+glm::vec3 readVertexLine(Tokens tokens, std::size_t maxNumbers, const std::string& name, std::size_t line) {
+    const std::size_t n = tokens.count();
+    if (n < 3) failAtLine(name, line, "a vertex needs 3 coordinates, this one has " + std::to_string(n));
+    if (n > maxNumbers)
+        failAtLine(name, line,
+                   "a vertex has at most " + std::to_string(maxNumbers) + " numbers, this one has " + std::to_string(n));
+    std::string_view token;
+    float xyz[3];
+    for (float& c : xyz) {
+        tokens.next(token);
+        c = parseCoordinate(token, name, line);
+    }
+    while (tokens.next(token)) {
+        double extra = 0.0;
+        const NumberStatus status = parseNumber(token, extra);
+        if (status != NumberStatus::Ok) failAtLine(name, line, "vertex attribute " + numberProblem(status, token, "a number"));
+    }
+    return {xyz[0], xyz[1], xyz[2]};
+}
+
 } // namespace detail
 
 namespace {
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
 
 std::vector<char> readFile(const std::string& path) {
     try {
@@ -56,8 +83,7 @@ std::vector<glm::vec3> parseTextPoints(const char* data, std::size_t size, const
 } // namespace
 
 MeshFormat meshFormatOf(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string ext = lowerExtension(path);
     if (ext == ".obj") return MeshFormat::Obj;
     if (ext == ".ply") return MeshFormat::Ply;
     if (ext == ".stl") return MeshFormat::Stl;
@@ -101,10 +127,9 @@ std::vector<glm::vec3> parsePoints(const char* data, std::size_t size, PointForm
 }
 
 std::vector<glm::vec3> loadPoints(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const PointFormat format = lowerExtension(path) == ".ply" ? PointFormat::Ply : PointFormat::Text;
     const std::vector<char> bytes = readFile(path);
-    return parsePoints(bytes.data(), bytes.size(), ext == ".ply" ? PointFormat::Ply : PointFormat::Text, path);
+    return parsePoints(bytes.data(), bytes.size(), format, path);
 }
 
 } // namespace vds

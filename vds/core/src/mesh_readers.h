@@ -23,4 +23,11 @@ TriangleMesh readStl(const char* data, std::size_t size, const std::string& name
 /// Appends the triangles of the polygon `corners` (n >= 3) as a fan.
 void appendFan(TriangleMesh& mesh, const std::vector<std::uint32_t>& corners);
 
+class Tokens;
+
+/// A vertex line's numbers after its keyword, if any: x y z, then at most
+/// `maxNumbers` - 3 more (colours, normals, ...) that must be numbers and are
+/// read past. Throws FormatError at `line` of `name`.
+glm::vec3 readVertexLine(Tokens tokens, std::size_t maxNumbers, const std::string& name, std::size_t line);
+
 } // namespace vds::detail

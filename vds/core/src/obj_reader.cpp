@@ -57,24 +57,10 @@ public:
 private:
     [[noreturn]] void fail(const std::string& what) const { failAtLine(name_, text_.line(), what); }
 
-    void vertex(Tokens& tokens) {
+    void vertex(const Tokens& tokens) {
         // x y z, then an optional w or r g b [a] (colours some exporters add).
-        const std::size_t n = tokens.count();
-        if (n < 3) fail("a vertex needs 3 coordinates, this one has " + std::to_string(n));
-        if (n > 7) fail("a vertex has at most 7 numbers (x y z and w or r g b a), this one has " + std::to_string(n));
         if (mesh_.positions.size() == kMaxVertices) fail("more than 2^32 - 1 vertices");
-        std::string_view token;
-        float xyz[3];
-        for (float& c : xyz) {
-            tokens.next(token);
-            c = parseCoordinate(token, name_, text_.line());
-        }
-        while (tokens.next(token)) {
-            double extra = 0.0;
-            const NumberStatus status = parseNumber(token, extra);
-            if (status != NumberStatus::Ok) fail("vertex attribute " + numberProblem(status, token, "a number"));
-        }
-        mesh_.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
+        mesh_.positions.push_back(readVertexLine(tokens, 7, name_, text_.line()));
     }
 
     void face(Tokens& tokens) {

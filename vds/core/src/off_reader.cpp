@@ -114,21 +114,9 @@ private:
     }
 
     void vertex(std::string_view line) {
-        Tokens tokens(line);
-        const std::size_t n = tokens.count();
-        if (n < 3) fail("a vertex needs 3 coordinates, this line has " + std::to_string(n) + " numbers");
-        std::string_view token;
-        float xyz[3];
-        for (float& c : xyz) {
-            tokens.next(token);
-            c = parseCoordinate(token, name_, text_.line());
-        }
-        while (tokens.next(token)) {
-            double extra = 0.0;
-            const NumberStatus status = parseNumber(token, extra);
-            if (status != NumberStatus::Ok) fail("vertex attribute " + numberProblem(status, token, "a number"));
-        }
-        mesh_.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
+        // x y z, then whatever the header's prefixes announce (normal, colour, texture coordinates).
+        constexpr std::size_t kMaxNumbers = 3 + 3 + 4 + 2;
+        mesh_.positions.push_back(readVertexLine(Tokens(line), kMaxNumbers, name_, text_.line()));
     }
 
     void face(std::string_view line) {
