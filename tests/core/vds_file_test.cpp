@@ -431,4 +431,32 @@ TEST_F(VdsFileTest, EditedAttributesAreDetected) {
     EXPECT_NE(readDamaged(bytes), "");
 }
 
+TEST_F(VdsFileTest, AttributeSizesPastTheEndAreRefusedBeforeAnythingIsAllocated) {
+    // Found by fuzz/vds_file_fuzzer.cpp: OpenEXR sizes a string attribute's
+    // value as declared before reading it, so 2 GB were claimed and zeroed
+    // for a 1 KB file. The reader now walks the attributes first.
+    vds::writeSprite(specialSprite(), path("whole.vds"));
+    const std::string whole = readBytes(path("whole.vds"));
+    std::string bytes = whole;
+    const std::size_t size = attributeValue(bytes, "vds.validation", "string") - 4;
+    const unsigned char huge[4] = {0xf0, 0xff, 0xff, 0x7f}; // 2^31 - 16, little-endian
+    for (int k = 0; k < 4; ++k) bytes[size + std::size_t(k)] = char(huge[k]);
+    EXPECT_NE(readDamaged(bytes).find("header attribute vds.validation declares 2147483632 bytes, more than the "),
+              std::string::npos);
+    bytes = whole;
+    bytes[find(bytes, "vds.validation") + 14] = 'x'; // the name runs on into the type: no terminator
+    bytes.resize(find(bytes, "vds.validation") + 100);
+    std::fill(bytes.begin() + std::ptrdiff_t(find(bytes, "vds.validation")), bytes.end(), 'x');
+    EXPECT_NE(readDamaged(bytes).find("is not terminated"), std::string::npos);
+
+    // The same checks from memory, with the name given in place of a path.
+    try {
+        vds::parseSprite(bytes.data(), bytes.size(), "in-memory.vds");
+        ADD_FAILURE() << "damaged bytes read";
+    } catch (const vds::FormatError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("in-memory.vds: header attribute", 0), 0u) << e.what();
+    }
+    expectSameSprite(vds::parseSprite(whole.data(), whole.size(), "in-memory.vds"), vds::readSprite(path("whole.vds")));
+}
+
 } // namespace

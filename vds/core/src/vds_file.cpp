@@ -429,7 +429,42 @@ void checkChannels(const Imf::Header& header, const std::string& path) {
 /// Reads and checks everything up to the pixels: the OpenEXR version field,
 /// the header, and the vds.* attributes into `sprite` (offsets, crossings and
 /// the checksum excepted). Returns the stored checksum.
-std::uint64_t readHeader(MemoryIStream& stream, std::uint64_t fileSize, const std::string& path, Sprite& sprite) {
+/// Walks the header's attributes (name\0 type\0 int32 size, value; an empty
+/// name ends the list) and refuses any whose size runs past the file.
+/// OpenEXR allocates a value's declared size before reading it (a string
+/// attribute claiming 2 GB in a 1 KB file costs 2 GB and seconds), so this
+/// runs before the header goes to OpenEXR. Names are at most 255 bytes there.
+void checkAttributeSizes(const std::vector<char>& bytes, const std::string& path) {
+    constexpr std::size_t kMaxName = 256; // with its NUL
+    std::size_t at = 8;                   // after the magic number and version
+    const auto text = [&](const char* what) {
+        const std::size_t end = std::min(bytes.size(), at + kMaxName);
+        const auto nul = std::find(bytes.begin() + std::ptrdiff_t(at), bytes.begin() + std::ptrdiff_t(end), '\0');
+        if (nul == bytes.begin() + std::ptrdiff_t(end))
+            formatFail(path, std::string("header attribute ") + what + " at byte " + std::to_string(at) +
+                                 " is not terminated (truncated or corrupt)");
+        std::string s(bytes.begin() + std::ptrdiff_t(at), nul);
+        at += s.size() + 1;
+        return s;
+    };
+    for (;;) {
+        const std::string name = text("name");
+        if (name.empty()) return;
+        text("type");
+        if (bytes.size() - at < 4) formatFail(path, "header ends inside attribute " + name + " (truncated)");
+        std::uint32_t size = 0;
+        for (int k = 0; k < 4; ++k) size |= std::uint32_t(std::uint8_t(bytes[at + std::size_t(k)])) << (8 * k);
+        at += 4;
+        if (size > bytes.size() - at)
+            formatFail(path, "header attribute " + name + " declares " + std::to_string(size) + " bytes, more than the " +
+                                 std::to_string(bytes.size() - at) + " left in the file (truncated or corrupt)");
+        at += size;
+    }
+}
+
+std::uint64_t readHeader(MemoryIStream& stream, const std::vector<char>& bytes, const std::string& path,
+                         Sprite& sprite) {
+    const std::uint64_t fileSize = bytes.size();
     char head[8] = {};
     if (fileSize < 8) formatFail(path, "not a .vds file (too short for OpenEXR)");
     stream.read(head, 8);
@@ -441,6 +476,7 @@ std::uint64_t readHeader(MemoryIStream& stream, std::uint64_t fileSize, const st
     if (Imf::isMultiPart(version)) formatFail(path, "not a .vds file (multi-part OpenEXR)");
     if (Imf::isTiled(version) || !Imf::isNonImage(version))
         formatFail(path, "not a .vds file (not a deep scanline OpenEXR image)");
+    checkAttributeSizes(bytes, path);
 
     Imf::Header header;
     int headerVersion = version;
@@ -592,7 +628,7 @@ Sprite decodeSprite(std::vector<char>& bytes, const std::string& path) {
     const std::uint64_t fileSize = bytes.size();
     MemoryIStream stream(path, bytes);
     Sprite sprite;
-    const std::uint64_t storedChecksum = readHeader(stream, fileSize, path, sprite);
+    const std::uint64_t storedChecksum = readHeader(stream, bytes, path, sprite);
 
     stream.seekg(0);
     Imf::DeepScanLineInputFile file(stream);
