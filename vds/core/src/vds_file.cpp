@@ -429,36 +429,89 @@ void checkChannels(const Imf::Header& header, const std::string& path) {
 /// Reads and checks everything up to the pixels: the OpenEXR version field,
 /// the header, and the vds.* attributes into `sprite` (offsets, crossings and
 /// the checksum excepted). Returns the stored checksum.
+/// Bytes OpenEXR 3.1 reads for a value of each fixed-size attribute type,
+/// whatever size the file declares.
+std::size_t fixedValueSize(const std::string& type) {
+    static const std::pair<const char*, std::size_t> sizes[] = {
+        {"box2i", 16},  {"box2f", 16},     {"chromaticities", 32}, {"compression", 1}, {"double", 8},
+        {"envmap", 1},  {"float", 4},      {"int", 4},             {"keycode", 28},    {"lineOrder", 1},
+        {"m33f", 36},   {"m33d", 72},      {"m44f", 64},           {"m44d", 128},      {"rational", 8},
+        {"tiledesc", 9}, {"timecode", 8},  {"v2i", 8},             {"v2f", 8},         {"v2d", 16},
+        {"v3i", 12},    {"v3f", 12},       {"v3d", 24},            {"deepImageState", 1},
+    };
+    for (const auto& [name, size] : sizes)
+        if (type == name) return size;
+    return 0;
+}
+
 /// Walks the header's attributes (name\0 type\0 int32 size, value; an empty
-/// name ends the list) and refuses any whose size runs past the file.
-/// OpenEXR allocates a value's declared size before reading it (a string
-/// attribute claiming 2 GB in a 1 KB file costs 2 GB and seconds), so this
-/// runs before the header goes to OpenEXR. Names are at most 255 bytes there.
-void checkAttributeSizes(const std::vector<char>& bytes, const std::string& path) {
-    constexpr std::size_t kMaxName = 256; // with its NUL
-    std::size_t at = 8;                   // after the magic number and version
-    const auto text = [&](const char* what) {
-        const std::size_t end = std::min(bytes.size(), at + kMaxName);
-        const auto nul = std::find(bytes.begin() + std::ptrdiff_t(at), bytes.begin() + std::ptrdiff_t(end), '\0');
-        if (nul == bytes.begin() + std::ptrdiff_t(end))
-            formatFail(path, std::string("header attribute ") + what + " at byte " + std::to_string(at) +
-                                 " is not terminated (truncated or corrupt)");
+/// name ends the list) the way OpenEXR 3.1's Header::readFrom will, and
+/// refuses what would make it allocate more than the file holds or read
+/// something else than this walk does. OpenEXR sizes string and unknown
+/// values as declared before reading them (2 GB for a 1 KB file, found by
+/// fuzzing), reads fixed-size types by their own size, and channel lists,
+/// string vectors and previews by their own structure, trusting the lengths
+/// inside. So: every declared size must fit in the file, fixed-size types
+/// must declare their size, structured values must end exactly where their
+/// size says, and names must be terminated within what OpenEXR reads (31
+/// bytes, 255 with the long-names flag; channel names 255).
+void checkAttributes(const std::vector<char>& bytes, int version, const std::string& path) {
+    const std::size_t maxName = (version & Imf::LONG_NAMES_FLAG) ? 255 : 31;
+    std::size_t at = 8; // after the magic number and version
+    const auto fail = [&](const std::string& what) {
+        formatFail(path, "header at byte " + std::to_string(at) + ": " + what + " (truncated or corrupt)");
+    };
+    // A NUL-terminated name of at most `longest` bytes before `end`.
+    const auto text = [&](std::size_t longest, std::size_t end, const std::string& what) {
+        const std::size_t stop = std::min(end, at + longest + 1);
+        const auto nul = std::find(bytes.begin() + std::ptrdiff_t(at), bytes.begin() + std::ptrdiff_t(stop), '\0');
+        if (nul == bytes.begin() + std::ptrdiff_t(stop))
+            fail(what + " is not terminated within " + std::to_string(longest) + " bytes");
         std::string s(bytes.begin() + std::ptrdiff_t(at), nul);
         at += s.size() + 1;
         return s;
     };
-    for (;;) {
-        const std::string name = text("name");
-        if (name.empty()) return;
-        text("type");
-        if (bytes.size() - at < 4) formatFail(path, "header ends inside attribute " + name + " (truncated)");
-        std::uint32_t size = 0;
-        for (int k = 0; k < 4; ++k) size |= std::uint32_t(std::uint8_t(bytes[at + std::size_t(k)])) << (8 * k);
+    // A little-endian 32-bit value before `end`.
+    const auto word = [&](std::size_t end, const std::string& what) {
+        if (end - at < 4) fail(what + " runs past its end");
+        std::uint32_t v = 0;
+        for (int k = 0; k < 4; ++k) v |= std::uint32_t(std::uint8_t(bytes[at + std::size_t(k)])) << (8 * k);
         at += 4;
+        return v;
+    };
+    for (;;) {
+        const std::string name = text(maxName, bytes.size(), "an attribute name");
+        if (name.empty()) return;
+        const std::string type = text(maxName, bytes.size(), "the type of attribute " + name);
+        const std::uint32_t size = word(bytes.size(), "the size of attribute " + name);
         if (size > bytes.size() - at)
-            formatFail(path, "header attribute " + name + " declares " + std::to_string(size) + " bytes, more than the " +
-                                 std::to_string(bytes.size() - at) + " left in the file (truncated or corrupt)");
-        at += size;
+            fail("attribute " + name + " declares " + std::to_string(size) + " bytes, more than the " +
+                 std::to_string(bytes.size() - at) + " left in the file");
+        const std::size_t end = at + size;
+        const std::string what = "attribute " + name + " of type " + type;
+        if (const std::size_t fixed = fixedValueSize(type)) {
+            if (size != fixed) fail(what + " declares " + std::to_string(size) + " bytes, not " + std::to_string(fixed));
+        } else if (type == "chlist") {
+            // Channels: name\0, int32 type, uint8 linear, 3 reserved, int32 x and y sampling; an empty name ends it.
+            while (!text(255, end, "a channel name in " + what).empty()) {
+                if (end - at < 16) fail(what + " runs past its size");
+                at += 16;
+            }
+            if (at != end) fail(what + " ends before its size");
+        } else if (type == "stringvector") {
+            while (at < end) {
+                const std::uint32_t length = word(end, what);
+                if (length > end - at) fail("a string in " + what + " runs past its size");
+                at += length;
+            }
+        } else if (type == "preview") {
+            const std::uint64_t width = word(end, what), height = word(end, what);
+            if (width * height > (end - at) / 4 || width * height * 4 != end - at)
+                fail(what + ": a " + std::to_string(width) + "x" + std::to_string(height) + " image does not fill it");
+        } else if (type == "idmanifest") {
+            fail(what + ": a .vds file has no ID manifest");
+        } // string, floatvector and types OpenEXR does not know: it reads exactly the declared size
+        at = end;
     }
 }
 
@@ -476,7 +529,7 @@ std::uint64_t readHeader(MemoryIStream& stream, const std::vector<char>& bytes, 
     if (Imf::isMultiPart(version)) formatFail(path, "not a .vds file (multi-part OpenEXR)");
     if (Imf::isTiled(version) || !Imf::isNonImage(version))
         formatFail(path, "not a .vds file (not a deep scanline OpenEXR image)");
-    checkAttributeSizes(bytes, path);
+    checkAttributes(bytes, version, path);
 
     Imf::Header header;
     int headerVersion = version;
