@@ -6,7 +6,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libegl-dev libgl-dev libopengl-dev   # OpenGL through EGL (glvnd)
   libgl1-mesa-dri libegl-mesa0         # Mesa's llvmpipe: GL 4.5 core where there is no GPU
-  libglm-dev libopenmesh-dev libopenexr-dev libpng-dev libgtest-dev
+  libglm-dev libopenexr-dev libpng-dev libgtest-dev
   libcli11-dev nlohmann-json3-dev     # command lines, JSON reports
 )
 missing=()

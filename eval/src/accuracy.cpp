@@ -121,7 +121,7 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
         if (progress) progress(s);
     };
     const MeshReport validation = validateMesh(mesh);
-    requireUsable(validation, mesh.name);
+    requireInsideDefined(validation, mesh.name, options.rule);
     EvalReport report;
     report.mesh = mesh.name;
     report.triangles = mesh.triangles.size();

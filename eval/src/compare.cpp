@@ -188,7 +188,9 @@ std::string formatBytes(std::size_t b) {
 } // namespace
 
 CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* gl) {
-    requireClosed(mesh, options.meshName.empty() ? "mesh" : options.meshName.c_str());
+    // The rows hold the sprite to both rules, so both must define inside.
+    const MeshReport validation = validateMesh(mesh);
+    requireInsideDefined(validation, options.meshName, Rule::Winding);
     if (options.resolutions.empty()) throw InvalidArgument("compare needs at least one resolution");
     for (std::uint32_t r : options.resolutions)
         if (r == 0 || r > kMaxCompareResolution)
@@ -202,6 +204,7 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
     CompareResult result;
     result.meshName = options.meshName;
     result.triangles = mesh.triangleCount;
+    result.validation = validation.summary();
     result.bounds = meshBounds(mesh);
     const Box& box = result.bounds;
 
@@ -369,6 +372,7 @@ std::string CompareResult::json() const {
     const nlohmann::json result = {
         {"mesh", meshName},
         {"triangles", triangles},
+        {"validation", validation},
         {"bounds", {{"lo", {bounds.lo.x, bounds.lo.y, bounds.lo.z}}, {"hi", {bounds.hi.x, bounds.hi.y, bounds.hi.z}}}},
         {"uniform_points", uniformPoints},
         {"surface_points", surfacePoints},

@@ -1,9 +1,5 @@
-// Mesh validation and the OpenMesh loaders, on meshes built in code.
+// Mesh validation, on meshes built in code.
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -12,33 +8,13 @@
 #include <vds/error.h>
 #include <vds/exact.h>
 #include <vds/mesh.h>
-#include <vds/mesh_io.h>
+#include <vds/sprite.h>
 #include "solids.h"
 
 #include "../support/points.h"
 
 namespace vds {
 namespace {
-
-namespace fs = std::filesystem;
-
-fs::path tempDir() {
-    const fs::path d = fs::temp_directory_path() / ("vds_mesh_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-}
-
-void writeText(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
-
-std::string boxObj() {
-    const auto box = solids::box({0, 0, 0}, {1, 2, 3});
-    std::string s;
-    for (const auto& v : box.mesh.positions)
-        s += "v " + std::to_string(v.x) + " " + std::to_string(v.y) + " " + std::to_string(v.z) + "\n";
-    for (const auto& t : box.mesh.triangles)
-        s += "f " + std::to_string(t.x + 1) + " " + std::to_string(t.y + 1) + " " + std::to_string(t.z + 1) + "\n";
-    return s;
-}
 
 TEST(ValidateMesh, GeneratedSolidsAreClosed) {
     for (const auto& s : {solids::box({0, 0, 0}, {1, 1, 1}), solids::sphere({0, 0, 0}, 1, 32),
@@ -98,6 +74,8 @@ TEST(ValidateMesh, FindsBoundaryNonManifoldFlippedAndDegenerateFaces) {
     fin.triangles.push_back({0, 1, std::uint32_t(fin.positions.size() - 1)});
     r = validateMesh(fin);
     EXPECT_EQ(r.nonManifoldEdges, 1u);
+    EXPECT_EQ(r.oddNonManifoldEdges, 1u);
+    EXPECT_EQ(r.boundaryEdges, 2u);
 
     auto flipped = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
     std::swap(flipped.triangles[0].y, flipped.triangles[0].z);
@@ -109,6 +87,95 @@ TEST(ValidateMesh, FindsBoundaryNonManifoldFlippedAndDegenerateFaces) {
     r = validateMesh(degenerate);
     EXPECT_EQ(r.degenerateTriangles, 1u);
     EXPECT_TRUE(r.closed()); // a collapsed triangle adds no edges
+}
+
+TEST(ValidateMesh, SolidsTouchingAlongAnEdgeAreClosedButNotManifold) {
+    const auto boxes = solids::boxesSharingAnEdge({0, 0, 0}, 1.0f);
+    const MeshReport r = validateMesh(boxes.mesh);
+    EXPECT_EQ(r.nonManifoldEdges, 1u);
+    EXPECT_EQ(r.oddNonManifoldEdges, 0u);
+    EXPECT_EQ(r.boundaryEdges, 0u);
+    EXPECT_EQ(r.inconsistentEdges, 0u);
+    EXPECT_TRUE(r.closed());
+    EXPECT_TRUE(r.oriented());
+    EXPECT_FALSE(r.manifold());
+    EXPECT_EQ(r.summary(), "closed, 1 non-manifold edge, 24 triangles, 16 vertices");
+    EXPECT_NO_THROW(requireInsideDefined(r, "boxes.obj", Rule::Parity));
+    EXPECT_NO_THROW(requireInsideDefined(r, "boxes.obj", Rule::Winding));
+    EXPECT_EQ(insideWarning(r, Rule::Parity),
+              "1 non-manifold edge (more than two triangles on an edge); inside is still defined by the parity rule");
+    EXPECT_EQ(insideWarning(validateMesh(solids::box({0, 0, 0}, {1, 1, 1}).mesh), Rule::Winding), "");
+}
+
+TEST(ValidateMesh, AnEdgeOfThreeTrianglesLeavesInsideUndefined) {
+    // Two boxes sharing a wall that is there once: its four edges carry three
+    // triangles each, so a ray's parity changes across them as across a hole.
+    const auto a = solids::box({0, 0, 0}, {1, 1, 1}).mesh, b = solids::box({1, 0, 0}, {2, 1, 1}).mesh;
+    TriangleMesh theta = a; // a whole, the shared wall (a's x = 1 side, triangles 10 and 11) included
+    auto withoutLowXSide = b;
+    withoutLowXSide.triangles.erase(withoutLowXSide.triangles.begin() + 8, withoutLowXSide.triangles.begin() + 10);
+    theta = solids::merge(theta, withoutLowXSide);
+    theta.triangles.erase(theta.triangles.begin() + 10, theta.triangles.begin() + 12);
+    theta.triangles.push_back(a.triangles[10]);
+    theta.triangles.push_back(a.triangles[11]);
+    const MeshReport r = validateMesh(theta);
+    EXPECT_EQ(r.boundaryEdges, 0u);
+    EXPECT_EQ(r.nonManifoldEdges, 4u);
+    EXPECT_EQ(r.oddNonManifoldEdges, 4u);
+    EXPECT_FALSE(r.closed());
+    EXPECT_NE(r.summary().find("open (4 edges shared by an odd number of triangles)"), std::string::npos)
+        << r.summary();
+    EXPECT_THROW(requireInsideDefined(r, "theta.obj", Rule::Parity), InvalidMesh);
+}
+
+TEST(ValidateMesh, CountsDuplicateTrianglesIsolatedVerticesAndOrientationConflicts) {
+    auto m = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    m.triangles.push_back(m.triangles[0]);                                                // same orientation
+    m.triangles.push_back({m.triangles[1].x, m.triangles[1].z, m.triangles[1].y});       // reversed
+    m.positions.push_back({5, 5, 5});                                                     // used by nothing
+    m.positions.push_back(m.positions[0]);                                                // unused, but its twin is used
+    const MeshReport r = validateMesh(m);
+    EXPECT_EQ(r.duplicateTriangles, 2u);
+    EXPECT_EQ(r.isolatedVertices, 1u);
+    EXPECT_EQ(r.vertexCount, 10u);
+    EXPECT_NE(r.summary().find("2 duplicate triangles, 1 isolated vertex"), std::string::npos) << r.summary();
+
+    auto flipped = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    std::swap(flipped.triangles[0].y, flipped.triangles[0].z);
+    const MeshReport f = validateMesh(flipped);
+    EXPECT_EQ(f.inconsistentEdges, 3u);
+    EXPECT_TRUE(f.closed());
+    EXPECT_FALSE(f.oriented());
+    EXPECT_EQ(f.summary(), "closed, 3 inconsistently oriented edges, 12 triangles, 8 vertices");
+    EXPECT_NO_THROW(requireInsideDefined(f, "flipped.obj", Rule::Parity));
+    EXPECT_EQ(insideWarning(f, Rule::Parity),
+              "3 inconsistently oriented edges; inside is still defined by the parity rule");
+    try {
+        requireInsideDefined(f, "flipped.obj", Rule::Winding);
+        FAIL() << "winding accepted with orientation conflicts";
+    } catch (const InvalidMesh& e) {
+        EXPECT_STREQ(e.what(), "flipped.obj has 3 inconsistently oriented edges: inside is not defined by the "
+                               "winding rule; the parity rule defines it");
+    }
+}
+
+TEST(ValidateMesh, OpenMeshesHaveNoInsideAndTheMessageSaysWhatAnswers) {
+    auto open = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    open.triangles.pop_back();
+    EXPECT_NO_THROW(requireInsideDefined(validateMesh(open), "open.obj", Rule::GeneralizedWinding));
+    for (Rule rule : {Rule::Parity, Rule::Winding}) {
+        try {
+            requireInsideDefined(validateMesh(open), "open.obj", rule);
+            FAIL() << "open mesh accepted";
+        } catch (const InvalidMesh& e) {
+            EXPECT_EQ(std::string(e.what()), std::string("open.obj is open (3 boundary edges): inside is not defined "
+                                                         "by the ") +
+                                                 toString(rule) +
+                                                 " rule; the generalized-winding rule answers for it (exactly), and "
+                                                 "a sprite baked from it still answers by crossing count");
+        }
+    }
+    EXPECT_THROW(requireInsideDefined(validateMesh(TriangleMesh{}), "empty.obj", Rule::Parity), InvalidMesh);
 }
 
 TEST(ValidateMesh, DuplicatedVerticesAreWeldedByPosition) {
@@ -135,88 +202,6 @@ TEST(ValidateMesh, UnusableMeshesAreRefused) {
     bad.triangles[2].x = 1000;
     EXPECT_EQ(validateMesh(bad).badIndices, 1u);
     EXPECT_THROW(requireUsable(validateMesh(bad), "bad.obj"), InvalidMesh);
-}
-
-TEST(LoadMesh, ReadsObjPlyStlAndOff) {
-    const fs::path d = tempDir();
-    writeText(d / "box.obj", boxObj());
-    const TriangleMesh obj = loadMesh((d / "box.obj").string());
-    EXPECT_EQ(obj.triangles.size(), 12u);
-    EXPECT_TRUE(validateMesh(obj).closed());
-    EXPECT_EQ(obj.name, "box.obj");
-
-    // OFF with quads: fan-triangulated.
-    writeText(d / "cube.off", "OFF\n8 6 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n"
-                              "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n");
-    const TriangleMesh off = loadMesh((d / "cube.off").string());
-    EXPECT_EQ(off.triangles.size(), 12u);
-    EXPECT_TRUE(validateMesh(off).closed()) << validateMesh(off).summary();
-
-    writeText(d / "tet.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                             "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
-                             "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
-    const TriangleMesh ply = loadMesh((d / "tet.ply").string());
-    EXPECT_EQ(ply.triangles.size(), 4u);
-    EXPECT_TRUE(validateMesh(ply).closed());
-
-    std::string stl = "solid t\n";
-    const glm::vec3 v[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-    for (const auto& t : f) {
-        stl += "facet normal 0 0 0\nouter loop\n";
-        for (int k : t)
-            stl += "vertex " + std::to_string(v[k].x) + " " + std::to_string(v[k].y) + " " + std::to_string(v[k].z) + "\n";
-        stl += "endloop\nendfacet\n";
-    }
-    writeText(d / "tet.stl", stl + "endsolid t\n");
-    const TriangleMesh st = loadMesh((d / "tet.stl").string());
-    EXPECT_EQ(st.triangles.size(), 4u);
-    EXPECT_TRUE(validateMesh(st).closed()) << validateMesh(st).summary();
-    fs::remove_all(d);
-}
-
-TEST(LoadMesh, BadFilesGiveOneLineErrors) {
-    const fs::path d = tempDir();
-    EXPECT_THROW(loadMesh((d / "missing.obj").string()), IoError);
-    EXPECT_THROW(loadMesh((d / "mesh.xyz").string()), FormatError);
-    writeText(d / "empty.obj", "");
-    EXPECT_THROW(loadMesh((d / "empty.obj").string()), FormatError);
-    writeText(d / "garbage.ply", "this is not a ply file\n\x01\x02\x03");
-    EXPECT_THROW(loadMesh((d / "garbage.ply").string()), FormatError);
-    writeText(d / "truncated.off", "OFF\n8 6 0\n0 0 0\n1 0 0\n");
-    try {
-        const TriangleMesh m = loadMesh((d / "truncated.off").string());
-        EXPECT_FALSE(validateMesh(m).usable()); // if parsed at all, it cannot be baked
-    } catch (const FormatError& e) {
-        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
-    }
-    fs::remove_all(d);
-}
-
-TEST(LoadPoints, ReadsTextAndPlyAndRejectsBadLines) {
-    const fs::path d = tempDir();
-    writeText(d / "p.txt", "# comment\n1 2 3\n\n  -4.5 5e-1 6\r\n");
-    const auto p = loadPoints((d / "p.txt").string());
-    ASSERT_EQ(p.size(), 2u);
-    EXPECT_EQ(p[1], glm::vec3(-4.5f, 0.5f, 6.0f));
-    writeText(d / "p.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
-                           "property float z\nend_header\n1 2 3\n4 5 6\n");
-    EXPECT_EQ(loadPoints((d / "p.ply").string()).size(), 2u);
-    writeText(d / "nan.txt", "1 2 3\nnan 0 0\n");
-    try {
-        loadPoints((d / "nan.txt").string());
-        FAIL() << "NaN accepted";
-    } catch (const FormatError& e) {
-        EXPECT_NE(std::string(e.what()).find(":2:"), std::string::npos) << e.what();
-    }
-    writeText(d / "two.txt", "1 2\n3 4 5\n");
-    EXPECT_THROW(loadPoints((d / "two.txt").string()), FormatError);
-    writeText(d / "four.txt", "1 2 3 4\n");
-    EXPECT_THROW(loadPoints((d / "four.txt").string()), FormatError);
-    writeText(d / "words.txt", "x y z\n");
-    EXPECT_THROW(loadPoints((d / "words.txt").string()), FormatError);
-    EXPECT_THROW(loadPoints((d / "none.txt").string()), IoError);
-    fs::remove_all(d);
 }
 
 } // namespace

@@ -453,4 +453,58 @@ TEST_F(VdsFileTest, EditedAttributesAreDetected) {
     EXPECT_NE(readDamaged(bytes), "");
 }
 
+TEST_F(VdsFileTest, HeaderAttributesAreCheckedBeforeOpenExrReadsThem) {
+    // Found by fuzz/vds_file_fuzzer.cpp: OpenEXR sizes a string attribute's
+    // value as declared before reading it, so 2 GB were claimed and zeroed
+    // for a 1 KB file. The reader now walks the attributes first.
+    vds::writeSprite(specialSprite(), path("whole.vds"));
+    const std::string whole = readBytes(path("whole.vds"));
+    std::string bytes = whole;
+    const std::size_t size = attributeValue(bytes, "vds.validation", "string") - 4;
+    const unsigned char huge[4] = {0xf0, 0xff, 0xff, 0x7f}; // 2^31 - 16, little-endian
+    for (int k = 0; k < 4; ++k) bytes[size + std::size_t(k)] = char(huge[k]);
+    EXPECT_NE(readDamaged(bytes).find(": header at byte " + std::to_string(size + 4) +
+                                      ": attribute vds.validation declares 2147483632 bytes, more than the "),
+              std::string::npos);
+
+    // A fixed-size type declaring another size would make OpenEXR's walk and
+    // the file's part ways.
+    bytes = whole;
+    bytes[attributeValue(bytes, "vds.axis", "int") - 4] = 8;
+    EXPECT_NE(readDamaged(bytes).find("attribute vds.axis of type int declares 8 bytes, not 4"), std::string::npos);
+
+    // Found next: a channel list shorter than its declared size. OpenEXR reads
+    // channels up to their terminator, then took the leftover bytes for the
+    // next attribute, whose "size" asked for 1.6 GB. This is the fuzzer's
+    // 77-byte file.
+    const std::string channels("v/1\x01\x02\x08\x00\x00"
+                               "channels\x00"
+                               "chlist\x00,\x00\x00\x00\xa6\xff\xf7unt\x00in\x00"
+                               "comprex\x00m33f\x00$\x00\xff\xff_v/1v/\x01\x02`\x00\x00\x08\x0ez\x00z\x00\x00"
+                               "0\x00\x86"
+                               "a",
+                               77);
+    EXPECT_NE(readDamaged(channels).find("attribute channels of type chlist"), std::string::npos)
+        << readDamaged(channels);
+    bytes = whole;
+    bytes[attributeValue(bytes, "channels", "chlist") - 4] += 4; // the list now ends 4 bytes before its size
+    EXPECT_NE(readDamaged(bytes).find("attribute channels of type chlist"), std::string::npos) << readDamaged(bytes);
+
+    // A name that is not terminated where OpenEXR stops reading it.
+    bytes = whole;
+    const std::size_t name = find(bytes, "vds.validation");
+    std::fill(bytes.begin() + std::ptrdiff_t(name), bytes.begin() + std::ptrdiff_t(name) + 40, 'x');
+    EXPECT_NE(readDamaged(bytes).find("an attribute name is not terminated within 31 bytes"), std::string::npos)
+        << readDamaged(bytes);
+
+    // The same checks from memory, with the name given in place of a path.
+    try {
+        vds::decodeSprite(bytes.data(), bytes.size(), "in-memory.vds");
+        ADD_FAILURE() << "damaged bytes read";
+    } catch (const vds::FormatError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("in-memory.vds: header at byte", 0), 0u) << e.what();
+    }
+    expectSameSprite(vds::decodeSprite(whole.data(), whole.size(), "in-memory.vds"), vds::readSprite(path("whole.vds")));
+}
+
 } // namespace

@@ -132,6 +132,18 @@ TEST_F(CompareTest, TableHoldsEveryMethodAtEqualResolutionAndEqualMemory) {
     EXPECT_NE(svg.find(" KiB</text>"), std::string::npos); // memory ticks
 }
 
+TEST_F(CompareTest, ClosedNonManifoldMeshesAreCompared) {
+    const auto touching = solids::boxesSharingAnEdge({0, 0, 0}, 1.0f);
+    CompareOptions options;
+    options.resolutions = {16};
+    options.uniformPoints = 2000;
+    options.surfacePoints = 1000;
+    const CompareResult result = compare(touching.mesh, options, &gl());
+    EXPECT_NE(result.validation.find("closed, 1 non-manifold edge"), std::string::npos) << result.validation;
+    EXPECT_FALSE(result.rows.empty());
+    EXPECT_NE(result.json().find("\"validation\": \"closed, 1 non-manifold edge"), std::string::npos);
+}
+
 TEST_F(CompareTest, BadInputIsRejected) {
     auto open = solids::sphere({0, 0, 0}, 1.0f, 16).mesh;
     open.triangles.pop_back();

@@ -276,6 +276,17 @@ TEST_F(BakeTest, OverlappingBoxesNeedTheWindingRule) {
     expectAnalytic(s, two, Rule::Winding);
 }
 
+TEST_F(BakeTest, SolidsSharingAnEdgeAreASolidDespiteTheNonManifoldEdge) {
+    const auto touching = solids::boxesSharingAnEdge({-1.0f, -1.0f, -0.5f}, 1.0f);
+    for (Axis axis : {Axis::X, Axis::Z}) {
+        const Sprite s = bakeWith(gl(), touching.mesh, BakeMethod::Lists, 64, axis);
+        EXPECT_EQ(s.status, SolidStatus::Closed);
+        EXPECT_NE(s.validation.find("1 non-manifold edge"), std::string::npos) << s.validation;
+        expectAnalytic(s, touching, Rule::Parity);
+        expectAnalytic(s, touching, Rule::Winding);
+    }
+}
+
 TEST_F(BakeTest, OpenMeshIsBakedAndMarkedNotSolid) {
     auto box = solids::box({0, 0, 0}, {1, 1, 1});
     box.mesh.triangles.pop_back();

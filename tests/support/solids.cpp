@@ -231,6 +231,14 @@ Solid torusKnot(const glm::vec3& centre, float scale, std::uint32_t p, std::uint
     return s;
 }
 
+Solid boxesSharingAnEdge(const glm::vec3& lo, float size) {
+    Solid s = box(lo, lo + glm::vec3(size));
+    appendBox(s.mesh, lo + glm::vec3(size, size, 0.0f), lo + glm::vec3(2.0f * size, 2.0f * size, size));
+    s.mesh.name = "boxes-sharing-an-edge";
+    s.signedDistance = unionDistance;
+    return s;
+}
+
 TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b) {
     TriangleMesh m = a;
     const auto base = static_cast<std::uint32_t>(a.positions.size());

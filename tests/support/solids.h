@@ -52,6 +52,11 @@ Solid overlappingBoxes(const glm::vec3& loA, const glm::vec3& hiA, const glm::ve
 /// centre line as a polyline of `segments` pieces, minus the radius.
 Solid torusKnot(const glm::vec3& centre, float scale, std::uint32_t p, std::uint32_t q, float tubeRadius,
                 std::uint32_t segments, std::uint32_t tubeSegments);
+/// Two cubes of edge `size` in one mesh, the second moved by (size, size, 0):
+/// they touch along one vertical edge, which four triangles use. Closed and
+/// consistently oriented, so both rules define the union, but not manifold:
+/// what users' meshes often look like.
+Solid boxesSharingAnEdge(const glm::vec3& lo, float size);
 
 /// Merges several solids' meshes into one (indices rebased).
 TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b);

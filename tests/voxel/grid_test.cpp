@@ -76,8 +76,17 @@ TEST(VoxelGridTest, BadGridsAreRejected) {
 TEST(VoxelGridTest, OpenMeshesDoNotBoundASolid) {
     auto box = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
     EXPECT_NO_THROW(requireClosed(box, "box"));
+    EXPECT_NO_THROW(requireClosed(solids::boxesSharingAnEdge({0, 0, 0}, 1.0f).mesh, "touching boxes"));
+    auto flipped = box;
+    std::swap(flipped.triangles[0].y, flipped.triangles[0].z); // parity ignores orientation
+    EXPECT_NO_THROW(requireClosed(flipped, "flipped box"));
     box.triangles.pop_back();
-    EXPECT_THROW(requireClosed(box, "box"), InvalidMesh);
+    try {
+        requireClosed(box, "box");
+        FAIL() << "open mesh accepted";
+    } catch (const InvalidMesh& e) {
+        EXPECT_NE(std::string(e.what()).find("box is open (3 boundary edges)"), std::string::npos) << e.what();
+    }
     TriangleMesh empty;
     EXPECT_THROW(requireClosed(empty, "empty"), InvalidMesh);
 }

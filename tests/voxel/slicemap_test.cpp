@@ -170,7 +170,8 @@ void expectFarPointsRight(const Slicemap& map, const solids::Solid& solid, float
 TEST_F(SlicemapTest, UniformAndLocalSlicemapsClassifyPointsAwayFromTheSurface) {
     const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.6f, 48);
     const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.4f, 48);
-    for (const auto* solid : {&shell, &torus})
+    const auto touching = solids::boxesSharingAnEdge({-1.0f, -1.0f, -0.5f}, 1.0f); // non-manifold, still a solid
+    for (const auto* solid : {&shell, &torus, &touching})
         for (Slicing slicing : {Slicing::Uniform, Slicing::Local}) {
             SlicemapOptions options;
             options.slicing = slicing;

@@ -81,7 +81,8 @@ TEST_F(SolidTest, EqualsTheExactClassifierAtVoxelCentresButForNearTies) {
     const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.4f, 40);
     const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.7f, 32);
     const auto boxes = solids::overlappingBoxes({0, 0, 0}, {1, 1, 1}, {0.5f, 0.4f, 0.3f}, {1.5f, 1.3f, 1.2f});
-    for (const auto* solid : {&sphere, &torus, &shell, &boxes}) {
+    const auto touching = solids::boxesSharingAnEdge({0.05f, 0.1f, 0.15f}, 0.9f); // non-manifold, still a solid
+    for (const auto* solid : {&sphere, &torus, &shell, &boxes, &touching}) {
         const ExactClassifier exact(solid->mesh, Axis::Z);
         const VoxelGrid grid = makeVoxelGrid(meshBounds(solid->mesh), 64);
         const BitGrid bits = voxelizeSolid(gl(), solid->mesh, grid, SolidMethod::Compute);

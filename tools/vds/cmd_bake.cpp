@@ -30,7 +30,7 @@ void bake(BakeArgs& a) {
     } else {
         a.options.axis = vds::parseAxis(a.axis);
     }
-    if (!report.closed())
+    if (!report.oriented())
         std::fprintf(stderr, "vds bake: warning: %s is %s; the sprite answers for a surface, not a solid\n",
                      a.mesh.c_str(), report.summary().c_str());
     a.options.progress = progress;

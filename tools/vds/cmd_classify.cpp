@@ -83,16 +83,20 @@ void classify(ClassifyArgs& a) {
 
     if (a.exact || a.certified) {
         const vds::MeshReport report = vds::validateMesh(mesh);
-        vds::requireUsable(report, a.mesh);
-        // The generalized winding number answers for open meshes too.
-        if (!report.closed() && a.options.rule != vds::Rule::GeneralizedWinding) {
-            if (!a.allowOpen)
-                throw vds::InvalidMesh(a.mesh + " is " + report.summary() +
-                                       ": inside is not defined by crossings (--rule generalized-winding answers; "
-                                       "--allow-open classifies by crossing count anyway)");
+        if (a.allowOpen) {
+            vds::requireUsable(report, a.mesh);
+        } else {
+            try {
+                vds::requireInsideDefined(report, a.mesh, a.options.rule);
+            } catch (const vds::InvalidMesh& e) {
+                throw vds::InvalidMesh(std::string(e.what()) + " (--allow-open classifies by crossing count anyway)");
+            }
+        }
+        const std::string warning = vds::insideWarning(report, a.options.rule);
+        if (!warning.empty()) std::fprintf(stderr, "vds classify: warning: %s: %s\n", a.mesh.c_str(), warning.c_str());
+        if (a.allowOpen && !report.closed() && a.options.rule != vds::Rule::GeneralizedWinding)
             std::fprintf(stderr, "vds classify: warning: %s is %s; inside is not well defined\n", a.mesh.c_str(),
                          report.summary().c_str());
-        }
         if (a.certified) {
             vds::CertifiedOptions certifiedOptions;
             certifiedOptions.resolution = a.resolution;

@@ -18,10 +18,9 @@ struct EvalArgs {
 void eval(EvalArgs& a) {
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
     const vds::MeshReport report = vds::validateMesh(mesh);
-    vds::requireUsable(report, a.mesh);
-    if (!report.closed())
-        throw vds::InvalidMesh(a.mesh + " is " + report.summary() +
-                               ": inside is not defined, so there is no exact answer to compare with");
+    vds::requireInsideDefined(report, a.mesh, a.options.rule);
+    const std::string warning = vds::insideWarning(report, a.options.rule);
+    if (!warning.empty()) std::fprintf(stderr, "vds eval: warning: %s: %s\n", a.mesh.c_str(), warning.c_str());
     const vds::eval::EvalReport r = vds::eval::evaluate(mesh, a.options, nullptr, progressPrinter(a.quiet));
 
     std::fputs(vds::eval::toTable(r).c_str(), stdout);

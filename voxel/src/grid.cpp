@@ -96,11 +96,8 @@ BitGrid makeBitGrid(const VoxelGrid& grid) {
 }
 
 void requireClosed(MeshView mesh, const char* what) {
-    const MeshReport report = validateMesh(mesh);
-    requireUsable(report, what);
-    if (!report.closed())
-        throw InvalidMesh(std::string(what) + " does not bound a solid (" + report.summary() +
-                          "); inside/outside needs a closed, consistently oriented mesh");
+    // Every voxelizer here decides inside by parity (XOR of crossings).
+    requireInsideDefined(validateMesh(mesh), what, Rule::Parity);
 }
 
 } // namespace vds::voxel

@@ -41,7 +41,7 @@ Sprite assembleSprite(const BakeSetup& setup, const BakeOptions& options, MeshVi
     s.depthComplexity = most;
     s.sourceName = options.sourceName;
     s.sourceTriangles = mesh.triangleCount;
-    s.status = setup.report.closed() ? SolidStatus::Closed : SolidStatus::Open;
+    s.status = setup.report.oriented() ? SolidStatus::Closed : SolidStatus::Open;
     s.validation = setup.report.summary();
     s.checkConsistent();
     if (options.timings) options.timings->crossings = s.crossings.size();

@@ -104,7 +104,7 @@ struct CertifiedClassifier::Impl {
     ExactClassifier exact;
     SpriteGrid grid;
     glm::ivec3 perm{0, 1, 2};
-    bool certifies = false;
+    bool certifies = false, certifiesWinding = false;
     Box box;
     // A band of a column: where the surface may be, in mesh units along the
     // axis, and the winding number of the gap above it (the gap below a
@@ -121,7 +121,10 @@ struct CertifiedClassifier::Impl {
         grid = makeGrid(report.bounds, options.axis, options.resolution);
         perm = axisPermutation(options.axis);
         box = report.bounds;
+        // The gaps' argument needs the surface to be a cycle: mod 2 for the
+        // parity rule (closed), with orientation for the winding numbers.
         certifies = report.closed();
+        certifiesWinding = report.oriented();
         if (certifies) build(mesh, options.threads);
     }
 
@@ -130,8 +133,8 @@ struct CertifiedClassifier::Impl {
     // Where p's answer comes from: kOutside (certainly outside, no surface
     // out there), kExact (the exact path), or the column whose bands decide.
     static constexpr std::ptrdiff_t kOutside = -1, kExact = -2;
-    std::ptrdiff_t locate(const glm::vec3& p) const {
-        if (!certifies) return kExact;
+    std::ptrdiff_t locate(const glm::vec3& p, Rule rule) const {
+        if (!certifies || (rule != Rule::Parity && !certifiesWinding)) return kExact;
         bool outside = false, onBoundary = false;
         for (int a = 0; a < 3; ++a) {
             if (!(p[a] >= box.lo[a] && p[a] <= box.hi[a])) outside = true;
@@ -155,8 +158,8 @@ struct CertifiedClassifier::Impl {
         return true;
     }
 
-    bool certain(const glm::vec3& p, int& winding) const {
-        const std::ptrdiff_t column = locate(p);
+    bool certain(const glm::vec3& p, Rule rule, int& winding) const {
+        const std::ptrdiff_t column = locate(p, rule);
         winding = 0;
         if (column == kOutside) return true;
         if (column == kExact) return false;
@@ -298,7 +301,7 @@ CertifiedClassifier& CertifiedClassifier::operator=(CertifiedClassifier&&) noexc
 
 bool CertifiedClassifier::contains(const glm::vec3& p, Rule rule) const {
     int winding = 0;
-    if (impl_->certain(p, winding)) return insideByRule(winding, rule);
+    if (impl_->certain(p, rule, winding)) return insideByRule(winding, rule);
     return impl_->exact.contains(p, rule);
 }
 
@@ -326,7 +329,7 @@ CertifiedStats CertifiedClassifier::classify(const float* xyz, std::size_t count
             for (std::size_t i = 0; i < n; ++i) {
                 glm::vec3 p;
                 std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
-                where[i] = impl.locate(p);
+                where[i] = impl.locate(p, options.rule);
                 depth[i] = p[impl.perm.z];
                 if (where[i] >= 0) __builtin_prefetch(impl.offsets.data() + where[i]);
             }
@@ -344,8 +347,9 @@ CertifiedStats CertifiedClassifier::classify(const float* xyz, std::size_t count
                 if (!known) {
                     glm::vec3 p;
                     std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
-                    winding = impl.exact.winding(p);
+                    labels[b0 + i] = impl.exact.contains(p, options.rule) ? 1 : 0;
                     ++local;
+                    continue;
                 }
                 labels[b0 + i] = insideByRule(winding, options.rule) ? 1 : 0;
             }

@@ -1,6 +1,7 @@
 #include <vds/mesh.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include <vds/error.h>
+#include <vds/sprite.h>
 
 namespace vds {
 namespace {
@@ -28,24 +30,31 @@ struct PositionEqual {
 
 bool finite(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
+/// "1 boundary edge", "3 boundary edges".
+std::string counted(std::size_t n, const char* one, const char* many = nullptr) {
+    return std::to_string(n) + " " + (n == 1 ? one : many ? many : std::string(one) + "s");
+}
+
 } // namespace
 
 std::string MeshReport::summary() const {
-    std::ostringstream s;
     if (triangleCount == 0) return "empty: no triangles";
+    std::ostringstream s;
     if (nonFiniteVertices) s << "non-finite: " << nonFiniteVertices << " vertices with NaN or infinite coordinates, ";
     if (badIndices) s << "invalid: " << badIndices << " indices out of range, ";
     s << (closed() ? "closed" : "open");
     if (!closed()) {
         s << " (";
-        const char* sep = "";
-        if (boundaryEdges) { s << boundaryEdges << " boundary edges"; sep = ", "; }
-        if (nonManifoldEdges) { s << sep << nonManifoldEdges << " non-manifold edges"; sep = ", "; }
-        if (inconsistentEdges) s << sep << inconsistentEdges << " inconsistently oriented edges";
+        if (boundaryEdges) s << counted(boundaryEdges, "boundary edge") << (oddNonManifoldEdges ? ", " : "");
+        if (oddNonManifoldEdges) s << counted(oddNonManifoldEdges, "edge") << " shared by an odd number of triangles";
         s << ")";
     }
-    s << ", " << triangleCount << " triangles, " << vertexCount << " vertices";
-    if (degenerateTriangles) s << ", " << degenerateTriangles << " degenerate triangles";
+    if (nonManifoldEdges) s << ", " << counted(nonManifoldEdges, "non-manifold edge");
+    if (inconsistentEdges) s << ", " << counted(inconsistentEdges, "inconsistently oriented edge");
+    s << ", " << counted(triangleCount, "triangle") << ", " << counted(vertexCount, "vertex", "vertices");
+    if (degenerateTriangles) s << ", " << counted(degenerateTriangles, "degenerate triangle");
+    if (duplicateTriangles) s << ", " << counted(duplicateTriangles, "duplicate triangle");
+    if (isolatedVertices) s << ", " << counted(isolatedVertices, "isolated vertex", "isolated vertices");
     return s.str();
 }
 
@@ -65,9 +74,13 @@ MeshReport validateMesh(MeshView mesh) {
             weld[i] = first.emplace(mesh.positions[i], static_cast<std::uint32_t>(i)).first->second;
     }
 
-    // Directed edges (a, b) packed in 64 bits; sorted, then counted per undirected edge.
+    // Directed edges (a, b) packed in 64 bits; sorted, then counted per
+    // undirected edge. Welded vertex triples, sorted, find duplicate triangles.
     std::vector<std::uint64_t> directed;
     directed.reserve(mesh.triangleCount * 3);
+    std::vector<std::array<std::uint32_t, 3>> corners;
+    corners.reserve(mesh.triangleCount);
+    std::vector<bool> used(mesh.positionCount, false);
     bool anyBounds = false;
     for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
         const glm::uvec3 tri = mesh.triangles[t];
@@ -76,6 +89,7 @@ MeshReport validateMesh(MeshView mesh) {
             continue;
         }
         const std::uint32_t w[3] = {weld[tri.x], weld[tri.y], weld[tri.z]};
+        for (std::uint32_t v : w) used[v] = true;
         const glm::vec3 &a = mesh.positions[tri.x], &b = mesh.positions[tri.y], &c = mesh.positions[tri.z];
         for (const glm::vec3* p : {&a, &b, &c})
             if (finite(*p)) {
@@ -87,9 +101,18 @@ MeshReport validateMesh(MeshView mesh) {
             ++r.degenerateTriangles;
             if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) continue; // edges of a collapsed triangle mean nothing
         }
+        std::array<std::uint32_t, 3> sorted = {w[0], w[1], w[2]};
+        std::sort(sorted.begin(), sorted.end());
+        corners.push_back(sorted);
         for (int k = 0; k < 3; ++k)
             directed.push_back((std::uint64_t(w[k]) << 32) | w[(k + 1) % 3]);
     }
+    for (std::size_t i = 0; i < mesh.positionCount; ++i)
+        if (!used[weld[i]]) ++r.isolatedVertices;
+    std::sort(corners.begin(), corners.end());
+    for (std::size_t i = 1; i < corners.size(); ++i)
+        if (corners[i] == corners[i - 1]) ++r.duplicateTriangles;
+
     // Undirected key (lower index first) and whether this use runs lower -> higher.
     std::vector<std::pair<std::uint64_t, bool>> edges;
     edges.reserve(directed.size());
@@ -103,8 +126,9 @@ MeshReport validateMesh(MeshView mesh) {
         while (j < edges.size() && edges[j].first == edges[i].first) forward += edges[j++].second;
         const std::size_t uses = j - i;
         if (uses == 1) ++r.boundaryEdges;
-        else if (uses > 2) ++r.nonManifoldEdges;
-        else if (forward != 1) ++r.inconsistentEdges;
+        if (uses > 2) ++r.nonManifoldEdges;
+        if (uses > 2 && uses % 2 == 1) ++r.oddNonManifoldEdges;
+        if (uses % 2 == 0 && 2 * forward != uses) ++r.inconsistentEdges;
         i = j;
     }
     return r;
@@ -118,6 +142,35 @@ void requireUsable(const MeshReport& report, const std::string& meshName) {
                           " vertices have NaN or infinite coordinates");
     if (report.badIndices)
         throw InvalidMesh(who + ": " + std::to_string(report.badIndices) + " triangle indices are out of range");
+}
+
+void requireInsideDefined(const MeshReport& report, const std::string& meshName, Rule rule) {
+    requireUsable(report, meshName);
+    if (rule == Rule::GeneralizedWinding) return; // defined for every usable mesh
+    const std::string who = meshName.empty() ? std::string("mesh") : meshName;
+    if (!report.closed()) {
+        std::string why;
+        if (report.boundaryEdges) why = counted(report.boundaryEdges, "boundary edge");
+        if (report.oddNonManifoldEdges)
+            why += (why.empty() ? "" : ", ") + counted(report.oddNonManifoldEdges, "edge") +
+                   " shared by an odd number of triangles";
+        throw InvalidMesh(who + " is open (" + why + "): inside is not defined by the " + toString(rule) +
+                          " rule; the generalized-winding rule answers for it (exactly), and a sprite baked from it "
+                          "still answers by crossing count");
+    }
+    if (rule == Rule::Winding && !report.oriented())
+        throw InvalidMesh(who + " has " + counted(report.inconsistentEdges, "inconsistently oriented edge") +
+                          ": inside is not defined by the winding rule; the parity rule defines it");
+}
+
+std::string insideWarning(const MeshReport& report, Rule rule) {
+    std::string what;
+    if (report.nonManifoldEdges)
+        what = counted(report.nonManifoldEdges, "non-manifold edge") + " (more than two triangles on an edge)";
+    if (rule == Rule::Parity && report.inconsistentEdges)
+        what += (what.empty() ? "" : ", ") + counted(report.inconsistentEdges, "inconsistently oriented edge");
+    if (what.empty()) return what;
+    return what + "; inside is still defined by the " + toString(rule) + " rule";
 }
 
 Box meshBounds(MeshView mesh) {

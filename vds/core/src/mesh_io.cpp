@@ -1,25 +1,49 @@
-// The only place OpenMesh is used: file formats in, plain arrays out.
+// Mesh and point files in, plain arrays out: the whole file is read into
+// memory, then parsed by the format's reader (mesh_readers.h).
 #include <vds/mesh_io.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
-#include <cstring>
+#include <cctype>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
-
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
-#include <OpenMesh/Core/System/omstream.hh>
+#include <new>
 
 #include <vds/error.h>
 
-namespace vds {
-namespace {
+#include "file_bytes.h"
+#include "mesh_readers.h"
+#include "text_scanner.h"
 
-using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<>;
+namespace vds {
+namespace detail {
+
+void appendFan(TriangleMesh& mesh, const std::vector<std::uint32_t>& corners) {
+    for (std::size_t k = 1; k + 1 < corners.size(); ++k)
+        mesh.triangles.emplace_back(corners[0], corners[k], corners[k + 1]);
+}
+
+glm::vec3 readVertexLine(Tokens tokens, std::size_t maxNumbers, const std::string& name, std::size_t line) {
+    const std::size_t n = tokens.count();
+    if (n < 3) failAtLine(name, line, "a vertex needs 3 coordinates, this one has " + std::to_string(n));
+    if (n > maxNumbers)
+        failAtLine(name, line,
+                   "a vertex has at most " + std::to_string(maxNumbers) + " numbers, this one has " + std::to_string(n));
+    std::string_view token;
+    float xyz[3];
+    for (float& c : xyz) {
+        tokens.next(token);
+        c = parseCoordinate(token, name, line);
+    }
+    while (tokens.next(token)) {
+        double extra = 0.0;
+        const NumberStatus status = parseNumber(token, extra);
+        if (status != NumberStatus::Ok) failAtLine(name, line, "vertex attribute " + numberProblem(status, token, "a number"));
+    }
+    return {xyz[0], xyz[1], xyz[2]};
+}
+
+} // namespace detail
+
+namespace {
 
 std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
@@ -27,127 +51,85 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-void requireReadable(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw IoError(path + ": no such file");
-    if (std::filesystem::is_directory(path, ec)) throw IoError(path + ": is a directory");
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) throw IoError(path + ": cannot open for reading (" + std::strerror(errno) + ")");
-    if (probe.peek() == std::ifstream::traits_type::eof()) throw FormatError(path + ": file is empty");
-}
-
-void silenceOpenMesh() {
-    // OpenMesh reports parse problems on its own streams; ours are one-line exceptions.
-    static const bool once = [] {
-        omerr().disable();
-        omlog().disable();
-        omout().disable();
-        return true;
-    }();
-    (void)once;
-}
-
-PolyMesh readWithOpenMesh(const std::string& path) {
-    silenceOpenMesh();
-    PolyMesh mesh;
-    OpenMesh::IO::Options options;
-    bool ok = false;
+std::vector<char> readFile(const std::string& path) {
     try {
-        ok = OpenMesh::IO::read_mesh(mesh, path, options);
-    } catch (const std::exception& e) {
-        throw FormatError(path + ": cannot parse: " + e.what());
+        return detail::readWholeFile(path);
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(path + ": not enough memory to read the file");
     }
-    if (!ok) throw FormatError(path + ": cannot parse as " + lowerExtension(path).substr(1) + " (malformed or truncated)");
-    return mesh;
+}
+
+std::vector<glm::vec3> parseTextPoints(const char* data, std::size_t size, const std::string& name) {
+    if (std::find(data, data + size, '\0') != data + size)
+        throw FormatError(name + ": not a text file of 'x y z' lines (it holds NUL bytes)");
+    std::vector<glm::vec3> points;
+    detail::TextScanner text(data, size);
+    std::string_view line;
+    while (text.nextLine(line)) {
+        detail::Tokens tokens(line);
+        std::string_view first;
+        if (!tokens.next(first) || first[0] == '#') continue;
+        if (tokens.count() != 2) detail::failAtLine(name, text.line(), "expected three numbers 'x y z'");
+        std::string_view y, z;
+        tokens.next(y);
+        tokens.next(z);
+        points.emplace_back(detail::parseCoordinate(first, name, text.line()),
+                            detail::parseCoordinate(y, name, text.line()),
+                            detail::parseCoordinate(z, name, text.line()));
+    }
+    return points;
 }
 
 } // namespace
 
-TriangleMesh loadMesh(const std::string& path) {
+MeshFormat meshFormatOf(const std::string& path) {
     const std::string ext = lowerExtension(path);
-    if (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off")
-        throw FormatError(path + ": unsupported mesh format '" + ext + "' (expected .obj, .ply, .stl or .off)");
-    requireReadable(path);
-    PolyMesh mesh = readWithOpenMesh(path);
-    if (ext == ".obj") {
-        // OpenMesh skips OBJ vertices it cannot parse (NaN, garbage) and the
-        // faces using them without saying so; a mesh silently missing parts
-        // must not be baked.
-        std::ifstream in(path);
-        std::string line;
-        std::size_t declared = 0;
-        while (std::getline(in, line)) {
-            const std::size_t p = line.find_first_not_of(" \t");
-            if (p != std::string::npos && line.compare(p, 2, "v ") == 0) ++declared;
-        }
-        if (declared != mesh.n_vertices())
-            throw FormatError(path + ": " + std::to_string(declared - std::min<std::size_t>(declared, mesh.n_vertices())) +
-                              " of " + std::to_string(declared) +
-                              " vertices could not be read (non-finite or malformed coordinates)");
-    }
+    if (ext == ".obj") return MeshFormat::Obj;
+    if (ext == ".ply") return MeshFormat::Ply;
+    if (ext == ".stl") return MeshFormat::Stl;
+    if (ext == ".off") return MeshFormat::Off;
+    throw FormatError(path + ": unsupported mesh format '" + ext + "' (expected .obj, .ply, .stl or .off)");
+}
 
-    TriangleMesh out;
-    out.name = std::filesystem::path(path).filename().string();
-    out.positions.reserve(mesh.n_vertices());
-    for (auto v : mesh.vertices()) {
-        const auto& p = mesh.point(v);
-        out.positions.emplace_back(p[0], p[1], p[2]);
+TriangleMesh parseMesh(const char* data, std::size_t size, MeshFormat format, const std::string& name) {
+    if (size == 0) throw FormatError(name + ": file is empty");
+    try {
+        TriangleMesh mesh;
+        switch (format) {
+        case MeshFormat::Obj: mesh = detail::readObj(data, size, name); break;
+        case MeshFormat::Ply: mesh = detail::readPly(data, size, name); break;
+        case MeshFormat::Stl: mesh = detail::readStl(data, size, name); break;
+        case MeshFormat::Off: mesh = detail::readOff(data, size, name); break;
+        }
+        mesh.name = name;
+        return mesh;
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(name + ": not enough memory to hold the mesh");
     }
-    out.triangles.reserve(mesh.n_faces());
-    std::vector<std::uint32_t> ring;
-    for (auto f : mesh.faces()) {
-        ring.clear();
-        for (auto v : mesh.fv_range(f)) ring.push_back(std::uint32_t(v.idx()));
-        for (std::size_t k = 1; k + 1 < ring.size(); ++k) out.triangles.emplace_back(ring[0], ring[k], ring[k + 1]);
+}
+
+TriangleMesh loadMesh(const std::string& path) {
+    const MeshFormat format = meshFormatOf(path);
+    const std::vector<char> bytes = readFile(path);
+    TriangleMesh mesh = parseMesh(bytes.data(), bytes.size(), format, path);
+    mesh.name = std::filesystem::path(path).filename().string();
+    return mesh;
+}
+
+std::vector<glm::vec3> parsePoints(const char* data, std::size_t size, PointFormat format, const std::string& name) {
+    if (size == 0) throw FormatError(name + ": file is empty");
+    try {
+        if (format == PointFormat::Ply) return detail::readPly(data, size, name).positions;
+        return parseTextPoints(data, size, name);
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(name + ": not enough memory to hold the points");
     }
-    return out;
 }
 
 std::vector<glm::vec3> loadPoints(const std::string& path) {
-    requireReadable(path);
-    std::vector<glm::vec3> points;
-    if (lowerExtension(path) == ".ply") {
-        PolyMesh mesh = readWithOpenMesh(path);
-        points.reserve(mesh.n_vertices());
-        for (auto v : mesh.vertices()) {
-            const auto& p = mesh.point(v);
-            if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
-                throw FormatError(path + ": vertex " + std::to_string(v.idx()) + " is not finite");
-            points.emplace_back(p[0], p[1], p[2]);
-        }
-        return points;
-    }
-
-    std::ifstream in(path, std::ios::binary);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (text.find('\0') != std::string::npos) throw FormatError(path + ": not a text file of 'x y z' lines");
-    const char* s = text.c_str();
-    std::size_t line = 0;
-    while (*s) {
-        ++line;
-        const char* end = std::strchr(s, '\n');
-        if (!end) end = s + std::strlen(s);
-        const char* c = s;
-        while (c < end && (*c == ' ' || *c == '\t' || *c == '\r')) ++c;
-        if (c < end && *c != '#') {
-            float v[3];
-            for (int k = 0; k < 3; ++k) {
-                char* next = nullptr;
-                errno = 0;
-                v[k] = std::strtof(c, &next);
-                if (next == c || next > end)
-                    throw FormatError(path + ":" + std::to_string(line) + ": expected three numbers 'x y z'");
-                if (!std::isfinite(v[k]))
-                    throw FormatError(path + ":" + std::to_string(line) + ": coordinate is not finite");
-                c = next;
-            }
-            while (c < end && (*c == ' ' || *c == '\t' || *c == '\r')) ++c;
-            if (c != end) throw FormatError(path + ":" + std::to_string(line) + ": expected three numbers 'x y z'");
-            points.emplace_back(v[0], v[1], v[2]);
-        }
-        s = *end ? end + 1 : end;
-    }
-    return points;
+    const PointFormat format = lowerExtension(path) == ".ply" ? PointFormat::Ply : PointFormat::Text;
+    const std::vector<char> bytes = readFile(path);
+    return parsePoints(bytes.data(), bytes.size(), format, path);
 }
 
 } // namespace vds

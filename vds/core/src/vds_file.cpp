@@ -10,8 +10,9 @@
 
 #include <vds/atomic_file.h>
 
+#include "file_bytes.h"
+
 #include <fcntl.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -25,7 +26,7 @@
 #include <limits>
 #include <new>
 #include <string>
-#include <system_error>
+#include <string_view>
 #include <vector>
 
 #include <ImfChannelList.h>
@@ -49,6 +50,9 @@
 
 namespace vds {
 namespace {
+
+using detail::errnoText;
+using detail::readWholeFile;
 
 // Attribute names (docs/format.md lists types and meaning).
 constexpr const char* kFormatVersionAttr = "vds.formatVersion";
@@ -91,8 +95,6 @@ std::string oneLine(const std::string& text) {
     while (!out.empty() && out.back() == ' ') out.pop_back();
     return out;
 }
-
-std::string errnoText(int error) { return std::error_code(error, std::generic_category()).message(); }
 
 [[noreturn]] void formatFail(const std::string& path, const std::string& what) {
     throw FormatError(path + ": " + oneLine(what));
@@ -260,50 +262,6 @@ private:
 };
 
 // ---------------------------------------------------------------- files
-
-class FileDescriptor {
-public:
-    explicit FileDescriptor(int fd) : fd_(fd) {}
-    ~FileDescriptor() {
-        if (fd_ >= 0) ::close(fd_);
-    }
-    FileDescriptor(const FileDescriptor&) = delete;
-    FileDescriptor& operator=(const FileDescriptor&) = delete;
-    int get() const { return fd_; }
-    /// Closes now and returns close()'s result (errno set on failure).
-    int close() {
-        const int fd = fd_;
-        fd_ = -1;
-        return ::close(fd);
-    }
-
-private:
-    int fd_;
-};
-
-std::vector<char> readWholeFile(const std::string& path) {
-    FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
-    if (fd.get() < 0) throw IoError(path + ": cannot open: " + errnoText(errno));
-    struct stat st;
-    if (::fstat(fd.get(), &st) != 0) throw IoError(path + ": cannot read: " + errnoText(errno));
-    if (S_ISDIR(st.st_mode)) throw IoError(path + ": cannot read: is a directory");
-
-    // One byte more than the size, so reaching the end needs no reallocation.
-    std::vector<char> bytes(S_ISREG(st.st_mode) ? std::size_t(st.st_size) + 1 : std::size_t(1) << 16);
-    std::size_t size = 0;
-    for (;;) {
-        if (size == bytes.size()) bytes.resize(bytes.size() * 2);
-        const ssize_t n = ::read(fd.get(), bytes.data() + size, bytes.size() - size);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            throw IoError(path + ": cannot read: " + errnoText(errno));
-        }
-        if (n == 0) break;
-        size += std::size_t(n);
-    }
-    bytes.resize(size);
-    return bytes;
-}
 
 void writeFileAtomically(const std::string& path, const std::vector<char>& bytes) {
     AtomicFile tmp(path);
@@ -475,7 +433,95 @@ void checkChannels(const Imf::Header& header, const std::string& path) {
 /// Reads and checks everything up to the pixels: the OpenEXR version field,
 /// the header, and the vds.* attributes into `sprite` (offsets, crossings and
 /// the checksum excepted). Returns the stored checksum.
-std::uint64_t readHeader(MemoryIStream& stream, std::uint64_t fileSize, const std::string& path, Sprite& sprite) {
+/// Bytes OpenEXR 3.1 reads for a value of each fixed-size attribute type,
+/// whatever size the file declares.
+std::size_t fixedValueSize(const std::string& type) {
+    static const std::pair<const char*, std::size_t> sizes[] = {
+        {"box2i", 16},  {"box2f", 16},     {"chromaticities", 32}, {"compression", 1}, {"double", 8},
+        {"envmap", 1},  {"float", 4},      {"int", 4},             {"keycode", 28},    {"lineOrder", 1},
+        {"m33f", 36},   {"m33d", 72},      {"m44f", 64},           {"m44d", 128},      {"rational", 8},
+        {"tiledesc", 9}, {"timecode", 8},  {"v2i", 8},             {"v2f", 8},         {"v2d", 16},
+        {"v3i", 12},    {"v3f", 12},       {"v3d", 24},            {"deepImageState", 1},
+    };
+    for (const auto& [name, size] : sizes)
+        if (type == name) return size;
+    return 0;
+}
+
+/// Walks the header's attributes (name\0 type\0 int32 size, value; an empty
+/// name ends the list) the way OpenEXR 3.1's Header::readFrom will, and
+/// refuses what would make it allocate more than the file holds or read
+/// something else than this walk does. OpenEXR sizes string and unknown
+/// values as declared before reading them (2 GB for a 1 KB file, found by
+/// fuzzing), reads fixed-size types by their own size, and channel lists,
+/// string vectors and previews by their own structure, trusting the lengths
+/// inside. So: every declared size must fit in the file, fixed-size types
+/// must declare their size, structured values must end exactly where their
+/// size says, and names must be terminated within what OpenEXR reads (31
+/// bytes, 255 with the long-names flag; channel names 255).
+void checkAttributes(std::string_view bytes, int version, const std::string& path) {
+    const std::size_t maxName = (version & Imf::LONG_NAMES_FLAG) ? 255 : 31;
+    std::size_t at = 8; // after the magic number and version
+    const auto fail = [&](const std::string& what) {
+        formatFail(path, "header at byte " + std::to_string(at) + ": " + what + " (truncated or corrupt)");
+    };
+    // A NUL-terminated name of at most `longest` bytes before `end`.
+    const auto text = [&](std::size_t longest, std::size_t end, const std::string& what) {
+        const std::size_t stop = std::min(end, at + longest + 1);
+        const auto nul = std::find(bytes.begin() + std::ptrdiff_t(at), bytes.begin() + std::ptrdiff_t(stop), '\0');
+        if (nul == bytes.begin() + std::ptrdiff_t(stop))
+            fail(what + " is not terminated within " + std::to_string(longest) + " bytes");
+        std::string s(bytes.begin() + std::ptrdiff_t(at), nul);
+        at += s.size() + 1;
+        return s;
+    };
+    // A little-endian 32-bit value before `end`.
+    const auto word = [&](std::size_t end, const std::string& what) {
+        if (end - at < 4) fail(what + " runs past its end");
+        std::uint32_t v = 0;
+        for (int k = 0; k < 4; ++k) v |= std::uint32_t(std::uint8_t(bytes[at + std::size_t(k)])) << (8 * k);
+        at += 4;
+        return v;
+    };
+    for (;;) {
+        const std::string name = text(maxName, bytes.size(), "an attribute name");
+        if (name.empty()) return;
+        const std::string type = text(maxName, bytes.size(), "the type of attribute " + name);
+        const std::uint32_t size = word(bytes.size(), "the size of attribute " + name);
+        if (size > bytes.size() - at)
+            fail("attribute " + name + " declares " + std::to_string(size) + " bytes, more than the " +
+                 std::to_string(bytes.size() - at) + " left in the file");
+        const std::size_t end = at + size;
+        const std::string what = "attribute " + name + " of type " + type;
+        if (const std::size_t fixed = fixedValueSize(type)) {
+            if (size != fixed) fail(what + " declares " + std::to_string(size) + " bytes, not " + std::to_string(fixed));
+        } else if (type == "chlist") {
+            // Channels: name\0, int32 type, uint8 linear, 3 reserved, int32 x and y sampling; an empty name ends it.
+            while (!text(255, end, "a channel name in " + what).empty()) {
+                if (end - at < 16) fail(what + " runs past its size");
+                at += 16;
+            }
+            if (at != end) fail(what + " ends before its size");
+        } else if (type == "stringvector") {
+            while (at < end) {
+                const std::uint32_t length = word(end, what);
+                if (length > end - at) fail("a string in " + what + " runs past its size");
+                at += length;
+            }
+        } else if (type == "preview") {
+            const std::uint64_t width = word(end, what), height = word(end, what);
+            if (width * height > (end - at) / 4 || width * height * 4 != end - at)
+                fail(what + ": a " + std::to_string(width) + "x" + std::to_string(height) + " image does not fill it");
+        } else if (type == "idmanifest") {
+            fail(what + ": a .vds file has no ID manifest");
+        } // string, floatvector and types OpenEXR does not know: it reads exactly the declared size
+        at = end;
+    }
+}
+
+std::uint64_t readHeader(MemoryIStream& stream, std::string_view bytes, const std::string& path,
+                         Sprite& sprite) {
+    const std::uint64_t fileSize = bytes.size();
     char head[8] = {};
     if (fileSize < 8) formatFail(path, "not a .vds file (too short for OpenEXR)");
     stream.read(head, 8);
@@ -487,6 +533,7 @@ std::uint64_t readHeader(MemoryIStream& stream, std::uint64_t fileSize, const st
     if (Imf::isMultiPart(version)) formatFail(path, "not a .vds file (multi-part OpenEXR)");
     if (Imf::isTiled(version) || !Imf::isNonImage(version))
         formatFail(path, "not a .vds file (not a deep scanline OpenEXR image)");
+    checkAttributes(bytes, version, path);
 
     Imf::Header header;
     int headerVersion = version;
@@ -638,7 +685,7 @@ Sprite decodeBytes(const char* data, std::size_t size, const std::string& path) 
     const std::uint64_t fileSize = size;
     MemoryIStream stream(path, data, size);
     Sprite sprite;
-    const std::uint64_t storedChecksum = readHeader(stream, fileSize, path, sprite);
+    const std::uint64_t storedChecksum = readHeader(stream, std::string_view(data, size), path, sprite);
 
     stream.seekg(0);
     Imf::DeepScanLineInputFile file(stream);
@@ -652,6 +699,21 @@ Sprite decodeBytes(const char* data, std::size_t size, const std::string& path) 
         formatFail(path, e.what());
     }
     return sprite;
+}
+
+/// Runs `read`; what OpenEXR and the allocator throw becomes the library's errors.
+template <class Read> auto readGuarded(const std::string& name, const Read& read) -> decltype(read()) {
+    try {
+        return read();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(name + ": not enough memory to read the sprite");
+    } catch (const Iex::BaseExc& e) {
+        formatFail(name, e.what());
+    } catch (const std::exception& e) {
+        formatFail(name, e.what());
+    }
 }
 
 } // namespace
@@ -668,15 +730,7 @@ std::vector<char> encodeSprite(const Sprite& sprite, const std::string& name) {
 }
 
 Sprite decodeSprite(const void* data, std::size_t size, const std::string& name) {
-    try {
-        return decodeBytes(static_cast<const char*>(data), size, name);
-    } catch (const Error&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw OutOfMemory(name + ": not enough memory to read the sprite");
-    } catch (const std::exception& e) { // Iex::BaseExc derives from std::exception
-        formatFail(name, e.what());
-    }
+    return readGuarded(name, [&] { return decodeBytes(static_cast<const char*>(data), size, name); });
 }
 
 void writeSprite(const Sprite& sprite, const std::string& path) {
@@ -684,12 +738,7 @@ void writeSprite(const Sprite& sprite, const std::string& path) {
 }
 
 Sprite readSprite(const std::string& path) {
-    std::vector<char> bytes;
-    try {
-        bytes = readWholeFile(path);
-    } catch (const std::bad_alloc&) {
-        throw OutOfMemory(path + ": not enough memory to read the sprite");
-    }
+    const std::vector<char> bytes = readGuarded(path, [&] { return readWholeFile(path); });
     return decodeSprite(bytes.data(), bytes.size(), path);
 }
 

@@ -71,7 +71,9 @@ struct EvalReport {
 };
 
 /// Runs the evaluation. `progress` (may be empty) gets short status lines.
-/// GL methods use `gl` if given, else make a context. Throws like `bake`.
+/// GL methods use `gl` if given, else make a context. Throws `InvalidMesh`
+/// unless `options.rule` defines inside for the mesh (`requireInsideDefined`:
+/// there is no exact answer to compare with otherwise), and like `bake`.
 EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlContext* gl = nullptr,
                     const std::function<void(const std::string&)>& progress = {});
 

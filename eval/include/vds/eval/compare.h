@@ -79,6 +79,7 @@ struct CompareRow {
 struct CompareResult {
     std::string meshName;
     std::size_t triangles = 0;
+    std::string validation; ///< `MeshReport::summary()` of the mesh (non-manifold edges are named there)
     Box bounds;
     std::size_t uniformPoints = 0, surfacePoints = 0;
     std::size_t uniformInside = 0;     ///< exact parity answers "inside" among the uniform points
@@ -92,8 +93,11 @@ struct CompareResult {
     std::string json() const;
 };
 
-/// Runs the comparison on a closed mesh. Uses `gl` if given (made current),
-/// else makes a context. Throws `InvalidMesh` for an open or unusable mesh,
+/// Runs the comparison on a mesh for which both rules define inside (closed
+/// and consistently oriented, non-manifold edges allowed: see
+/// `requireInsideDefined`). Uses `gl` if given (made current), else makes a
+/// context. Throws `InvalidMesh` for an open, inconsistently oriented or
+/// unusable mesh,
 /// `InvalidArgument` for an empty or out-of-range resolution list, and what
 /// the builders throw.
 CompareResult compare(MeshView mesh, const CompareOptions& options = {}, GlContext* gl = nullptr);

@@ -125,9 +125,10 @@ struct BakeOptions {
 Axis chooseViewAxis(MeshView mesh, std::uint32_t probeResolution = 64);
 
 /// Bakes `mesh`. Validates it first: empty meshes, non-finite coordinates and
-/// bad indices throw `InvalidMesh`; an open or non-manifold mesh is baked, its
-/// sprite marked `SolidStatus::Open` (the caller should warn: the answers are
-/// those of a surface, not a solid). GL methods use `gl` if given (made
+/// bad indices throw `InvalidMesh`; an open or inconsistently oriented mesh is
+/// baked, its sprite marked `SolidStatus::Open` (the caller should warn: the
+/// answers are those of a surface, not a solid). A closed, oriented mesh with
+/// non-manifold edges bounds a solid and is marked `SolidStatus::Closed`. GL methods use `gl` if given (made
 /// current for the call), else make a private context for the call; either
 /// way the calling thread's current context is the same on return. Throws
 /// `GlUnavailable` if no GL can be had or vds::gl is not linked.

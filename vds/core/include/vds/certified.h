@@ -76,7 +76,9 @@ public:
     CertifiedStats classify(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
                             const ClassifyOptions& options = {}) const;
 
-    /// False when the mesh does not bound a solid: every answer is then the exact classifier's own.
+    /// False when the mesh does not bound a solid (`MeshReport::closed()`):
+    /// every answer is then the exact classifier's own. The winding rules
+    /// are certified only for oriented meshes (`MeshReport::oriented()`).
     bool certifies() const;
     /// The grid of the bands (as a sprite baked with the same options would have).
     const SpriteGrid& grid() const;

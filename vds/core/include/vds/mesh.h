@@ -1,8 +1,8 @@
 // vds: triangle meshes as plain data, and their validation.
 //
 // The core of the library takes triangles as a view over caller-owned arrays;
-// `TriangleMesh` is the owning form the loaders and tests produce. OpenMesh is
-// used only by the file loader (<vds/mesh_io.h>).
+// `TriangleMesh` is the owning form the loaders (<vds/mesh_io.h>) and tests
+// produce.
 #pragma once
 
 #include <cstddef>
@@ -13,6 +13,8 @@
 #include <glm/vec3.hpp>
 
 namespace vds {
+
+enum class Rule : std::uint8_t; // how crossings decide inside; defined in <vds/sprite.h>
 
 /// An owning indexed triangle mesh. Triangles are counter-clockwise seen from
 /// outside (outward normals by the right-hand rule), indices into `positions`.
@@ -47,22 +49,42 @@ struct Box {
 /// What validation found. Counts are of undirected edges after welding
 /// vertices with bitwise-equal positions, so a mesh whose loader duplicated
 /// vertices is judged by its geometry, not by its index buffer.
+///
+/// Which rule defines inside: a ray from a point crosses the surface; across
+/// an edge used by an even number of triangles the count of crossings changes
+/// by an even number, so the parity of the count, and whether a point is
+/// inside by the parity rule, does not depend on the ray (`closed()`). The
+/// winding rule needs more: every edge used as often in one direction as in
+/// the other (`oriented()`). Neither needs a manifold mesh: two solids that
+/// touch along an edge (four triangles on it) bound a solid by both rules.
 struct MeshReport {
     std::size_t vertexCount = 0;
     std::size_t triangleCount = 0;
-    std::size_t boundaryEdges = 0;       ///< edges used by one triangle: the mesh is open
+    std::size_t boundaryEdges = 0;       ///< edges used by one triangle: holes, the mesh is open
     std::size_t nonManifoldEdges = 0;    ///< edges used by three or more triangles
-    std::size_t inconsistentEdges = 0;   ///< edges used twice in the same direction: orientation flips
+    std::size_t oddNonManifoldEdges = 0; ///< of those, edges used by 3, 5, ... triangles: open like boundary edges
+    std::size_t inconsistentEdges = 0;   ///< edges used an even number of times, more often in one direction: orientation conflicts
     std::size_t degenerateTriangles = 0; ///< repeated vertex or zero area
+    std::size_t duplicateTriangles = 0;  ///< triangles on the same three vertices as an earlier one, either orientation
+    std::size_t isolatedVertices = 0;    ///< vertices no triangle uses (nor any vertex at the same position)
     std::size_t nonFiniteVertices = 0;   ///< NaN or infinite coordinates
     std::size_t badIndices = 0;          ///< triangle indices >= vertex count
     Box bounds;                          ///< of the vertices used by triangles (finite ones)
 
-    /// True when the mesh bounds a solid: closed, manifold, consistently oriented.
-    bool closed() const { return boundaryEdges == 0 && nonManifoldEdges == 0 && inconsistentEdges == 0; }
+    /// True when every edge is used by an even number of triangles: the parity
+    /// rule defines inside. Non-manifold edges used by 4, 6, ... triangles are
+    /// allowed.
+    bool closed() const { return boundaryEdges == 0 && oddNonManifoldEdges == 0; }
+    /// True when closed and every edge is used as often in each direction:
+    /// the winding rule defines inside too.
+    bool oriented() const { return closed() && inconsistentEdges == 0; }
+    /// True when every edge is used by at most two triangles.
+    bool manifold() const { return nonManifoldEdges == 0; }
     /// True when nothing at all would stop a bake (finite, non-empty, valid indices).
     bool usable() const { return triangleCount > 0 && nonFiniteVertices == 0 && badIndices == 0; }
-    /// One line, e.g. "closed, 5856 triangles" or "open: 12 boundary edges, ...".
+    /// One line, e.g. "closed, 5856 triangles, 2930 vertices" or "open (12
+    /// boundary edges), ..., 3 duplicate triangles, 1 isolated vertex"; every
+    /// count that is not zero is named.
     std::string summary() const;
 };
 
@@ -72,6 +94,18 @@ MeshReport validateMesh(MeshView mesh);
 
 /// Throws `InvalidMesh` with a one-line reason if `report` is not `usable()`.
 void requireUsable(const MeshReport& report, const std::string& meshName);
+
+/// Throws `InvalidMesh` unless the mesh is usable and `rule` defines inside
+/// for it (see `MeshReport`): `closed()` for `Rule::Parity`, `oriented()`
+/// for `Rule::Winding`, any usable mesh for `Rule::GeneralizedWinding`. The one-line message names the mesh, the edges
+/// at fault and their counts, and says what still answers: a sprite, whose
+/// parity or winding rule classifies points of any usable mesh.
+void requireInsideDefined(const MeshReport& report, const std::string& meshName, Rule rule);
+
+/// What a caller should warn about in a mesh that `requireInsideDefined`
+/// accepts for `rule`: non-manifold edges (named with their count) and, for
+/// the parity rule, orientation conflicts. Empty when there is nothing to say.
+std::string insideWarning(const MeshReport& report, Rule rule);
 
 /// Bounding box of the vertices referenced by triangles.
 Box meshBounds(MeshView mesh);

@@ -108,8 +108,8 @@ inline float crossingDepth(float encoded) { return std::fabs(encoded); }
 
 /// Result of mesh validation recorded in a sprite.
 enum class SolidStatus : std::uint8_t {
-    Closed = 0, ///< closed, manifold, consistently oriented: answers are a solid's
-    Open = 1,   ///< baked with a warning: boundary, non-manifold or flipped edges
+    Closed = 0, ///< `MeshReport::oriented()`: parity and winding both answer for a solid (non-manifold edges allowed)
+    Open = 1,   ///< baked with a warning: boundary edges, or orientation conflicts
 };
 
 /// A volumetric depth sprite held in host memory.

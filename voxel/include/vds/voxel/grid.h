@@ -99,8 +99,10 @@ struct BitGrid {
 /// An all-zero bit grid over `grid`. Throws `OutOfMemory` if it cannot be allocated.
 BitGrid makeBitGrid(const VoxelGrid& grid);
 
-/// The mesh must bound a solid: usable and closed (every edge shared by two
-/// consistently oriented triangles). Throws `InvalidMesh` naming `what`.
+/// The mesh must bound a solid by the parity rule, which every voxelizer here
+/// uses: usable and closed (every edge shared by an even number of
+/// triangles; non-manifold edges and orientation conflicts are allowed, see
+/// `insideWarning`). Throws `InvalidMesh` naming `what` (`requireInsideDefined`).
 void requireClosed(MeshView mesh, const char* what);
 
 } // namespace vds::voxel

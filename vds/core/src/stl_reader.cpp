@@ -1,0 +1,184 @@
+// STL, binary and ASCII (3D Systems, "Stereolithography Interface
+// Specification", 1989). A binary file is 84 + 50 n bytes, n the little-endian
+// count at byte 80; a file of any other size must be ASCII ("solid ...
+// facet normal ... outer loop vertex ... endloop endfacet ... endsolid", one
+// or more solids; keywords in any case). Normals and attribute bytes are read
+// past. STL has no shared vertices: every corner is stored with each of its
+// triangles, so corners are welded by exact position (+0 and -0 alike), in
+// order of first appearance; a binary file and its ASCII twin load alike.
+#include "mesh_readers.h"
+
+#include <cmath>
+#include <cstring>
+#include <unordered_map>
+
+#include "text_scanner.h"
+
+#include <vds/error.h>
+
+namespace vds::detail {
+namespace {
+
+constexpr std::uint64_t kBinaryHeader = 84;
+constexpr std::uint64_t kBinaryTriangle = 50;
+
+/// Corners to indices by exact position.
+class Welder {
+public:
+    explicit Welder(TriangleMesh& mesh) : mesh_(mesh) {}
+    std::uint32_t add(glm::vec3 p) {
+        p += glm::vec3(0.0f); // -0 becomes +0, so both weld to one vertex
+        Key key;
+        std::memcpy(key.bits, &p, sizeof key.bits);
+        const auto [it, inserted] = index_.emplace(key, std::uint32_t(mesh_.positions.size()));
+        if (inserted) mesh_.positions.push_back(p);
+        return it->second;
+    }
+
+private:
+    struct Key {
+        std::uint32_t bits[3];
+        bool operator==(const Key& o) const { return std::memcmp(bits, o.bits, sizeof bits) == 0; }
+    };
+    struct KeyHash {
+        std::size_t operator()(const Key& k) const {
+            std::uint64_t h = 1469598103934665603ull;
+            for (std::uint32_t v : k.bits) h = (h ^ v) * 1099511628211ull;
+            return std::size_t(h);
+        }
+    };
+    TriangleMesh& mesh_;
+    std::unordered_map<Key, std::uint32_t, KeyHash> index_;
+};
+
+std::uint32_t loadLittle32(const char* p) {
+    const auto* b = reinterpret_cast<const unsigned char*>(p);
+    return std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
+}
+
+float loadLittleFloat(const char* p) {
+    const std::uint32_t bits = loadLittle32(p);
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+TriangleMesh readBinary(const char* data, std::uint64_t count, const std::string& name) {
+    TriangleMesh mesh;
+    mesh.triangles.reserve(count);
+    Welder welder(mesh);
+    for (std::uint64_t t = 0; t < count; ++t) {
+        const std::uint64_t at = kBinaryHeader + t * kBinaryTriangle + 12; // after the normal
+        std::uint32_t corner[3];
+        for (int k = 0; k < 3; ++k) {
+            const char* p = data + at + 12 * k;
+            const glm::vec3 v(loadLittleFloat(p), loadLittleFloat(p + 4), loadLittleFloat(p + 8));
+            if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)))
+                failAtByte(name, at + 12 * k,
+                           "triangle " + std::to_string(t) + ", corner " + std::to_string(k) + " is not finite");
+            corner[k] = welder.add(v);
+        }
+        mesh.triangles.emplace_back(corner[0], corner[1], corner[2]);
+    }
+    return mesh;
+}
+
+class AsciiStlReader {
+public:
+    AsciiStlReader(const char* data, std::size_t size, const std::string& name) : text_(data, size), name_(name) {}
+
+    TriangleMesh read() {
+        std::string_view token;
+        text_.nextToken(token); // "solid", checked by the caller
+        text_.restOfLine();     // its name
+        for (;;) {
+            if (!text_.nextToken(token)) fail("file ends before 'endsolid' (truncated?)");
+            if (equalsKeyword(token, "facet")) {
+                facet();
+            } else if (equalsKeyword(token, "endsolid")) {
+                text_.restOfLine();
+                if (!text_.nextToken(token)) break;
+                if (!equalsKeyword(token, "solid")) fail("expected 'solid' or the end of the file, found " + quoted(token));
+                text_.restOfLine();
+            } else {
+                fail("expected 'facet' or 'endsolid', found " + quoted(token));
+            }
+        }
+        return std::move(mesh_);
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const { failAtLine(name_, text_.line(), what); }
+
+    void expect(const char* keyword) {
+        std::string_view token;
+        if (!text_.nextToken(token)) fail(std::string("file ends where '") + keyword + "' belongs (truncated?)");
+        if (!equalsKeyword(token, keyword)) fail(std::string("expected '") + keyword + "', found " + quoted(token));
+    }
+
+    std::string_view nextToken(const char* what) {
+        std::string_view token;
+        if (!text_.nextToken(token)) fail(std::string("file ends inside ") + what + " (truncated?)");
+        return token;
+    }
+
+    void facet() {
+        expect("normal");
+        for (int k = 0; k < 3; ++k) { // read past; exporters write NaN normals for slivers
+            const std::string_view token = nextToken("a normal");
+            double ignored = 0.0;
+            const NumberStatus status = parseNumber(token, ignored);
+            if (status == NumberStatus::Malformed) fail("normal " + numberProblem(status, token, "a number"));
+        }
+        expect("outer");
+        expect("loop");
+        corners_.clear();
+        for (;;) {
+            const std::string_view token = nextToken("a facet");
+            if (equalsKeyword(token, "endloop")) break;
+            if (!equalsKeyword(token, "vertex")) fail("expected 'vertex' or 'endloop', found " + quoted(token));
+            float xyz[3];
+            for (float& c : xyz) {
+                const std::string_view number = nextToken("a vertex");
+                c = parseCoordinate(number, name_, text_.line());
+            }
+            corners_.push_back(welder_.add({xyz[0], xyz[1], xyz[2]}));
+        }
+        if (corners_.size() < 3)
+            fail("a facet needs at least 3 vertices, this one has " + std::to_string(corners_.size()));
+        appendFan(mesh_, corners_);
+        expect("endfacet");
+    }
+
+    TextScanner text_;
+    const std::string& name_;
+    TriangleMesh mesh_;
+    Welder welder_{mesh_};
+    std::vector<std::uint32_t> corners_;
+};
+
+bool startsWithSolid(const char* data, std::size_t size) {
+    std::size_t i = 0;
+    while (i < size && (isBlank(data[i]) || data[i] == '\n')) ++i;
+    return size - i >= 5 && equalsKeyword(std::string_view(data + i, 5), "solid");
+}
+
+} // namespace
+
+TriangleMesh readStl(const char* data, std::size_t size, const std::string& name) {
+    if (size >= kBinaryHeader) {
+        const std::uint64_t count = loadLittle32(data + 80);
+        if (kBinaryHeader + count * kBinaryTriangle == size) return readBinary(data, count, name);
+    }
+    if (startsWithSolid(data, size)) return AsciiStlReader(data, size, name).read();
+    if (size < kBinaryHeader)
+        throw FormatError(name + ": not an STL file: not ASCII (no 'solid' first) and shorter than the 84 bytes of a "
+                                 "binary header");
+    const std::uint64_t count = loadLittle32(data + 80);
+    failAtByte(name, 80,
+               "binary STL header declares " + std::to_string(count) + " triangles, which take " +
+                   std::to_string(kBinaryHeader + count * kBinaryTriangle) + " bytes; the file has " +
+                   std::to_string(size));
+}
+
+} // namespace vds::detail
