@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs what vds needs to build, test and run on Debian 12, from Debian's
 # packages only. Does nothing when everything is already there.
+#   tools/install-deps.sh                # what vds needs
+#   tools/install-deps.sh --only P ...   # just packages P (bench/install-peers.sh)
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
@@ -9,6 +11,7 @@ packages=(
   libglm-dev libopenexr-dev libpng-dev libgtest-dev
   libcli11-dev nlohmann-json3-dev     # command lines, JSON reports
 )
+if [ "${1:-}" = "--only" ]; then shift; packages=("$@"); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
