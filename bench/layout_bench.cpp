@@ -1,0 +1,121 @@
+// Layout benchmark: vds::classify on uniform random points with the sprite's
+// own arrays (QueryLayout::Offsets, the layout every batch used before the
+// packed table was worth it) against the packed table (QueryLayout::Packed,
+// table built inside each call and timed with it), in one process, rounds
+// interleaved so both see the same load. Checks that both give the same
+// label on every point. Prints a Markdown table (docs/benchmarks.md).
+//
+// One-thread rows are timed in the thread's CPU time (CLOCK_THREAD_CPUTIME_ID):
+// on a shared machine that leaves out the time the thread waited for a core,
+// which wall time does not. Two-thread rows are wall time.
+//
+//   vds_layout_bench [--points N] [--resolution R] [--rounds K] [MESH ...]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include <vds/bake.h>
+#include <vds/mesh_io.h>
+#include <vds/sprite.h>
+
+#include "points.h"
+#include "solids.h"
+
+namespace {
+
+double threadSeconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+double wallSeconds() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+struct Input {
+    std::string name;
+    vds::TriangleMesh mesh;
+};
+
+void measure(const Input& in, std::size_t count, std::uint32_t resolution, int rounds) {
+    vds::BakeOptions o;
+    o.resolution = resolution;
+    o.method = vds::BakeMethod::Cpu;
+    const vds::Sprite sprite = vds::bake(in.mesh, o);
+    const std::vector<glm::vec3> points = vds::test::randomPoints(vds::meshBounds(in.mesh), count);
+
+    struct Variant {
+        vds::QueryLayout layout;
+        unsigned threads;
+        double best = 1e300;
+        std::vector<std::uint8_t> labels;
+    };
+    std::vector<Variant> variants;
+    for (unsigned t : {1u, 2u})
+        for (vds::QueryLayout layout : {vds::QueryLayout::Offsets, vds::QueryLayout::Packed})
+            variants.push_back({layout, t, 1e300, std::vector<std::uint8_t>(count)});
+    for (int round = 0; round <= rounds; ++round) // round 0 warms up, untimed
+        for (Variant& v : variants) {
+            const bool cpu = v.threads == 1;
+            const double start = cpu ? threadSeconds() : wallSeconds();
+            vds::classify(sprite, points.data(), count, v.labels.data(), {vds::Rule::Parity, v.threads, v.layout});
+            const double seconds = (cpu ? threadSeconds() : wallSeconds()) - start;
+            if (round > 0) v.best = std::min(v.best, seconds);
+        }
+    std::size_t differ = 0;
+    for (const Variant& v : variants)
+        for (std::size_t k = 0; k < count; ++k) differ += v.labels[k] != variants[0].labels[k];
+    std::size_t deep = 0; // columns with more than four crossings
+    for (std::size_t c = 0; c + 1 < sprite.offsets.size(); ++c) deep += sprite.offsets[c + 1] - sprite.offsets[c] > 4;
+    const double offsets1 = variants[0].best;
+    for (const Variant& v : variants)
+        std::printf("| %s | %zu | %ux%ux%u | %.2f%% | %s | %u | %.1f | %.2fx |%s\n", in.name.c_str(),
+                    in.mesh.triangles.size(), sprite.width(), sprite.height(), sprite.depthComplexity,
+                    100.0 * double(deep) / double(sprite.offsets.size() - 1),
+                    v.layout == vds::QueryLayout::Packed ? "packed" : "offsets", v.threads,
+                    double(count) / v.best * 1e-6, offsets1 / v.best, differ ? " LABELS DIFFER" : "");
+    std::fflush(stdout);
+    if (differ) throw std::runtime_error("the layouts disagree on " + std::to_string(differ) + " labels");
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app("vds layout benchmark: the sprite's offsets layout against the packed column table");
+    std::size_t points = 4000000;
+    std::uint32_t resolution = 1024;
+    int rounds = 5;
+    std::vector<std::string> meshes;
+    app.add_option("--points", points, "uniform random points per mesh")->capture_default_str()->check(CLI::PositiveNumber);
+    app.add_option("--resolution", resolution, "sprite resolution")->capture_default_str()->check(CLI::Range(1u, 16384u));
+    app.add_option("--rounds", rounds, "timed rounds (best of)")->capture_default_str()->check(CLI::Range(1, 100));
+    app.add_option("MESH", meshes, "meshes (default: generated ones only)");
+    CLI11_PARSE(app, argc, argv);
+    try {
+        std::vector<Input> inputs;
+        for (const std::string& path : meshes)
+            inputs.push_back({path.substr(path.find_last_of('/') + 1), vds::loadMesh(path)});
+        using namespace vds::solids;
+        inputs.push_back({"3 boxes", merge(merge(box({0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}).mesh,
+                                                 box({1.5f, 0.2f, 0.3f}, {2.5f, 1.4f, 0.9f}).mesh),
+                                           box({0.4f, 1.6f, 0.1f}, {2.2f, 2.1f, 1.7f}).mesh)});
+        inputs.push_back({"torus 256", torus({0, 0, 0}, 1.0f, 0.35f, 256).mesh});
+        inputs.push_back({"sphere 512", sphere({0, 0, 0}, 1.0f, 512).mesh});
+        std::printf("%zu uniform points in the box grown by 10%% per side, sprite at %u, best of %d interleaved rounds; "
+                    "1 thread: thread CPU time, 2 threads: wall time; packed includes building its table\n\n",
+                    points, resolution, rounds);
+        std::printf("| mesh | triangles | sprite | columns > 4 crossings | layout | threads | M points/s | × offsets, 1 "
+                    "thread |\n|---|---:|---|---:|---|---:|---:|---:|\n");
+        for (const Input& in : inputs) measure(in, points, resolution, rounds);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "vds_layout_bench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
