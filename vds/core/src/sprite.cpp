@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <thread>
 
@@ -299,8 +300,16 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
             if (column[i] >= 0) __builtin_prefetch(records + std::size_t(column[i]) * recordBytes);
         }
     };
+    std::unique_ptr<const detail::PackedTable> packedTable;
     if (packed && columns > 0) {
-        const detail::PackedTable table(sprite, options.threads);
+        try {
+            packedTable = std::make_unique<const detail::PackedTable>(sprite, options.threads);
+        } catch (const std::bad_alloc&) {
+            // No room for the table: the sprite's own arrays give the same answers.
+        }
+    }
+    if (packedTable) {
+        const detail::PackedTable& table = *packedTable;
         AxisAligned aligned;
         const bool isAligned = AxisAligned::applies(grid, aligned);
         parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
