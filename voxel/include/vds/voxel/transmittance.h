@@ -133,7 +133,12 @@ struct TransmittanceImage {
     std::uint32_t width = 0, height = 0;
     std::vector<float> quantity;
     std::vector<float> transmittance;
-    double gpuMilliseconds = 0.0; ///< GL_TIME_ELAPSED of the draw (0 for CPU images)
+    double gpuMilliseconds = 0.0;  ///< GL_TIME_ELAPSED of the draw (0 for CPU images)
+    /// Wall time from issuing the draw to glFinish's return (0 for CPU
+    /// images). On a deferred software rasterizer such as llvmpipe the
+    /// fragments are shaded at the flush, which GL_TIME_ELAPSED may not see:
+    /// there this is the figure to quote.
+    double wallMilliseconds = 0.0;
 };
 
 /// CPU image: `quantityAt(lightSpacePoint)` per pixel, and its transmittance.
@@ -182,7 +187,8 @@ private:
 
 /// Renders the receiver plane into an RG32F target (quantity, light left)
 /// with one full-screen draw of shaders/voxel/transmittance_plane.frag and
-/// reads it back; times the draw with a GL_TIME_ELAPSED query. Throws
+/// reads it back; times the draw with a GL_TIME_ELAPSED query (after an
+/// untimed first draw, which may include the driver's shader compilation). Throws
 /// `InvalidArgument` for an empty or oversized plane, `GlError` on GL failure.
 TransmittanceImage renderTransmittance(const GlContext& gl, const GpuTransmittanceCaster& caster,
                                        const LightFrame& frame, const ReceiverPlane& plane,
