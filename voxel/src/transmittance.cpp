@@ -16,6 +16,7 @@
 #include <vds/error.h>
 
 #include "gl_util.h"
+#include "slicemap_texture.h"
 
 namespace vds::voxel {
 
@@ -218,20 +219,15 @@ TransmittanceImage transmittanceOnCpu(const ReceiverPlane& plane, const LightFra
     return image;
 }
 
-namespace {
+namespace detail {
 
-void nearest(const Texture& t) {
+void nearestFiltering(const Texture& t) {
     glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
 
-} // namespace
-
-// The slicemap upload matches the one classifyOnGpu uses (representation.cpp,
-// private there): front layers, then back layers, word w in channel w % 4 of
-// layer w / 4.
-GpuTransmittanceCaster::GpuTransmittanceCaster(const Slicemap& map)
-    : source_(TransmittanceSource::SlicemapSurfaces), grid_(map.grid), local_(map.slicing == Slicing::Local) {
+SlicemapTextures uploadSlicemap(const Slicemap& map) {
+    SlicemapTextures out;
     const VoxelGrid& g = map.grid;
     const std::size_t columns = std::size_t(g.size.x) * g.size.y;
     const std::uint32_t targets = map.renderTargets;
@@ -241,28 +237,39 @@ GpuTransmittanceCaster::GpuTransmittanceCaster(const Slicemap& map)
             texels[((w / 4) * columns + c) * 4 + w % 4] = map.front[c * map.words + w];
             texels[((targets + w / 4) * columns + c) * 4 + w % 4] = map.back[c * map.words + w];
         }
-    maps_ = Texture::create(GL_TEXTURE_2D_ARRAY);
-    glTextureStorage3D(maps_.id(), 1, GL_RGBA32UI, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(2 * targets));
-    nearest(maps_);
-    glTextureSubImage3D(maps_.id(), 0, 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(2 * targets),
+    out.maps = Texture::create(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(out.maps.id(), 1, GL_RGBA32UI, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(2 * targets));
+    nearestFiltering(out.maps);
+    glTextureSubImage3D(out.maps.id(), 0, 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(2 * targets),
                         GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
-    backLayer_ = std::int32_t(targets);
-    gpuBytes_ = texels.size() * sizeof(std::uint32_t);
-    if (local_) {
+    out.bytes = texels.size() * sizeof(std::uint32_t);
+    if (map.slicing == Slicing::Local) {
         std::vector<float> range(columns * 4, 0.0f);
         for (std::size_t c = 0; c < columns; ++c) {
             range[4 * c] = map.nearDepth[c];
             range[4 * c + 1] = map.farDepth[c];
             range[4 * c + 2] = map.slicesPerDepth[c];
         }
-        ranges_ = Texture::create(GL_TEXTURE_2D);
-        glTextureStorage2D(ranges_.id(), 1, GL_RGBA32F, GLsizei(g.size.x), GLsizei(g.size.y));
-        nearest(ranges_);
-        glTextureSubImage2D(ranges_.id(), 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GL_RGBA, GL_FLOAT,
+        out.ranges = Texture::create(GL_TEXTURE_2D);
+        glTextureStorage2D(out.ranges.id(), 1, GL_RGBA32F, GLsizei(g.size.x), GLsizei(g.size.y));
+        nearestFiltering(out.ranges);
+        glTextureSubImage2D(out.ranges.id(), 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GL_RGBA, GL_FLOAT,
                             range.data());
-        gpuBytes_ += range.size() * sizeof(float);
+        out.bytes += range.size() * sizeof(float);
     }
     checkGl("uploading a slicemap");
+    return out;
+}
+
+} // namespace detail
+
+GpuTransmittanceCaster::GpuTransmittanceCaster(const Slicemap& map)
+    : source_(TransmittanceSource::SlicemapSurfaces), grid_(map.grid), local_(map.slicing == Slicing::Local) {
+    detail::SlicemapTextures t = detail::uploadSlicemap(map);
+    maps_ = std::move(t.maps);
+    ranges_ = std::move(t.ranges);
+    backLayer_ = std::int32_t(map.renderTargets);
+    gpuBytes_ = t.bytes;
 }
 
 GpuTransmittanceCaster::GpuTransmittanceCaster(const SlicedVoxels& voxels)
@@ -273,7 +280,7 @@ GpuTransmittanceCaster::GpuTransmittanceCaster(const SlicedVoxels& voxels)
         absorption[k] = voxels.voxels[k].w * voxels.absorptionPerFragment;
     maps_ = Texture::create(GL_TEXTURE_3D);
     glTextureStorage3D(maps_.id(), 1, GL_R32F, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(g.size.z));
-    nearest(maps_);
+    detail::nearestFiltering(maps_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTextureSubImage3D(maps_.id(), 0, 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(g.size.z), GL_RED,
                         GL_FLOAT, absorption.data());
