@@ -141,7 +141,7 @@ vec4 vdsSpriteRefractionColumn(sampler3D ldi, VdsPlacement placement, float dept
 vec4 vdsVoxelMarch(sampler3D voxels, VdsVoxelGrid grid, vec2 xy, float startZ, VdsRefraction r) {
     vec3 p = vec3(xy, max(startZ, grid.origin.z));
     vec3 d = vec3(0.0, 0.0, 1.0);
-    precise float step = 0.5 / grid.scale.x;
+    precise float stepLength = 0.5 / grid.scale.x;
     bool inside = false;
     precise float insideLength = 0.0;
     for (int s = 0; s < r.maxSteps; ++s) {
@@ -168,8 +168,8 @@ vec4 vdsVoxelMarch(sampler3D voxels, VdsVoxelGrid grid, vec2 xy, float startZ, V
                 }
             }
         }
-        p += d * step;
-        if (inside) insideLength += step;
+        p += d * stepLength;
+        if (inside) insideLength += stepLength;
     }
     return vec4(0.0, 0.0, insideLength, 0.0);
 }

@@ -4,6 +4,7 @@
 #include <vds/voxel/transmittance.h>
 
 #include <algorithm>
+#include <bitset>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -56,7 +57,7 @@ int bitsBefore(const std::uint32_t* words, std::uint32_t wordCount, std::uint32_
         std::uint32_t word = words[w];
         const std::uint32_t keep = slice - w * 32;
         if (keep < 32) word &= (1u << keep) - 1u;
-        n += __builtin_popcount(word);
+        n += int(std::bitset<32>(word).count());
     }
     return n;
 }
