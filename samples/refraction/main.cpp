@@ -26,7 +26,7 @@
 #include <vds/gl_context.h>
 #include <vds/mesh_io.h>
 #include <vds/voxel/refraction.h>
-#include <vds/voxel/transmittance.h>
+#include <vds/voxel/light_frame.h>
 
 namespace {
 

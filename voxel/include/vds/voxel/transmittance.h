@@ -43,27 +43,11 @@
 #include <vds/gpu_sprite.h>
 #include <vds/mesh.h>
 #include <vds/sprite.h>
+#include <vds/voxel/light_frame.h>
 #include <vds/voxel/slicemap.h>
 #include <vds/voxel/slicing.h>
 
 namespace vds::voxel {
-
-/// World -> light space of a directional light: a rotation whose third row
-/// is the direction the light travels, so light space +z is along the light.
-struct LightFrame {
-    glm::mat3 toLight{1.0f}; ///< column-major, as GLSL: light = toLight * world
-
-    /// Light-space coordinates of a world point, computed in the same order
-    /// as `vdsToLight` in shaders/voxel/transmittance.glsl.
-    glm::vec3 toLightSpace(const glm::vec3& world) const;
-};
-
-/// The frame of a light travelling along `direction` (any length > 0; throws
-/// `InvalidArgument` for zero or non-finite).
-LightFrame makeLightFrame(const glm::vec3& direction);
-
-/// A copy of `mesh` with every position in light space (triangles unchanged).
-TriangleMesh toLightSpace(MeshView mesh, const LightFrame& frame);
 
 /// How the light left at a receiver is computed.
 enum class TransmittanceSource : std::uint8_t {
