@@ -176,6 +176,32 @@ TEST_F(RefractionTest, GpuMatchesCpuAndApproachesTheExactTracer) {
     }
 }
 
+// Frosted glass on the GPU: the box-filtered checkerboard of the GLSL
+// against the C++ one, through a sprite.
+TEST_F(RefractionTest, FrostedGlassMatchesTheCpu) {
+    const TriangleMesh mesh = solids::sphere({0, 0, 0}, 0.5f, 48).mesh;
+    const RefractionView view = viewOver(meshBounds(mesh), 64);
+    RefractionParameters params;
+    params.checker = 0.1f;
+    params.frost = 0.4f;
+    BakeOptions bo;
+    bo.resolution = 64;
+    bo.axis = Axis::Z;
+    const Sprite sprite = bake(mesh, bo, &gl());
+    const RefractionImage gpu = renderRefraction(gl(), GpuRefractionCaster(sprite), view, params);
+    const RefractionImage cpu = refractOnCpu(sprite, view, params);
+    const Delta d = compare(gpu, cpu);
+    EXPECT_LE(d.mean, kSameMean);
+    EXPECT_LE(d.farFraction, kSameFarFraction);
+    // The blur is there: through the middle of the sphere (about 1 unit
+    // inside, 4 squares of blur) the colour is near the checkerboard's mean.
+    const glm::vec3 c = refractionColour(cpu.hits[32 * 64 + 32], params);
+    params.frost = 1e4f;
+    const glm::vec3 flat = refractionColour(cpu.hits[32 * 64 + 32], params);
+    EXPECT_GT(cpu.hits[32 * 64 + 32].z, 0.9f);
+    EXPECT_NEAR(c.x, flat.x, 0.1f);
+}
+
 TEST_F(RefractionTest, BadInput) {
     const TriangleMesh box = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
     const Slicemap uniform = buildSlicemap(gl(), box, meshBounds(box), 16);
