@@ -262,6 +262,53 @@ TEST_F(TransmittanceTest, ReceiversAmongTheCasters) {
     EXPECT_LE(lengthError, 0.01);
 }
 
+// E&D's foliage: open leaves. The slicemap pair needs closed casters (its
+// inner-voxel rule does), so leaves go in double-sided, and each counts as a
+// front and a back surface; the slicing voxelization takes them as they are,
+// one fragment per leaf and column.
+TEST_F(TransmittanceTest, LeavesCountPerLeaf) {
+    const float depths[3] = {0.15f, 0.35f, 0.6f};
+    TriangleMesh oneSided, twoSided;
+    for (float z : depths) {
+        for (TriangleMesh* m : {&oneSided, &twoSided}) {
+            const auto b = std::uint32_t(m->positions.size());
+            m->positions.insert(m->positions.end(), {{0, 0, z}, {1, 0, z}, {1, 1, z}, {0, 1, z}});
+            m->triangles.push_back({b, b + 1, b + 2});
+            m->triangles.push_back({b, b + 2, b + 3});
+            if (m == &twoSided) {
+                m->triangles.push_back({b, b + 2, b + 1});
+                m->triangles.push_back({b, b + 3, b + 2});
+            }
+        }
+    }
+    const Box box{{-0.5f, -0.5f, 0.0f}, {1.5f, 1.5f, 1.0f}};
+    const Slicemap map = buildSlicemap(gl(), twoSided, box, 16);
+    EXPECT_EQ(slicemapSurfacesInFront(map, {0.5f, 0.5f, 0.9f}), 6u);
+    EXPECT_EQ(slicemapSurfacesInFront(map, {0.5f, 0.5f, 0.45f}), 4u);
+    EXPECT_EQ(slicemapSurfacesInFront(map, {0.5f, 0.5f, 0.05f}), 0u);
+    EXPECT_EQ(slicemapSurfacesInFront(map, {1.3f, 0.5f, 0.9f}), 0u);
+    SlicingOptions so;
+    so.absorptionPerFragment = 0.25f;
+    const SlicedVoxels voxels = voxelizeSlices(gl(), oneSided, makeVoxelGrid(box, 16), so);
+    EXPECT_FLOAT_EQ(absorptionInFront(voxels, {0.5f, 0.5f, 0.9f}), 0.75f);
+    EXPECT_FLOAT_EQ(absorptionInFront(voxels, {0.5f, 0.5f, 0.45f}), 0.5f);
+
+    // The same through the GPU, on a plane behind the leaves (light along +z).
+    const LightFrame frame = makeLightFrame({0, 0, 1});
+    ReceiverPlane plane;
+    plane.origin = {-0.5f, -0.5f, 0.9f};
+    plane.u = {2.0f, 0.0f, 0.0f};
+    plane.v = {0.0f, 2.0f, 0.0f};
+    plane.width = plane.height = 16;
+    TransmittanceParameters params;
+    params.sigma = 0.5f;
+    const TransmittanceImage image = renderTransmittance(gl(), GpuTransmittanceCaster(map), frame, plane, params);
+    EXPECT_EQ(image.quantity[8 * 16 + 8], 6.0f); // (0.5625, 0.5625)
+    EXPECT_FLOAT_EQ(image.transmittance[8 * 16 + 8], 1.0f / 64.0f);
+    EXPECT_EQ(image.quantity[0], 0.0f);
+    EXPECT_EQ(image.transmittance[0], 1.0f);
+}
+
 TEST_F(TransmittanceTest, BadInput) {
     const TriangleMesh box = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
     BakeOptions bo;
