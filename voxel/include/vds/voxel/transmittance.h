@@ -67,7 +67,9 @@ struct TransmittanceParameters {
 /// column of `p`, strictly in front of the slice of `p` (the receiver's own
 /// slice is left out: no self-shadowing). Beyond the far end of the column
 /// (uniform: the box; local: the column's far depth) every slice counts; in
-/// front of it, or outside the columns, none.
+/// front of it, or outside the columns, none. (`buildSlicemap` takes closed
+/// meshes only: open surfaces such as leaves go in double-sided, and then
+/// each counts 2, once per map.)
 std::uint32_t slicemapSurfacesInFront(const Slicemap& map, const glm::vec3& p);
 
 /// Summed absorption (`SlicedVoxels::absorption`) of the voxels of the column
