@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 
 #include <vds/error.h>
+#include <vds/parallel.h>
 
 #include "gl_util.h"
 #include "slicemap_texture.h"
@@ -110,15 +111,18 @@ RefractionImage trace(const RefractionView& view, const RefractionParameters& pa
     image.height = view.height;
     image.hits.resize(std::size_t(view.width) * view.height);
     image.rgba.resize(image.hits.size() * 4);
-    for (std::uint32_t j = 0; j < view.height; ++j)
-        for (std::uint32_t i = 0; i < view.width; ++i) {
-            const std::size_t k = std::size_t(j) * view.width + i;
-            image.hits[k] = ray(view.rayXY(i, j));
-            const glm::vec3 c = refractionColour(image.hits[k], parameters);
-            for (int ch = 0; ch < 3; ++ch)
-                image.rgba[4 * k + std::size_t(ch)] = std::uint8_t(std::lround(std::clamp(c[ch], 0.0f, 1.0f) * 255.0f));
-            image.rgba[4 * k + 3] = 255;
-        }
+    parallelFor(0, view.height, 1, [&](std::size_t rowBegin, std::size_t rowEnd) {
+        for (std::size_t j = rowBegin; j < rowEnd; ++j)
+            for (std::uint32_t i = 0; i < view.width; ++i) {
+                const std::size_t k = j * view.width + i;
+                image.hits[k] = ray(view.rayXY(i, std::uint32_t(j)));
+                const glm::vec3 c = refractionColour(image.hits[k], parameters);
+                for (int ch = 0; ch < 3; ++ch)
+                    image.rgba[4 * k + std::size_t(ch)] =
+                        std::uint8_t(std::lround(std::clamp(c[ch], 0.0f, 1.0f) * 255.0f));
+                image.rgba[4 * k + 3] = 255;
+            }
+    });
     return image;
 }
 

@@ -15,6 +15,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <vds/error.h>
+#include <vds/parallel.h>
 
 #include "gl_util.h"
 #include "slicemap_texture.h"
@@ -182,13 +183,15 @@ TransmittanceImage transmittanceOnCpu(const ReceiverPlane& plane, const LightFra
     const std::size_t n = std::size_t(plane.width) * plane.height;
     image.quantity.resize(n);
     image.transmittance.resize(n);
-    for (std::uint32_t j = 0; j < plane.height; ++j)
-        for (std::uint32_t i = 0; i < plane.width; ++i) {
-            const double q = quantityAt(frame.toLightSpace(plane.point(i, j)));
-            const std::size_t k = std::size_t(j) * plane.width + i;
-            image.quantity[k] = float(q);
-            image.transmittance[k] = transmittanceOf(source, q, parameters);
-        }
+    parallelFor(0, plane.height, 1, [&](std::size_t rowBegin, std::size_t rowEnd) {
+        for (std::size_t j = rowBegin; j < rowEnd; ++j)
+            for (std::uint32_t i = 0; i < plane.width; ++i) {
+                const double q = quantityAt(frame.toLightSpace(plane.point(i, std::uint32_t(j))));
+                const std::size_t k = j * plane.width + i;
+                image.quantity[k] = float(q);
+                image.transmittance[k] = transmittanceOf(source, q, parameters);
+            }
+    });
     return image;
 }
 

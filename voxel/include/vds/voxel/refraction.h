@@ -90,7 +90,8 @@ struct RefractionImage {
 /// filtered over frost * length, times exp(-absorption * length * (1, 0.35, 0.2)).
 glm::vec3 refractionColour(const glm::vec4& hit, const RefractionParameters& parameters);
 
-// ---- CPU references (view space).
+// ---- CPU references (view space). Rows run on every hardware thread; the
+// inputs are only read.
 
 /// Two-surface refraction from a local slicemap pair (throws
 /// `InvalidArgument` for uniform slicing), a sprite baked along Axis::Z, or

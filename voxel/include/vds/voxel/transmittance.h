@@ -128,6 +128,8 @@ struct TransmittanceImage {
 };
 
 /// CPU image: `quantityAt(lightSpacePoint)` per pixel, and its transmittance.
+/// Rows run on every hardware thread: `quantityAt` is called concurrently
+/// and must be thread safe (the references above are: they only read).
 /// The references above fit in: e.g. [&](glm::vec3 p) { return
 /// double(slicemapSurfacesInFront(map, p)); }.
 TransmittanceImage transmittanceOnCpu(const ReceiverPlane& plane, const LightFrame& frame,
