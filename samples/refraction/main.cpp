@@ -130,6 +130,9 @@ int run(const Options& o) {
         bo.resolution = o.resolution;
         bo.axis = vds::Axis::Z;
         const vds::Sprite sprite = vds::bake(mesh, bo, &gl);
+        if (sprite.status != vds::SolidStatus::Closed)
+            std::fprintf(stderr, "%s: warning: the mesh is not a closed solid; lengths inside it are not defined (%s)\n",
+                         "vds_refraction", sprite.validation.c_str());
         built = "sprite " + std::to_string(sprite.width()) + "x" + std::to_string(sprite.height()) + "x" +
                 std::to_string(sprite.depthComplexity) + ", built in " + std::to_string(millisecondsSince(start)) + " ms";
         image = renderRefraction(gl, GpuRefractionCaster(sprite), view, params);

@@ -159,6 +159,9 @@ int run(const Options& o) {
         bo.resolution = o.resolution;
         bo.axis = vds::Axis::Z;
         const vds::Sprite sprite = vds::bake(light, bo, &gl);
+        if (sprite.status != vds::SolidStatus::Closed)
+            std::fprintf(stderr, "%s: warning: the mesh is not a closed solid; lengths inside it are not defined (%s)\n",
+                         "vds_shadows", sprite.validation.c_str());
         const double buildMs = millisecondsSince(start);
         const GpuTransmittanceCaster caster(sprite);
         image = renderTransmittance(gl, caster, frame, plane, params);
