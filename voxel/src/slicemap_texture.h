@@ -1,6 +1,5 @@
 // vds::voxel internal: a slicemap pair as shaders/voxel/slicemap.glsl reads
-// it (the layout classifyOnGpu uploads in representation.cpp, where it is
-// private): one RGBA32UI array texture, front layers then back layers, word
+// it, for classifyOnGpu and the effects: one RGBA32UI array texture, front layers then back layers, word
 // w in channel w % 4 of layer w / 4; local slicing adds an RGBA32F texture of
 // (near, far, slices per depth) per column.
 #pragma once
