@@ -71,6 +71,7 @@ int run(const Options& o) {
         vds::eval::writePng(reference, (fs::path(o.output) / (name + "-exact.png")).string());
         const double exactMs = exact.frameMilliseconds(o.size, o.repeats);
         std::snprintf(line, sizeof line, "| %s | exact | - | - | - | 0 | 0 %% | %.1f |\n", name.c_str(), exactMs);
+        md += line;
         std::printf("%s", line);
         for (const vs::Lookup lookup : {vs::Lookup::Vds, vs::Lookup::Slicemap, vs::Lookup::SlicemapLocal, vs::Lookup::Solid})
             for (const bool equalMemory : {false, true}) {
