@@ -34,7 +34,7 @@ struct Options {
     std::string output, data = VDS_SAMPLES_DATA;
     std::vector<std::string> scenes{"clip", "lens", "styles"};
     std::uint32_t size = 256, resolution = 128;
-    int repeats = 5;
+    int repeats = 9;
 };
 
 vs::Scene makeScene(const std::string& name, const std::string& data) {
@@ -46,6 +46,14 @@ vs::Scene makeScene(const std::string& name, const std::string& data) {
         return s;
     }
     return vs::stylesScene(data);
+}
+
+// "lens: vds 64x64x2 texels, 0.03 MiB" -> "vds 64x64x2 texels";
+// "lens: slicemap: 32x32x32 slices, ..." -> "32x32x32 slices".
+std::string compact(const std::string& solid) {
+    std::string s = solid.substr(solid.find(": ") + 2);
+    if (s.find(": ") != std::string::npos) s = s.substr(s.find(": ") + 2);
+    return s.substr(0, s.find(','));
 }
 
 void writeText(const std::string& path, const std::string& text) {
@@ -102,7 +110,7 @@ int run(const Options& o) {
                                 {"difference", stem + "-diff.png"}});
                 std::snprintf(line, sizeof line, "| %s | %s | %s | %s | %.2f MiB | %zu | %.2f %% | %.1f |\n",
                               name.c_str(), vs::toString(lookup), budget.c_str(),
-                              solids.front().substr(solids.front().find(':') + 2).c_str(),
+                              compact(solids.front()).c_str(),
                               double(renderer.memoryBytes()) / 1048576.0, diff.pixels, 100.0 * share, ms);
                 md += line;
                 std::printf("%s", line);

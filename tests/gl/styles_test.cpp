@@ -3,12 +3,15 @@
 // a plate, and each sample scene through each representation's lookup
 // against the exact reference within stated limits (Magnum's image
 // comparison: a share of differing pixels and a mean channel delta).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include <vds/shader.h>
 
 #include "gl_fixture.h"
 #include "scene.h"
@@ -73,6 +76,25 @@ std::pair<std::size_t, std::size_t> mismatches(const std::function<bool(std::uin
 }
 
 class Styles : public vds::test::GlTest {};
+
+// The include is part of vds::gl (embedded and installed beside vpt.glsl) and
+// compiles on its own in every stage, with the VDS lookup or a caller's hook.
+TEST_F(Styles, IncludeStandsAloneInEveryStageWithEitherLookup) {
+    const auto paths = vds::embeddedShaderPaths();
+    EXPECT_NE(std::find(paths.begin(), paths.end(), "vds/styles.glsl"), paths.end());
+    const std::string body = "VdsStyle s = vdsStyleAt(vec3(0.5)); float v = s.discarded ? 0.0 : float(s.style);";
+    for (const std::string& head :
+         {std::string("#include \"vds/styles.glsl\"\n"),
+          std::string("#define VDS_STYLE_SPRITES 12\nuniform float u_r[12];\n"
+                      "#define VDS_STYLE_INSIDE(i, p) (length(p) < u_r[i])\n#include \"vds/styles.glsl\"\n")}) {
+        EXPECT_NO_THROW(vds::buildProgram(
+            {{GL_VERTEX_SHADER, "v", head + "void main() { " + body + " gl_Position = vec4(v); }\n"},
+             {GL_FRAGMENT_SHADER, "f", head + "out vec4 c; void main() { " + body + " c = vec4(v); }\n"}}));
+        EXPECT_NO_THROW(vds::buildProgram(
+            {{GL_COMPUTE_SHADER, "c", head + "layout(local_size_x = 1) in; layout(std430, binding = 0) buffer B { float b[]; };\n"
+                                             "void main() { " + body + " b[0] = v; }\n"}}));
+    }
+}
 
 // Clip away / clip to, union / intersection: a pixel shows the background
 // exactly where the roles and the combine mode say the plate is cut.
