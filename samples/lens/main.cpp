@@ -1,10 +1,10 @@
 // Sample: a 3D magic lens (Trapp & Doellner 2008, section 4, Figure 2).
 // Spot is drawn Gouraud-shaded; inside a spherical lens volume it turns to
-// X-ray, showing the inner surfaces. The lens moves along a path over the
+// X-ray (or, --style blueprint, edges and grid lines), showing the inner surfaces. The lens moves along a path over the
 // cow: each frame is a new placement of the same solid (Sprite::transform on
 // the GPU sprite, no re-bake), written as DIR/lens-NN.png.
 //
-//   vds_lens -o DIR [--frames N] [--with vds|slicemap|slicemap-local|solid|exact] [--size N] [--resolution N] [--data DIR]
+//   vds_lens -o DIR [--frames N] [--style xray|blueprint] [--with vds|slicemap|slicemap-local|solid|exact] [--size N] [--resolution N] [--data DIR]
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -19,12 +19,13 @@
 namespace {
 
 struct Options {
-    std::string output, with = "vds", data = VDS_SAMPLES_DATA;
+    std::string output, with = "vds", style = "xray", data = VDS_SAMPLES_DATA;
     std::uint32_t frames = 4, size = 384, resolution = 256;
 };
 
 int run(const Options& o) {
-    const vds::samples::Scene scene = vds::samples::lensScene(o.data);
+    vds::samples::Scene scene = vds::samples::lensScene(o.data);
+    if (o.style == "blueprint") scene.solids[0].style = vds::samples::Style::Blueprint;
     std::filesystem::create_directories(o.output);
     vds::GlContext gl;
     vds::samples::SceneRenderer renderer(gl, scene, vds::samples::parseLookup(o.with), {o.resolution, false});
@@ -52,6 +53,8 @@ int main(int argc, char** argv) {
     app.add_option("--frames", o.frames, "frames along the path")->check(CLI::Range(1u, 100u));
     app.add_option("--with", o.with, "inside test in the shader")
         ->check(CLI::IsMember({"vds", "slicemap", "slicemap-local", "solid", "exact"}));
+    app.add_option("--style", o.style, "style inside the lens: X-ray or blueprint edges")
+        ->check(CLI::IsMember({"xray", "blueprint"}));
     app.add_option("--size", o.size, "image width and height in pixels")->check(CLI::Range(16u, 8192u));
     app.add_option("--resolution", o.resolution, "texels or cells along the lens's longest side")
         ->check(CLI::Range(8u, 2048u));
