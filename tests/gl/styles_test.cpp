@@ -126,6 +126,37 @@ TEST_F(Styles, ClipRolesAndCombineModesCutWhereTheyShould) {
         }
 }
 
+// Eight solids in one pass (the include's default), through every lookup:
+// eight boxes in a 4 x 2 pattern cut eight holes in the plate.
+TEST_F(Styles, EightSolidsCutInOnePassThroughEveryLookup) {
+    std::vector<Rect> holes;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 2; ++j) {
+            const glm::vec2 lo(-0.85f + 0.45f * float(i), -0.7f + 0.8f * float(j));
+            holes.push_back({lo, lo + glm::vec2(0.3f, 0.5f)});
+        }
+    vs::Scene scene = plateScene();
+    for (const Rect& r : holes) scene.solids.push_back({"hole", r.mesh(), {}, glm::mat4(1.0f), vs::Role::ClipAway, vs::Style::Shaded});
+    for (const vs::Lookup lookup :
+         {vs::Lookup::Exact, vs::Lookup::Vds, vs::Lookup::Slicemap, vs::Lookup::SlicemapLocal, vs::Lookup::Solid}) {
+        vs::SceneRenderer renderer(gl(), scene, lookup, {128, false});
+        const vds::eval::Image image = renderer.render(kSize);
+        std::size_t wrong = 0, cut = 0, checked = 0;
+        for (std::uint32_t y = 0; y < kSize; ++y)
+            for (std::uint32_t x = 0; x < kSize; ++x) {
+                const glm::vec2 p = platePoint(x, y);
+                if (std::fabs(p.x) > 0.97f || std::fabs(p.y) > 0.97f) continue;
+                if (std::any_of(holes.begin(), holes.end(), [&](const Rect& r) { return r.nearEdge(p, 0.03f); })) continue;
+                const bool inside = std::any_of(holes.begin(), holes.end(), [&](const Rect& r) { return r.contains(p); });
+                ++checked;
+                cut += inside;
+                wrong += white(image, x, y) != inside;
+            }
+        EXPECT_GT(cut, 1000u);
+        EXPECT_EQ(wrong, 0u) << vs::toString(lookup) << ": " << wrong << " of " << checked;
+    }
+}
+
 // Style solids: the one with the higher index wins; a lens wins over every
 // style solid whatever its index. X-ray on the plate (over white) is bluish,
 // flat shading warm.
