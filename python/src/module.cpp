@@ -115,15 +115,18 @@ Points viewPoints(const py::object& object, const char* what = "points") {
     Points p;
     p.source = py::array::ensure(object);
     if (!p.source) throw py::value_error(std::string(what) + " must be an (N, 3) numpy array of float32 or float64");
-    const char kind = p.source.dtype().kind();
-    if (kind == 'i' || kind == 'u' || kind == 'b')
+    // Native float32 and float64 are read as they are; integers, other
+    // floats and other byte orders are converted to float64 first.
+    const py::dtype type = p.source.dtype();
+    const char kind = type.kind();
+    const bool native = type.attr("isnative").cast<bool>();
+    if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b')
+        throw py::value_error(std::string(what) + " must be float32 or float64, not " + py::str(py::handle(type)).cast<std::string>());
+    if (kind != 'f' || !native || (type.itemsize() != 4 && type.itemsize() != 8))
         p.source = py::array_t<double, py::array::forcecast>::ensure(p.source);
-    else if (!p.source.dtype().is(py::dtype::of<float>()) && !p.source.dtype().is(py::dtype::of<double>()))
-        throw py::value_error(std::string(what) + " must be float32 or float64, not " +
-                              py::str(p.source.dtype()).cast<std::string>());
     if (p.source.ndim() != 2 || p.source.shape(1) != 3)
         throw py::value_error(std::string(what) + " must have shape (N, 3), not " + shapeText(p.source));
-    p.isDouble = p.source.dtype().is(py::dtype::of<double>());
+    p.isDouble = p.source.dtype().itemsize() == 8;
     p.data = static_cast<const char*>(p.source.data());
     p.rowStride = p.source.strides(0);
     p.columnStride = p.source.strides(1);

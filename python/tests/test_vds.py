@@ -113,6 +113,8 @@ def test_strided_and_converted_inputs_answer_as_contiguous(spot):
     assert np.array_equal(sprite.contains(base.tolist()), expected)
     corners = np.array([[0, 0, 0], [5, 5, 5]], dtype=np.int64)
     assert np.array_equal(sprite.contains(corners), sprite.contains(corners.astype(np.float32)))
+    assert np.array_equal(sprite.contains(base.astype(">f4")), expected)  # big-endian: converted
+    assert np.array_equal(sprite.contains(pickle.loads(pickle.dumps(base))), expected)  # an equal, not identical, dtype
     assert sprite.contains(np.zeros((0, 3))).shape == (0,)
     assert np.array_equal(sprite.contains(base, threads=1), expected)
 
