@@ -361,7 +361,8 @@ points: (N, 3) float32 or float64 array (any strides; float32 with x, y, z
 rule: "parity" (odd crossings in front), "winding" (non-zero winding) or
     "generalized-winding" (for sprites of closed meshes).
 gpu: classify with the GL compute shader on the module's headless context
-    (answers identical to the CPU's).
+    (answers identical to the CPU's); the sprite is uploaded for each call,
+    and calls from several threads take turns.
 threads: CPU threads, 0: one per hardware thread.
 Returns a (N,) bool array, True inside. Raises ValueError for another shape,
 dtype or a non-finite coordinate. Releases the GIL while it works.)doc")

@@ -53,7 +53,9 @@ def exact_contains(V, F, points, rule="parity", threads=0):
     V: (n, 3) float vertex positions; F: (m, 3) integer vertex indices,
     counter-clockwise seen from outside; points: (N, 3) float32 or float64 in
     the same units. rule: "parity", "winding" or "generalized-winding" (the
-    last answers open meshes and soups too). Returns a (N,) bool array.
+    last answers open meshes and soups too; the others count crossings on
+    any mesh, meaningful only for one that bounds a solid). Returns a (N,)
+    bool array.
     Builds an ExactClassifier for the call: keep one to ask many times.
     """
     return ExactClassifier(V, F).contains(points, rule=rule, threads=threads)
