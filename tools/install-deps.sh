@@ -10,6 +10,8 @@ packages=(
   libgl1-mesa-dri libegl-mesa0         # Mesa's llvmpipe: GL 4.5 core where there is no GPU
   libglm-dev libopenexr-dev libpng-dev libgtest-dev
   libcli11-dev nlohmann-json3-dev     # command lines, JSON reports
+  python3-dev pybind11-dev python3-numpy python3-pytest   # the Python module vds and its tests
+  python3-dask python3-distributed                        # vds.dask: classification on a Dask cluster
 )
 if [ "${1:-}" = "--only" ]; then shift; packages=("$@"); fi
 missing=()

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -482,6 +483,97 @@ TEST_F(Cli, ClosedNonManifoldMeshesAreClassifiedWithAWarning) {
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("1 non-manifold edge"), std::string::npos) << r.output;
     EXPECT_EQ(readFile(dir / "two.txt"), "1\n1\n0\n");
+}
+
+} // namespace
+
+namespace {
+
+// The six points of points.txt, and the box's answers for them.
+const std::vector<std::array<double, 3>> kBoxPoints = {{0, 0, 0},     {0.9, 0.4, 1.9},     {1.1, 0, 0},
+                                                       {0, 0.6, 0},   {-0.5, -0.5, -1.5}, {0.5, 0, 1}};
+const char* const kBoxLabels = "1\n1\n0\n0\n0\n1\n";
+
+// A binary PLY of points (vertex x, y, z of `type` float or double) in the given byte order.
+std::string binaryPly(const std::vector<std::array<double, 3>>& points, bool bigEndian, bool doubles) {
+    const char* type = doubles ? "double" : "float";
+    std::string ply = std::string("ply\nformat ") + (bigEndian ? "binary_big_endian" : "binary_little_endian") +
+                      " 1.0\ncomment points\nelement vertex " + std::to_string(points.size()) + "\nproperty " + type +
+                      " x\nproperty " + type + " y\nproperty " + type + " z\nend_header\n";
+    for (const auto& point : points)
+        for (double v : point) {
+            char bytes[8];
+            const float f = float(v);
+            const std::size_t size = doubles ? 8 : 4;
+            std::memcpy(bytes, doubles ? static_cast<const void*>(&v) : static_cast<const void*>(&f), size);
+            if (bigEndian) std::reverse(bytes, bytes + size); // the test machine is little-endian
+            ply.append(bytes, size);
+        }
+    return ply;
+}
+
+TEST_F(Cli, ClassifyReadsBinaryPlyPointsOfEitherByteOrder) {
+    ASSERT_EQ(vds("bake " + p("box.obj") + " -o " + p("box.vds") + " --resolution 32 --method cpu --quiet").code, 0);
+    for (bool bigEndian : {false, true})
+        for (bool doubles : {false, true}) {
+            const std::string name = std::string(bigEndian ? "be" : "le") + (doubles ? "64" : "32");
+            std::ofstream(dir / (name + ".ply"), std::ios::binary) << binaryPly(kBoxPoints, bigEndian, doubles);
+            Result r = vds("classify " + p("box.vds") + " " + p(name + ".ply") + " -o " + p(name + ".txt") + " --quiet");
+            ASSERT_EQ(r.code, 0) << name << ": " << r.output;
+            EXPECT_EQ(readFile(dir / (name + ".txt")), kBoxLabels) << name;
+            r = vds("classify --exact --mesh " + p("box.obj") + " " + p(name + ".ply") + " -o " + p(name + ".txt") +
+                    " --quiet");
+            ASSERT_EQ(r.code, 0) << name << ": " << r.output;
+            EXPECT_EQ(readFile(dir / (name + ".txt")), kBoxLabels) << name;
+        }
+    // Truncated binary data: one line naming the file, exit 1, no output.
+    const std::string ply = binaryPly(kBoxPoints, false, false);
+    std::ofstream(dir / "short.ply", std::ios::binary) << ply.substr(0, ply.size() - 5);
+    const Result r = vds("classify " + p("box.vds") + " " + p("short.ply") + " -o " + p("short.txt"));
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("short.ply"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(p("short.txt")));
+}
+
+TEST_F(Cli, ClassifyReadsStdinAndWritesStdout) {
+    ASSERT_EQ(vds("bake " + p("box.obj") + " -o " + p("box.vds") + " --resolution 32 --method cpu --quiet").code, 0);
+    // The tool with stdin from `in` and stdout to `out`; stderr is what run() captures.
+    auto piped = [this](const std::string& args, const std::string& in, const std::string& out) {
+        return run(std::string("(") + VDS_TOOL + " " + args + " < " + p(in) + " > " + p(out) + ")");
+    };
+    std::vector<float> xyz;
+    for (const auto& point : kBoxPoints)
+        for (double v : point) xyz.push_back(float(v));
+    vds::writeNpy(p("points.npy"), "<f4", {kBoxPoints.size(), 3}, xyz.data(), xyz.size() * sizeof(float));
+    std::ofstream(dir / "points.ply", std::ios::binary) << binaryPly(kBoxPoints, true, true);
+    // Text, .npy and PLY on stdin, told apart by their first bytes; text labels on stdout.
+    for (const char* input : {"points.txt", "points.npy", "points.ply"}) {
+        const Result r = piped("classify " + p("box.vds") + " - -o -", input, "out.txt");
+        ASSERT_EQ(r.code, 0) << input << ": " << r.output;
+        EXPECT_EQ(readFile(dir / "out.txt"), kBoxLabels) << input;
+        EXPECT_NE(r.output.find("wrote -: 6 points, 3 inside"), std::string::npos) << r.output; // on stderr
+    }
+    // A .npy array of labels on stdout, as numpy writes it; the exact path reads stdin too.
+    Result r = piped("classify --exact --mesh " + p("box.obj") + " - -o - --output-format npy --quiet", "points.txt",
+                        "out.npy");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const vds::NpyArray labels = vds::readNpy(p("out.npy"));
+    EXPECT_EQ(labels.descr, "|b1");
+    EXPECT_EQ(labels.shape, std::vector<std::uint64_t>{6});
+    EXPECT_EQ(labels.data, (std::vector<char>{1, 1, 0, 0, 0, 1}));
+    // --output-format text beats a .npy name.
+    r = vds("classify " + p("box.vds") + " " + p("points.txt") + " -o " + p("named.npy") +
+            " --output-format text --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(readFile(dir / "named.npy"), kBoxLabels);
+    // Bad stdin: one line naming <stdin>, exit 1, nothing on stdout.
+    std::ofstream(dir / "bad.npy", std::ios::binary) << std::string("\x93NUMPY\x01\x00\x05\x00{'de", 14);
+    for (const char* bad : {"bad.npy", "box.vds"}) {
+        r = piped("classify " + p("box.vds") + " - -o -", bad, "bad.txt");
+        EXPECT_EQ(r.code, 1) << bad << ": " << r.output;
+        EXPECT_NE(r.output.find("<stdin>"), std::string::npos) << r.output;
+        EXPECT_EQ(readFile(dir / "bad.txt"), "") << bad;
+    }
 }
 
 } // namespace

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <vector>
@@ -24,7 +25,7 @@ constexpr std::uint32_t kVoxelResolution = 256;
 
 struct ClassifyArgs {
     std::vector<std::string> files; // [SPRITE] POINTS
-    std::string output, mesh, with = "vds";
+    std::string output, mesh, with = "vds", outputFormat = "auto";
     std::uint32_t resolution = 0; // 0: not given (CLI11 refuses 0 given)
     vds::ClassifyOptions options;
     bool gpu = false, exact = false, certified = false, allowOpen = false, quiet = false;
@@ -35,20 +36,58 @@ bool endsWith(const std::string& s, const std::string& tail) {
     return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-// A .npy file (N x 3 float32 or float64) or what vds::loadPoints reads.
+// "-": standard input or output.
+constexpr const char* kStdio = "-";
+
+std::vector<char> readStdin() {
+    std::vector<char> bytes;
+    char buffer[1 << 16];
+    std::size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, stdin)) > 0) bytes.insert(bytes.end(), buffer, buffer + n);
+    if (std::ferror(stdin)) throw vds::IoError("<stdin>: cannot read");
+    return bytes;
+}
+
+bool startsWith(const std::vector<char>& bytes, const char* magic, std::size_t size) {
+    return bytes.size() >= size && std::equal(magic, magic + size, bytes.begin());
+}
+
+// A .npy file (N x 3 float32 or float64) or what vds::loadPoints reads; from
+// stdin ("-") any of these, told apart by their first bytes.
 std::vector<glm::vec3> readPoints(const std::string& path) {
+    if (path == kStdio) {
+        const std::vector<char> bytes = readStdin();
+        if (startsWith(bytes, "\x93NUMPY", 6)) return vds::npyPoints(vds::parseNpy(bytes.data(), bytes.size(), "<stdin>"), "<stdin>");
+        const bool ply = startsWith(bytes, "ply\n", 4) || startsWith(bytes, "ply\r\n", 5);
+        return vds::parsePoints(bytes.data(), bytes.size(), ply ? vds::PointFormat::Ply : vds::PointFormat::Text, "<stdin>");
+    }
     if (endsWith(path, ".npy")) return vds::npyPoints(vds::readNpy(path), path);
     return vds::loadPoints(path);
 }
 
-// Labels as a boolean .npy array, or one "0"/"1" line per point.
-void writeLabels(const std::string& path, const std::vector<std::uint8_t>& labels) {
-    if (endsWith(path, ".npy")) {
+void writeStdout(const std::string& bytes) {
+    if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0)
+        throw vds::IoError("<stdout>: cannot write");
+}
+
+// Labels as a boolean .npy array, or one "0"/"1" line per point; to a file
+// (written atomically) or to stdout ("-"). `format` "auto": .npy by the name.
+void writeLabels(const std::string& path, const std::string& format, const std::vector<std::uint8_t>& labels) {
+    const bool npy = format == "npy" || (format == "auto" && endsWith(path, ".npy"));
+    if (npy && path != kStdio) {
         vds::writeNpy(path, "|b1", {labels.size()}, labels.data(), labels.size());
+        return;
+    }
+    if (npy) {
+        writeStdout(vds::npyHeader("|b1", {labels.size()}) + std::string(labels.begin(), labels.end()));
         return;
     }
     std::string text(labels.size() * 2, '\n');
     for (std::size_t i = 0; i < labels.size(); ++i) text[2 * i] = labels[i] ? '1' : '0';
+    if (path == kStdio) {
+        writeStdout(text);
+        return;
+    }
     writeTextFile(path, text);
 }
 
@@ -156,10 +195,11 @@ void classify(ClassifyArgs& a) {
         }
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    writeLabels(a.output, labels);
+    writeLabels(a.output, a.outputFormat, labels);
     std::size_t inside = 0;
     for (auto l : labels) inside += l;
-    std::printf("wrote %s: %zu points, %zu inside, %s, %s rule, classified in %.3f s\n", a.output.c_str(),
+    // With the labels on stdout, the summary goes to stderr.
+    std::fprintf(a.output == kStdio ? stderr : stdout, "wrote %s: %zu points, %zu inside, %s, %s rule, classified in %.3f s\n", a.output.c_str(),
                 points.size(), inside, method.c_str(), vds::toString(a.options.rule), seconds);
 }
 
@@ -175,7 +215,9 @@ void addClassify(CLI::App& app) {
         "Labels each point 1 (inside) or 0 (outside), one line per point, in the order given (or a\n"
         "boolean .npy array when LABELS ends in .npy). POINTS is a .npy array of N x 3 float32 or\n"
         "float64, a text file of lines 'x y z' in the mesh's coordinates ('#' comments and blank lines\n"
-        "skipped) or a PLY file's vertices. Points outside the sprite's box are outside. --certified\n"
+        "skipped) or a PLY file's vertices (ascii or binary, either byte order). POINTS '-' reads stdin, any of\n"
+        "these told apart by their first bytes; LABELS '-' writes to stdout (text, or .npy with\n"
+        "--output-format npy), with the summary line on stderr. Points outside the sprite's box are outside. --certified\n"
         "gives the exact classifier's answers at close to a sprite's speed (docs/accuracy.md). --with builds\n"
         "the representation from the mesh in memory first: vds (a sprite), slicemap, slicemap-local\n"
         "(front/back slicemap pair, uniform or local slicing), solid, solid-compute (solid voxels by\n"
@@ -184,9 +226,11 @@ void addClassify(CLI::App& app) {
     c->add_option("FILES", a->files, "a sprite file and a points file; with --mesh, the points file")
         ->required()
         ->option_text("[SPRITE.vds] POINTS");
-    c->add_option("-o,--output", a->output, "output labels (written whole or not at all)")
+    c->add_option("-o,--output", a->output, "output labels (written whole or not at all); '-': stdout")
         ->required()
         ->type_name("FILE");
+    addChoice(*c, "--output-format", a->outputFormat, {"auto", "text", "npy"},
+              "labels as text lines or a boolean .npy array; auto: .npy when LABELS ends in .npy");
     addEnum(*c, "--rule", a->options.rule,
             "the paper's parity, non-zero winding, or the generalized winding number (open meshes; --exact)");
     c->add_flag("--gpu", a->gpu, "classify with the GL compute shader instead of the CPU");

@@ -15,6 +15,7 @@
 #include <vds/voxel/solid.h>
 
 #include "gl_util.h"
+#include "slicemap_texture.h"
 
 namespace vds::voxel {
 
@@ -97,53 +98,6 @@ Model buildModel(MeshView mesh, Representation representation, const ModelOption
     throw InvalidArgument("unknown voxel representation");
 }
 
-namespace {
-
-void nearest(const Texture& t) {
-    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-}
-
-// A slicemap pair as the GLSL lookup reads it: one RGBA32UI array texture,
-// front layers then back layers; local slicing adds (near, far, per depth).
-struct GpuSlicemap {
-    Texture maps;
-    Texture ranges;
-
-    explicit GpuSlicemap(const Slicemap& map) {
-        const VoxelGrid& g = map.grid;
-        const std::size_t columns = std::size_t(g.size.x) * g.size.y;
-        const std::uint32_t targets = map.renderTargets;
-        std::vector<std::uint32_t> texels(columns * 4 * 2 * targets, 0u);
-        for (std::size_t c = 0; c < columns; ++c)
-            for (std::uint32_t w = 0; w < map.words; ++w) {
-                texels[((w / 4) * columns + c) * 4 + w % 4] = map.front[c * map.words + w];
-                texels[((targets + w / 4) * columns + c) * 4 + w % 4] = map.back[c * map.words + w];
-            }
-        maps = Texture::create(GL_TEXTURE_2D_ARRAY);
-        glTextureStorage3D(maps.id(), 1, GL_RGBA32UI, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(2 * targets));
-        nearest(maps); // integer textures are incomplete with linear filtering
-        glTextureSubImage3D(maps.id(), 0, 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(2 * targets),
-                            GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
-        if (map.slicing == Slicing::Local) {
-            std::vector<float> range(columns * 4, 0.0f);
-            for (std::size_t c = 0; c < columns; ++c) {
-                range[4 * c] = map.nearDepth[c];
-                range[4 * c + 1] = map.farDepth[c];
-                range[4 * c + 2] = map.slicesPerDepth[c];
-            }
-            ranges = Texture::create(GL_TEXTURE_2D);
-            glTextureStorage2D(ranges.id(), 1, GL_RGBA32F, GLsizei(g.size.x), GLsizei(g.size.y));
-            nearest(ranges);
-            glTextureSubImage2D(ranges.id(), 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GL_RGBA, GL_FLOAT,
-                                range.data());
-        }
-        checkGl("uploading a slicemap");
-    }
-};
-
-} // namespace
-
 void classifyOnGpu(const GlContext& gl, const Model& model, const glm::vec3* points, std::size_t count,
                    std::uint8_t* labels) {
     gl.makeCurrent();
@@ -157,7 +111,7 @@ void classifyOnGpu(const GlContext& gl, const Model& model, const glm::vec3* poi
     const GLuint id = program.id();
     Buffer words;
     Texture wordTexture;
-    std::unique_ptr<GpuSlicemap> slicemapTextures;
+    detail::SlicemapTextures slicemapTextures;
     if (!map) {
         const BitGrid& bits = *model.solid();
         GLint maxTexels = 0;
@@ -172,11 +126,11 @@ void classifyOnGpu(const GlContext& gl, const Model& model, const glm::vec3* poi
         glProgramUniform1i(id, glGetUniformLocation(id, "u_voxels"), 0);
         detail::setGridUniform(id, "u_voxelGrid", bits.grid);
     } else {
-        slicemapTextures = std::make_unique<GpuSlicemap>(*map);
-        glBindTextureUnit(0, slicemapTextures->maps.id());
+        slicemapTextures = detail::uploadSlicemap(*map);
+        glBindTextureUnit(0, slicemapTextures.maps.id());
         glProgramUniform1i(id, glGetUniformLocation(id, "u_slicemap"), 0);
         if (map->slicing == Slicing::Local) {
-            glBindTextureUnit(1, slicemapTextures->ranges.id());
+            glBindTextureUnit(1, slicemapTextures.ranges.id());
             glProgramUniform1i(id, glGetUniformLocation(id, "u_ranges"), 1);
         }
         detail::setGridUniform(id, "u_map.grid", map->grid);

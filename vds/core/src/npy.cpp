@@ -73,18 +73,17 @@ double scalar(const char* p, char order, std::uint64_t size) {
     return d;
 }
 
-} // namespace
+// Bytes in memory as a stream, without a copy, so one parser reads files and memory.
+class MemoryBuffer : public std::streambuf {
+public:
+    MemoryBuffer(const char* data, std::size_t size) {
+        char* p = const_cast<char*>(data); // only read: std::streambuf wants char*
+        setg(p, p, p + size);
+    }
+};
 
-NpyArray readNpy(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw IoError(path + ": cannot read: is a directory");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError(path + ": cannot open: " + std::error_code(errno, std::generic_category()).message());
-    in.seekg(0, std::ios::end);
-    const std::streamoff length = in.tellg();
-    if (length < 0) throw IoError(path + ": cannot read (is it a directory?)");
-    in.seekg(0);
-    const auto fileSize = std::uint64_t(length);
+// A whole .npy array from `in`, which holds `fileSize` bytes from its start.
+NpyArray parseNpy(std::istream& in, std::uint64_t fileSize, const std::string& path) {
     char preamble[12] = {};
     if (fileSize < 10 || !in.read(preamble, 10)) bad(path, "too short to be a .npy file");
     if (std::memcmp(preamble, "\x93NUMPY", 6) != 0) bad(path, "not a .npy file (bad magic)");
@@ -148,6 +147,26 @@ NpyArray readNpy(const std::string& path) {
     return array;
 }
 
+} // namespace
+
+NpyArray readNpy(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw IoError(path + ": cannot read: is a directory");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError(path + ": cannot open: " + std::error_code(errno, std::generic_category()).message());
+    in.seekg(0, std::ios::end);
+    const std::streamoff length = in.tellg();
+    if (length < 0) throw IoError(path + ": cannot read (is it a directory?)");
+    in.seekg(0);
+    return parseNpy(in, std::uint64_t(length), path);
+}
+
+NpyArray parseNpy(const char* data, std::size_t size, const std::string& name) {
+    MemoryBuffer buffer(data, size);
+    std::istream in(&buffer);
+    return parseNpy(in, size, name);
+}
+
 std::vector<glm::vec3> npyPoints(const NpyArray& array, const std::string& name) {
     if (array.shape.size() != 2 || array.shape[1] != 3)
         bad(name, "points must be an N x 3 array");
@@ -168,8 +187,7 @@ std::vector<glm::vec3> npyPoints(const NpyArray& array, const std::string& name)
     return points;
 }
 
-void writeNpy(const std::string& path, const std::string& descr, const std::vector<std::uint64_t>& shape,
-              const void* data, std::size_t bytes) {
+std::string npyHeader(const std::string& descr, const std::vector<std::uint64_t>& shape) {
     std::string dims; // "(3,)" for one dimension, "(2, 3)" for two
     for (std::size_t i = 0; i < shape.size(); ++i) dims += std::to_string(shape[i]) + (i + 1 < shape.size() ? ", " : "");
     if (shape.size() == 1) dims += ",";
@@ -178,13 +196,18 @@ void writeNpy(const std::string& path, const std::string& descr, const std::vect
     const std::size_t total = 10 + header.size() + 1;
     header.append((64 - total % 64) % 64, ' ');
     header += '\n';
-    if (header.size() > 65535) throw IoError(path + ": npy header too long");
+    if (header.size() > 65535) throw InvalidArgument("npy header too long: " + std::to_string(shape.size()) + " dimensions");
     std::string preamble("\x93NUMPY\x01\x00", 8);
     preamble += char(header.size() & 0xff);
     preamble += char(header.size() >> 8);
+    return preamble + header;
+}
+
+void writeNpy(const std::string& path, const std::string& descr, const std::vector<std::uint64_t>& shape,
+              const void* data, std::size_t bytes) {
+    const std::string header = npyHeader(descr, shape);
     AtomicFile file(path);
     std::ofstream out(file.path(), std::ios::binary | std::ios::trunc);
-    out.write(preamble.data(), std::streamsize(preamble.size()));
     out.write(header.data(), std::streamsize(header.size()));
     if (bytes) out.write(static_cast<const char*>(data), std::streamsize(bytes));
     out.close();

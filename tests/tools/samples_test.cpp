@@ -1,0 +1,141 @@
+// The lens, styles and gallery samples and the clip sample's --with, run as
+// a user runs them: real files in a temporary directory, exit codes and
+// one-line messages checked, the pictures and the gallery's table read back.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <vds/eval/image.h>
+
+#include "../support/image_compare.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+    int code = -1;
+    std::string output;
+};
+
+Result run(const std::string& command) {
+    Result r;
+    std::FILE* p = ::popen((command + " 2>&1").c_str(), "r");
+    if (!p) return r;
+    char buffer[4096];
+    std::size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, p)) > 0) r.output.append(buffer, n);
+    const int status = ::pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+class Samples : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("vds-samples-" + std::to_string(::getpid()));
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string p(const std::string& name) const { return (dir / name).string(); }
+    fs::path dir;
+};
+
+TEST_F(Samples, BadCommandLinesExitTwoWithOneLine) {
+    const std::string lens = VDS_LENS, styles = VDS_STYLES, gallery = VDS_GALLERY, clip = VDS_CLIP;
+    const std::string spot = VDS_SAMPLES_DATA "/spot.obj", sphere = VDS_SAMPLES_DATA "/lens.obj";
+    for (const std::string& command : std::vector<std::string>{
+             lens, lens + " -o d --frames 0", lens + " -o d --with voxels", lens + " -o d --size 8",
+             styles, styles + " -o x.png --with octree", styles + " -o x.png --resolution 4",
+             gallery, gallery + " -o d --scenes teapot", gallery + " -o d --size 0",
+             clip + " " + spot + " --clip a.vds -o x.png --with solid",
+             clip + " " + spot + " --solid " + sphere + " -o x.png --combine xor"}) {
+        const Result r = run(command);
+        EXPECT_EQ(r.code, 2) << command << ": " << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << command << ": " << r.output;
+    }
+    for (const std::string& program : {lens, styles, gallery}) {
+        const Result r = run(program + " --help");
+        EXPECT_EQ(r.code, 0) << r.output;
+        EXPECT_NE(r.output.find("usage: vds_"), std::string::npos) << r.output;
+        if (program != gallery) {
+            EXPECT_NE(r.output.find("slicemap-local"), std::string::npos) << r.output;
+        }
+    }
+    // A missing mesh is an error of the run, not of the command line.
+    const Result r = run(styles + " -o " + p("x.png") + " --data " + p("nowhere"));
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+// The lens moves between frames (no re-bake), so consecutive frames differ,
+// and each frame equals the exact reference closely.
+TEST_F(Samples, LensFramesMoveAndMatchTheExactReference) {
+    ASSERT_EQ(run(std::string(VDS_LENS) + " -o " + p("vds") + " --frames 3 --size 96").code, 0);
+    const Result r = run(std::string(VDS_LENS) + " -o " + p("exact") + " --frames 3 --size 96 --with exact");
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::vector<vds::eval::Image> frames;
+    for (int f = 0; f < 3; ++f) {
+        const std::string name = "/lens-0" + std::to_string(f) + ".png";
+        frames.push_back(vds::eval::readPng(p("vds") + name));
+        const vds::test::ImageDelta d = vds::test::compareImages(frames.back(), vds::eval::readPng(p("exact") + name));
+        EXPECT_LT(d.pixels, 40u) << name; // the lens's silhouette, 1 % of the 96 x 96 picture's cow
+    }
+    EXPECT_GT(vds::test::compareImages(frames[0], frames[1]).pixels, 200u);
+    EXPECT_GT(vds::test::compareImages(frames[1], frames[2]).pixels, 200u);
+}
+
+// The gallery's table: one row per lookup and budget, each with its images,
+// shares between 0 and 1, and the equal-memory voxel grids within the VDS's bytes.
+TEST_F(Samples, GalleryWritesPicturesAndTable) {
+    const Result r = run(std::string(VDS_GALLERY) + " -o " + p("g") + " --scenes lens --size 64 --resolution 32 --repeats 1");
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::ifstream in(p("g/gallery.json"));
+    const nlohmann::json doc = nlohmann::json::parse(in);
+    ASSERT_EQ(doc["rows"].size(), 7u); // vds + 3 voxel lookups x 2 budgets
+    EXPECT_TRUE(fs::exists(p("g/lens-exact.png")));
+    std::size_t vdsBytes = 0;
+    for (const auto& row : doc["rows"]) {
+        EXPECT_TRUE(fs::exists(p("g/" + row["image"].get<std::string>())));
+        EXPECT_TRUE(fs::exists(p("g/" + row["difference"].get<std::string>())));
+        EXPECT_GE(row["differing_share"].get<double>(), 0.0);
+        EXPECT_LE(row["differing_share"].get<double>(), 1.0);
+        EXPECT_GT(row["covered_pixels"].get<std::size_t>(), 500u);
+        if (row["lookup"] == "vds") vdsBytes = row["memory_bytes"].get<std::size_t>();
+        else if (row["budget"] == "mem") {
+            EXPECT_LE(row["memory_bytes"].get<std::size_t>(), vdsBytes) << row.dump();
+        }
+    }
+    EXPECT_GT(vdsBytes, 0u);
+    std::ifstream md(p("g/gallery.md"));
+    const std::string table((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 2 + 1 + 7);
+}
+
+// The clip sample with a mesh solid through a voxel grid and exactly.
+TEST_F(Samples, ClipWithSolidMeshesRendersThroughEachLookup) {
+    const std::string base = std::string(VDS_CLIP) + " " VDS_SAMPLES_DATA "/spot.obj --solid " VDS_SAMPLES_DATA
+                             "/lens.obj --size 96 --resolution 96";
+    ASSERT_EQ(run(base + " -o " + p("exact.png") + " --with exact").code, 0);
+    const vds::eval::Image exact = vds::eval::readPng(p("exact.png"));
+    for (const char* with : {"vds", "slicemap", "slicemap-local", "solid"}) {
+        const Result r = run(base + " -o " + p(std::string(with) + ".png") + " --with " + with);
+        ASSERT_EQ(r.code, 0) << r.output;
+        const vds::test::ImageDelta d = vds::test::compareImages(vds::eval::readPng(p(std::string(with) + ".png")), exact);
+        EXPECT_LT(d.pixels, 60u) << with; // along the cut only: 2 % of the cow's pixels
+    }
+    // --keep keeps what the solid holds: the complement of the clip, so most pixels change.
+    ASSERT_EQ(run(base + " -o " + p("keep.png") + " --with exact --keep").code, 0);
+    EXPECT_GT(vds::test::compareImages(vds::eval::readPng(p("keep.png")), exact).pixels, 1000u);
+}
+
+} // namespace
