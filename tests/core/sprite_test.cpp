@@ -161,7 +161,7 @@ TEST(Sprite, PackedLayoutEqualsOffsetsLayoutOnEveryPoint) {
     const auto few = [](std::size_t c) { return std::uint32_t(c % 97 == 0 ? 9 + c % 7 : c % 5); }; // 4-wide records
     const auto many = [](std::size_t c) { return std::uint32_t(c % 14); };                         // 8-wide records
     int cases = 0;
-    for (Axis axis : {Axis::Z, Axis::X})
+    for (Axis axis : {Axis::Z, Axis::X, Axis::Y})
         for (bool deep : {false, true}) {
             auto [s, points] = deep ? randomColumns(box, axis, 48, many) : randomColumns(box, axis, 48, few);
             for (bool moved : {false, true}) {
@@ -190,7 +190,7 @@ TEST(Sprite, PackedLayoutEqualsOffsetsLayoutOnEveryPoint) {
                     }
             }
         }
-    EXPECT_EQ(cases, 32);
+    EXPECT_EQ(cases, 48);
 }
 
 // Points inside larger records (x y z plus a fourth float, stride 16 bytes),

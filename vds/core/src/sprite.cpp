@@ -203,23 +203,26 @@ inline Located locate(const SpriteGrid& grid, float s, float t, float r) {
 // product adds zeros to it, which changes at most the sign of a zero result
 // (the same column and answer) or turns an infinite coordinate elsewhere into
 // NaN (outside the box either way).
-struct AxisAligned {
-    glm::ivec3 axes;  // world axis of s, t and r
-    glm::vec3 scale;  // their matrix entries
-    glm::vec3 origin; // P_S along them
+template <Axis View> struct AxisAligned {
+    glm::vec3 scale;  // the matrix entries of s, t and r
+    glm::vec3 origin; // P_S along their world axes
 
     static bool applies(const SpriteGrid& grid, AxisAligned& out) {
-        const glm::ivec3 p = axisPermutation(grid.axis);
+        const glm::ivec3 p = axisPermutation(View);
+        if (grid.axis != View) return false;
         for (int row = 0; row < 3; ++row)
             for (int col = 0; col < 3; ++col)
                 if ((grid.matrix[col][row] != 0.0f) != (col == p[row])) return false;
-        out = {p, {grid.matrix[p.x][0], grid.matrix[p.y][1], grid.matrix[p.z][2]},
+        out = {{grid.matrix[p.x][0], grid.matrix[p.y][1], grid.matrix[p.z][2]},
                {grid.position[p.x], grid.position[p.y], grid.position[p.z]}};
         return true;
     }
     Located operator()(const SpriteGrid& grid, const float* q) const {
-        return locate(grid, scale.x * (q[axes.x] - origin.x), scale.y * (q[axes.y] - origin.y),
-                      scale.z * (q[axes.z] - origin.z));
+        // axisPermutation(View), spelled out so that the indices are constants.
+        constexpr int s = View == Axis::Z ? 0 : View == Axis::X ? 1 : 2;
+        constexpr int t = View == Axis::Z ? 1 : View == Axis::X ? 2 : 0;
+        constexpr int r = View == Axis::Z ? 2 : View == Axis::X ? 0 : 1;
+        return locate(grid, scale.x * (q[s] - origin.x), scale.y * (q[t] - origin.y), scale.z * (q[r] - origin.z));
     }
 };
 
@@ -310,13 +313,23 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
     }
     if (packedTable) {
         const detail::PackedTable& table = *packedTable;
-        AxisAligned aligned;
-        const bool isAligned = AxisAligned::applies(grid, aligned);
+        AxisAligned<Axis::Z> z;
+        AxisAligned<Axis::X> x;
+        AxisAligned<Axis::Y> y;
+        const int aligned = AxisAligned<Axis::Z>::applies(grid, z)   ? 1
+                            : AxisAligned<Axis::X>::applies(grid, x) ? 2
+                            : AxisAligned<Axis::Y>::applies(grid, y) ? 3
+                                                                     : 0;
         parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
-            if (isAligned)
-                classifyPacked(sprite, table, aligned, base0, strideBytes, labels, options.rule, begin, end);
-            else
-                classifyPacked(sprite, table, General{}, base0, strideBytes, labels, options.rule, begin, end);
+            const auto run = [&](const auto& where) {
+                classifyPacked(sprite, table, where, base0, strideBytes, labels, options.rule, begin, end);
+            };
+            switch (aligned) {
+            case 1: run(z); break;
+            case 2: run(x); break;
+            case 3: run(y); break;
+            default: run(General{});
+            }
         });
         return;
     }
