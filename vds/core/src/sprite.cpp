@@ -233,24 +233,36 @@ struct General {
     }
 };
 
-// Packed-table classification of points [begin, end): locate a batch and
-// prefetch its records, then answer it.
+// Packed-table classification of points [begin, end), software-pipelined:
+// locate a batch and prefetch its records, then answer the batch located
+// before it, so each record has a whole batch's work to arrive.
 template <unsigned Width, class Locate>
 void classifyPacked(const Sprite& sprite, const float* table, const Locate& where, const char* xyz,
                     std::size_t strideBytes, std::uint8_t* labels, Rule rule, std::size_t begin, std::size_t end) {
-    constexpr std::size_t kBatch = 32;
-    Located at[kBatch];
-    for (std::size_t base = begin; base < end; base += kBatch) {
+    constexpr std::size_t kBatch = 64;
+    Located at[2][kBatch];
+    const auto locateBatch = [&](std::size_t base, Located* out) {
         const std::size_t n = std::min(kBatch, end - base);
         for (std::size_t i = 0; i < n; ++i) {
             float q[3];
             std::memcpy(q, xyz + (base + i) * strideBytes, sizeof q);
-            at[i] = where(sprite.grid, q);
-            __builtin_prefetch(table + std::size_t(at[i].column) * Width);
+            out[i] = where(sprite.grid, q);
+            __builtin_prefetch(table + std::size_t(out[i].column) * Width);
         }
+    };
+    const auto answerBatch = [&](std::size_t base, const Located* in) {
+        const std::size_t n = std::min(kBatch, end - base);
         for (std::size_t i = 0; i < n; ++i)
-            labels[base + i] = std::uint8_t(at[i].inBox & detail::testPacked<Width>(table + std::size_t(at[i].column) * Width,
-                                                                                   sprite, at[i].column, at[i].depth, rule));
+            labels[base + i] = std::uint8_t(in[i].inBox & detail::testPacked<Width>(table + std::size_t(in[i].column) * Width,
+                                                                                   sprite, in[i].column, in[i].depth, rule));
+    };
+    if (begin >= end) return;
+    locateBatch(begin, at[0]);
+    int current = 0;
+    for (std::size_t base = begin; base < end; base += kBatch) {
+        if (base + kBatch < end) locateBatch(base + kBatch, at[1 - current]);
+        answerBatch(base, at[current]);
+        current = 1 - current;
     }
 }
 
