@@ -11,6 +11,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +19,7 @@
 #include <vds/error.h>
 #include <vds/parallel.h>
 
+#include "boundary_term.h"
 #include "projected_mesh.h"
 #include "sprite_lookup.h"
 
@@ -81,7 +83,7 @@ OccupancyGrid cubicOccupancyGrid(const Box& box, std::uint32_t n) {
 
 void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* cells, const OccupancyOptions& options) {
     checkOccupancyGrid(grid);
-    detail::requireAnswerable(sprite.status, options.rule);
+    detail::requireBoundaryKnown(sprite, options.rule);
     assert(cells);
     const SpriteGrid& sg = sprite.grid;
     const glm::ivec3 p = axisPermutation(sg.axis);
@@ -96,8 +98,17 @@ void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* ce
         c[v] = std::uint32_t(column % grid.dims[v]);
         return c;
     };
-    if (!axisAligned(sg)) {
-        // A rotated sprite: each cell on its own, the same answers.
+    const bool boundaryTerm = detail::needsBoundaryTerm(sprite, options.rule);
+    if (!axisAligned(sg) || boundaryTerm) {
+        // A rotated sprite, or the GWN of an open one: each cell on its own,
+        // the same answers as classify (with one boundary grid for all cells).
+        std::unique_ptr<detail::BoundaryGrid> boundary;
+        const std::size_t edgeCount = sprite.boundaryEdges.size() / 2;
+        if (boundaryTerm && detail::useBoundaryGrid(BoundaryEvaluation::Auto, columns * n, edgeCount))
+            boundary = std::make_unique<detail::BoundaryGrid>(sprite.boundaryEdges.data(), edgeCount,
+                                                              axisPermutation(sg.axis).z, sg.box,
+                                                              detail::kBoundaryGridCells,
+                                                              detail::kBoundaryGridTolerance, options.threads);
         parallelFor(options.threads, columns, 64, [&](std::size_t begin, std::size_t end) {
             std::vector<glm::vec3> points(n);
             std::vector<std::uint8_t> labels(n);
@@ -107,7 +118,12 @@ void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* ce
                     c[a] = k;
                     points[k] = grid.cellCentre(c.x, c.y, c.z);
                 }
-                classify(sprite, points.data(), n, labels.data(), {options.rule, 1, QueryLayout::Offsets});
+                const ClassifyOptions one{options.rule, 1, QueryLayout::Offsets, BoundaryEvaluation::Exact};
+                if (boundaryTerm)
+                    detail::classifyGeneralizedWinding(sprite, &points[0].x, n, sizeof(glm::vec3), labels.data(), one,
+                                                       boundary.get());
+                else
+                    classify(sprite, points.data(), n, labels.data(), one);
                 c[a] = 0;
                 std::uint8_t* out = cells + grid.index(c.x, c.y, c.z);
                 for (std::uint32_t k = 0; k < n; ++k) out[k * step] = labels[k];
@@ -174,9 +190,20 @@ void voxelize(MeshView mesh, const OccupancyGrid& grid, std::uint8_t* cells, con
     assert(cells);
     const MeshReport report = validateMesh(mesh);
     requireUsable(report, "mesh");
-    if (options.rule == Rule::GeneralizedWinding && report.boundaryEdges > 0)
-        throw InvalidArgument("voxelize answers the generalized winding number only for meshes without boundary "
-                              "(classify the cell centres with the exact classifier instead)");
+    // The generalized winding number of a mesh with boundary: each cell's
+    // crossing count plus the boundary term at its centre (exact per-edge
+    // sums, or the boundary grid within its tolerance for large grids).
+    const std::vector<glm::vec3> edges = options.rule == Rule::GeneralizedWinding && !report.oriented()
+                                             ? detail::boundaryEdges(mesh)
+                                             : std::vector<glm::vec3>();
+    const std::size_t edgeCount = edges.size() / 2;
+    std::unique_ptr<detail::BoundaryGrid> boundary;
+    if (edgeCount > 0 &&
+        detail::useBoundaryGrid(BoundaryEvaluation::Auto, std::size_t(grid.dims.x) * grid.dims.y * grid.dims.z,
+                                edgeCount))
+        boundary = std::make_unique<detail::BoundaryGrid>(edges.data(), edgeCount, 2, grid.box,
+                                                          detail::kBoundaryGridCells, detail::kBoundaryGridTolerance,
+                                                          options.threads);
     const detail::ProjectedMesh projected(mesh, Axis::Z); // (s, t, r) = (x, y, z)
     const std::vector<float> xs = centres(grid, 0), ys = centres(grid, 1), zs = centres(grid, 2);
     const std::uint32_t n = grid.dims.z;
@@ -204,6 +231,18 @@ void voxelize(MeshView mesh, const OccupancyGrid& grid, std::uint8_t* cells, con
             }
             std::sort(events.begin(), events.end());
             std::uint8_t* out = cells + column * n;
+            if (edgeCount > 0) {
+                std::size_t next = 0;
+                int winding = 0;
+                for (std::uint32_t k = 0; k < n; ++k) {
+                    for (; next < events.size() && events[next].first <= k; ++next) winding += events[next].second;
+                    const glm::dvec3 centre(q[0], q[1], zs[k]);
+                    const double b = boundary ? boundary->at(centre)
+                                              : detail::boundaryTermExact(edges.data(), edgeCount, 2, centre);
+                    out[k] = double(winding) + b > 0.5 ? 1 : 0;
+                }
+                continue;
+            }
             int winding = 0;
             std::uint32_t filled = 0;
             for (const auto& [k, delta] : events) {

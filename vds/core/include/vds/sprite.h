@@ -38,9 +38,10 @@ enum class Rule : std::uint8_t {
     /// The generalized winding number (Jacobson et al. 2013) above 1/2: the
     /// solid angle the surface subtends, over 4 pi. On a mesh that bounds a
     /// solid it is the winding number; on open meshes, soups and meshes with
-    /// holes it stays meaningful. The exact classifier answers it for any
-    /// mesh; sprites and voxelizers answer it for meshes that bound a solid
-    /// and refuse it for others (they do not store the mesh's boundary).
+    /// holes it stays meaningful. The exact classifier, sprites (which store
+    /// the mesh's boundary edges), the GPU classifier and the voxelizers
+    /// answer it for any mesh; see `Sprite::generalizedWinding` for a
+    /// sprite's error bound.
     GeneralizedWinding,
 };
 
@@ -120,7 +121,9 @@ enum class SolidStatus : std::uint8_t {
 /// form the paper uses (width x height x depthComplexity, padded with 1.0) is
 /// built only for upload to GL.
 struct Sprite {
-    static constexpr int kFormatVersion = 1;
+    /// 2: the boundary edges are stored (`boundaryEdges`). Version 1 files
+    /// still read, with no boundary edges.
+    static constexpr int kFormatVersion = 2;
 
     SpriteGrid grid;
     std::uint32_t depthComplexity = 0;      ///< d_S: the most crossings in any column
@@ -130,6 +133,18 @@ struct Sprite {
     std::uint64_t sourceTriangles = 0;
     SolidStatus status = SolidStatus::Closed;
     std::string validation;                 ///< `MeshReport::summary()` at bake time
+    /// The baked mesh's boundary edges, for Rule::GeneralizedWinding: edge k
+    /// runs from `boundaryEdges[2k]` to `boundaryEdges[2k+1]`, in the mesh
+    /// coordinates of the bake (those of `grid.box`; the placement is not
+    /// applied). Edges whose uses do not cancel after welding vertices with
+    /// equal positions, an edge repeated by how many more times it is used
+    /// one way than the other (non-manifold edges count by their unbalanced
+    /// orientation), oriented as the majority of its triangles run it. Empty
+    /// for a mesh whose every edge is used equally often each way.
+    std::vector<glm::vec3> boundaryEdges;
+    /// False only for a sprite of an open mesh read from a version-1 file:
+    /// its boundary was never stored, and Rule::GeneralizedWinding refuses it.
+    bool boundaryKnown = true;
 
     std::uint32_t width() const { return grid.width; }
     std::uint32_t height() const { return grid.height; }
@@ -138,7 +153,30 @@ struct Sprite {
     /// Points outside the box [0,1]^3 in texture space are outside. A point
     /// exactly at a stored depth does not count that crossing: on an entering
     /// surface it is outside, on a leaving one inside.
+    /// With Rule::GeneralizedWinding: `generalizedWinding(world) > 1/2`.
     bool contains(const glm::vec3& world, Rule rule = Rule::Parity) const;
+
+    /// The generalized winding number at a world point, by the Antipodal
+    /// split (Martens, Trettner & Bessmeltsev 2026): the signed count of the
+    /// point's column in front of it, plus the boundary term (the sum over
+    /// `boundaryEdges` of the solid angle of the spherical triangle (+axis,
+    /// a - q, b - q) over 4 pi, in double) taken at q, the point moved
+    /// across the axis onto its texel's centre ray (same depth). The count
+    /// belongs to that ray, so both terms are taken at q and their jumps
+    /// cancel: the value is the exact GWN at q, up to the rounding of the
+    /// stored depths. So it errs only by GWN(q) - GWN(p), |p - q| <= texel *
+    /// sqrt(2) / 2: a label differs from the exact one only where the GWN
+    /// crosses 1/2 within 0.71 texel of p across the axis, i.e. within that
+    /// distance of the surface (where the GWN jumps by 1) or where its
+    /// gradient, at most (1/4 pi) * (boundary length) / d^2 at distance d
+    /// from the boundary curve, times 0.71 texel exceeds |GWN - 1/2|.
+    /// Points outside the box get 0 (the sprite knows nothing there; the
+    /// GWN of a surface inside a box is at most 1/2 outside it for a
+    /// surface that covers no direction twice). Without boundary edges the
+    /// value is the winding number. O(boundary edges) a call; the batch
+    /// `classify` can use a grid (`BoundaryEvaluation`). Throws
+    /// `InvalidArgument` when `boundaryKnown` is false.
+    double generalizedWinding(const glm::vec3& world) const;
 
     /// Moves the sprite by `model`, on top of its current placement: a sprite
     /// that answered for solid S answers for model(S) afterwards, without
@@ -163,11 +201,26 @@ enum class QueryLayout : std::uint8_t {
     Packed,  ///< a table of 16 bytes a column with its first two crossings, built for the call (one miss)
 };
 
+/// How a sprite's batch evaluates the boundary term of Rule::GeneralizedWinding.
+enum class BoundaryEvaluation : std::uint8_t {
+    Auto,  ///< Grid for batches of 200,000 points or more (and at least 8 boundary edges)
+    Exact, ///< the per-edge sum for every point: O(boundary edges) a point
+    /// A coarse grid (48 cells along the box's longest side) of the term's
+    /// values, built for the call: trilinear interpolation in cells where a
+    /// bound on the term's second derivatives (from the Biot-Savart form of
+    /// the GWN's gradient) proves it within 1e-3 of the exact sum, the exact
+    /// sum in cells the boundary's sweep crosses or that lie near the
+    /// boundary. Labels then differ from Exact's only for points whose GWN
+    /// is within 1e-3 of 1/2.
+    Grid,
+};
+
 /// Options for batch classification.
 struct ClassifyOptions {
     Rule rule = Rule::Parity;
     unsigned threads = 0; ///< 0: one per hardware thread
     QueryLayout layout = QueryLayout::Auto;
+    BoundaryEvaluation boundary = BoundaryEvaluation::Auto; ///< Rule::GeneralizedWinding on open sprites only
 };
 
 /// Classifies `count` world points; `labels[k]` becomes 1 inside, 0 outside.
