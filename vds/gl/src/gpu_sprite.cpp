@@ -190,8 +190,8 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
         sprite.setUniforms(program.id(), "u_ldi", "u_placement", 0);
     }
     if (rule == Rule::GeneralizedWinding && sprite.status() == SolidStatus::Open)
-        throw InvalidArgument("the generalized winding number of a mesh with boundary needs the exact classifier "
-                              "(sprites do not store the boundary yet)");
+        throw InvalidArgument("the GPU classifier does not answer the generalized winding number of an open mesh "
+                              "yet: classify on the CPU (vds::classify, or vds classify without --gpu)");
     // On a mesh that bounds a solid the generalized winding number is the winding number.
     glUniform1i(glGetUniformLocation(program.id(), "u_rule"), rule == Rule::Parity ? 0 : 1);
     const GLint countLoc = glGetUniformLocation(program.id(), "u_count");
