@@ -97,8 +97,10 @@
 //     Rule::Parity: odd crossings in front of p (the paper's test);
 //     Rule::Winding: entering crossings +1, leaving -1, inside if non-zero
 //     (nested or overlapping shells); Rule::GeneralizedWinding: the
-//     generalized winding number above 1/2 (open meshes; sprites answer it
-//     for closed meshes only, the exact classifier for any). Points outside
+//     generalized winding number above 1/2 (open meshes; the exact
+//     classifier and sprites answer it for any mesh, a sprite from the
+//     boundary edges it stores; the GPU classifier for closed meshes only).
+//     Points outside
 //     the sprite's box are outside. Errors of a sprite lie within about half
 //     a texel diagonal of the surface (docs/accuracy.md).
 //   classify(sprite, points, count, labels, ClassifyOptions{rule, threads, layout})
