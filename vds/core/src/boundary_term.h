@@ -1,6 +1,7 @@
 // vds internal: the boundary term of the Antipodal split of the generalized
 // winding number (Martens, Trettner & Bessmeltsev 2026), shared by the exact
-// classifier, sprites and the voxelizers, and a grid that makes it cheap.
+// classifier, sprites and the voxelizers (the per-edge sum: the reference;
+// boundary_caps.h makes it fast).
 //
 // GWN(q) = integer term + boundary term. The integer term is the signed
 // count of surface crossings on the ray from q towards -axis (what a
@@ -46,53 +47,6 @@ double edgeSolidAngle(int axis, const glm::dvec3& a, const glm::dvec3& b, const 
 /// view axis. O(edgeCount).
 double boundaryTermExact(const glm::vec3* edges, std::size_t edgeCount, int axis, const glm::dvec3& q);
 
-/// A coarse grid of boundary-term values with trilinear interpolation where
-/// that is provably within `tolerance`, and the exact sum elsewhere.
-///
-/// Cubic cells of edge h over a box. A cell is *exact* when (a) its
-/// footprint across the axis meets the projection of a boundary edge at or
-/// below the cell's top (the sweep, where the term jumps, may cross it), or
-/// (b) the interpolation bound below exceeds `tolerance`. Elsewhere the term
-/// is smooth in the cell, and trilinear interpolation of its values at the
-/// cell's corners errs by at most (h_x^2 + h_y^2 + h_z^2) / 8 times the
-/// largest second derivative in the cell. The gradient of the GWN away from
-/// the surface is the Biot-Savart integral of its boundary curve, (1/4 pi)
-/// \oint (x - q) x dl / |x - q|^3, and so is the boundary term's off the
-/// sweep; its second derivatives are bounded by (1/2 pi) \oint |dl| / |x -
-/// q|^3. Edges are gathered in chunks of nearby edges (bounding sphere, total
-/// length L_c), each contributing at most L_c / (distance - radius)^3, so
-/// error <= 3 h^2 / (16 pi) * sum_c L_c / d_c^3 <= tolerance, d_c the least
-/// distance from the cell to chunk c. The stored corner values are rounded
-/// to float (relative 6e-8) on top. Thread safe to query.
-class BoundaryGrid {
-public:
-    /// `edges`: 2 * edgeCount points, kept by pointer (must outlive the grid).
-    BoundaryGrid(const glm::vec3* edges, std::size_t edgeCount, int axis, const Box& box, std::uint32_t cells,
-                 double tolerance, unsigned threads);
-
-    /// The boundary term at `q`, within `tolerance` of `boundaryTermExact`.
-    double at(const glm::dvec3& q) const;
-
-    /// Fraction of cells that evaluate exactly.
-    double exactFraction() const;
-    std::size_t nodeCount() const { return values_.size(); }
-
-private:
-    const glm::vec3* edges_;
-    std::size_t edgeCount_;
-    int axis_;
-    glm::dvec3 lo_;
-    double h_;
-    glm::ivec3 dims_;               ///< cells along x, y, z
-    std::vector<std::uint8_t> exact_; ///< per cell, x fastest
-    std::vector<float> values_;     ///< per node, (dims + 1), x fastest
-};
-
-/// Default grid: cells along the box's longest side, and the tolerance on
-/// the boundary term (labels differ from the exact sum's only for points
-/// whose GWN is within this of 1/2).
-constexpr std::uint32_t kBoundaryGridCells = 48;
-constexpr double kBoundaryGridTolerance = 1e-3;
 
 /// Signed count of a column's crossings strictly in front of depth r.
 inline int columnWinding(const float* begin, const float* end, float r) {
@@ -105,8 +59,9 @@ inline int columnWinding(const float* begin, const float* end, float r) {
 }
 
 /// The point the column's count belongs to: the centre of texel `column` at
-/// texture depth r, in the mesh coordinates of the bake.
-glm::dvec3 columnPoint(const SpriteGrid& grid, std::ptrdiff_t column, float r);
+/// texture depth r, in the mesh coordinates of the bake, rounded to float as
+/// the CPU baker's ray is (`SpriteGrid::texelCentre`).
+glm::vec3 columnPoint(const SpriteGrid& grid, std::ptrdiff_t column, float r);
 
 /// Throws `InvalidArgument` when `sprite` cannot answer `rule`: the
 /// generalized winding number of an open sprite read from a version-1 file,
@@ -119,15 +74,16 @@ inline bool needsBoundaryTerm(const Sprite& sprite, Rule rule) {
     return rule == Rule::GeneralizedWinding && !sprite.boundaryEdges.empty();
 }
 
-/// Batch GWN labels for a sprite with boundary edges (sprite.cpp's
-/// `classify` hands over to it). With `grid` null, the evaluation follows
-/// `options.boundary`.
-void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
-                                std::uint8_t* labels, const ClassifyOptions& options,
-                                const BoundaryGrid* grid = nullptr);
+/// `Sprite::contains` for Rule::GeneralizedWinding on a sprite with
+/// boundary edges: the label of the per-edge sum, by the capped loops.
+bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world);
 
-/// The grid a sprite's batch should use for `count` points, or none (exact
-/// sums) by `mode`; Auto builds one when the batch is large enough to repay it.
-bool useBoundaryGrid(BoundaryEvaluation mode, std::size_t count, std::size_t edgeCount);
+/// The tolerance of `Sprite::generalizedWinding`'s value.
+constexpr double kGeneralizedWindingTolerance = 1e-3;
+
+/// Batch GWN labels for a sprite with boundary edges (sprite.cpp's
+/// `classify` hands over to it), by `options.boundary`.
+void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
+                                std::uint8_t* labels, const ClassifyOptions& options);
 
 } // namespace vds::detail

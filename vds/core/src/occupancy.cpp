@@ -11,7 +11,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
-#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,6 +19,7 @@
 #include <vds/error.h>
 #include <vds/parallel.h>
 
+#include "boundary_caps.h"
 #include "boundary_term.h"
 #include "projected_mesh.h"
 #include "sprite_lookup.h"
@@ -101,14 +102,7 @@ void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* ce
     const bool boundaryTerm = detail::needsBoundaryTerm(sprite, options.rule);
     if (!axisAligned(sg) || boundaryTerm) {
         // A rotated sprite, or the GWN of an open one: each cell on its own,
-        // the same answers as classify (with one boundary grid for all cells).
-        std::unique_ptr<detail::BoundaryGrid> boundary;
-        const std::size_t edgeCount = sprite.boundaryEdges.size() / 2;
-        if (boundaryTerm && detail::useBoundaryGrid(BoundaryEvaluation::Auto, columns * n, edgeCount))
-            boundary = std::make_unique<detail::BoundaryGrid>(sprite.boundaryEdges.data(), edgeCount,
-                                                              axisPermutation(sg.axis).z, sg.box,
-                                                              detail::kBoundaryGridCells,
-                                                              detail::kBoundaryGridTolerance, options.threads);
+        // the same answers as classify (the sprite's boundary caps for the GWN).
         parallelFor(options.threads, columns, 64, [&](std::size_t begin, std::size_t end) {
             std::vector<glm::vec3> points(n);
             std::vector<std::uint8_t> labels(n);
@@ -118,10 +112,9 @@ void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* ce
                     c[a] = k;
                     points[k] = grid.cellCentre(c.x, c.y, c.z);
                 }
-                const ClassifyOptions one{options.rule, 1, QueryLayout::Offsets, BoundaryEvaluation::Exact};
+                const ClassifyOptions one{options.rule, 1, QueryLayout::Offsets, BoundaryEvaluation::Caps};
                 if (boundaryTerm)
-                    detail::classifyGeneralizedWinding(sprite, &points[0].x, n, sizeof(glm::vec3), labels.data(), one,
-                                                       boundary.get());
+                    detail::classifyGeneralizedWinding(sprite, &points[0].x, n, sizeof(glm::vec3), labels.data(), one);
                 else
                     classify(sprite, points.data(), n, labels.data(), one);
                 c[a] = 0;
@@ -191,19 +184,14 @@ void voxelize(MeshView mesh, const OccupancyGrid& grid, std::uint8_t* cells, con
     const MeshReport report = validateMesh(mesh);
     requireUsable(report, "mesh");
     // The generalized winding number of a mesh with boundary: each cell's
-    // crossing count plus the boundary term at its centre (exact per-edge
-    // sums, or the boundary grid within its tolerance for large grids).
+    // crossing count plus the boundary term at its centre, by the boundary's
+    // capped loops (the labels of the exact per-edge sum).
     const std::vector<glm::vec3> edges = options.rule == Rule::GeneralizedWinding && !report.oriented()
                                              ? detail::boundaryEdges(mesh)
                                              : std::vector<glm::vec3>();
     const std::size_t edgeCount = edges.size() / 2;
-    std::unique_ptr<detail::BoundaryGrid> boundary;
-    if (edgeCount > 0 &&
-        detail::useBoundaryGrid(BoundaryEvaluation::Auto, std::size_t(grid.dims.x) * grid.dims.y * grid.dims.z,
-                                edgeCount))
-        boundary = std::make_unique<detail::BoundaryGrid>(edges.data(), edgeCount, 2, grid.box,
-                                                          detail::kBoundaryGridCells, detail::kBoundaryGridTolerance,
-                                                          options.threads);
+    std::optional<detail::BoundaryCaps> caps;
+    if (edgeCount > 0) caps.emplace(edges.data(), edgeCount, Axis::Z);
     const detail::ProjectedMesh projected(mesh, Axis::Z); // (s, t, r) = (x, y, z)
     const std::vector<float> xs = centres(grid, 0), ys = centres(grid, 1), zs = centres(grid, 2);
     const std::uint32_t n = grid.dims.z;
@@ -236,10 +224,7 @@ void voxelize(MeshView mesh, const OccupancyGrid& grid, std::uint8_t* cells, con
                 int winding = 0;
                 for (std::uint32_t k = 0; k < n; ++k) {
                     for (; next < events.size() && events[next].first <= k; ++next) winding += events[next].second;
-                    const glm::dvec3 centre(q[0], q[1], zs[k]);
-                    const double b = boundary ? boundary->at(centre)
-                                              : detail::boundaryTermExact(edges.data(), edgeCount, 2, centre);
-                    out[k] = double(winding) + b > 0.5 ? 1 : 0;
+                    out[k] = caps->inside(winding, glm::vec3(q[0], q[1], zs[k])) ? 1 : 0;
                 }
                 continue;
             }

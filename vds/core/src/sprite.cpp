@@ -78,7 +78,7 @@ SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution) {
 }
 
 bool Sprite::contains(const glm::vec3& world, Rule rule) const {
-    if (detail::needsBoundaryTerm(*this, rule)) return generalizedWinding(world) > 0.5;
+    if (detail::needsBoundaryTerm(*this, rule)) return detail::containsGeneralizedWinding(*this, world);
     detail::requireBoundaryKnown(*this, rule);
     const glm::vec3 t = grid.toTexture(world);
     const std::ptrdiff_t column = detail::columnOf(grid, t);

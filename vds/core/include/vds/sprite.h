@@ -11,6 +11,7 @@
 // faced the viewer there (the ray enters the solid) or not (it leaves).
 #pragma once
 
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -113,6 +114,39 @@ enum class SolidStatus : std::uint8_t {
     Open = 1,   ///< baked with a warning: boundary edges, or orientation conflicts
 };
 
+namespace detail {
+class BoundaryCaps;
+/// A sprite's derived data for Rule::GeneralizedWinding (its boundary loops
+/// and their caps, boundary_caps.h), built from `Sprite::boundaryEdges` on
+/// first use, thread safe. Not part of the sprite's value: a copy or an
+/// assignment starts empty, a move takes it along.
+class BoundaryCapsCache {
+public:
+    BoundaryCapsCache() noexcept = default;
+    BoundaryCapsCache(const BoundaryCapsCache&) noexcept {}
+    BoundaryCapsCache(BoundaryCapsCache&& other) noexcept : caps_(other.caps_.exchange(nullptr)) {}
+    BoundaryCapsCache& operator=(const BoundaryCapsCache& other) noexcept {
+        if (this != &other) reset();
+        return *this;
+    }
+    BoundaryCapsCache& operator=(BoundaryCapsCache&& other) noexcept {
+        if (this != &other) {
+            reset();
+            caps_.store(other.caps_.exchange(nullptr));
+        }
+        return *this;
+    }
+    ~BoundaryCapsCache() { reset(); }
+    void reset() noexcept;
+    /// The caps of `edges` (2 points an edge) for the integer term along
+    /// `axis`, built by the first caller.
+    const BoundaryCaps& get(const std::vector<glm::vec3>& edges, Axis axis) const;
+
+private:
+    mutable std::atomic<const BoundaryCaps*> caps_{nullptr};
+};
+} // namespace detail
+
 /// A volumetric depth sprite held in host memory.
 ///
 /// The LDI is stored compressed-row style: column c = j * width + i holds
@@ -145,6 +179,9 @@ struct Sprite {
     /// False only for a sprite of an open mesh read from a version-1 file:
     /// its boundary was never stored, and Rule::GeneralizedWinding refuses it.
     bool boundaryKnown = true;
+    /// Built from `boundaryEdges` by the first generalized-winding query;
+    /// change `boundaryEdges` only before that (or on a copy).
+    detail::BoundaryCapsCache boundaryCaps;
 
     std::uint32_t width() const { return grid.width; }
     std::uint32_t height() const { return grid.height; }
@@ -173,8 +210,9 @@ struct Sprite {
     /// Points outside the box get 0 (the sprite knows nothing there; the
     /// GWN of a surface inside a box is at most 1/2 outside it for a
     /// surface that covers no direction twice). Without boundary edges the
-    /// value is the winding number. O(boundary edges) a call; the batch
-    /// `classify` can use a grid (`BoundaryEvaluation`). Throws
+    /// value is the winding number. The boundary term comes from the capped
+    /// boundary loops (`BoundaryEvaluation::Caps`) within 1e-3 of the
+    /// per-edge sum (which it takes wherever it cannot prove that). Throws
     /// `InvalidArgument` when `boundaryKnown` is false.
     double generalizedWinding(const glm::vec3& world) const;
 
@@ -203,16 +241,13 @@ enum class QueryLayout : std::uint8_t {
 
 /// How a sprite's batch evaluates the boundary term of Rule::GeneralizedWinding.
 enum class BoundaryEvaluation : std::uint8_t {
-    Auto,  ///< Grid for batches of 200,000 points or more (and at least 8 boundary edges)
+    /// The boundary loops closed by caps: the caps' signed crossing count
+    /// minus their solid angle, the latter by a tree of multipole expansions
+    /// with a proven error bound, and the per-edge sum wherever that bound
+    /// could change a label. The same labels as Exact; about O(log edges) a
+    /// point away from the boundary. The caps are built once per sprite.
+    Caps,
     Exact, ///< the per-edge sum for every point: O(boundary edges) a point
-    /// A coarse grid (48 cells along the box's longest side) of the term's
-    /// values, built for the call: trilinear interpolation in cells where a
-    /// bound on the term's second derivatives (from the Biot-Savart form of
-    /// the GWN's gradient) proves it within 1e-3 of the exact sum, the exact
-    /// sum in cells the boundary's sweep crosses or that lie near the
-    /// boundary. Labels then differ from Exact's only for points whose GWN
-    /// is within 1e-3 of 1/2.
-    Grid,
 };
 
 /// Options for batch classification.
@@ -220,7 +255,7 @@ struct ClassifyOptions {
     Rule rule = Rule::Parity;
     unsigned threads = 0; ///< 0: one per hardware thread
     QueryLayout layout = QueryLayout::Auto;
-    BoundaryEvaluation boundary = BoundaryEvaluation::Auto; ///< Rule::GeneralizedWinding on open sprites only
+    BoundaryEvaluation boundary = BoundaryEvaluation::Caps; ///< Rule::GeneralizedWinding on open sprites only
 };
 
 /// Classifies `count` world points; `labels[k]` becomes 1 inside, 0 outside.
