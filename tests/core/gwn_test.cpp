@@ -307,6 +307,33 @@ TEST(SpriteGeneralizedWinding, FollowsTheSpritesPlacement) {
     EXPECT_LE(double(wrong), 0.005 * double(compared));
 }
 
+// The capped loops are derived data: a copy starts without them and builds
+// its own from its own edges (so a copy whose edges are then changed answers
+// for the changed edges); a move takes them along. Answers against the
+// per-edge sum on the same sprite.
+TEST(SpriteGeneralizedWinding, CapsFollowCopiesAndMoves) {
+    const TriangleMesh mesh = sphereWithHoles();
+    Sprite sprite = bakeAt(mesh, Axis::Z, 64);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(-1.2f, 1.2f);
+    std::vector<glm::vec3> points(2000);
+    for (glm::vec3& p : points) p = {u(rng), u(rng), u(rng)};
+    const auto labels = [&](const Sprite& s, BoundaryEvaluation how) {
+        std::vector<std::uint8_t> out(points.size());
+        classify(s, points.data(), points.size(), out.data(), {Rule::GeneralizedWinding, 1, QueryLayout::Auto, how});
+        return out;
+    };
+    const std::vector<std::uint8_t> before = labels(sprite, BoundaryEvaluation::Caps); // builds the caps
+    EXPECT_EQ(before, labels(sprite, BoundaryEvaluation::Exact));
+    Sprite copy = sprite;
+    for (glm::vec3& e : copy.boundaryEdges) e *= 1.5f; // a larger hole rim: a different boundary term
+    const std::vector<std::uint8_t> scaled = labels(copy, BoundaryEvaluation::Caps);
+    EXPECT_EQ(scaled, labels(copy, BoundaryEvaluation::Exact));
+    EXPECT_NE(scaled, before);
+    const Sprite moved = std::move(sprite);
+    EXPECT_EQ(labels(moved, BoundaryEvaluation::Caps), before);
+}
+
 TEST(SpriteGeneralizedWinding, BoundaryEdgesSurviveTheFile) {
     const TriangleMesh mesh = overlappingShells();
     const Sprite sprite = bakeAt(mesh, Axis::Y, 48);
