@@ -39,13 +39,7 @@ double bruteForceGwn(const TriangleMesh& mesh, const glm::vec3& point) {
     return sum / (4.0 * 3.14159265358979323846);
 }
 
-TriangleMesh without(const TriangleMesh& mesh, bool (*drop)(const glm::vec3& centroid)) {
-    TriangleMesh out = mesh;
-    out.triangles.clear();
-    for (const glm::uvec3& t : mesh.triangles)
-        if (!drop((mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0f)) out.triangles.push_back(t);
-    return out;
-}
+using solids::without;
 
 TriangleMesh soup(std::uint32_t seed) {
     std::mt19937 rng(seed);
@@ -117,21 +111,9 @@ TEST(GeneralizedWinding, IsTheWindingRuleOnClosedMeshes) {
 
 // ---- sprites ---------------------------------------------------------------
 
-TriangleMesh sphereCup() {
-    return without(solids::sphere({0, 0, 0}, 1.0f, 32).mesh, [](const glm::vec3& c) { return c.z > 0.5f; });
-}
-TriangleMesh sphereWithHoles() {
-    return without(solids::sphere({0, 0, 0}, 1.0f, 32).mesh, [](const glm::vec3& c) {
-        return std::fabs(c.x) > 0.8f || (c.y > 0.7f && c.z > 0.0f);
-    });
-}
-// Two overlapping spheres, each with a hole: self-intersecting and open.
-TriangleMesh overlappingShells() {
-    const TriangleMesh a = without(solids::sphere({0, 0, 0}, 1.0f, 24).mesh, [](const glm::vec3& c) { return c.y > 0.8f; });
-    const TriangleMesh b =
-        without(solids::sphere({0.6f, 0.1f, 0.2f}, 0.8f, 24).mesh, [](const glm::vec3& c) { return c.x > 1.2f; });
-    return solids::merge(a, b);
-}
+using solids::overlappingShells;
+using solids::sphereCup;
+using solids::sphereWithHoles;
 // A closed cube with a fin of two extra triangles on one of its edges (four
 // triangles on that edge, unbalanced by two) and a flap hanging off it.
 TriangleMesh nonManifoldFan() {

@@ -149,6 +149,8 @@ bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world) {
 
 namespace vds {
 
+std::vector<glm::vec3> meshBoundaryEdges(MeshView mesh) { return detail::boundaryEdges(mesh); }
+
 double Sprite::generalizedWinding(const glm::vec3& world) const {
     detail::requireBoundaryKnown(*this, Rule::GeneralizedWinding);
     const glm::vec3 t = grid.toTexture(world);

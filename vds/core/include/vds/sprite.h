@@ -101,6 +101,12 @@ constexpr std::uint32_t kMaxResolution = 16384;
 /// above `kMaxResolution`, or a box with no extent across or along the view.
 SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution);
 
+/// A mesh's boundary edges as `Sprite::boundaryEdges` holds them (edge k
+/// runs from `[2k]` to `[2k+1]`, mesh coordinates; see there), for bakers
+/// outside vds::core such as `bakeToGpu`. Empty for a mesh whose every edge
+/// is used equally often each way. O(triangles log triangles).
+std::vector<glm::vec3> meshBoundaryEdges(MeshView mesh);
+
 /// Encoding of one stored crossing: depth in [0,1], sign bit set when the ray
 /// leaves the solid there (the surface faced away from the viewer). -0.0 is a
 /// leaving crossing at depth 0. GLSL reads the same bits.
