@@ -11,6 +11,7 @@
 // uniform points in the same box, each method classifying all of them in
 // one batch on `--threads` threads (wall clock, the sprite's bake not
 // counted, the capped loops' build counted).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -83,16 +84,15 @@ void printRow(const std::string& mesh, const std::string& method, const Tally& t
                 100.0 * double(t.wrong) / double(std::max<std::size_t>(1, t.compared)));
 }
 
-// A slice through the mesh's box at the middle of z, x across and y up:
-// exact parity on the left, the sprite's GWN on the right; inside is dark.
+// A slice through the mesh's box at depth z, x across and y up: `exact`'s
+// parity on the left, the sprite's GWN on the right; inside is dark.
 void writeSlices(const vds::TriangleMesh& mesh, const vds::ExactClassifier& exact, const vds::Sprite& sprite,
-                 const std::string& path, unsigned threads) {
+                 const std::string& path, unsigned threads, float z) {
     const vds::Box box = vds::meshBounds(mesh);
     const glm::vec3 pad = 0.05f * (box.hi - box.lo);
     const std::uint32_t w = 360, h = std::uint32_t(std::lround(360.0 * double(box.hi.y - box.lo.y + 2 * pad.y) /
                                                                double(box.hi.x - box.lo.x + 2 * pad.x)));
     std::vector<glm::vec3> points(std::size_t(w) * h);
-    const float z = 0.5f * (box.lo.z + box.hi.z);
     for (std::uint32_t y = 0; y < h; ++y)
         for (std::uint32_t x = 0; x < w; ++x)
             points[std::size_t(y) * w + x] = {box.lo.x - pad.x + (float(x) + 0.5f) / float(w) * (box.hi.x - box.lo.x + 2 * pad.x),
@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
     app.add_option("--resolutions", resolutions, "sprite resolutions")->delimiter(',');
     app.add_option("--throughput", throughput, "uniform points for throughput");
     app.add_option("--threads", threads, "threads (0: all)");
-    app.add_option("--slices", slices, "write a parity-vs-GWN slice PNG of each mesh into this directory");
+    app.add_option("--slices", slices, "write parity-vs-GWN slice PNGs of each mesh into this directory: at mid z, and through the boundary's median z with parity along y");
     CLI11_PARSE(app, argc, argv);
     if (meshes.empty())
         for (const char* name : {"stanford-bunny", "teapot", "suzanne"})
@@ -201,8 +201,23 @@ int main(int argc, char** argv) {
                               name.c_str(), mesh.triangles.size(), sprite.boundaryEdges.size() / 2, resolution,
                               exactParity, exactGwn, spriteParity, spriteWinding, spriteExact, spriteCaps);
                 speed.push_back(line);
-                if (!slices.empty() && resolution == 1024)
-                    writeSlices(mesh, exact, sprite, slices + "/gwn-slice-" + name + ".png", threads);
+                if (!slices.empty() && resolution == 1024) {
+                    writeSlices(mesh, exact, sprite, slices + "/gwn-slice-" + name + ".png", threads,
+                                0.5f * (box.lo.z + box.hi.z));
+                    // Through the holes: at the median depth of the boundary's
+                    // vertices, parity by rays along -y (the bunny's base holes
+                    // face -y, so columns over them miss a crossing).
+                    const std::vector<glm::vec3> edges = vds::meshBoundaryEdges(mesh);
+                    if (!edges.empty()) {
+                        std::vector<float> zs;
+                        for (const glm::vec3& e : edges) zs.push_back(e.z);
+                        std::nth_element(zs.begin(), zs.begin() + std::ptrdiff_t(zs.size() / 2), zs.end());
+                        const vds::ExactClassifier alongY(mesh, vds::Axis::Y);
+                        writeSlices(mesh, alongY, sprite, slices + "/gwn-holes-slice-" + name + ".png", threads,
+                                    zs[zs.size() / 2]);
+                        std::printf("(slice through the holes at z = %.5f)\n", double(zs[zs.size() / 2]));
+                    }
+                }
             }
             std::fflush(stdout);
         }
