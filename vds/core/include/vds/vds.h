@@ -99,7 +99,8 @@
 //     (nested or overlapping shells); Rule::GeneralizedWinding: the
 //     generalized winding number above 1/2 (open meshes; the exact
 //     classifier and sprites answer it for any mesh, a sprite from the
-//     boundary edges it stores; the GPU classifier for closed meshes only).
+//     boundary edges it stores; the GPU classifier and vpt.glsl too, in
+//     float, from the edges GpuSprite uploads).
 //     Points outside
 //     the sprite's box are outside. Errors of a sprite lie within about half
 //     a texel diagonal of the surface (docs/accuracy.md).
@@ -144,7 +145,9 @@
 //                        is the cheap probe.               <vds/gl_context.h>
 //   GpuSprite(sprite)    the paper's R32F 3D texture and placement, for
 //                        shaders/vds/vpt.glsl (`vdsContains(...)` in any
-//                        stage; the same answers as the CPU). <vds/gpu_sprite.h>
+//                        stage; the same answers as the CPU), and the
+//                        boundary edges for `vdsContainsGeneralized(...)`
+//                        (setBoundaryUniforms).              <vds/gpu_sprite.h>
 //   GpuClassifier        the VPT over many points in a compute shader: host
 //                        arrays in and out, or points and labels already in
 //                        GL buffers (no host round trip).
