@@ -201,6 +201,25 @@ TEST_F(Cli, CompareOnAnOpenMeshByTheGeneralizedWindingNumber) {
     EXPECT_NE(r.output.find("rule generalized-winding"), std::string::npos) << r.output;
 }
 
+TEST_F(Cli, ClassifyOnTheGpuByTheGeneralizedWindingNumberOfAnOpenSprite) {
+    writeObj(dir / "cup.obj", vds::solids::sphereCup());
+    ASSERT_EQ(vds("bake " + p("cup.obj") + " -o " + p("cup.vds") + " --resolution 48 --quiet").code, 0);
+    {
+        std::mt19937 rng(4);
+        std::uniform_real_distribution<float> u(-1.1f, 1.1f);
+        std::ofstream pts(dir / "many.txt");
+        for (int k = 0; k < 3000; ++k) pts << u(rng) << ' ' << u(rng) << ' ' << u(rng) << '\n';
+    }
+    const std::string args = p("cup.vds") + " " + p("many.txt") + " --rule generalized-winding --quiet -o ";
+    Result r = vds("classify " + args + p("cpu.txt"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = vds("classify --gpu " + args + p("gpu.txt"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string cpu = readFile(dir / "cpu.txt");
+    EXPECT_EQ(readFile(dir / "gpu.txt"), cpu); // float on the GPU: equal unless a point sits within ~1e-5 of w = 1/2
+    EXPECT_GT(std::count(cpu.begin(), cpu.end(), '1'), 300);
+}
+
 TEST_F(Cli, EveryCommandHasHelp) {
     for (const char* c :
          {"--help", "help", "bake --help", "classify --help", "info --help", "eval --help", "compare --help"}) {
