@@ -134,8 +134,8 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
         const int m = meanEdge > 0.0 ? int(std::clamp(std::ceil(loop.radius / meanEdge), 1.0, double(kMaxCut))) : 1;
         const std::size_t fanEnd = tris.size();
         for (std::size_t f = firstTri; f < fanEnd; ++f) {
-            const glm::dvec3 c = tris[f][0], db = (tris[f][1] - c) / double(m), da = (tris[f][2] - c) / double(m);
-            const auto at = [&](int i, int j) { return c + double(i) * db + double(j) * da; };
+            const glm::dvec3 corner = tris[f][0], db = (tris[f][1] - corner) / double(m), da = (tris[f][2] - corner) / double(m);
+            const auto at = [&](int i, int j) { return corner + double(i) * db + double(j) * da; };
             for (int i = 0; i < m; ++i)
                 for (int j = 0; i + j < m; ++j) {
                     fine.push_back({{at(i, j), at(i + 1, j), at(i, j + 1)}});
