@@ -20,7 +20,8 @@ namespace {
 const char* methodColour(const std::string& method) {
     static const std::pair<const char*, const char*> colours[] = {
         {"vds-parity", "#1f77b4"},     {"vds-winding", "#17becf"}, {"slicemap", "#ff7f0e"},
-        {"slicemap-local", "#d62728"}, {"solid", "#2ca02c"},       {"solid-compute", "#9467bd"}};
+        {"slicemap-local", "#d62728"}, {"solid", "#2ca02c"},       {"solid-compute", "#9467bd"},
+        {"vds-gwn", "#8c564b"}};
     for (const auto& [name, colour] : colours)
         if (method == name) return colour;
     return "#5a5a5a";

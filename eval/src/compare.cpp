@@ -33,11 +33,12 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 const char* const kMethods[] = {"vds-parity", "vds-winding", "slicemap", "slicemap-local", "solid", "solid-compute"};
+const char* const kVoxelMethods[] = {"slicemap", "slicemap-local", "solid", "solid-compute"};
 
 struct Samples {
     std::vector<glm::vec3> points; // uniform first, then near the surface
     std::size_t uniform = 0;
-    std::vector<std::uint8_t> parity, winding; // exact answers
+    std::vector<std::uint8_t> parity, winding, gwn; // exact answers (gwn: Rule::GeneralizedWinding only)
 };
 
 Samples samplePoints(MeshView mesh, const Box& box, const CompareOptions& o) {
@@ -188,9 +189,12 @@ std::string formatBytes(std::size_t b) {
 } // namespace
 
 CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* gl) {
-    // The rows hold the sprite to both rules, so both must define inside.
+    // The rows hold the sprite to both rules, so both must define inside;
+    // the generalized winding number is defined for every usable mesh.
+    const bool gwn = options.rule == Rule::GeneralizedWinding;
     const MeshReport validation = validateMesh(mesh);
-    requireInsideDefined(validation, options.meshName, Rule::Winding);
+    requireInsideDefined(validation, options.meshName, gwn ? Rule::GeneralizedWinding : Rule::Winding);
+    const bool voxels = !gwn || validation.closed(); // the voxel builders need a closed mesh
     if (options.resolutions.empty()) throw InvalidArgument("compare needs at least one resolution");
     for (std::uint32_t r : options.resolutions)
         if (r == 0 || r > kMaxCompareResolution)
@@ -202,6 +206,13 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
         gl = &own.emplace();
     }
     CompareResult result;
+    if (gwn) {
+        result.truth = "generalized-winding";
+        result.note = voxels ? "truth: the exact generalized winding number for every row; slicemaps and solid voxels "
+                               "answer parity"
+                             : "truth: the exact generalized winding number; the mesh is open, so slicemaps and solid "
+                               "voxels (parity of a closed mesh) are left out: the VDS only";
+    }
     result.meshName = options.meshName;
     result.triangles = mesh.triangleCount;
     result.validation = validation.summary();
@@ -226,12 +237,20 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
     ClassifyOptions winding = parity;
     winding.rule = Rule::Winding;
     exact.classify(samples.points.data(), count, samples.winding.data(), winding);
-    for (std::size_t k = 0; k < samples.uniform; ++k) result.uniformInside += samples.parity[k];
+    if (gwn) {
+        samples.gwn.resize(count);
+        ClassifyOptions generalized = parity;
+        generalized.rule = Rule::GeneralizedWinding;
+        exact.classify(samples.points.data(), count, samples.gwn.data(), generalized);
+    }
+    const std::vector<std::uint8_t>& inside = gwn ? samples.gwn : samples.parity;
+    for (std::size_t k = 0; k < samples.uniform; ++k) result.uniformInside += inside[k];
     DistanceCache distances(mesh, count);
 
     report(options, "warming up (shader compilation)");
     for (const char* method : kMethods)
-        if (std::string(method) != "vds-winding") buildOnce(mesh, method, 8, *gl, options.meshName);
+        if (std::string(method) != "vds-winding" && (voxels || isVds(method)))
+            buildOnce(mesh, method, 8, *gl, options.meshName);
 
     std::vector<std::uint8_t> labels(count);
     // Builds `method` at `resolution` (a VDS: at its bake resolution) and scores it.
@@ -251,7 +270,9 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
             if (built.sprite) {
                 ClassifyOptions o;
                 o.threads = options.threads;
-                o.rule = method == "vds-winding" ? Rule::Winding : Rule::Parity;
+                o.rule = method == "vds-winding" ? Rule::Winding
+                         : method == "vds-gwn"   ? Rule::GeneralizedWinding
+                                                 : Rule::Parity;
                 vds::classify(*built.sprite, samples.points.data(), count, labels.data(), o);
             } else {
                 built.model->classify(samples.points.data(), count, labels.data(), options.threads);
@@ -263,6 +284,7 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
             row.cells = glm::uvec3(built.sprite->width(), built.sprite->height(), built.sprite->depthComplexity);
             row.cellSize = built.sprite->grid.texelSize;
             row.memoryBytes = built.sprite->memoryBytes();
+            if (method == "vds-gwn") row.memoryBytes += built.sprite->boundaryEdges.size() * sizeof(glm::vec3);
             row.gpuBytes = built.sprite->denseBytes();
         } else {
             row.cells = built.model->cells();
@@ -270,7 +292,9 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
             row.memoryBytes = built.model->memoryBytes();
             row.gpuBytes = built.model->gpuBytes();
         }
-        const std::vector<std::uint8_t>& truth = method == "vds-winding" ? samples.winding : samples.parity;
+        const std::vector<std::uint8_t>& truth = gwn                       ? samples.gwn
+                                                 : method == "vds-winding" ? samples.winding
+                                                                           : samples.parity;
         for (std::size_t k = 0; k < count; ++k) {
             if (labels[k] == truth[k]) continue;
             (k < samples.uniform ? row.uniformWrong : row.surfaceWrong) += 1;
@@ -291,9 +315,10 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
         if (options.memoryBudgets.empty()) budgets.push_back(voxelMemory(box, "solid", r));
         const std::uint32_t vds = vdsResolution(box, r);
         Built sprite = measure("vds-parity", "resolution", r, vds, nullptr);
-        measure("vds-winding", "resolution", r, vds, &sprite);
-        for (const char* method : {"slicemap", "slicemap-local", "solid", "solid-compute"})
-            measure(method, "resolution", r, r, nullptr);
+        sprite = measure("vds-winding", "resolution", r, vds, &sprite);
+        if (gwn) measure("vds-gwn", "resolution", r, vds, &sprite);
+        if (voxels)
+            for (const char* method : kVoxelMethods) measure(method, "resolution", r, r, nullptr);
     }
 
     // A VDS probe bake gives the crossings per column, to pick bake resolutions
@@ -316,10 +341,12 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
             }
             sprite = build(mesh, "vds-parity", vds, *gl, options.meshName); // timed
             Built used = measure("vds-parity", "memory", budget, vds, &sprite);
-            measure("vds-winding", "memory", budget, vds, &used);
+            used = measure("vds-winding", "memory", budget, vds, &used);
+            if (gwn) measure("vds-gwn", "memory", budget, vds, &used);
             break;
         }
-        for (const char* method : {"slicemap", "slicemap-local", "solid", "solid-compute"}) {
+        for (const char* method : kVoxelMethods) {
+            if (!voxels) break;
             const std::uint32_t r = largestWithin(budget, [&](std::uint32_t n) { return voxelMemory(box, method, n); });
             if (r > 0) measure(method, "memory", budget, r, nullptr);
         }
@@ -346,6 +373,7 @@ std::string CompareResult::table() const {
                       100.0 * r.surfaceErrorRate, r.worstErrorCells);
         out << line;
     }
+    if (!note.empty()) out << note << "\n";
     return out.str();
 }
 
@@ -377,6 +405,8 @@ std::string CompareResult::json() const {
         {"uniform_points", uniformPoints},
         {"surface_points", surfacePoints},
         {"uniform_inside", uniformInside},
+        {"truth", truth},
+        {"note", note},
         {"exact_build_seconds", exactBuildSeconds},
         {"exact_points_per_second", exactPointsPerSecond},
         {"rows", rowList}};

@@ -12,6 +12,7 @@
 // contiguous per column: one or two cache lines a point); otherwise the
 // paper's 3D texture with texelFetch, a column's layers one texel apart.
 layout(local_size_x = 256) in; // before the include: it reads gl_WorkGroupSize
+#define VDS_BOUNDARY_BINDING 5 // the boundary edges, for Rule::GeneralizedWinding
 #include "vds/compute.glsl"
 #include "vds/vpt.glsl"
 
@@ -32,10 +33,14 @@ uniform sampler3D u_ldi;
 #define VDS_SIZE textureSize(u_ldi, 0).xy
 #endif
 uniform VdsPlacement u_placement;
+uniform VdsBoundary u_boundary; // read by VDS_RULE_GENERALIZED_WINDING only
 uniform int u_rule;
 uniform uint u_count;
 
-bool vdsAnswer(int winding, int parity) { return u_rule == VDS_RULE_WINDING ? winding != 0 : parity != 0; }
+bool vdsAnswer(int winding, int parity, ivec2 column, float r) {
+    if (u_rule == VDS_RULE_GENERALIZED_WINDING) return vdsContainsGeneralizedAt(u_boundary, winding, column, r);
+    return u_rule == VDS_RULE_WINDING ? winding != 0 : parity != 0;
+}
 
 // The labels of four points, as one word (0 or 1 in byte k for point k);
 // `valid` points past the count are left 0.
@@ -64,14 +69,14 @@ uint vdsClassify4(vec3 p[4], uint valid) {
             parity ^= 1;
             winding += floatBitsToInt(e) < 0 ? -1 : 1;
         }
-        if (vdsAnswer(winding, parity)) word |= 1u << (8u * k);
+        if (inBox[k] && vdsAnswer(winding, parity, column[k], T[k].z)) word |= 1u << (8u * k);
     }
 #else
     for (uint k = 0u; k < 4u; ++k) {
         if (!inBox[k]) continue;
         int parity;
         int winding = vdsWinding(u_ldi, T[k], parity);
-        if (vdsAnswer(winding, parity)) word |= 1u << (8u * k);
+        if (vdsAnswer(winding, parity, column[k], T[k].z)) word |= 1u << (8u * k);
     }
 #endif
     return word;

@@ -12,11 +12,43 @@
 //   if (vdsContains(u_ldi, u_placement, worldPosition, VDS_RULE_PARITY)) ...
 // The arithmetic is written out in the same order as the C++ classifier and
 // marked precise, so the two give identical answers for identical inputs.
+//
+// The generalized winding number of open meshes (Rule::GeneralizedWinding),
+// by the Antipodal split (Martens, Trettner & Bessmeltsev 2026): the column's
+// signed crossing count plus a boundary term summed over the baked mesh's
+// boundary edges, which live in a shader storage buffer. Define
+// VDS_BOUNDARY_BINDING to the buffer's binding point before the include to
+// get it (GpuSprite::setBoundaryUniforms fills both):
+//   #define VDS_BOUNDARY_BINDING 5
+//   #include "vds/vpt.glsl"
+//   uniform VdsBoundary u_boundary;
+//   if (vdsContainsGeneralized(u_ldi, u_placement, u_boundary, worldPosition)) ...
+// It declares
+//   layout(std430, binding = VDS_BOUNDARY_BINDING) readonly buffer VdsBoundaryEdges {
+//       vec4 vdsBoundaryEdges[]; };
+// with 2 * VdsBoundary.edgeCount entries: edge k runs from vdsBoundaryEdges[2k]
+// to vdsBoundaryEdges[2k+1], xyz the endpoint in the baked mesh's coordinates
+// permuted to the sprite's (s, t, r) order (Sprite::boundaryEdges[i] read at
+// axisPermutation(axis); a cyclic permutation, so solid angles keep their
+// sign), w unused. Placing the sprite elsewhere (GpuSprite::setPlacement)
+// changes neither: the term is evaluated in the bake's frame.
+//
+// The GPU evaluates it in float where the C++ `Sprite::classify` uses double:
+// the value errs by about float epsilon times the coordinates' magnitude
+// over the distance to the boundary curve (a 32-segment unit sphere with
+// three holes, 20,000 points in its box: median 5e-7, 99.9th percentile
+// 1.2e-5, worst 1.6e-4; tests/gl/gwn_gpu_test.cpp). So labels can differ
+// from the CPU's only where the value is within that error of 1/2, or where
+// the point's texel-centre point lies, within float error, on the sweep of
+// a boundary edge along +r (there the term jumps by 1; the CPU's tie rule
+// for exact ties is mirrored, but a near-tie can round to either side).
+// The cost is O(boundary edges) a point.
 #ifndef VDS_VPT_GLSL
 #define VDS_VPT_GLSL
 
 #define VDS_RULE_PARITY 0
 #define VDS_RULE_WINDING 1
+#define VDS_RULE_GENERALIZED_WINDING 2
 
 // P_S (world position of the LDI texture-space origin) and M_S (world ->
 // LDI texture space, linear part).
@@ -71,6 +103,98 @@ bool vdsContains(sampler3D ldi, VdsPlacement placement, vec3 world, int rule) {
     int winding = vdsWinding(ldi, vdsToTexture(placement, world), parity);
     return rule == VDS_RULE_WINDING ? winding != 0 : parity != 0;
 }
+
+// The frame of the bake that the boundary term is evaluated in, and the
+// number of boundary edges (GpuSprite::setBoundaryUniforms):
+//   lo    the baked box's low corner, (s, t, r) order, mesh coordinates
+//   step  (texel size, texel size, the box's extent along r), mesh units
+//   edgeCount  boundary edges in VdsBoundaryEdges; 0: the mesh is closed, or
+//         only inconsistently oriented, and the rule reads as Winding.
+struct VdsBoundary {
+    vec3 lo;
+    vec3 step;
+    int edgeCount;
+};
+
+// The point the column's count belongs to: the centre of texel `column` at
+// texture depth r, in the bake's frame, (s, t, r) order, as the C++
+// `SpriteGrid::texelCentre` rounds it.
+vec3 vdsColumnPoint(VdsBoundary boundary, ivec2 column, float r) {
+    precise float s = boundary.lo.x + (float(column.x) + 0.5) * boundary.step.x;
+    precise float t = boundary.lo.y + (float(column.y) + 0.5) * boundary.step.y;
+    precise float d = boundary.lo.z + r * boundary.step.z;
+    return vec3(s, t, d);
+}
+
+// Signed solid angle of the spherical triangle (+r, a - q, b - q), in
+// steradians, by Van Oosterom & Strackee with the first vertex the unit
+// axis (C++ `edgeSolidAngle`). On the edge's sweep (det exactly 0 with the
+// triangle flipped), where it jumps by 4 pi, it takes the side of the point
+// moved by (eps, -eps^2) in (s, t), as the crossing count's tie rule does; an
+// edge along the axis adds 0.
+float vdsEdgeSolidAngle(vec3 a, vec3 b, vec3 q) {
+    vec3 u = a - q;
+    vec3 v = b - q;
+    float lu = length(u);
+    float lv = length(v);
+    float det = u.x * v.y - u.y * v.x;
+    float den = ((lu * lv + dot(u, v)) + u.z * lv) + v.z * lu;
+    if (det == 0.0) {
+        if (!(den < 0.0)) return 0.0; // atan(0, x >= 0) is 0 (and atan(0, 0) undefined in GLSL)
+        vec3 d = a - b;
+        det = d.y != 0.0 ? d.y : d.x;
+        if (det == 0.0) return 0.0;
+    }
+    return 2.0 * atan(det, den);
+}
+
+#ifdef VDS_BOUNDARY_BINDING
+layout(std430, binding = VDS_BOUNDARY_BINDING) readonly buffer VdsBoundaryEdges { vec4 vdsBoundaryEdges[]; };
+
+// The boundary term at q (the bake's frame, (s, t, r) order): the sum over
+// the edges of their solid angles, over 4 pi. O(edgeCount).
+float vdsBoundaryTerm(VdsBoundary boundary, vec3 q) {
+    float sum = 0.0;
+    for (int k = 0; k < boundary.edgeCount; ++k)
+        sum += vdsEdgeSolidAngle(vdsBoundaryEdges[2 * k].xyz, vdsBoundaryEdges[2 * k + 1].xyz, q);
+    return sum / 12.566370614359172;
+}
+
+// The column's signed count `winding` at depth r plus the boundary term at
+// the column's texel-centre point at that depth.
+float vdsGeneralizedWindingAt(VdsBoundary boundary, int winding, ivec2 column, float r) {
+    if (boundary.edgeCount == 0) return float(winding);
+    return float(winding) + vdsBoundaryTerm(boundary, vdsColumnPoint(boundary, column, r));
+}
+
+// The rule's test from the column's count: the value above 1/2; with no
+// boundary edges the winding rule (winding != 0), as on the CPU.
+bool vdsContainsGeneralizedAt(VdsBoundary boundary, int winding, ivec2 column, float r) {
+    if (boundary.edgeCount == 0) return winding != 0;
+    return vdsGeneralizedWindingAt(boundary, winding, column, r) > 0.5;
+}
+
+// The generalized winding number at a world point, in float (C++
+// `Sprite::generalizedWinding`); 0 outside the box [0,1]^3.
+float vdsGeneralizedWinding(sampler3D ldi, VdsPlacement placement, VdsBoundary boundary, vec3 world) {
+    vec3 T = vdsToTexture(placement, world);
+    ivec2 column;
+    if (!vdsColumnOf(T, textureSize(ldi, 0).xy, column)) return 0.0;
+    int parity;
+    int winding = vdsWinding(ldi, T, parity);
+    return vdsGeneralizedWindingAt(boundary, winding, column, T.z);
+}
+
+// Inside test of a world point by Rule::GeneralizedWinding; outside the box: false.
+bool vdsContainsGeneralized(sampler3D ldi, VdsPlacement placement, VdsBoundary boundary, vec3 world) {
+    vec3 T = vdsToTexture(placement, world);
+    ivec2 column;
+    if (!vdsColumnOf(T, textureSize(ldi, 0).xy, column)) return false;
+    int parity;
+    int winding = vdsWinding(ldi, T, parity);
+    return vdsContainsGeneralizedAt(boundary, winding, column, T.z);
+}
+#endif
 
 // The paper's Figure 5 form: filtered lookups with texture(), relying on the
 // texture's nearest filtering and border value 1 outside [0,1]^2 (every

@@ -429,8 +429,8 @@ TEST_F(VdsFileTest, EditedAttributesAreDetected) {
     EXPECT_NE(readDamaged(bytes).find("checksum"), std::string::npos);
 
     bytes = whole;
-    bytes[attributeValue(bytes, "vds.formatVersion", "int")] = 2;
-    EXPECT_NE(readDamaged(bytes).find("format version 2"), std::string::npos);
+    bytes[attributeValue(bytes, "vds.formatVersion", "int")] = 3;
+    EXPECT_NE(readDamaged(bytes).find("format version 3"), std::string::npos);
 
     bytes = whole;
     bytes[attributeValue(bytes, "vds.depthComplexity", "int")] = 41;

@@ -144,6 +144,39 @@ TEST_F(CompareTest, ClosedNonManifoldMeshesAreCompared) {
     EXPECT_NE(result.json().find("\"validation\": \"closed, 1 non-manifold edge"), std::string::npos);
 }
 
+// With the generalized winding number as truth a closed mesh keeps every
+// row (the voxel rows answer parity, the note says so), and on a closed,
+// consistently oriented mesh the GWN is the winding rule: vds-gwn scores as
+// vds-winding does, point for point.
+TEST_F(CompareTest, GeneralizedWindingTruthKeepsVoxelRowsOnClosedMeshes) {
+    const auto two = solids::overlappingBoxes({-1, -1, -1}, {0.3f, 0.3f, 0.3f}, {-0.3f, -0.3f, -0.3f}, {1, 1, 1});
+    CompareOptions options;
+    options.resolutions = {16};
+    options.memoryBudgets = {8192};
+    options.uniformPoints = 3000;
+    options.surfacePoints = 1000;
+    options.rule = Rule::GeneralizedWinding;
+    const CompareResult result = compare(two.mesh, options, &gl());
+    EXPECT_EQ(result.truth, "generalized-winding");
+    EXPECT_NE(result.note.find("answer parity"), std::string::npos) << result.note;
+    std::set<std::string> methods;
+    const CompareRow *gwn = nullptr, *winding = nullptr, *parity = nullptr;
+    for (const CompareRow& r : result.rows) {
+        methods.insert(r.method);
+        if (r.series != "resolution") continue;
+        if (r.method == "vds-gwn") gwn = &r;
+        if (r.method == "vds-winding") winding = &r;
+        if (r.method == "vds-parity") parity = &r;
+    }
+    EXPECT_EQ(methods.size(), 7u);
+    ASSERT_TRUE(gwn && winding && parity);
+    EXPECT_EQ(gwn->uniformWrong, winding->uniformWrong);
+    EXPECT_EQ(gwn->surfaceWrong, winding->surfaceWrong);
+    // Parity calls the boxes' overlap (0.6^3 of the 2.4^3 padded box: ~47 of 3000 points) outside.
+    EXPECT_GT(parity->uniformWrong, gwn->uniformWrong + 30);
+    EXPECT_NE(result.table().find(result.note), std::string::npos);
+}
+
 TEST_F(CompareTest, BadInputIsRejected) {
     auto open = solids::sphere({0, 0, 0}, 1.0f, 16).mesh;
     open.triangles.pop_back();

@@ -248,4 +248,28 @@ TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b) {
     return m;
 }
 
+TriangleMesh without(const TriangleMesh& mesh, bool (*drop)(const glm::vec3& centroid)) {
+    TriangleMesh out = mesh;
+    out.triangles.clear();
+    for (const glm::uvec3& t : mesh.triangles)
+        if (!drop((mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0f)) out.triangles.push_back(t);
+    return out;
+}
+
+TriangleMesh sphereCup() {
+    return without(sphere({0, 0, 0}, 1.0f, 32).mesh, [](const glm::vec3& c) { return c.z > 0.5f; });
+}
+
+TriangleMesh sphereWithHoles() {
+    return without(sphere({0, 0, 0}, 1.0f, 32).mesh, [](const glm::vec3& c) {
+        return std::fabs(c.x) > 0.8f || (c.y > 0.7f && c.z > 0.0f);
+    });
+}
+
+TriangleMesh overlappingShells() {
+    const TriangleMesh a = without(sphere({0, 0, 0}, 1.0f, 24).mesh, [](const glm::vec3& c) { return c.y > 0.8f; });
+    const TriangleMesh b = without(sphere({0.6f, 0.1f, 0.2f}, 0.8f, 24).mesh, [](const glm::vec3& c) { return c.x > 1.2f; });
+    return merge(a, b);
+}
+
 } // namespace vds::solids

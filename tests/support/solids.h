@@ -61,4 +61,17 @@ Solid boxesSharingAnEdge(const glm::vec3& lo, float size);
 /// Merges several solids' meshes into one (indices rebased).
 TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b);
 
+// Open meshes, for the generalized winding number.
+
+/// `mesh` without the triangles whose centroid `drop` picks.
+TriangleMesh without(const TriangleMesh& mesh, bool (*drop)(const glm::vec3& centroid));
+/// The unit sphere at the origin (32 segments) without its cap above z = 0.5:
+/// a cup, one boundary loop.
+TriangleMesh sphereCup();
+/// The unit sphere at the origin (32 segments) with three holes: |x| > 0.8
+/// (two) and y > 0.7, z > 0.
+TriangleMesh sphereWithHoles();
+/// Two overlapping spheres (24 segments), each with a hole: self-intersecting and open.
+TriangleMesh overlappingShells();
+
 } // namespace vds::solids

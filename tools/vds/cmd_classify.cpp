@@ -178,7 +178,8 @@ void classify(ClassifyArgs& a) {
         } else {
             sprite = vds::readSprite(a.files.front());
         }
-        if (sprite.status == vds::SolidStatus::Open)
+        // The generalized winding number answers open meshes: no warning then.
+        if (sprite.status == vds::SolidStatus::Open && a.options.rule != vds::Rule::GeneralizedWinding)
             std::fprintf(stderr, "vds classify: warning: the sprite was baked from an open mesh (%s)\n",
                          sprite.validation.c_str());
         if (a.gpu) {

@@ -37,7 +37,9 @@ void addCompare(CLI::App& app) {
         "(raster and compute) on the same points, at equal resolution and at equal memory:\n"
         "misclassification rate against the exact classifier, worst error distance in cells, build\n"
         "time, query throughput, memory. Prints a table; writes JSON and an SVG chart of error\n"
-        "against memory.",
+        "against memory. --rule generalized-winding holds every row to the exact generalized winding\n"
+        "number, adds a vds-gwn row and accepts open meshes (the VDS only: slicemaps and solid voxels\n"
+        "need a closed mesh).",
         compare);
     addMesh(*c, a->mesh);
     vds::eval::CompareOptions& o = a->options;
@@ -46,6 +48,9 @@ void addCompare(CLI::App& app) {
     addCount(*c, "--surface-points", o.surfacePoints, "points near the surface");
     c->add_option("--json", a->json, "write the result as JSON")->type_name("FILE");
     c->add_option("--chart", a->chart, "write the error-against-memory chart (SVG)")->type_name("FILE.svg");
+    addEnum(*c, "--rule", o.rule,
+            "generalized-winding: every row against the exact generalized winding number (open meshes too); "
+            "parity or winding: the default comparison");
     addCount(*c, "--seed", o.seed, "random seed");
 }
 

@@ -6,6 +6,7 @@
 #include <vds/error.h>
 
 #include "bake_common.h"
+#include "boundary_term.h"
 
 namespace vds {
 
@@ -43,6 +44,7 @@ Sprite assembleSprite(const BakeSetup& setup, const BakeOptions& options, MeshVi
     s.sourceTriangles = mesh.triangleCount;
     s.status = setup.report.oriented() ? SolidStatus::Closed : SolidStatus::Open;
     s.validation = setup.report.summary();
+    if (!setup.report.oriented()) s.boundaryEdges = boundaryEdges(mesh);
     s.checkConsistent();
     if (options.timings) options.timings->crossings = s.crossings.size();
     return s;

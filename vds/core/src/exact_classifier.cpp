@@ -28,6 +28,7 @@
 
 #include <vds/parallel.h>
 
+#include "boundary_term.h"
 #include "projected_mesh.h"
 
 namespace vds {
@@ -38,41 +39,11 @@ struct BoundaryEdge {
     glm::dvec3 a, b; ///< oriented as the triangles run on the side that has them
 };
 
-// Edges whose uses do not cancel (after welding vertices with equal
-// positions): each net use is one boundary edge, oriented as it is used.
 std::vector<BoundaryEdge> boundaryEdges(MeshView mesh) {
-    std::map<std::tuple<float, float, float>, std::uint32_t> ids;
-    std::vector<std::uint32_t> id(mesh.positionCount);
-    std::vector<glm::vec3> where;
-    for (std::size_t v = 0; v < mesh.positionCount; ++v) {
-        const glm::vec3 p = mesh.positions[v];
-        const auto [it, added] = ids.emplace(std::make_tuple(p.x, p.y, p.z), std::uint32_t(where.size()));
-        if (added) where.push_back(p);
-        id[v] = it->second;
-    }
-    std::map<std::pair<std::uint32_t, std::uint32_t>, int> net; // (low, high) -> uses low->high minus high->low
-    for (std::size_t k = 0; k < mesh.triangleCount; ++k)
-        for (int e = 0; e < 3; ++e) {
-            const std::uint32_t a = id[mesh.triangles[k][e]], b = id[mesh.triangles[k][(e + 1) % 3]];
-            if (a == b) continue;
-            if (a < b) ++net[{a, b}];
-            else --net[{b, a}];
-        }
-    std::vector<BoundaryEdge> edges;
-    for (const auto& [key, uses] : net)
-        for (int m = 0; m < std::abs(uses); ++m) {
-            const glm::dvec3 lo(where[key.first]), hi(where[key.second]);
-            edges.push_back(uses > 0 ? BoundaryEdge{lo, hi} : BoundaryEdge{hi, lo});
-        }
+    const std::vector<glm::vec3> ends = detail::boundaryEdges(mesh);
+    std::vector<BoundaryEdge> edges(ends.size() / 2);
+    for (std::size_t k = 0; k < edges.size(); ++k) edges[k] = {glm::dvec3(ends[2 * k]), glm::dvec3(ends[2 * k + 1])};
     return edges;
-}
-
-// Signed solid angle of the triangle (u, v, w) seen from the origin.
-double solidAngle(const glm::dvec3& u, const glm::dvec3& v, const glm::dvec3& w) {
-    const double lu = glm::length(u), lv = glm::length(v), lw = glm::length(w);
-    const double det = glm::dot(u, glm::cross(v, w));
-    const double den = lu * lv * lw + glm::dot(u, v) * lw + glm::dot(u, w) * lv + glm::dot(v, w) * lu;
-    return 2.0 * std::atan2(det, den);
 }
 
 constexpr double kFourPi = 4.0 * 3.14159265358979323846;
@@ -80,16 +51,14 @@ constexpr double kFourPi = 4.0 * 3.14159265358979323846;
 } // namespace
 
 struct ExactClassifier::Impl : detail::ProjectedMesh {
-    Impl(MeshView mesh, Axis viewAxis) : detail::ProjectedMesh(mesh, viewAxis), boundary(boundaryEdges(mesh)) {
-        up[axisPermutation(viewAxis).z] = 1.0;
-    }
+    Impl(MeshView mesh, Axis viewAxis) : detail::ProjectedMesh(mesh, viewAxis), boundary(boundaryEdges(mesh)) {}
+    int axisIndex = axisPermutation(axis).z; ///< +axis: the apex of every boundary term's spherical triangle
     std::vector<BoundaryEdge> boundary;
-    glm::dvec3 up{0.0}; ///< +axis: the apex of every boundary term's spherical triangle
 
     double boundaryTerm(const glm::vec3& p) const {
         const glm::dvec3 q(p);
         double sum = 0.0;
-        for (const BoundaryEdge& e : boundary) sum += solidAngle(up, e.a - q, e.b - q);
+        for (const BoundaryEdge& e : boundary) sum += detail::edgeSolidAngle(axisIndex, e.a, e.b, q);
         return sum / kFourPi;
     }
     double generalizedWinding(const glm::vec3& p) const { return double(winding(p)) + boundaryTerm(p); }

@@ -11,6 +11,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +19,8 @@
 #include <vds/error.h>
 #include <vds/parallel.h>
 
+#include "boundary_caps.h"
+#include "boundary_term.h"
 #include "projected_mesh.h"
 #include "sprite_lookup.h"
 
@@ -81,7 +84,7 @@ OccupancyGrid cubicOccupancyGrid(const Box& box, std::uint32_t n) {
 
 void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* cells, const OccupancyOptions& options) {
     checkOccupancyGrid(grid);
-    detail::requireAnswerable(sprite.status, options.rule);
+    detail::requireBoundaryKnown(sprite, options.rule);
     assert(cells);
     const SpriteGrid& sg = sprite.grid;
     const glm::ivec3 p = axisPermutation(sg.axis);
@@ -96,8 +99,10 @@ void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* ce
         c[v] = std::uint32_t(column % grid.dims[v]);
         return c;
     };
-    if (!axisAligned(sg)) {
-        // A rotated sprite: each cell on its own, the same answers.
+    const bool boundaryTerm = detail::needsBoundaryTerm(sprite, options.rule);
+    if (!axisAligned(sg) || boundaryTerm) {
+        // A rotated sprite, or the GWN of an open one: each cell on its own,
+        // the same answers as classify (the sprite's boundary caps for the GWN).
         parallelFor(options.threads, columns, 64, [&](std::size_t begin, std::size_t end) {
             std::vector<glm::vec3> points(n);
             std::vector<std::uint8_t> labels(n);
@@ -107,7 +112,11 @@ void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* ce
                     c[a] = k;
                     points[k] = grid.cellCentre(c.x, c.y, c.z);
                 }
-                classify(sprite, points.data(), n, labels.data(), {options.rule, 1, QueryLayout::Offsets});
+                const ClassifyOptions one{options.rule, 1, QueryLayout::Offsets, BoundaryEvaluation::Caps};
+                if (boundaryTerm)
+                    detail::classifyGeneralizedWinding(sprite, &points[0].x, n, sizeof(glm::vec3), labels.data(), one);
+                else
+                    classify(sprite, points.data(), n, labels.data(), one);
                 c[a] = 0;
                 std::uint8_t* out = cells + grid.index(c.x, c.y, c.z);
                 for (std::uint32_t k = 0; k < n; ++k) out[k * step] = labels[k];
@@ -174,9 +183,15 @@ void voxelize(MeshView mesh, const OccupancyGrid& grid, std::uint8_t* cells, con
     assert(cells);
     const MeshReport report = validateMesh(mesh);
     requireUsable(report, "mesh");
-    if (options.rule == Rule::GeneralizedWinding && report.boundaryEdges > 0)
-        throw InvalidArgument("voxelize answers the generalized winding number only for meshes without boundary "
-                              "(classify the cell centres with the exact classifier instead)");
+    // The generalized winding number of a mesh with boundary: each cell's
+    // crossing count plus the boundary term at its centre, by the boundary's
+    // capped loops (the labels of the exact per-edge sum).
+    const std::vector<glm::vec3> edges = options.rule == Rule::GeneralizedWinding && !report.oriented()
+                                             ? detail::boundaryEdges(mesh)
+                                             : std::vector<glm::vec3>();
+    const std::size_t edgeCount = edges.size() / 2;
+    std::optional<detail::BoundaryCaps> caps;
+    if (edgeCount > 0) caps.emplace(edges.data(), edgeCount, Axis::Z);
     const detail::ProjectedMesh projected(mesh, Axis::Z); // (s, t, r) = (x, y, z)
     const std::vector<float> xs = centres(grid, 0), ys = centres(grid, 1), zs = centres(grid, 2);
     const std::uint32_t n = grid.dims.z;
@@ -204,6 +219,15 @@ void voxelize(MeshView mesh, const OccupancyGrid& grid, std::uint8_t* cells, con
             }
             std::sort(events.begin(), events.end());
             std::uint8_t* out = cells + column * n;
+            if (edgeCount > 0) {
+                std::size_t next = 0;
+                int winding = 0;
+                for (std::uint32_t k = 0; k < n; ++k) {
+                    for (; next < events.size() && events[next].first <= k; ++next) winding += events[next].second;
+                    out[k] = caps->inside(winding, glm::vec3(q[0], q[1], zs[k])) ? 1 : 0;
+                }
+                continue;
+            }
             int winding = 0;
             std::uint32_t filled = 0;
             for (const auto& [k, delta] : events) {

@@ -19,6 +19,7 @@
 #include <vds/error.h>
 #include <vds/parallel.h>
 
+#include "boundary_term.h"
 #include "sprite_lookup.h"
 
 namespace vds {
@@ -81,17 +82,9 @@ SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution) {
     return g;
 }
 
-
-namespace detail {
-void requireAnswerable(SolidStatus status, Rule rule) {
-    if (rule == Rule::GeneralizedWinding && status == SolidStatus::Open)
-        throw InvalidArgument("the generalized winding number of a mesh with boundary needs the exact classifier "
-                              "(sprites do not store the boundary yet)");
-}
-} // namespace detail
-
 bool Sprite::contains(const glm::vec3& world, Rule rule) const {
-    detail::requireAnswerable(status, rule);
+    if (detail::needsBoundaryTerm(*this, rule)) return detail::containsGeneralizedWinding(*this, world);
+    detail::requireBoundaryKnown(*this, rule);
     const glm::vec3 t = grid.toTexture(world);
     const std::ptrdiff_t column = detail::columnOf(grid, t);
     if (column < 0) return false;
@@ -285,7 +278,9 @@ void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count, 
 
 void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
               std::uint8_t* labels, const ClassifyOptions& options) {
-    detail::requireAnswerable(sprite.status, options.rule);
+    detail::requireBoundaryKnown(sprite, options.rule);
+    if (detail::needsBoundaryTerm(sprite, options.rule))
+        return detail::classifyGeneralizedWinding(sprite, xyz, count, strideBytes, labels, options);
     assert(strideBytes >= 3 * sizeof(float) && ((xyz && labels) || count == 0));
     const char* base0 = reinterpret_cast<const char*>(xyz);
     const auto point = [&](std::size_t k) {

@@ -12,9 +12,6 @@
 
 namespace vds::detail {
 
-/// Throws `InvalidArgument` for Rule::GeneralizedWinding on an open sprite.
-void requireAnswerable(SolidStatus status, Rule rule);
-
 // The column a texture-space point falls in, or -1 outside the box.
 inline std::ptrdiff_t columnOf(const SpriteGrid& grid, const glm::vec3& t) {
     if (!(t.z >= 0.0f && t.z <= 1.0f)) return -1;

@@ -35,6 +35,7 @@
 #include <ImfDeepScanLineInputFile.h>
 #include <ImfDeepScanLineOutputFile.h>
 #include <ImfFloatAttribute.h>
+#include <ImfFloatVectorAttribute.h>
 #include <ImfHeader.h>
 #include <ImfIO.h>
 #include <ImfIntAttribute.h>
@@ -68,6 +69,9 @@ constexpr const char* kSourceTrianglesAttr = "vds.sourceTriangles";
 constexpr const char* kStatusAttr = "vds.status";
 constexpr const char* kValidationAttr = "vds.validation";
 constexpr const char* kChecksumAttr = "vds.checksum";
+constexpr const char* kBoundaryEdgesAttr = "vds.boundaryEdges"; // version 2
+// The oldest format version read (1: no boundary edges).
+constexpr int kOldestFormatVersion = 1;
 
 constexpr const char* kDepthChannel = "Z";
 constexpr const char* kEnteringChannel = "entering";
@@ -130,10 +134,11 @@ private:
     std::uint64_t hash_ = 0xcbf29ce484222325ull;
 };
 
-/// The checksum of docs/format.md: every field of the sprite, in this order.
-std::uint64_t spriteChecksum(const Sprite& s) {
+/// The checksum of docs/format.md: every field of the sprite, in this order,
+/// as the file's format `version` lays them out.
+std::uint64_t spriteChecksum(const Sprite& s, int version = Sprite::kFormatVersion) {
     Fnv1a64 h;
-    h.u32(std::uint32_t(Sprite::kFormatVersion));
+    h.u32(std::uint32_t(version));
     h.u32(s.grid.width);
     h.u32(s.grid.height);
     h.u32(std::uint32_t(s.grid.axis));
@@ -150,6 +155,11 @@ std::uint64_t spriteChecksum(const Sprite& s) {
     h.str(s.validation);
     for (std::uint32_t o : s.offsets) h.u32(o);
     for (float c : s.crossings) h.f32(c);
+    if (version >= 2) {
+        h.u64(s.boundaryEdges.size() / 2);
+        for (const glm::vec3& p : s.boundaryEdges)
+            for (int k = 0; k < 3; ++k) h.f32(p[k]);
+    }
     return h.value();
 }
 
@@ -322,6 +332,13 @@ void checkWritable(const Sprite& sprite, const std::string& path) {
     if (unsigned(sprite.status) > 1) formatFail(path, "not written: invalid solid status");
     if (sprite.depthComplexity > std::uint32_t(std::numeric_limits<int>::max()))
         formatFail(path, "not written: depth complexity too large");
+    if (sprite.boundaryEdges.size() % 2 != 0) formatFail(path, "not written: boundary edges need two ends each");
+    if (sprite.boundaryEdges.size() * 3 > std::size_t(std::numeric_limits<int>::max() / 4))
+        formatFail(path, "not written: too many boundary edges");
+    for (const glm::vec3& p : sprite.boundaryEdges)
+        if (!std::isfinite(p.x + p.y + p.z)) formatFail(path, "not written: a boundary edge is not finite");
+    if (!sprite.boundaryKnown)
+        formatFail(path, "not written: the sprite's boundary is unknown (read from a version-1 file of an open mesh)");
 }
 
 Imf::Header makeHeader(const Sprite& sprite) {
@@ -345,6 +362,10 @@ Imf::Header makeHeader(const Sprite& sprite) {
     header.insert(kSourceTrianglesAttr, Imf::StringAttribute(std::to_string(sprite.sourceTriangles)));
     header.insert(kStatusAttr, Imf::IntAttribute(int(sprite.status)));
     header.insert(kValidationAttr, Imf::StringAttribute(sprite.validation));
+    std::vector<float> ends(sprite.boundaryEdges.size() * 3);
+    for (std::size_t k = 0; k < sprite.boundaryEdges.size(); ++k)
+        for (int a = 0; a < 3; ++a) ends[3 * k + std::size_t(a)] = sprite.boundaryEdges[k][a];
+    header.insert(kBoundaryEdgesAttr, Imf::FloatVectorAttribute(ends));
     header.insert(kChecksumAttr, Imf::StringAttribute(toHex(spriteChecksum(sprite))));
     return header;
 }
@@ -520,7 +541,7 @@ void checkAttributes(std::string_view bytes, int version, const std::string& pat
 }
 
 std::uint64_t readHeader(MemoryIStream& stream, std::string_view bytes, const std::string& path,
-                         Sprite& sprite) {
+                         Sprite& sprite, int& formatVersion) {
     const std::uint64_t fileSize = bytes.size();
     char head[8] = {};
     if (fileSize < 8) formatFail(path, "not a .vds file (too short for OpenEXR)");
@@ -559,10 +580,11 @@ std::uint64_t readHeader(MemoryIStream& stream, std::string_view bytes, const st
         formatFail(path, "unsupported compression for deep data");
     checkChannels(header, path);
 
-    const int formatVersion = value<int>(header, kFormatVersionAttr, path);
-    if (formatVersion != Sprite::kFormatVersion)
+    formatVersion = value<int>(header, kFormatVersionAttr, path);
+    if (formatVersion < kOldestFormatVersion || formatVersion > Sprite::kFormatVersion)
         formatFail(path, "unsupported format version " + std::to_string(formatVersion) + " (this library reads " +
-                             std::to_string(Sprite::kFormatVersion) + ")");
+                             std::to_string(kOldestFormatVersion) + " to " + std::to_string(Sprite::kFormatVersion) +
+                             ")");
 
     SpriteGrid& g = sprite.grid;
     g.width = std::uint32_t(width);
@@ -588,6 +610,20 @@ std::uint64_t readHeader(MemoryIStream& stream, std::string_view bytes, const st
         formatFail(path, "attribute vds.status is " + std::to_string(status) + ", expected 0 or 1");
     sprite.status = SolidStatus(status);
     sprite.validation = value<std::string>(header, kValidationAttr, path);
+    if (formatVersion >= 2) {
+        const std::vector<float>& ends = value<std::vector<float>>(header, kBoundaryEdgesAttr, path);
+        if (ends.size() % 6 != 0)
+            formatFail(path, "attribute vds.boundaryEdges holds " + std::to_string(ends.size()) +
+                                 " floats, not six per edge");
+        sprite.boundaryEdges.resize(ends.size() / 3);
+        for (std::size_t k = 0; k < sprite.boundaryEdges.size(); ++k) {
+            sprite.boundaryEdges[k] = glm::vec3(ends[3 * k], ends[3 * k + 1], ends[3 * k + 2]);
+            if (!std::isfinite(ends[3 * k] + ends[3 * k + 1] + ends[3 * k + 2]))
+                formatFail(path, "attribute vds.boundaryEdges holds a value that is not finite");
+        }
+    } else {
+        sprite.boundaryKnown = sprite.status == SolidStatus::Closed;
+    }
 
     std::uint64_t checksum = 0;
     if (!parseHex(value<std::string>(header, kChecksumAttr, path), checksum))
@@ -685,14 +721,15 @@ Sprite decodeBytes(const char* data, std::size_t size, const std::string& path) 
     const std::uint64_t fileSize = size;
     MemoryIStream stream(path, data, size);
     Sprite sprite;
-    const std::uint64_t storedChecksum = readHeader(stream, std::string_view(data, size), path, sprite);
+    int formatVersion = 0;
+    const std::uint64_t storedChecksum = readHeader(stream, std::string_view(data, size), path, sprite, formatVersion);
 
     stream.seekg(0);
     Imf::DeepScanLineInputFile file(stream);
     readOffsets(file, fileSize, path, sprite);
     readCrossings(file, path, sprite);
 
-    if (spriteChecksum(sprite) != storedChecksum) formatFail(path, "checksum mismatch (corrupt or edited file)");
+    if (spriteChecksum(sprite, formatVersion) != storedChecksum) formatFail(path, "checksum mismatch (corrupt or edited file)");
     try {
         sprite.checkConsistent();
     } catch (const FormatError& e) {

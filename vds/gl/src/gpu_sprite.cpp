@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <GL/glext.h>
+#include <glm/vec4.hpp>
 
 #include <vds/error.h>
 #include <vds/parallel.h>
@@ -41,8 +42,10 @@ Texture makeSpriteTexture(glm::uvec3 size) {
 }
 
 GpuSprite GpuSpriteAccess::make(Texture texture, Buffer offsets, Buffer crossings, std::uint64_t crossingCount,
-                                glm::uvec3 size, const SpriteGrid& grid, SolidStatus status) {
+                                glm::uvec3 size, const SpriteGrid& grid, SolidStatus status,
+                                const std::vector<glm::vec3>& boundaryEdges) {
     GpuSprite s;
+    s.setBoundary(grid, boundaryEdges, true);
     s.status_ = status;
     s.texture_ = std::move(texture);
     s.offsets_ = std::move(offsets);
@@ -93,6 +96,29 @@ GpuSprite::GpuSprite(const Sprite& sprite, GpuSpriteParts parts) {
         crossings_ = uploadBuffer(sprite.crossings.data(), sprite.crossings.size() * 4, "uploading the sprite's columns");
     }
     setPlacement(sprite.grid);
+    setBoundary(sprite.grid, sprite.boundaryEdges, sprite.boundaryKnown || sprite.status != SolidStatus::Open);
+}
+
+void GpuSprite::setBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>& edges, bool known) {
+    const glm::ivec3 p = axisPermutation(grid.axis);
+    std::vector<glm::vec4> packed(std::max<std::size_t>(edges.size(), 1), glm::vec4(0.0f));
+    for (std::size_t k = 0; k < edges.size(); ++k) packed[k] = {edges[k][p.x], edges[k][p.y], edges[k][p.z], 0.0f};
+    boundaryEdges_ = uploadBuffer(packed.data(), packed.size() * sizeof(glm::vec4), "uploading the boundary edges");
+    boundaryEdgeCount_ = std::uint32_t(edges.size() / 2);
+    boundaryKnown_ = known;
+    // As SpriteGrid::texelCentre computes a ray's point, in float.
+    boundaryLo_ = {grid.box.lo[p.x], grid.box.lo[p.y], grid.box.lo[p.z]};
+    boundaryStep_ = {grid.texelSize, grid.texelSize, grid.box.hi[p.z] - grid.box.lo[p.z]};
+}
+
+void GpuSprite::setBoundaryUniforms(GLuint program, const std::string& boundary, GLuint binding) const {
+    if (!boundaryKnown_)
+        throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
+                              "store the boundary edges the generalized winding number needs: bake it again");
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, boundaryEdges_.id());
+    glUniform3fv(glGetUniformLocation(program, (boundary + ".lo").c_str()), 1, &boundaryLo_[0]);
+    glUniform3fv(glGetUniformLocation(program, (boundary + ".step").c_str()), 1, &boundaryStep_[0]);
+    glUniform1i(glGetUniformLocation(program, (boundary + ".edgeCount").c_str()), GLint(boundaryEdgeCount_));
 }
 
 void GpuSprite::setPlacement(const SpriteGrid& grid) {
@@ -115,6 +141,7 @@ void GpuSprite::setUniforms(GLuint program, const std::string& sampler, const st
 namespace {
 
 constexpr std::size_t kPointBytes = 12;
+constexpr GLuint kBoundaryBinding = 5; // classify.comp's VDS_BOUNDARY_BINDING
 
 std::size_t labelBytes(std::size_t points) { return (points + 3) / 4 * 4; }
 
@@ -177,6 +204,9 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
     const std::uint64_t crossingBytes = std::max<std::uint64_t>(sprite.crossingCount(), 1) * 4;
     const bool columns = sprite.hasColumns() && offsetBytes <= maxBlock_ && crossingBytes <= maxBlock_;
     if (!columns && !sprite.hasTexture()) throw InvalidArgument("GpuClassifier: the sprite holds nothing to classify with");
+    if (rule == Rule::GeneralizedWinding && !sprite.boundaryKnown())
+        throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
+                              "store the boundary edges the generalized winding number needs: bake it again");
     const Program& program = columns ? columns_ : texture_;
     glUseProgram(program.id());
     if (columns) {
@@ -189,11 +219,13 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
     } else {
         sprite.setUniforms(program.id(), "u_ldi", "u_placement", 0);
     }
-    if (rule == Rule::GeneralizedWinding && sprite.status() == SolidStatus::Open)
-        throw InvalidArgument("the generalized winding number of a mesh with boundary needs the exact classifier "
-                              "(sprites do not store the boundary yet)");
-    // On a mesh that bounds a solid the generalized winding number is the winding number.
-    glUniform1i(glGetUniformLocation(program.id(), "u_rule"), rule == Rule::Parity ? 0 : 1);
+    if (rule == Rule::GeneralizedWinding) {
+        // With no boundary edges the shader reads the rule as Winding.
+        sprite.setBoundaryUniforms(program.id(), "u_boundary", kBoundaryBinding);
+    }
+    glUniform1i(glGetUniformLocation(program.id(), "u_rule"), int(rule == Rule::Parity                 ? 0
+                                                                  : rule == Rule::Winding            ? 1
+                                                                                                     : 2));
     const GLint countLoc = glGetUniformLocation(program.id(), "u_count");
     for (std::size_t first = 0; first < count; first += maxDispatch_) {
         const std::size_t n = std::min(maxDispatch_, count - first);
@@ -204,7 +236,7 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
         glUniform1ui(countLoc, GLuint(n));
         glDispatchCompute(detail::strideGroups((n + 3) / 4), 1, 1);
     }
-    for (GLuint binding = 0; binding <= 4; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
+    for (GLuint binding = 0; binding <= kBoundaryBinding; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
     if (!columns) glBindTextureUnit(0, 0);
     glUseProgram(0);
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -15,9 +16,11 @@ namespace vds::detail {
 Texture makeSpriteTexture(glm::uvec3 size);
 
 struct GpuSpriteAccess {
-    /// A sprite from its parts (either may be empty), placed as `grid` says.
+    /// A sprite from its parts (either may be empty), placed as `grid` says,
+    /// with the baked mesh's boundary edges (as `Sprite::boundaryEdges`).
     static GpuSprite make(Texture texture, Buffer offsets, Buffer crossings, std::uint64_t crossingCount,
-                          glm::uvec3 size, const SpriteGrid& grid, SolidStatus status);
+                          glm::uvec3 size, const SpriteGrid& grid, SolidStatus status,
+                          const std::vector<glm::vec3>& boundaryEdges);
 };
 
 } // namespace vds::detail

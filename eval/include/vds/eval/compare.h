@@ -4,7 +4,9 @@
 // `vds compare MESH`).
 //
 // Ground truth is vds::ExactClassifier (Axis::Z) on the mesh itself: parity
-// for every row but "vds-winding", which is held to the exact winding rule.
+// for every row but "vds-winding", which is held to the exact winding rule;
+// with `rule` Rule::GeneralizedWinding, the exact generalized winding number
+// for every row (open meshes accepted).
 // Points: `uniformPoints` uniform in the mesh box grown by `padding` of its
 // size on each side, and `surfacePoints` near the surface (a uniformly random
 // point of the surface, by area, moved along its face normal by a uniform
@@ -16,7 +18,12 @@
 // Rows ("method"):
 //  - vds-parity, vds-winding: a sprite baked with BakeMethod::Lists along z,
 //    its texels the size of the voxel grid's cells, classified by `vds::classify`;
-//  - slicemap, slicemap-local, solid, solid-compute: `buildModel`.
+//  - vds-gwn (Rule::GeneralizedWinding only): the same sprite by its
+//    generalized winding number;
+//  - slicemap, slicemap-local, solid, solid-compute: `buildModel`. They answer
+//    parity and need a closed mesh: with Rule::GeneralizedWinding they are
+//    held to the exact generalized winding number as they are, and left out
+//    for an open mesh (`CompareResult::note` says so).
 // Series "resolution": every method at each of `resolutions` (cells along the
 // box's longest side; the VDS at the same texel size). Series "memory": every
 // method at the largest resolution whose `memoryBytes` fits each budget.
@@ -36,6 +43,7 @@
 
 #include <vds/gl_context.h>
 #include <vds/mesh.h>
+#include <vds/sprite.h>
 
 namespace vds::eval {
 
@@ -51,19 +59,23 @@ struct CompareOptions {
     float padding = 0.1f;             ///< of the box size, on each side, for the uniform points
     float surfaceBand = 1.0f / 64.0f; ///< of the longest box side, for the near-surface points
     std::uint32_t seed = 1;
+    /// Rule::GeneralizedWinding: every row against the exact generalized
+    /// winding number, open meshes accepted, and a vds-gwn row. Otherwise
+    /// (the default) each VDS row against its own rule, the others against parity.
+    Rule rule = Rule::Parity;
     unsigned threads = 0;                             ///< CPU threads for queries, 0: one per hardware thread
     std::string meshName;                             ///< recorded in the result
     std::function<void(const std::string&)> progress; ///< called with what is being done
 };
 
 struct CompareRow {
-    std::string method;           ///< vds-parity, vds-winding, slicemap, slicemap-local, solid, solid-compute
+    std::string method;           ///< vds-parity, vds-winding, vds-gwn, slicemap, slicemap-local, solid, solid-compute
     std::string series;           ///< "resolution" or "memory"
     std::uint64_t target = 0;     ///< the series' value: resolution, or budget in bytes
     std::uint32_t resolution = 0; ///< the builder's resolution (the VDS: its bake resolution)
     glm::uvec3 cells{0u};         ///< columns x, y; and slices, voxels or d_S along z
     double cellSize = 0.0;        ///< column (texel) edge, mesh units
-    std::size_t memoryBytes = 0;  ///< what the CPU query reads (the VDS: its CSR layers)
+    std::size_t memoryBytes = 0;  ///< what the CPU query reads (the VDS: its CSR layers; vds-gwn: and boundary edges)
     std::size_t gpuBytes = 0;     ///< what the GLSL lookup reads (the VDS: its dense 3D texture)
     double buildSeconds = 0.0;
     double pointsPerSecond = 0.0; ///< query throughput on the CPU
@@ -82,9 +94,14 @@ struct CompareResult {
     std::string validation; ///< `MeshReport::summary()` of the mesh (non-manifold edges are named there)
     Box bounds;
     std::size_t uniformPoints = 0, surfacePoints = 0;
-    std::size_t uniformInside = 0;     ///< exact parity answers "inside" among the uniform points
+    std::size_t uniformInside = 0;     ///< the truth answers "inside" among the uniform points
+    /// "parity" (vds-winding: winding), or "generalized-winding" for every row.
+    std::string truth = "parity";
+    /// One line for the reader when some rows are left out or answer
+    /// another rule than the truth; empty otherwise. `table()` ends with it.
     double exactBuildSeconds = 0.0;    ///< the exact classifier's construction
     double exactPointsPerSecond = 0.0; ///< and its throughput, for scale
+    std::string note;
     std::vector<CompareRow> rows;
 
     /// A text table, one row per line, with a header.
@@ -95,9 +112,10 @@ struct CompareResult {
 
 /// Runs the comparison on a mesh for which both rules define inside (closed
 /// and consistently oriented, non-manifold edges allowed: see
-/// `requireInsideDefined`). Uses `gl` if given (made current), else makes a
+/// `requireInsideDefined`), or on any usable mesh with `options.rule`
+/// Rule::GeneralizedWinding. Uses `gl` if given (made current), else makes a
 /// context. Throws `InvalidMesh` for an open, inconsistently oriented or
-/// unusable mesh,
+/// unusable mesh (with Rule::GeneralizedWinding: an unusable one),
 /// `InvalidArgument` for an empty or out-of-range resolution list, and what
 /// the builders throw.
 CompareResult compare(MeshView mesh, const CompareOptions& options = {}, GlContext* gl = nullptr);

@@ -11,6 +11,7 @@
 // faced the viewer there (the ray enters the solid) or not (it leaves).
 #pragma once
 
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -38,9 +39,10 @@ enum class Rule : std::uint8_t {
     /// The generalized winding number (Jacobson et al. 2013) above 1/2: the
     /// solid angle the surface subtends, over 4 pi. On a mesh that bounds a
     /// solid it is the winding number; on open meshes, soups and meshes with
-    /// holes it stays meaningful. The exact classifier answers it for any
-    /// mesh; sprites and voxelizers answer it for meshes that bound a solid
-    /// and refuse it for others (they do not store the mesh's boundary).
+    /// holes it stays meaningful. The exact classifier, sprites (which store
+    /// the mesh's boundary edges), the GPU classifier and the voxelizers
+    /// answer it for any mesh; see `Sprite::generalizedWinding` for a
+    /// sprite's error bound.
     GeneralizedWinding,
 };
 
@@ -99,6 +101,12 @@ constexpr std::uint32_t kMaxResolution = 16384;
 /// above `kMaxResolution`, or a box with no extent across or along the view.
 SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution);
 
+/// A mesh's boundary edges as `Sprite::boundaryEdges` holds them (edge k
+/// runs from `[2k]` to `[2k+1]`, mesh coordinates; see there), for bakers
+/// outside vds::core such as `bakeToGpu`. Empty for a mesh whose every edge
+/// is used equally often each way. O(triangles log triangles).
+std::vector<glm::vec3> meshBoundaryEdges(MeshView mesh);
+
 /// Encoding of one stored crossing: depth in [0,1], sign bit set when the ray
 /// leaves the solid there (the surface faced away from the viewer). -0.0 is a
 /// leaving crossing at depth 0. GLSL reads the same bits.
@@ -112,6 +120,39 @@ enum class SolidStatus : std::uint8_t {
     Open = 1,   ///< baked with a warning: boundary edges, or orientation conflicts
 };
 
+namespace detail {
+class BoundaryCaps;
+/// A sprite's derived data for Rule::GeneralizedWinding (its boundary loops
+/// and their caps, boundary_caps.h), built from `Sprite::boundaryEdges` on
+/// first use, thread safe. Not part of the sprite's value: a copy or an
+/// assignment starts empty, a move takes it along.
+class BoundaryCapsCache {
+public:
+    BoundaryCapsCache() noexcept = default;
+    BoundaryCapsCache(const BoundaryCapsCache&) noexcept {}
+    BoundaryCapsCache(BoundaryCapsCache&& other) noexcept : caps_(other.caps_.exchange(nullptr)) {}
+    BoundaryCapsCache& operator=(const BoundaryCapsCache& other) noexcept {
+        if (this != &other) reset();
+        return *this;
+    }
+    BoundaryCapsCache& operator=(BoundaryCapsCache&& other) noexcept {
+        if (this != &other) {
+            reset();
+            caps_.store(other.caps_.exchange(nullptr));
+        }
+        return *this;
+    }
+    ~BoundaryCapsCache() { reset(); }
+    void reset() noexcept;
+    /// The caps of `edges` (2 points an edge) for the integer term along
+    /// `axis`, built by the first caller.
+    const BoundaryCaps& get(const std::vector<glm::vec3>& edges, Axis axis) const;
+
+private:
+    mutable std::atomic<const BoundaryCaps*> caps_{nullptr};
+};
+} // namespace detail
+
 /// A volumetric depth sprite held in host memory.
 ///
 /// The LDI is stored compressed-row style: column c = j * width + i holds
@@ -120,7 +161,9 @@ enum class SolidStatus : std::uint8_t {
 /// form the paper uses (width x height x depthComplexity, padded with 1.0) is
 /// built only for upload to GL.
 struct Sprite {
-    static constexpr int kFormatVersion = 1;
+    /// 2: the boundary edges are stored (`boundaryEdges`). Version 1 files
+    /// still read, with no boundary edges.
+    static constexpr int kFormatVersion = 2;
 
     SpriteGrid grid;
     std::uint32_t depthComplexity = 0;      ///< d_S: the most crossings in any column
@@ -130,6 +173,21 @@ struct Sprite {
     std::uint64_t sourceTriangles = 0;
     SolidStatus status = SolidStatus::Closed;
     std::string validation;                 ///< `MeshReport::summary()` at bake time
+    /// The baked mesh's boundary edges, for Rule::GeneralizedWinding: edge k
+    /// runs from `boundaryEdges[2k]` to `boundaryEdges[2k+1]`, in the mesh
+    /// coordinates of the bake (those of `grid.box`; the placement is not
+    /// applied). Edges whose uses do not cancel after welding vertices with
+    /// equal positions, an edge repeated by how many more times it is used
+    /// one way than the other (non-manifold edges count by their unbalanced
+    /// orientation), oriented as the majority of its triangles run it. Empty
+    /// for a mesh whose every edge is used equally often each way.
+    std::vector<glm::vec3> boundaryEdges;
+    /// False only for a sprite of an open mesh read from a version-1 file:
+    /// its boundary was never stored, and Rule::GeneralizedWinding refuses it.
+    bool boundaryKnown = true;
+    /// Built from `boundaryEdges` by the first generalized-winding query;
+    /// change `boundaryEdges` only before that (or on a copy).
+    detail::BoundaryCapsCache boundaryCaps;
 
     std::uint32_t width() const { return grid.width; }
     std::uint32_t height() const { return grid.height; }
@@ -138,7 +196,31 @@ struct Sprite {
     /// Points outside the box [0,1]^3 in texture space are outside. A point
     /// exactly at a stored depth does not count that crossing: on an entering
     /// surface it is outside, on a leaving one inside.
+    /// With Rule::GeneralizedWinding: `generalizedWinding(world) > 1/2`.
     bool contains(const glm::vec3& world, Rule rule = Rule::Parity) const;
+
+    /// The generalized winding number at a world point, by the Antipodal
+    /// split (Martens, Trettner & Bessmeltsev 2026): the signed count of the
+    /// point's column in front of it, plus the boundary term (the sum over
+    /// `boundaryEdges` of the solid angle of the spherical triangle (+axis,
+    /// a - q, b - q) over 4 pi, in double) taken at q, the point moved
+    /// across the axis onto its texel's centre ray (same depth). The count
+    /// belongs to that ray, so both terms are taken at q and their jumps
+    /// cancel: the value is the exact GWN at q, up to the rounding of the
+    /// stored depths. So it errs only by GWN(q) - GWN(p), |p - q| <= texel *
+    /// sqrt(2) / 2: a label differs from the exact one only where the GWN
+    /// crosses 1/2 within 0.71 texel of p across the axis, i.e. within that
+    /// distance of the surface (where the GWN jumps by 1) or where its
+    /// gradient, at most (1/4 pi) * (boundary length) / d^2 at distance d
+    /// from the boundary curve, times 0.71 texel exceeds |GWN - 1/2|.
+    /// Points outside the box get 0 (the sprite knows nothing there; the
+    /// GWN of a surface inside a box is at most 1/2 outside it for a
+    /// surface that covers no direction twice). Without boundary edges the
+    /// value is the winding number. The boundary term comes from the capped
+    /// boundary loops (`BoundaryEvaluation::Caps`) within 1e-3 of the
+    /// per-edge sum (which it takes wherever it cannot prove that). Throws
+    /// `InvalidArgument` when `boundaryKnown` is false.
+    double generalizedWinding(const glm::vec3& world) const;
 
     /// Moves the sprite by `model`, on top of its current placement: a sprite
     /// that answered for solid S answers for model(S) afterwards, without
@@ -167,11 +249,23 @@ enum class QueryLayout : std::uint8_t {
     Packed,
 };
 
+/// How a sprite's batch evaluates the boundary term of Rule::GeneralizedWinding.
+enum class BoundaryEvaluation : std::uint8_t {
+    /// The boundary loops closed by caps: the caps' signed crossing count
+    /// minus their solid angle, the latter by a tree of multipole expansions
+    /// with a proven error bound, and the per-edge sum wherever that bound
+    /// could change a label. The same labels as Exact; about O(log edges) a
+    /// point away from the boundary. The caps are built once per sprite.
+    Caps,
+    Exact, ///< the per-edge sum for every point: O(boundary edges) a point
+};
+
 /// Options for batch classification.
 struct ClassifyOptions {
     Rule rule = Rule::Parity;
     unsigned threads = 0; ///< 0: one per hardware thread
     QueryLayout layout = QueryLayout::Auto;
+    BoundaryEvaluation boundary = BoundaryEvaluation::Caps; ///< Rule::GeneralizedWinding on open sprites only
 };
 
 /// Classifies `count` world points; `labels[k]` becomes 1 inside, 0 outside.

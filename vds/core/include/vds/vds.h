@@ -97,8 +97,11 @@
 //     Rule::Parity: odd crossings in front of p (the paper's test);
 //     Rule::Winding: entering crossings +1, leaving -1, inside if non-zero
 //     (nested or overlapping shells); Rule::GeneralizedWinding: the
-//     generalized winding number above 1/2 (open meshes; sprites answer it
-//     for closed meshes only, the exact classifier for any). Points outside
+//     generalized winding number above 1/2 (open meshes; the exact
+//     classifier and sprites answer it for any mesh, a sprite from the
+//     boundary edges it stores; the GPU classifier and vpt.glsl too, in
+//     float, from the edges GpuSprite uploads).
+//     Points outside
 //     the sprite's box are outside. Errors of a sprite lie within about half
 //     a texel diagonal of the surface (docs/accuracy.md).
 //   classify(sprite, points, count, labels, ClassifyOptions{rule, threads, layout})
@@ -142,7 +145,9 @@
 //                        is the cheap probe.               <vds/gl_context.h>
 //   GpuSprite(sprite)    the paper's R32F 3D texture and placement, for
 //                        shaders/vds/vpt.glsl (`vdsContains(...)` in any
-//                        stage; the same answers as the CPU). <vds/gpu_sprite.h>
+//                        stage; the same answers as the CPU), and the
+//                        boundary edges for `vdsContainsGeneralized(...)`
+//                        (setBoundaryUniforms).              <vds/gpu_sprite.h>
 //   GpuClassifier        the VPT over many points in a compute shader: host
 //                        arrays in and out, or points and labels already in
 //                        GL buffers (no host round trip).

@@ -10,6 +10,8 @@
 //  - the compact columns, as `Sprite` holds them (CSR: offsets + crossings)
 //    in two shader storage buffers: what `GpuClassifier` reads, a column's
 //    crossings side by side instead of one texture slice apart.
+// and, for the generalized winding number of an open mesh, the baked mesh's
+// boundary edges in a third storage buffer (vpt.glsl's VdsBoundaryEdges).
 // `GpuClassifier` runs the test over many points in a compute shader, from
 // host arrays or from GL buffers that stay on the GPU.
 //
@@ -21,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
@@ -69,6 +72,21 @@ public:
     /// Moves the sprite on the GPU without re-uploading (see Sprite::transform).
     void setPlacement(const SpriteGrid& grid);
 
+    /// The boundary edges, for Rule::GeneralizedWinding: 2 * boundaryEdgeCount()
+    /// vec4 (16 bytes each, at least one), edge k from entry 2k to 2k+1, xyz
+    /// the endpoint in the baked mesh's coordinates in the sprite's (s, t, r)
+    /// order (see shaders/vds/vpt.glsl). Empty only on a default-made sprite.
+    const Buffer& boundaryEdges() const { return boundaryEdges_; }
+    std::uint32_t boundaryEdgeCount() const { return boundaryEdgeCount_; }
+    /// False for a sprite of an open mesh read from a version-1 .vds file:
+    /// its boundary is unknown, and Rule::GeneralizedWinding refuses it.
+    bool boundaryKnown() const { return boundaryKnown_; }
+    /// Binds the boundary edges to shader storage binding `binding` (the
+    /// shader's VDS_BOUNDARY_BINDING) and sets, in `program` (in use), the
+    /// VdsBoundary uniform `boundary` (e.g. "u_boundary"). Throws
+    /// `InvalidArgument` when `boundaryKnown()` is false.
+    void setBoundaryUniforms(GLuint program, const std::string& boundary, GLuint binding) const;
+
     /// Binds the texture to texture unit `unit`.
     void bind(GLuint unit) const;
     /// Binds to `unit` and sets, in `program` (which must be in use), the
@@ -86,6 +104,12 @@ private:
     glm::mat3 matrix_{1.0f};
     glm::vec3 position_{0.0f};
     SolidStatus status_ = SolidStatus::Closed;
+    Buffer boundaryEdges_;
+    std::uint32_t boundaryEdgeCount_ = 0;
+    bool boundaryKnown_ = true;
+    glm::vec3 boundaryLo_{0.0f};   ///< the baked box's low corner, (s, t, r) order
+    glm::vec3 boundaryStep_{0.0f}; ///< (texel, texel, extent along r)
+    void setBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>& edges, bool known);
 };
 
 /// Classifies points against a GpuSprite with a compute shader. Answers are
@@ -110,6 +134,12 @@ public:
     GpuClassifier(const GpuClassifier&) = delete;
     GpuClassifier& operator=(const GpuClassifier&) = delete;
 
+    /// Every rule of `Rule`: Rule::GeneralizedWinding on a sprite with
+    /// boundary edges adds the boundary term in float (vpt.glsl says where
+    /// that can change a label against the CPU's double), O(boundary edges)
+    /// a point; with none it reads as Winding. Throws `InvalidArgument` for
+    /// it on a sprite whose boundary is unknown (`boundaryKnown()`).
+    ///
     /// Host arrays to host arrays. `points` and `labels` hold `count`
     /// elements (caller-owned); labels get 1 inside, 0 outside. Points go in
     /// batches of `batch` (rounded down to a multiple of 4, at least 1024):
