@@ -2,25 +2,32 @@
 // side in one run, on the same points, each answer checked against the exact
 // classifier. Prints Markdown tables; asserts nothing about speed.
 //
-//   vds_peers_bench [--points N] [--grids 128,256] [--full] [--threads T]
+//   vds_peers_bench [--points N] [--grids 128,256,512] [--full] [--threads T]
 //                   [--resolution R] [--cgal-limit N] [--no-generated] [MESH ...]
 //
 // Methods (a peer is compiled in only when CMake found it):
-//  - vds exact:   ExactClassifier (<vds/exact.h>), the reference for "wrong";
-//  - vds sprite:  a sprite baked on the CPU at R (default 1024), queried with
-//                 vds::classify;
-//  - vds sweep:   grids only, the same sprite walked column by column
-//                 (grid_sweep.h), same answers as vds sprite;
-//  - Embree:      ray parity as in trimesh (embree_parity.h), TBB threads;
-//  - CGAL:        Side_of_triangle_mesh on a Surface_mesh<Epick> (cgal_side.h),
-//                 one thread, as users get it.
+//  - vds exact:     ExactClassifier (<vds/exact.h>), the reference for "wrong";
+//  - vds certified: CertifiedClassifier (<vds/certified.h>): sprite-like
+//                   bands at R, the exact classifier where they cannot decide;
+//                   exact answers (its "wrong" is counted like the others');
+//  - vds sprite:    a sprite baked on the CPU at R (default 1024), queried with
+//                   vds::classify (QueryLayout::Auto), on 1 and on T threads;
+//  - vds sweep:     grids only, vds::occupancy on the same sprite: one walk
+//                   per column, the same answers as vds sprite on every cell;
+//  - vds voxelize:  grids only, vds::voxelize on the mesh: the exact column
+//                   sweep, no sprite (its build is part of its query time);
+//  - Embree:        ray parity as in trimesh (embree_parity.h), TBB threads;
+//  - CGAL:          Side_of_triangle_mesh on a Surface_mesh<Epick> (cgal_side.h),
+//                   one thread, as users get it.
 // Point sets, per mesh: N uniform random points in the mesh box grown by 10 %
-// on each side, then the centres of n^3 grids over the mesh box.
+// on each side, then the cell centres of n^3 grids over the mesh box
+// (vds::OccupancyGrid: centre lo + (i+1/2, j+1/2, k+1/2) (hi - lo) / n).
 //
 // Timing: std::chrono::steady_clock; one warm-up run, then the best of three.
 // A run whose warm-up took more than 1 s is timed on that run alone (marked).
-// Build times are one run each. Grids of more than 2^24 cells are generated
-// and classified in slabs of layers, and their times summed.
+// Build times are one run each. The per-point methods classify grids of more
+// than 2^24 cells in slabs of x layers, their times summed; the sweeps label
+// the whole grid in one call.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -37,13 +44,15 @@
 #include <CLI/CLI.hpp>
 
 #include <vds/bake.h>
+#include <vds/certified.h>
 #include <vds/error.h>
 #include <vds/exact.h>
 #include <vds/mesh.h>
 #include <vds/mesh_io.h>
+#include <vds/occupancy.h>
+#include <vds/parallel.h>
 #include <vds/sprite.h>
 
-#include "grid_sweep.h"
 #include "points.h"
 #include "solids.h"
 #if VDS_PEERS_EMBREE
@@ -68,21 +77,21 @@ struct Case {
     vds::TriangleMesh mesh;
 };
 
-// The points one call classifies: random points, or layers [k0, k1) of a grid
-// (then `points` holds their centres in grid_sweep.h's layout).
+// The points one call classifies: random points, or x layers [i0, i1) of a
+// grid, their centres in the grid's order (C order, k fastest).
 struct Slab {
     const glm::vec3* points = nullptr;
     std::size_t count = 0;
-    const vds::peers::CellGrid* cells = nullptr;
-    std::uint32_t k0 = 0, k1 = 0;
 };
 
 struct Method {
     std::string name;
     unsigned threads = 1;
     double buildSeconds = 0.0;
-    bool gridOnly = false;
+    // Per-point methods classify a slab; grid methods (sweeps) label a whole grid.
     std::function<void(const Slab&, std::uint8_t*)> run;
+    std::function<void(const vds::OccupancyGrid&, std::uint8_t*)> runGrid;
+    bool gridOnly() const { return bool(runGrid); }
 };
 
 struct Row {
@@ -106,9 +115,9 @@ struct PointSet {
 };
 
 // Warm-up, then the best of three; every run writes the same labels.
-double timeBest(const Method& m, const Slab& slab, std::uint8_t* labels, bool& timedOnce) {
+template <class Run> double timeBest(const Run& run, bool& timedOnce) {
     auto t0 = Clock::now();
-    m.run(slab, labels);
+    run();
     double best = since(t0);
     if (best > kTimeOnceAbove) {
         timedOnce = true;
@@ -117,7 +126,7 @@ double timeBest(const Method& m, const Slab& slab, std::uint8_t* labels, bool& t
     best = 1e300;
     for (int r = 0; r < 3; ++r) {
         t0 = Clock::now();
-        m.run(slab, labels);
+        run();
         best = std::min(best, since(t0));
     }
     return best;
@@ -153,19 +162,27 @@ std::vector<std::string> defaultMeshPaths(const std::string& dir) {
     return paths;
 }
 
-// The first three are always vds exact (the reference), vds sprite and vds
-// sweep, in this order; the peers compiled in follow.
-constexpr std::size_t kExact = 0, kSprite = 1, kSweep = 2;
+// The first is always vds exact (the reference); the sprite on T threads is
+// kSprite, its sweep kSweep; the peers compiled in follow.
+constexpr std::size_t kExact = 0;
 
 std::vector<Method> buildMethods(const vds::TriangleMesh& mesh, unsigned threads, std::uint32_t resolution,
-                                 std::string& spriteShape) {
+                                 std::string& spriteShape, std::size_t& kSprite, std::size_t& kSweep) {
     std::vector<Method> methods;
 
     auto t0 = Clock::now();
     auto exact = std::make_shared<const vds::ExactClassifier>(mesh, vds::Axis::Z);
-    methods.push_back({"vds exact", threads, since(t0), false, [exact, threads](const Slab& s, std::uint8_t* out) {
+    methods.push_back({"vds exact", threads, since(t0), [exact, threads](const Slab& s, std::uint8_t* out) {
                            exact->classify(s.points, s.count, out, {vds::Rule::Parity, threads});
-                       }});
+                       }, {}});
+
+    t0 = Clock::now();
+    auto certified = std::make_shared<const vds::CertifiedClassifier>(
+        mesh, vds::CertifiedOptions{resolution, vds::Axis::Z, threads});
+    methods.push_back({"vds certified @" + std::to_string(resolution), threads, since(t0),
+                       [certified, threads](const Slab& s, std::uint8_t* out) {
+                           certified->classify(s.points, s.count, out, {vds::Rule::Parity, threads});
+                       }, {}});
 
     vds::BakeOptions bake;
     bake.resolution = resolution;
@@ -177,41 +194,62 @@ std::vector<Method> buildMethods(const vds::TriangleMesh& mesh, unsigned threads
     spriteShape = std::to_string(sprite->width()) + "x" + std::to_string(sprite->height()) + "x" +
                   std::to_string(sprite->depthComplexity);
     const std::string at = " @" + std::to_string(resolution);
-    methods.push_back({"vds sprite" + at, threads, bakeSeconds, false,
-                       [sprite, threads](const Slab& s, std::uint8_t* out) {
-                           vds::classify(*sprite, s.points, s.count, out, {vds::Rule::Parity, threads});
+    for (unsigned t : {1u, threads}) {
+        if (t == 1 && threads == 1) continue;
+        methods.push_back({"vds sprite" + at, t, bakeSeconds, [sprite, t](const Slab& s, std::uint8_t* out) {
+                               vds::classify(*sprite, s.points, s.count, out, {vds::Rule::Parity, t});
+                           }, {}});
+    }
+    kSprite = methods.size() - 1;
+    methods.push_back({"vds sweep" + at, threads, bakeSeconds, {},
+                       [sprite, threads](const vds::OccupancyGrid& g, std::uint8_t* out) {
+                           vds::occupancy(*sprite, g, out, {vds::Rule::Parity, threads});
                        }});
-    methods.push_back({"vds sweep" + at, threads, bakeSeconds, true, [sprite, threads](const Slab& s, std::uint8_t* out) {
-                           vds::peers::sweepSprite(*sprite, *s.cells, s.k0, s.k1, out, threads);
+    kSweep = methods.size() - 1;
+    const vds::TriangleMesh* meshPtr = &mesh;
+    methods.push_back({"vds voxelize (exact sweep)", threads, 0.0, {},
+                       [meshPtr, threads](const vds::OccupancyGrid& g, std::uint8_t* out) {
+                           vds::voxelize(*meshPtr, g, out, {vds::Rule::Parity, threads});
                        }});
 
 #if VDS_PEERS_EMBREE
     t0 = Clock::now();
     std::shared_ptr<const vds::peers::PointClassifier> embree = vds::peers::makeEmbreeParity(mesh, threads);
-    methods.push_back({"Embree parity", embree->threads(), since(t0), false,
-                       [embree](const Slab& s, std::uint8_t* out) { embree->classify(s.points, s.count, out); }});
+    methods.push_back({"Embree parity", embree->threads(), since(t0),
+                       [embree](const Slab& s, std::uint8_t* out) { embree->classify(s.points, s.count, out); }, {}});
 #endif
 #if VDS_PEERS_CGAL
     t0 = Clock::now();
     std::shared_ptr<const vds::peers::PointClassifier> cgal = vds::peers::makeCgalSide(mesh);
-    methods.push_back({"CGAL Side_of_triangle_mesh", cgal->threads(), since(t0), false,
-                       [cgal](const Slab& s, std::uint8_t* out) { cgal->classify(s.points, s.count, out); }});
+    methods.push_back({"CGAL Side_of_triangle_mesh", cgal->threads(), since(t0),
+                       [cgal](const Slab& s, std::uint8_t* out) { cgal->classify(s.points, s.count, out); }, {}});
 #endif
     return methods;
 }
 
 bool isCgal(const Method& m) { return m.name.rfind("CGAL", 0) == 0; }
 
-// Runs every method on one point set of one mesh, slab by slab, and appends
-// one row per method to `set`.
+// Centres of the cells of x layers [i0, i1) of `grid`, in its order.
+void cellCentres(const vds::OccupancyGrid& grid, std::uint32_t i0, std::uint32_t i1, glm::vec3* out, unsigned threads) {
+    const std::size_t perLayer = std::size_t(grid.dims.y) * grid.dims.z;
+    vds::parallelFor(threads, i1 - i0, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+            for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+                for (std::uint32_t k = 0; k < grid.dims.z; ++k)
+                    out[i * perLayer + std::size_t(j) * grid.dims.z + k] = grid.cellCentre(std::uint32_t(i0 + i), j, k);
+    });
+}
+
+// Runs every method on one point set of one mesh and appends one row per
+// method to `set`: the sweeps on the whole grid, the others slab by slab.
 void measureSet(PointSet& set, const Case& c, const std::vector<Method>& methods, const std::vector<glm::vec3>& random,
-                unsigned threads, std::size_t cgalLimit) {
+                unsigned threads, std::size_t cgalLimit, std::size_t kSprite, std::size_t kSweep) {
     const std::size_t total = set.grid ? std::size_t(set.grid) * set.grid * set.grid : random.size();
     std::vector<Row> rows(methods.size());
     for (std::size_t m = 0; m < methods.size(); ++m) {
         rows[m] = {c.name, c.mesh.triangles.size(), methods[m].name, methods[m].threads, methods[m].buildSeconds};
         rows[m].points = total;
-        if (methods[m].gridOnly && !set.grid) {
+        if (methods[m].gridOnly() && !set.grid) {
             rows[m].skipped = true;
             rows[m].why = "grids only";
         } else if (isCgal(methods[m]) && total > cgalLimit) {
@@ -220,42 +258,52 @@ void measureSet(PointSet& set, const Case& c, const std::vector<Method>& methods
         }
     }
 
-    vds::peers::CellGrid cells;
+    vds::OccupancyGrid grid;
     std::vector<glm::vec3> centres;
     std::uint32_t layers = 0;
+    std::vector<std::vector<std::uint8_t>> whole(methods.size()); // the sweeps' labels
     if (set.grid) {
-        cells = {vds::meshBounds(c.mesh), set.grid};
+        grid = {vds::meshBounds(c.mesh), glm::uvec3(set.grid)};
         const std::size_t perLayer = std::size_t(set.grid) * set.grid;
         layers = std::uint32_t(std::clamp<std::size_t>(kSlabPoints / perLayer, 1, set.grid));
         centres.resize(std::size_t(layers) * perLayer);
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+            if (!methods[m].gridOnly() || rows[m].skipped) continue;
+            whole[m].resize(total);
+            rows[m].query = timeBest([&] { methods[m].runGrid(grid, whole[m].data()); }, rows[m].timedOnce);
+        }
     }
     std::vector<std::vector<std::uint8_t>> labels(methods.size());
     std::size_t sweepDiffers = 0;
     const std::uint32_t slabs = set.grid ? (set.grid + layers - 1) / layers : 1;
     for (std::uint32_t slabIndex = 0; slabIndex < slabs; ++slabIndex) {
         Slab slab;
+        std::size_t first = 0; // of the slab's cells in the grid
         if (set.grid) {
-            slab.cells = &cells;
-            slab.k0 = slabIndex * layers;
-            slab.k1 = std::min(set.grid, slab.k0 + layers);
-            slab.count = std::size_t(slab.k1 - slab.k0) * set.grid * set.grid;
-            vds::peers::cellCentres(cells, slab.k0, slab.k1, centres.data(), threads);
+            const std::uint32_t i0 = slabIndex * layers, i1 = std::min(set.grid, i0 + layers);
+            slab.count = std::size_t(i1 - i0) * set.grid * set.grid;
+            first = std::size_t(i0) * set.grid * set.grid;
+            cellCentres(grid, i0, i1, centres.data(), threads);
             slab.points = centres.data();
         } else {
             slab.points = random.data();
             slab.count = random.size();
         }
         for (std::size_t m = 0; m < methods.size(); ++m) {
-            if (rows[m].skipped) continue;
+            if (rows[m].skipped || methods[m].gridOnly()) continue;
             labels[m].resize(slab.count);
             bool once = false;
-            rows[m].query += timeBest(methods[m], slab, labels[m].data(), once);
+            rows[m].query += timeBest([&] { methods[m].run(slab, labels[m].data()); }, once);
             rows[m].timedOnce = rows[m].timedOnce || once;
-            for (std::size_t k = 0; k < slab.count; ++k) rows[m].wrong += labels[m][k] != labels[kExact][k];
+        }
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+            if (rows[m].skipped) continue;
+            const std::uint8_t* mine = methods[m].gridOnly() ? whole[m].data() + first : labels[m].data();
+            for (std::size_t k = 0; k < slab.count; ++k) rows[m].wrong += mine[k] != labels[kExact][k];
         }
         // The sweep must give the sprite's answers exactly.
         if (set.grid)
-            for (std::size_t k = 0; k < slab.count; ++k) sweepDiffers += labels[kSprite][k] != labels[kSweep][k];
+            for (std::size_t k = 0; k < slab.count; ++k) sweepDiffers += labels[kSprite][k] != whole[kSweep][first + k];
     }
     if (sweepDiffers)
         throw std::logic_error("the sweep differs from the sprite on " + std::to_string(sweepDiffers) + " points of " +
@@ -299,7 +347,7 @@ int main(int argc, char** argv) {
     CLI::App app{"vds against Embree ray parity and CGAL Side_of_triangle_mesh, on the same points; "
                  "wrong answers counted against vds's exact classifier"};
     std::size_t pointCount = 1000000;
-    std::vector<std::uint32_t> grids = {128, 256};
+    std::vector<std::uint32_t> grids = {128, 256, 512};
     bool full = false;
     bool generated = true;
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
@@ -315,7 +363,7 @@ int main(int argc, char** argv) {
         ->allow_extra_args(false)
         ->capture_default_str()
         ->check(CLI::Range(1u, 4096u));
-    app.add_flag("--full", full, "add the 512^3 and 1024^3 grids (an hour and more on two cores)");
+    app.add_flag("--full", full, "add the 1024^3 grid (an hour and more on two cores)");
     app.add_option("--threads", threads, "query threads for vds and Embree (CGAL runs on one)")
         ->capture_default_str()
         ->check(CLI::Range(1u, 1024u));
@@ -327,7 +375,7 @@ int main(int argc, char** argv) {
     app.add_option("meshes", meshPaths, "closed meshes to use instead of the bundled ones");
     CLI11_PARSE(app, argc, argv);
     if (full)
-        for (std::uint32_t n : {512u, 1024u})
+        for (std::uint32_t n : {1024u})
             if (std::find(grids.begin(), grids.end(), n) == grids.end()) grids.push_back(n);
 
     try {
@@ -375,13 +423,14 @@ int main(int argc, char** argv) {
                 continue;
             }
             std::string shape;
-            const std::vector<Method> methods = buildMethods(c.mesh, threads, resolution, shape);
+            std::size_t kSprite = 0, kSweep = 0;
+            const std::vector<Method> methods = buildMethods(c.mesh, threads, resolution, shape, kSprite, kSweep);
             std::printf("| %s | %zu | %s |\n", c.name.c_str(), c.mesh.triangles.size(), shape.c_str());
             std::fflush(stdout);
             const std::vector<glm::vec3> random = vds::test::randomPoints(vds::meshBounds(c.mesh), pointCount);
             for (PointSet& set : sets) {
                 const auto t0 = Clock::now();
-                measureSet(set, c, methods, random, threads, cgalLimit);
+                measureSet(set, c, methods, random, threads, cgalLimit, kSprite, kSweep);
                 std::fprintf(stderr, "  %s, %s: %.1f s\n", c.name.c_str(), set.title.c_str(), since(t0));
             }
         }

@@ -327,6 +327,27 @@ TEST(ExactClassifier, ClassifyMatchesContainsOnAnyThreadCount) {
     exact.classify(nullptr, 0, nullptr);
 }
 
+// The batched classify (cells located and prefetched sixteen points at a
+// time) against one point at a time and brute force, on a batch whose size
+// is no multiple of the batch, with points outside the grid and not finite.
+TEST(ExactClassifier, BatchedClassifyMatchesBruteForce) {
+    const auto s = vds::solids::overlappingBoxes({-1, -1, -1}, {0.3f, 0.3f, 0.3f}, {-0.3f, -0.3f, -0.3f}, {1, 1, 1});
+    const ExactClassifier exact(s.mesh, Axis::Z);
+    auto points = randomPoints(s.mesh, 4999, 5);
+    const float inf = std::numeric_limits<float>::infinity();
+    points.insert(points.begin() + 7, {{inf, 0, 0}, {0, std::nanf(""), 0}, {0, 0, -inf}, {50, 50, 50}});
+    for (Rule rule : {Rule::Parity, Rule::Winding}) {
+        std::vector<std::uint8_t> labels(points.size(), 9);
+        exact.classify(points.data(), points.size(), labels.data(), {rule, 2});
+        std::size_t inside = 0;
+        for (std::size_t k = 0; k < points.size(); ++k) {
+            ASSERT_EQ(labels[k], exact.containsBruteForce(points[k], rule) ? 1 : 0) << k << " " << toString(rule);
+            inside += labels[k];
+        }
+        EXPECT_GT(inside, points.size() / 10);
+    }
+}
+
 TEST(ExactClassifier, MovesKeepTheIndex) {
     const auto s = vds::solids::box({0, 0, 0}, {1, 1, 1});
     ExactClassifier a(s.mesh, Axis::X);

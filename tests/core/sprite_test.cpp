@@ -1,5 +1,8 @@
 // The sprite's grid and the VPT on the CPU, on sprites built by hand.
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -110,6 +113,84 @@ TEST(Sprite, BatchClassifyEqualsSinglePointsOnAnyThreadCount) {
                 for (std::size_t k = 0; k < points.size(); ++k)
                     ASSERT_EQ(labels[k], s.contains(points[k], rule) ? 1 : 0) << k << " layout " << int(layout);
             }
+}
+
+// A sprite over `box` with random sorted columns of `crossingsOf(c)`
+// crossings (depth 0 and 1 and repeated depths included), and points on
+// every column: at each stored depth exactly, between them, at the ends,
+// off the box, and uniform ones.
+template <class Count>
+std::pair<Sprite, std::vector<glm::vec3>> randomColumns(const Box& box, Axis axis, std::uint32_t resolution,
+                                                        const Count& crossingsOf) {
+    Sprite s;
+    s.grid = makeGrid(box, axis, resolution);
+    const std::size_t columns = std::size_t(s.grid.width) * s.grid.height;
+    s.offsets.assign(columns + 1, 0);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<glm::vec3> points;
+    for (std::size_t c = 0; c < columns; ++c) {
+        const std::uint32_t n = crossingsOf(c);
+        std::vector<float> depths(n);
+        for (std::uint32_t k = 0; k < n; ++k) depths[k] = k % 7 == 3 && k > 0 ? depths[k - 1] : u(rng);
+        if (n > 0 && c % 3 == 0) depths[0] = 0.0f;
+        if (n > 1 && c % 5 == 0) depths[n - 1] = 1.0f;
+        std::sort(depths.begin(), depths.end());
+        for (std::uint32_t k = 0; k < n; ++k) s.crossings.push_back(encodeCrossing(depths[k], (rng() & 1) != 0));
+        s.offsets[c + 1] = std::uint32_t(s.crossings.size());
+        s.depthComplexity = std::max(s.depthComplexity, n);
+        const std::uint32_t i = std::uint32_t(c % s.grid.width), j = std::uint32_t(c / s.grid.width);
+        for (float r : depths) {
+            points.push_back(s.grid.texelCentre(i, j, r));
+            points.push_back(s.grid.texelCentre(i, j, std::nextafter(r, 2.0f)));
+        }
+        for (float r : {0.0f, 1.0f, 0.5f, -0.01f, 1.01f, u(rng)}) points.push_back(s.grid.texelCentre(i, j, r));
+    }
+    s.checkConsistent();
+    const glm::vec3 size = box.hi - box.lo;
+    for (int k = 0; k < 20000; ++k)
+        points.push_back(box.lo + glm::vec3(u(rng), u(rng), u(rng)) * 1.2f * size - 0.1f * size);
+    return {std::move(s), std::move(points)};
+}
+
+// The packed table (four or eight crossings a record, deeper columns read
+// from the sprite) against the sprite's own arrays, point by point, for
+// sprites as baked and moved ones, both rules and 1 or 2 threads.
+TEST(Sprite, PackedLayoutEqualsOffsetsLayoutOnEveryPoint) {
+    const Box box{{-1.0f, 2.0f, 0.5f}, {3.0f, 4.0f, 2.0f}};
+    const auto few = [](std::size_t c) { return std::uint32_t(c % 97 == 0 ? 9 + c % 7 : c % 5); }; // 4-wide records
+    const auto many = [](std::size_t c) { return std::uint32_t(c % 14); };                         // 8-wide records
+    int cases = 0;
+    for (Axis axis : {Axis::Z, Axis::X, Axis::Y})
+        for (bool deep : {false, true}) {
+            auto [s, points] = deep ? randomColumns(box, axis, 48, many) : randomColumns(box, axis, 48, few);
+            for (bool moved : {false, true}) {
+                if (moved) { // the points move with the sprite
+                    const glm::mat4 model =
+                        glm::rotate(glm::translate(glm::mat4(1.0f), {0.3f, -2.0f, 1.0f}), 0.7f, {1.0f, 2.0f, 0.5f});
+                    s.transform(model);
+                    for (glm::vec3& p : points) p = glm::vec3(model * glm::vec4(p, 1.0f));
+                }
+                for (Rule rule : {Rule::Parity, Rule::Winding})
+                    for (unsigned threads : {1u, 2u}) {
+                        std::vector<std::uint8_t> offsets(points.size(), 9), packed(points.size(), 7);
+                        classify(s, points.data(), points.size(), offsets.data(), {rule, threads, QueryLayout::Offsets});
+                        classify(s, points.data(), points.size(), packed.data(), {rule, threads, QueryLayout::Packed});
+                        std::size_t inside = 0;
+                        for (std::size_t k = 0; k < points.size(); ++k) {
+                            ASSERT_EQ(packed[k], offsets[k]) << "point " << k << " axis " << toString(axis) << " deep "
+                                                             << deep << " moved " << moved << " " << toString(rule);
+                            ASSERT_EQ(offsets[k], s.contains(points[k], rule) ? 1 : 0) << k;
+                            inside += offsets[k];
+                        }
+                        // Both answers occur, so the comparison says something.
+                        EXPECT_GT(inside, points.size() / 20);
+                        EXPECT_LT(inside, points.size() - points.size() / 20);
+                        ++cases;
+                    }
+            }
+        }
+    EXPECT_EQ(cases, 48);
 }
 
 // Points inside larger records (x y z plus a fourth float, stride 16 bytes),

@@ -16,6 +16,7 @@
 // GWN. The solid angle is Van Oosterom & Strackee's formula in double.
 #include <vds/exact.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstring>
@@ -119,11 +120,37 @@ void ExactClassifier::classify(const float* xyz, std::size_t count, std::size_t 
     assert(strideBytes >= 3 * sizeof(float) && ((xyz && labels) || count == 0));
     const Impl& impl = *impl_;
     const char* base = reinterpret_cast<const char*>(xyz);
+    if (options.rule == Rule::GeneralizedWinding && !impl.boundary.empty()) {
+        parallelFor(options.threads, count, 4096, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) {
+                glm::vec3 p;
+                std::memcpy(&p, base + k * strideBytes, sizeof p);
+                labels[k] = impl.contains(p, options.rule) ? 1 : 0;
+            }
+        });
+        return;
+    }
+    // In batches, so that the cache misses of many points overlap: locate a
+    // batch and prefetch each point's cell offsets, then read them and
+    // prefetch the cell's entries, then count crossings.
     parallelFor(options.threads, count, 4096, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) {
-            glm::vec3 p;
-            std::memcpy(&p, base + k * strideBytes, sizeof p);
-            labels[k] = impl.contains(p, options.rule) ? 1 : 0;
+        constexpr std::size_t kBatch = 16;
+        float q[kBatch][3];
+        detail::CellGrid::Found found[kBatch];
+        for (std::size_t b0 = begin; b0 < end; b0 += kBatch) {
+            const std::size_t n = std::min(kBatch, end - b0);
+            for (std::size_t i = 0; i < n; ++i) {
+                glm::vec3 p;
+                std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
+                impl.toViewSpace(p, q[i]);
+                impl.grid.prefetch(q[i]);
+            }
+            for (std::size_t i = 0; i < n; ++i) {
+                found[i] = impl.grid.find(q[i]);
+                if (found[i].begin != found[i].end) __builtin_prefetch(found[i].begin);
+            }
+            for (std::size_t i = 0; i < n; ++i)
+                labels[b0 + i] = insideByRule(impl.winding(found[i], q[i]), options.rule) ? 1 : 0;
         }
     });
 }

@@ -140,6 +140,11 @@ public:
         return {entries_.data() + offsets_[cell], entries_.data() + offsets_[cell + 1],
                 {std::uint8_t(s % kSub), std::uint8_t(t % kSub)}};
     }
+    /// Asks the cache for the cell offsets `find(q)` will read.
+    void prefetch(const float* q) const {
+        if (q[0] >= lo_[0] && q[0] <= hi_[0] && q[1] >= lo_[1] && q[1] <= hi_[1])
+            __builtin_prefetch(offsets_.data() + cellIndex(q));
+    }
     static bool mayHold(const CellEntry& e, const std::uint8_t* sub) {
         return sub[0] >= e.lo[0] && sub[0] <= e.hi[0] && sub[1] >= e.lo[1] && sub[1] <= e.hi[1];
     }
@@ -184,7 +189,10 @@ struct ProjectedMesh {
     int winding(const glm::vec3& p) const {
         float q[3];
         toViewSpace(p, q);
-        const CellGrid::Found found = grid.find(q);
+        return winding(grid.find(q), q);
+    }
+    /// The winding of view-space point q, from its cell's entries `found`.
+    int winding(const CellGrid::Found& found, const float* q) const {
         int w = 0;
         for (const CellEntry* e = found.begin; e != found.end; ++e) {
             if (!CellGrid::mayHold(*e, found.sub)) continue;

@@ -6,8 +6,13 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <memory>
+#include <new>
 #include <thread>
+
+#include <sys/mman.h>
 
 #include <glm/matrix.hpp>
 
@@ -136,19 +141,134 @@ void Sprite::checkConsistent() const {
 }
 
 namespace detail {
-std::vector<PackedColumn> packColumns(const Sprite& sprite, unsigned threads) {
+namespace {
+constexpr std::size_t kHugePage = std::size_t(1) << 21;
+} // namespace
+
+void PackedTable::Free::operator()(float* p) const { std::free(p); }
+
+PackedTable::PackedTable(const Sprite& sprite, unsigned threads) {
     const std::size_t columns = sprite.offsets.size() - 1;
-    std::vector<PackedColumn> table(columns);
+    std::size_t deep = 0;
+    for (std::size_t c = 0; c < columns; ++c) deep += sprite.offsets[c + 1] - sprite.offsets[c] > 4;
+    width_ = double(deep) > kWideShare * double(columns) ? 8 : 4;
+    const std::size_t bytes = (columns * width_ * sizeof(float) + kHugePage - 1) / kHugePage * kHugePage;
+    table_.reset(static_cast<float*>(std::aligned_alloc(kHugePage, bytes)));
+    if (!table_) throw std::bad_alloc();
+#ifdef MADV_HUGEPAGE
+    madvise(table_.get(), bytes, MADV_HUGEPAGE); // advice only: without huge pages the table works as well
+#endif
+    float* table = table_.get();
+    const unsigned width = width_;
     parallelFor(threads, columns, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
         for (std::size_t c = begin; c < end; ++c) {
             const std::uint32_t first = sprite.offsets[c], n = sprite.offsets[c + 1] - first;
-            table[c] = {{n > 0 ? sprite.crossings[first] : kPadding, n > 1 ? sprite.crossings[first + 1] : kPadding},
-                        first, n};
+            float* record = table + c * width;
+            for (std::uint32_t k = 0; k < width; ++k) record[k] = k < n ? sprite.crossings[first + k] : kPadding;
+            if (n > width) record[width - 1] = kMore;
         }
     });
-    return table;
 }
 } // namespace detail
+
+namespace {
+
+// Where a point falls, without branches: its column (0 when it is outside
+// the box, so the record can be read anyway), its texture depth, and whether
+// it is inside. The same answers as columnOf: floor(x) lies in [0, w) exactly
+// when x does, and then floor is the truncation.
+struct Located {
+    std::uint32_t column;
+    float depth;
+    bool inBox;
+};
+
+inline Located locate(const SpriteGrid& grid, float s, float t, float r) {
+    const float x = s * float(grid.width), y = t * float(grid.height);
+    const bool in = (r >= 0.0f) & (r <= 1.0f) & (x >= 0.0f) & (x < float(grid.width)) & (y >= 0.0f) &
+                    (y < float(grid.height));
+    const std::uint32_t column = std::uint32_t(in ? y : 0.0f) * grid.width + std::uint32_t(in ? x : 0.0f);
+    return {column, r, in};
+}
+
+// A sprite as baked (not rotated since): its matrix has one non-zero per row
+// and column, so texture coordinates are one product each. The general
+// product adds zeros to it, which changes at most the sign of a zero result
+// (the same column and answer) or turns an infinite coordinate elsewhere into
+// NaN (outside the box either way).
+template <Axis View> struct AxisAligned {
+    glm::vec3 scale;  // the matrix entries of s, t and r
+    glm::vec3 origin; // P_S along their world axes
+
+    static bool applies(const SpriteGrid& grid, AxisAligned& out) {
+        const glm::ivec3 p = axisPermutation(View);
+        if (grid.axis != View) return false;
+        for (int row = 0; row < 3; ++row)
+            for (int col = 0; col < 3; ++col)
+                if ((grid.matrix[col][row] != 0.0f) != (col == p[row])) return false;
+        out = {{grid.matrix[p.x][0], grid.matrix[p.y][1], grid.matrix[p.z][2]},
+               {grid.position[p.x], grid.position[p.y], grid.position[p.z]}};
+        return true;
+    }
+    Located operator()(const SpriteGrid& grid, const float* q) const {
+        // axisPermutation(View), spelled out so that the indices are constants.
+        constexpr int s = View == Axis::Z ? 0 : View == Axis::X ? 1 : 2;
+        constexpr int t = View == Axis::Z ? 1 : View == Axis::X ? 2 : 0;
+        constexpr int r = View == Axis::Z ? 2 : View == Axis::X ? 0 : 1;
+        return locate(grid, scale.x * (q[s] - origin.x), scale.y * (q[t] - origin.y), scale.z * (q[r] - origin.z));
+    }
+};
+
+struct General {
+    Located operator()(const SpriteGrid& grid, const float* q) const {
+        const glm::vec3 t = grid.toTexture({q[0], q[1], q[2]});
+        return locate(grid, t.x, t.y, t.z);
+    }
+};
+
+// Packed-table classification of points [begin, end), software-pipelined:
+// locate a batch and prefetch its records, then answer the batch located
+// before it, so each record has a whole batch's work to arrive.
+template <unsigned Width, class Locate>
+void classifyPacked(const Sprite& sprite, const float* table, const Locate& where, const char* xyz,
+                    std::size_t strideBytes, std::uint8_t* labels, Rule rule, std::size_t begin, std::size_t end) {
+    constexpr std::size_t kBatch = 64;
+    Located at[2][kBatch];
+    const auto locateBatch = [&](std::size_t base, Located* out) {
+        const std::size_t n = std::min(kBatch, end - base);
+        for (std::size_t i = 0; i < n; ++i) {
+            float q[3];
+            std::memcpy(q, xyz + (base + i) * strideBytes, sizeof q);
+            out[i] = where(sprite.grid, q);
+            __builtin_prefetch(table + std::size_t(out[i].column) * Width);
+        }
+    };
+    const auto answerBatch = [&](std::size_t base, const Located* in) {
+        const std::size_t n = std::min(kBatch, end - base);
+        for (std::size_t i = 0; i < n; ++i)
+            labels[base + i] = std::uint8_t(in[i].inBox & detail::testPacked<Width>(table + std::size_t(in[i].column) * Width,
+                                                                                   sprite, in[i].column, in[i].depth, rule));
+    };
+    if (begin >= end) return;
+    locateBatch(begin, at[0]);
+    int current = 0;
+    for (std::size_t base = begin; base < end; base += kBatch) {
+        if (base + kBatch < end) locateBatch(base + kBatch, at[1 - current]);
+        answerBatch(base, at[current]);
+        current = 1 - current;
+    }
+}
+
+template <class Locate>
+void classifyPacked(const Sprite& sprite, const detail::PackedTable& table, const Locate& where, const char* xyz,
+                    std::size_t strideBytes, std::uint8_t* labels, Rule rule, std::size_t begin, std::size_t end) {
+    if (table.width() == 8)
+        classifyPacked<8>(sprite, table.records(), where, xyz, strideBytes, labels, rule, begin, end);
+    else
+        classifyPacked<4>(sprite, table.records(), where, xyz, strideBytes, labels, rule, begin, end);
+}
+
+} // namespace
 
 void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count, std::uint8_t* labels,
               const ClassifyOptions& options) {
@@ -172,14 +292,16 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
     const std::size_t columns = sprite.offsets.empty() ? 0 : sprite.offsets.size() - 1;
     // QueryLayout (see <vds/sprite.h>): with the column table each point
     // misses the cache once, on its column's record, which holds the first
-    // two crossings (most columns have at most two); further crossings are
-    // read from the sprite. Otherwise each point reads its offsets, then its
-    // crossings: two dependent misses, prefetched in batches.
+    // four crossings (most columns have at most four), and is answered
+    // without a branch on its data; a point behind the third crossing of a
+    // deeper column reads it from the sprite. Otherwise each point reads its
+    // offsets, then its crossings: two dependent misses, prefetched in
+    // batches, and a loop over the crossings.
     const bool packed = options.layout == QueryLayout::Packed ||
-                        (options.layout == QueryLayout::Auto && count >= 4 * columns);
+                        (options.layout == QueryLayout::Auto && 2 * count >= columns);
     // Texel column and texture depth of points [base, base + n), each
     // column's record (of `recordBytes`, in `records`) prefetched.
-    const auto locate = [&](std::size_t base, std::size_t n, std::ptrdiff_t* column, float* depth, const char* records,
+    const auto locateBatch = [&](std::size_t base, std::size_t n, std::ptrdiff_t* column, float* depth, const char* records,
                             std::size_t recordBytes) {
         for (std::size_t i = 0; i < n; ++i) {
             const glm::vec3 t = grid.toTexture(point(base + i));
@@ -188,21 +310,32 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
             if (column[i] >= 0) __builtin_prefetch(records + std::size_t(column[i]) * recordBytes);
         }
     };
+    std::unique_ptr<const detail::PackedTable> packedTable;
     if (packed && columns > 0) {
-        const std::vector<detail::PackedColumn> table = detail::packColumns(sprite, options.threads);
-        const float* crossings = sprite.crossings.data();
+        try {
+            packedTable = std::make_unique<const detail::PackedTable>(sprite, options.threads);
+        } catch (const std::bad_alloc&) {
+            // No room for the table: the sprite's own arrays give the same answers.
+        }
+    }
+    if (packedTable) {
+        const detail::PackedTable& table = *packedTable;
+        AxisAligned<Axis::Z> z;
+        AxisAligned<Axis::X> x;
+        AxisAligned<Axis::Y> y;
+        const int aligned = AxisAligned<Axis::Z>::applies(grid, z)   ? 1
+                            : AxisAligned<Axis::X>::applies(grid, x) ? 2
+                            : AxisAligned<Axis::Y>::applies(grid, y) ? 3
+                                                                     : 0;
         parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
-            constexpr std::size_t kBatch = 32;
-            std::ptrdiff_t column[kBatch];
-            float depth[kBatch];
-            for (std::size_t base = begin; base < end; base += kBatch) {
-                const std::size_t n = std::min(kBatch, end - base);
-                locate(base, n, column, depth, reinterpret_cast<const char*>(table.data()), sizeof(detail::PackedColumn));
-                for (std::size_t i = 0; i < n; ++i)
-                    labels[base + i] =
-                        column[i] >= 0 && detail::testPacked(table[std::size_t(column[i])], crossings, depth[i], options.rule)
-                            ? 1
-                            : 0;
+            const auto run = [&](const auto& where) {
+                classifyPacked(sprite, table, where, base0, strideBytes, labels, options.rule, begin, end);
+            };
+            switch (aligned) {
+            case 1: run(z); break;
+            case 2: run(x); break;
+            case 3: run(y); break;
+            default: run(General{});
             }
         });
         return;
@@ -216,7 +349,7 @@ void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::si
         std::uint32_t first[kBatch], last[kBatch];
         for (std::size_t base = begin; base < end; base += kBatch) {
             const std::size_t n = std::min(kBatch, end - base);
-            locate(base, n, column, depth, reinterpret_cast<const char*>(offsets), sizeof(std::uint32_t));
+            locateBatch(base, n, column, depth, reinterpret_cast<const char*>(offsets), sizeof(std::uint32_t));
             for (std::size_t i = 0; i < n; ++i) {
                 if (column[i] < 0) continue;
                 first[i] = offsets[column[i]];

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <vds/sprite.h>
@@ -31,30 +32,53 @@ inline bool testColumn(const float* begin, const float* end, float r, Rule rule)
     return rule == Rule::Parity ? parity != 0 : insideByRule(winding, rule);
 }
 
-/// A column's record for queries that should miss the cache once: its
-/// first two crossings (`kPadding` where the column has fewer, a depth no
-/// point reaches), where the column starts in the sprite's crossings, and
-/// how many it has. 16 bytes: four records a cache line.
-struct PackedColumn {
-    float first[2];
-    std::uint32_t begin;
-    std::uint32_t count;
-};
+/// The packed column table: for queries that should miss the cache once.
+/// Column c's record is `width` floats at `records + c * width`: its first
+/// `width` crossings, `kPadding` where the column has fewer; a column with
+/// more keeps its first `width - 1` and `kMore` in the last slot, and a
+/// point behind those reads the column from the sprite. Records are 16 bytes
+/// (four crossings, four records a cache line), or 32 (eight) when more than
+/// `kWideShare` of the columns have over four crossings. Depths lie in
+/// [0, 1], so neither marker is ever in front of a point. The table lives
+/// in memory aligned to 2 MiB and advised as transparent huge pages where
+/// the system has them: random lookups over tens of MB otherwise miss the
+/// TLB on most points.
 constexpr float kPadding = 2.0f;
+constexpr float kMore = 3.0f;
+constexpr double kWideShare = 0.05;
 
-std::vector<PackedColumn> packColumns(const Sprite& sprite, unsigned threads);
+class PackedTable {
+public:
+    PackedTable(const Sprite& sprite, unsigned threads);
+    const float* records() const { return table_.get(); }
+    unsigned width() const { return width_; }
 
-/// testColumn on a packed record; `crossings` are the sprite's.
-inline bool testPacked(const PackedColumn& c, const float* crossings, float r, Rule rule) {
-    if (!(std::fabs(c.first[0]) < r)) return false; // no crossing in front
-    if (!(std::fabs(c.first[1]) < r)) return true;  // one: odd, and a winding of +-1
-    int parity = 0, winding = (crossingEnters(c.first[0]) ? 1 : -1) + (crossingEnters(c.first[1]) ? 1 : -1);
-    for (const float *e = crossings + c.begin + 2, *end = crossings + c.begin + c.count; e < end; ++e) {
-        if (!(std::fabs(*e) < r)) break;
-        parity ^= 1;
-        winding += crossingEnters(*e) ? 1 : -1;
+private:
+    struct Free {
+        void operator()(float* p) const;
+    };
+    std::unique_ptr<float[], Free> table_;
+    unsigned width_ = 4;
+};
+
+/// testColumn on the packed record of `column` (`Width` floats at
+/// `record`), without branches on the data unless the point lies behind the
+/// record's crossings in a column that has more.
+template <unsigned Width>
+inline bool testPacked(const float* record, const Sprite& sprite, std::size_t column, float r, Rule rule) {
+    bool front[Width];
+    for (unsigned k = 0; k < Width; ++k) front[k] = std::fabs(record[k]) < r;
+    if (__builtin_expect(front[Width - 2] && record[Width - 1] == kMore, 0))
+        return testColumn(sprite.crossings.data() + sprite.offsets[column],
+                          sprite.crossings.data() + sprite.offsets[column + 1], r, rule);
+    if (rule == Rule::Parity) {
+        unsigned parity = 0;
+        for (unsigned k = 0; k < Width; ++k) parity ^= unsigned(front[k]);
+        return parity != 0;
     }
-    return rule == Rule::Parity ? parity != 0 : insideByRule(winding, rule);
+    int winding = 0;
+    for (unsigned k = 0; k < Width; ++k) winding += int(front[k]) * (std::signbit(record[k]) ? -1 : 1);
+    return insideByRule(winding, rule);
 }
 
 } // namespace vds::detail

@@ -240,9 +240,13 @@ struct Sprite {
 
 /// How batch classification reads the sprite.
 enum class QueryLayout : std::uint8_t {
-    Auto,    ///< Packed when the batch has at least four times as many points as the sprite has columns
+    Auto,    ///< Packed when the batch has at least half as many points as the sprite has columns
     Offsets, ///< the sprite's own arrays: offsets, then crossings (two dependent cache misses a point)
-    Packed,  ///< a table of 16 bytes a column with its first two crossings, built for the call (one miss)
+    /// A table of 16 bytes a column with its first four crossings (32 bytes
+    /// and eight where many columns have more), built for the call in huge
+    /// pages: one cache miss a point and no branch on the data, unless it
+    /// lies behind those crossings. The same answers as Offsets.
+    Packed,
 };
 
 /// How a sprite's batch evaluates the boundary term of Rule::GeneralizedWinding.
