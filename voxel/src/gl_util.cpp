@@ -110,4 +110,22 @@ std::uint64_t nowNanoseconds() {
 
 double secondsSince(std::uint64_t start) { return double(nowNanoseconds() - start) * 1e-9; }
 
+DrawTimes timedFullScreenDraw(const char* what) {
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glFinish();
+    Query timer = Query::create(GL_TIME_ELAPSED);
+    const std::uint64_t start = nowNanoseconds();
+    glBeginQuery(GL_TIME_ELAPSED, timer.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEndQuery(GL_TIME_ELAPSED);
+    glFinish();
+    DrawTimes times;
+    times.wallMilliseconds = secondsSince(start) * 1e3;
+    checkGl(what);
+    GLuint64 nanoseconds = 0;
+    glGetQueryObjectui64v(timer.id(), GL_QUERY_RESULT, &nanoseconds);
+    times.gpuMilliseconds = double(nanoseconds) * 1e-6;
+    return times;
+}
+
 } // namespace vds::voxel::detail

@@ -60,6 +60,18 @@ Buffer zeroedBuffer(std::size_t bytes, const char* what);
 /// gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x.
 void dispatchLinear(std::size_t count, std::uint32_t local);
 
+/// What one draw cost: GL_TIME_ELAPSED, and the wall clock to glFinish.
+struct DrawTimes {
+    double gpuMilliseconds = 0.0;
+    double wallMilliseconds = 0.0;
+};
+
+/// Draws the bound vertex array's first triangle (a full-screen triangle)
+/// twice, timing the second: drivers compile shader variants at their first
+/// draw (llvmpipe does), which is no part of a frame's cost. `what` names the
+/// pass in GL errors.
+DrawTimes timedFullScreenDraw(const char* what);
+
 /// Seconds since `start` (steady clock), for build timings.
 double secondsSince(std::uint64_t startNanoseconds);
 std::uint64_t nowNanoseconds();

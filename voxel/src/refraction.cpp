@@ -410,16 +410,7 @@ RefractionImage renderRefraction(const GlContext& gl, const GpuRefractionCaster&
     caster.setUniforms(id);
     glBindVertexArray(vao.id());
 
-    glDrawArrays(GL_TRIANGLES, 0, 3); // untimed: the driver may compile here
-    glFinish();
-    Query timer = Query::create(GL_TIME_ELAPSED);
-    const std::uint64_t start = detail::nowNanoseconds();
-    glBeginQuery(GL_TIME_ELAPSED, timer.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEndQuery(GL_TIME_ELAPSED);
-    glFinish();
-    const double wallSeconds = detail::secondsSince(start);
-    checkGl("rendering refraction");
+    const detail::DrawTimes times = detail::timedFullScreenDraw("rendering refraction");
 
     RefractionImage image;
     image.width = view.width;
@@ -429,10 +420,8 @@ RefractionImage renderRefraction(const GlContext& gl, const GpuRefractionCaster&
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glGetTextureImage(hits.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(image.hits.size() * sizeof(glm::vec4)), image.hits.data());
     glGetTextureImage(colours.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(image.rgba.size()), image.rgba.data());
-    GLuint64 nanoseconds = 0;
-    glGetQueryObjectui64v(timer.id(), GL_QUERY_RESULT, &nanoseconds);
-    image.gpuMilliseconds = double(nanoseconds) * 1e-6;
-    image.wallMilliseconds = wallSeconds * 1e3;
+    image.gpuMilliseconds = times.gpuMilliseconds;
+    image.wallMilliseconds = times.wallMilliseconds;
     glBindVertexArray(0);
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

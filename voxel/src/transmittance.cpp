@@ -287,18 +287,7 @@ TransmittanceImage renderTransmittance(const GlContext& gl, const GpuTransmittan
     caster.setUniforms(id);
     glBindVertexArray(vao.id());
 
-    // An untimed draw first: drivers compile shader variants at their first
-    // draw (llvmpipe does), which is no part of a frame's cost.
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glFinish();
-    Query timer = Query::create(GL_TIME_ELAPSED);
-    const std::uint64_t start = detail::nowNanoseconds();
-    glBeginQuery(GL_TIME_ELAPSED, timer.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEndQuery(GL_TIME_ELAPSED);
-    glFinish();
-    const double wallSeconds = detail::secondsSince(start);
-    checkGl("rendering transmittance");
+    const detail::DrawTimes times = detail::timedFullScreenDraw("rendering transmittance");
 
     TransmittanceImage image;
     image.width = plane.width;
@@ -306,10 +295,8 @@ TransmittanceImage renderTransmittance(const GlContext& gl, const GpuTransmittan
     std::vector<float> texels(std::size_t(w) * std::size_t(h) * 2);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glGetTextureImage(target.id(), 0, GL_RG, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
-    GLuint64 nanoseconds = 0;
-    glGetQueryObjectui64v(timer.id(), GL_QUERY_RESULT, &nanoseconds);
-    image.gpuMilliseconds = double(nanoseconds) * 1e-6;
-    image.wallMilliseconds = wallSeconds * 1e3;
+    image.gpuMilliseconds = times.gpuMilliseconds;
+    image.wallMilliseconds = times.wallMilliseconds;
     glBindVertexArray(0);
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
