@@ -367,6 +367,10 @@ TEST_F(Cli, OpenMeshIsBakedWithAWarningAndRecorded) {
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("warning: "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("3 boundary edges"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("--rule generalized-winding"), std::string::npos) << r.output; // points to what answers
+    r = vds("voxelize " + p("open.obj") + " --dims 4 -o " + p("open.npy"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("--rule generalized-winding"), std::string::npos) << r.output;
     r = vds("info " + p("open.vds"));
     EXPECT_NE(r.output.find("NOT A SOLID"), std::string::npos) << r.output;
     // Exact answers and accuracy need a solid: refused, unless asked for.

@@ -31,7 +31,8 @@ void bake(BakeArgs& a) {
         a.options.axis = vds::parseAxis(a.axis);
     }
     if (!report.oriented())
-        std::fprintf(stderr, "vds bake: warning: %s is %s; the sprite answers for a surface, not a solid\n",
+        std::fprintf(stderr, "vds bake: warning: %s is %s; parity and winding answer for a surface, not a solid "
+                     "(classify with --rule generalized-winding)\n",
                      a.mesh.c_str(), report.summary().c_str());
     a.options.progress = progress;
     vds::BakeTimings timings;

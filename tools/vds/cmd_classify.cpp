@@ -134,7 +134,8 @@ void classify(ClassifyArgs& a) {
         const std::string warning = vds::insideWarning(report, a.options.rule);
         if (!warning.empty()) std::fprintf(stderr, "vds classify: warning: %s: %s\n", a.mesh.c_str(), warning.c_str());
         if (a.allowOpen && !report.closed() && a.options.rule != vds::Rule::GeneralizedWinding)
-            std::fprintf(stderr, "vds classify: warning: %s is %s; inside is not well defined\n", a.mesh.c_str(),
+            std::fprintf(stderr, "vds classify: warning: %s is %s; inside is not well defined by this rule "
+                         "(--rule generalized-winding answers for open meshes)\n", a.mesh.c_str(),
                          report.summary().c_str());
         if (a.certified) {
             vds::CertifiedOptions certifiedOptions;

@@ -46,7 +46,8 @@ void voxelize(VoxelizeArgs& a) {
         vds::requireUsable(report, a.input);
         bounds = report.bounds;
         if (!report.closed() && a.options.rule != vds::Rule::GeneralizedWinding)
-            std::fprintf(stderr, "vds voxelize: warning: %s is %s; labels count crossings, not a solid's inside\n",
+            std::fprintf(stderr, "vds voxelize: warning: %s is %s; parity labels count crossings, not a solid's inside "
+                         "(--rule generalized-winding answers for open meshes)\n",
                          a.input.c_str(), report.summary().c_str());
     }
     phase("load", secondsSince(start));
