@@ -10,8 +10,15 @@
 // cell index (i * dims.y + j) * dims.z + k, in a buffer of 32-bit words four
 // bytes each (low byte first) that the host cleared to 0: each invocation
 // ORs in the words its inside cells touch, once per word.
+//
+// Rule::GeneralizedWinding (u_rule 2) adds, per cell, the boundary term at
+// the cell's texel-centre point (vpt.glsl's vdsContainsGeneralizedAt, the
+// point the CPU takes): the one rule whose labels are not only compared
+// floats, and O(boundary edges) a cell.
 layout(local_size_x = 64) in; // before the include: it reads gl_WorkGroupSize
+#define VDS_BOUNDARY_BINDING 5 // the boundary edges, for Rule::GeneralizedWinding
 #include "vds/compute.glsl"
+#include "vds/vpt.glsl"
 
 layout(std430, binding = 0) readonly restrict buffer Offsets { uint offsets[]; };
 layout(std430, binding = 1) readonly restrict buffer Crossings { float crossings[]; };
@@ -26,7 +33,9 @@ uniform uint u_strideV;
 uniform uint u_step;
 uniform uint u_firstSlice; // slices [first, end) lie in the sprite's depth range
 uniform uint u_endSlice;
-uniform int u_rule;        // 0 parity, 1 winding
+uniform int u_rule;        // 0 parity, 1 winding, 2 generalized winding
+uniform uint u_width;      // the sprite's width in texels: texel = t * width + s
+uniform VdsBoundary u_boundary; // read by u_rule 2 only
 
 void vdsFlush(uint word, uint bits) {
     if (bits != 0u) atomicOr(cells[word], bits);
@@ -39,6 +48,7 @@ void main() {
         if (texel < 0) continue;
         uint base = (column / u_dimV) * u_strideU + (column % u_dimV) * u_strideV;
         uint e = offsets[texel], last = offsets[texel + 1];
+        ivec2 st = ivec2(int(uint(texel) % u_width), int(uint(texel) / u_width));
         int parity = 0, winding = 0;
         uint word = 0u, bits = 0u;
         for (uint k = u_firstSlice; k < u_endSlice; ++k) {
@@ -48,7 +58,9 @@ void main() {
                 parity ^= 1;
                 winding += floatBitsToInt(crossings[e]) < 0 ? -1 : 1;
             }
-            bool inside = u_rule == 1 ? winding != 0 : parity != 0;
+            bool inside = u_rule == 2   ? vdsContainsGeneralizedAt(u_boundary, winding, st, depth)
+                          : u_rule == 1 ? winding != 0
+                                        : parity != 0;
             if (!inside) continue;
             uint index = base + k * u_step;
             if (index >> 2u != word) {

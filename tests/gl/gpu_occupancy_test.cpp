@@ -1,7 +1,14 @@
 // The GPU column sweep against the CPU one (vds::occupancy), cell by cell,
 // on llvmpipe or a real GPU: sprites along each axis, both rules, a sprite
 // moved and scaled after the bake, grids whose box reaches past the sprite's
-// and whose sizes are not multiples of four (label words shared by columns).
+// and whose sizes are not multiples of four (label words shared by columns);
+// and Rule::GeneralizedWinding on open meshes against the CPU's labels and a
+// double-precision value written out here.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
@@ -18,6 +25,34 @@ namespace vds {
 namespace {
 
 class GpuOccupancyTest : public test::GlTest {};
+
+// The GWN the sprite stands for at `world`, in double, independently of the
+// library's boundary code (as tests/gl/gwn_gpu_test.cpp's): the signed count
+// of the column's crossings in front, plus the solid angles (+axis, a - q,
+// b - q) / 4 pi of the boundary edges at the texel-centre point q at the
+// point's depth. NaN outside the box.
+double referenceGwn(const Sprite& s, const glm::vec3& world) {
+    const glm::vec3 t = s.grid.toTexture(world);
+    if (!(t.z >= 0.0f && t.z <= 1.0f)) return std::nan("");
+    const float fs = std::floor(t.x * float(s.width())), ft = std::floor(t.y * float(s.height()));
+    if (!(fs >= 0.0f && fs < float(s.width()) && ft >= 0.0f && ft < float(s.height()))) return std::nan("");
+    const auto i = std::uint32_t(fs), j = std::uint32_t(ft);
+    const std::size_t c = std::size_t(j) * s.width() + i;
+    int winding = 0;
+    for (std::uint32_t k = s.offsets[c]; k < s.offsets[c + 1] && crossingDepth(s.crossings[k]) < t.z; ++k)
+        winding += crossingEnters(s.crossings[k]) ? 1 : -1;
+    const glm::dvec3 q(s.grid.texelCentre(i, j, t.z));
+    glm::dvec3 axis(0.0);
+    axis[axisPermutation(s.grid.axis).z] = 1.0;
+    double sum = 0.0;
+    for (std::size_t k = 0; k + 1 < s.boundaryEdges.size(); k += 2) {
+        const glm::dvec3 u = glm::dvec3(s.boundaryEdges[k]) - q, v = glm::dvec3(s.boundaryEdges[k + 1]) - q;
+        const double lu = glm::length(u), lv = glm::length(v);
+        sum += 2.0 * std::atan2(glm::dot(axis, glm::cross(u, v)), lu * lv + glm::dot(axis, u) * lv +
+                                                                       glm::dot(axis, v) * lu + glm::dot(u, v));
+    }
+    return double(winding) + sum / (4.0 * 3.14159265358979323846);
+}
 
 TEST_F(GpuOccupancyTest, GpuSweepEqualsCpuSweepOnEveryCell) {
     const auto torus = solids::torus({0.2f, -0.1f, 0.0f}, 1.0f, 0.4f, 64);
@@ -58,6 +93,102 @@ TEST_F(GpuOccupancyTest, GpuSweepEqualsCpuSweepOnEveryCell) {
                 }
             }
     EXPECT_EQ(cases, 24);
+}
+
+TEST_F(GpuOccupancyTest, GeneralizedWindingOfOpenMeshesEqualsTheCpu) {
+    GpuOccupancy sweep(gl());
+    const struct {
+        const char* name;
+        TriangleMesh mesh;
+    } meshes[] = {{"cup", solids::sphereCup()}, {"sphere with holes", solids::sphereWithHoles()}};
+    int cases = 0;
+    for (const auto& m : meshes)
+        for (Axis axis : {Axis::Z, Axis::X}) {
+            BakeOptions o;
+            o.resolution = 48;
+            o.axis = axis;
+            o.method = BakeMethod::Cpu;
+            const Sprite sprite = bake(m.mesh, o);
+            ASSERT_FALSE(sprite.boundaryEdges.empty()) << m.name;
+            const Box box = meshBounds(m.mesh);
+            const glm::vec3 pad = 0.08f * (box.hi - box.lo);
+            const OccupancyGrid grid{{box.lo - pad, box.hi + pad}, {33, 27, 30}};
+            const GpuSprite gpu(sprite, GpuSpriteParts::ColumnsOnly);
+            ASSERT_EQ(gpu.boundaryEdgeCount(), sprite.boundaryEdges.size() / 2);
+            std::vector<std::uint8_t> cpu(grid.cellCount(), 9), gpuCells(grid.cellCount(), 7);
+            occupancy(sprite, grid, cpu.data(), {Rule::GeneralizedWinding, 1});
+            sweep.run(gpu, grid, gpuCells.data(), Rule::GeneralizedWinding);
+            // The CPU's exact per-edge sum at the same cell centres.
+            std::vector<glm::vec3> centres;
+            centres.reserve(grid.cellCount());
+            for (std::uint32_t i = 0; i < grid.dims.x; ++i)
+                for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+                    for (std::uint32_t k = 0; k < grid.dims.z; ++k) centres.push_back(grid.cellCentre(i, j, k));
+            ClassifyOptions exact;
+            exact.rule = Rule::GeneralizedWinding;
+            exact.boundary = BoundaryEvaluation::Exact;
+            exact.threads = 1;
+            std::vector<std::uint8_t> exactCells(grid.cellCount(), 5);
+            classify(sprite, centres.data(), centres.size(), exactCells.data(), exact);
+            std::size_t nearHalf = 0, elsewhere = 0, cpuDiffer = 0, inside = 0, open = 0, referenceDiffer = 0;
+            for (std::uint32_t i = 0; i < grid.dims.x; ++i)
+                for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+                    for (std::uint32_t k = 0; k < grid.dims.z; ++k) {
+                        const std::size_t c = grid.index(i, j, k);
+                        const double w = referenceGwn(sprite, grid.cellCentre(i, j, k));
+                        const bool tie = std::isfinite(w) && std::fabs(w - 0.5) <= 1e-4;
+                        inside += cpu[c];
+                        open += std::isfinite(w) && std::fabs(w - std::round(w)) > 0.05;
+                        cpuDiffer += cpu[c] != exactCells[c] && !tie;
+                        referenceDiffer += (std::isfinite(w) && w > 0.5) != bool(cpu[c]) && !tie;
+                        if (gpuCells[c] == cpu[c]) continue;
+                        if (tie) ++nearHalf;
+                        else ++elsewhere;
+                    }
+            const std::string what = std::string(m.name) + ", axis " + toString(axis);
+            EXPECT_EQ(elsewhere, 0u) << what;
+            EXPECT_LE(nearHalf, 3u) << what;
+            EXPECT_EQ(cpuDiffer, 0u) << what;       // occupancy's caps = the exact sum
+            EXPECT_EQ(referenceDiffer, 0u) << what; // and both = this test's own value
+            EXPECT_GT(inside, cpu.size() / 20) << what; // not vacuous
+            EXPECT_GT(open, cpu.size() / 20) << what;   // the boundary term matters on many cells
+            ++cases;
+        }
+    EXPECT_EQ(cases, 4);
+}
+
+TEST_F(GpuOccupancyTest, GeneralizedWindingOfAClosedSpriteIsWinding) {
+    const auto two = solids::overlappingBoxes({-1, -1, -1}, {0.3f, 0.3f, 0.3f}, {-0.3f, -0.3f, -0.3f}, {1, 1, 1});
+    BakeOptions o;
+    o.resolution = 40;
+    o.method = BakeMethod::Cpu;
+    const Sprite sprite = bake(two.mesh, o);
+    const GpuSprite gpu(sprite, GpuSpriteParts::ColumnsOnly);
+    ASSERT_EQ(gpu.boundaryEdgeCount(), 0u);
+    const Box box = meshBounds(two.mesh);
+    const OccupancyGrid grid{{box.lo - 0.1f, box.hi + 0.1f}, {21, 22, 23}};
+    std::vector<std::uint8_t> gwn(grid.cellCount(), 7), winding(grid.cellCount(), 9), cpu(grid.cellCount(), 5);
+    GpuOccupancy sweep(gl());
+    sweep.run(gpu, grid, gwn.data(), Rule::GeneralizedWinding);
+    sweep.run(gpu, grid, winding.data(), Rule::Winding);
+    occupancy(sprite, grid, cpu.data(), {Rule::GeneralizedWinding, 1});
+    EXPECT_EQ(gwn, winding);
+    EXPECT_EQ(gwn, cpu);
+}
+
+TEST_F(GpuOccupancyTest, GeneralizedWindingNeedsAKnownBoundary) {
+    BakeOptions o;
+    o.resolution = 24;
+    o.method = BakeMethod::Cpu;
+    Sprite sprite = bake(solids::sphereCup(), o);
+    sprite.boundaryKnown = false; // as read from a version 1 file
+    const GpuSprite gpu(sprite, GpuSpriteParts::ColumnsOnly);
+    ASSERT_FALSE(gpu.boundaryKnown());
+    const OccupancyGrid grid{sprite.grid.box, {8, 8, 8}};
+    std::vector<std::uint8_t> cells(grid.cellCount());
+    GpuOccupancy sweep(gl());
+    EXPECT_THROW(sweep.run(gpu, grid, cells.data(), Rule::GeneralizedWinding), InvalidArgument);
+    EXPECT_NO_THROW(sweep.run(gpu, grid, cells.data(), Rule::Winding));
 }
 
 TEST_F(GpuOccupancyTest, RotatedSpritesAndMissingColumnsAreRefused) {

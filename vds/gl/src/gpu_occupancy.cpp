@@ -3,6 +3,8 @@
 // column of cells at once) with the walk down each column in
 // shaders/vds/occupancy.comp. The per-column texels and per-slice depths
 // are computed here, on the CPU, exactly as occupancy.cpp computes them.
+// Rule::GeneralizedWinding on an open sprite adds vpt.glsl's boundary term
+// per cell in the shader, where the CPU classifies the cells one by one.
 #include <vds/gpu_occupancy.h>
 
 #include <algorithm>
@@ -19,7 +21,8 @@ namespace vds {
 
 namespace {
 
-constexpr std::uint32_t kLocalSize = 64; // occupancy.comp's local_size_x
+constexpr std::uint32_t kLocalSize = 64;    // occupancy.comp's local_size_x
+constexpr GLuint kBoundaryBinding = 5;     // occupancy.comp's VDS_BOUNDARY_BINDING
 
 // The texel column of a texture-space point, or -1 outside (Sprite::contains's rule).
 std::int32_t texelOf(const SpriteGrid& grid, const glm::vec3& t) {
@@ -49,9 +52,9 @@ GpuOccupancy::GpuOccupancy(const GlContext& gl) : GpuOccupancy() { (void)gl; }
 
 void GpuOccupancy::run(const GpuSprite& sprite, const OccupancyGrid& grid, GLuint cells, Rule rule) {
     checkOccupancyGrid(grid);
-    if (rule == Rule::GeneralizedWinding && sprite.status() == SolidStatus::Open)
-        throw InvalidArgument("the generalized winding number of a mesh with boundary needs the exact classifier "
-                              "(sprites do not store the boundary yet)");
+    if (rule == Rule::GeneralizedWinding && !sprite.boundaryKnown())
+        throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
+                              "store the boundary edges the generalized winding number needs: bake it again");
     if (!sprite.hasColumns()) throw InvalidArgument("GpuOccupancy: the sprite has no columns in GL");
     if (grid.cellCount() > (std::uint64_t(1) << 32))
         throw InvalidArgument("GpuOccupancy: at most 2^32 cells (use vds::occupancy on the CPU)");
@@ -135,10 +138,14 @@ void GpuOccupancy::run(const GpuSprite& sprite, const OccupancyGrid& grid, GLuin
     glUniform1ui(glGetUniformLocation(id, "u_step"), stride[a]);
     glUniform1ui(glGetUniformLocation(id, "u_firstSlice"), firstSlice);
     glUniform1ui(glGetUniformLocation(id, "u_endSlice"), endSlice);
-    // On a mesh that bounds a solid the generalized winding number is the winding number.
-    glUniform1i(glGetUniformLocation(id, "u_rule"), rule == Rule::Parity ? 0 : 1);
+    glUniform1ui(glGetUniformLocation(id, "u_width"), sg.width);
+    // With no boundary edges (a mesh that bounds a solid) the generalized
+    // winding number is the winding number: the plain sweep.
+    const bool boundaryTerm = rule == Rule::GeneralizedWinding && sprite.boundaryEdgeCount() > 0;
+    if (boundaryTerm) sprite.setBoundaryUniforms(id, "u_boundary", kBoundaryBinding);
+    glUniform1i(glGetUniformLocation(id, "u_rule"), boundaryTerm ? 2 : rule == Rule::Parity ? 0 : 1);
     glDispatchCompute(detail::strideGroups(columns, kLocalSize), 1, 1);
-    for (GLuint binding = 0; binding <= 4; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
+    for (GLuint binding = 0; binding <= kBoundaryBinding; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
     glUseProgram(0);
     checkGl("running the occupancy sweep");
     // The small buffers may go: GL keeps them alive until the dispatch is done.

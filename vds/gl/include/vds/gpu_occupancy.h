@@ -20,6 +20,14 @@ namespace vds {
 /// GPU: the same labels as `vds::occupancy` on the CPU for the same sprite
 /// (the host computes each column's texel and each slice's depth with the
 /// CPU's arithmetic; the shader only compares depths). Not thread safe.
+///
+/// Rule::GeneralizedWinding on a sprite with boundary edges adds, per cell,
+/// the boundary term at the cell's texel-centre point (the point the CPU
+/// takes) to the column's signed count, in float (vpt.glsl): a label may
+/// then differ from the CPU's (double) only where |w - 1/2| is within float
+/// error (vpt.glsl gives its size, and the near-tie of a boundary edge along
+/// the view axis), and the sweep costs O(boundary edges) a cell. With no
+/// boundary edges the rule is Winding.
 class GpuOccupancy {
 public:
     /// Builds the compute program on the current context. Throws `GlError`.
@@ -43,8 +51,8 @@ public:
     /// its axes along the grid's (as baked, moved or scaled but not rotated);
     /// throws `InvalidArgument` otherwise, for a grid `checkOccupancyGrid`
     /// refuses, for more than 2^32 cells, for a buffer larger than GL's
-    /// largest shader storage block, and for Rule::GeneralizedWinding on an
-    /// open sprite.
+    /// largest shader storage block, and for Rule::GeneralizedWinding on a
+    /// sprite whose boundary is unknown (`boundaryKnown()`: a version 1 file).
     void run(const GpuSprite& sprite, const OccupancyGrid& grid, GLuint cells, Rule rule = Rule::Parity);
 
     /// Host array out: `cells` holds `grid.cellCount()` bytes (caller-owned).
