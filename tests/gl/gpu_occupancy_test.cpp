@@ -3,7 +3,7 @@
 // moved and scaled after the bake, grids whose box reaches past the sprite's
 // and whose sizes are not multiples of four (label words shared by columns);
 // and Rule::GeneralizedWinding on open meshes against the CPU's labels and a
-// double-precision value written out here.
+// double-precision value (tests/support/gwn_reference.h).
 #include <cmath>
 #include <string>
 #include <vector>
@@ -20,39 +20,14 @@
 #include "solids.h"
 
 #include "../support/gl_fixture.h"
+#include "../support/gwn_reference.h"
 
 namespace vds {
 namespace {
 
 class GpuOccupancyTest : public test::GlTest {};
 
-// The GWN the sprite stands for at `world`, in double, independently of the
-// library's boundary code (as tests/gl/gwn_gpu_test.cpp's): the signed count
-// of the column's crossings in front, plus the solid angles (+axis, a - q,
-// b - q) / 4 pi of the boundary edges at the texel-centre point q at the
-// point's depth. NaN outside the box.
-double referenceGwn(const Sprite& s, const glm::vec3& world) {
-    const glm::vec3 t = s.grid.toTexture(world);
-    if (!(t.z >= 0.0f && t.z <= 1.0f)) return std::nan("");
-    const float fs = std::floor(t.x * float(s.width())), ft = std::floor(t.y * float(s.height()));
-    if (!(fs >= 0.0f && fs < float(s.width()) && ft >= 0.0f && ft < float(s.height()))) return std::nan("");
-    const auto i = std::uint32_t(fs), j = std::uint32_t(ft);
-    const std::size_t c = std::size_t(j) * s.width() + i;
-    int winding = 0;
-    for (std::uint32_t k = s.offsets[c]; k < s.offsets[c + 1] && crossingDepth(s.crossings[k]) < t.z; ++k)
-        winding += crossingEnters(s.crossings[k]) ? 1 : -1;
-    const glm::dvec3 q(s.grid.texelCentre(i, j, t.z));
-    glm::dvec3 axis(0.0);
-    axis[axisPermutation(s.grid.axis).z] = 1.0;
-    double sum = 0.0;
-    for (std::size_t k = 0; k + 1 < s.boundaryEdges.size(); k += 2) {
-        const glm::dvec3 u = glm::dvec3(s.boundaryEdges[k]) - q, v = glm::dvec3(s.boundaryEdges[k + 1]) - q;
-        const double lu = glm::length(u), lv = glm::length(v);
-        sum += 2.0 * std::atan2(glm::dot(axis, glm::cross(u, v)), lu * lv + glm::dot(axis, u) * lv +
-                                                                       glm::dot(axis, v) * lu + glm::dot(u, v));
-    }
-    return double(winding) + sum / (4.0 * 3.14159265358979323846);
-}
+using test::referenceGwn;
 
 TEST_F(GpuOccupancyTest, GpuSweepEqualsCpuSweepOnEveryCell) {
     const auto torus = solids::torus({0.2f, -0.1f, 0.0f}, 1.0f, 0.4f, 64);
