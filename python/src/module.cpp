@@ -9,7 +9,9 @@
 //
 // GL (bake methods "lists" and "peel", contains(gpu=True)) runs on one
 // headless context owned by the module, made lazily and used under a mutex
-// by whichever thread calls. It is released by `_release_gl`, which
+// by whichever thread calls. A sprite's GPU copy is made on its first
+// contains(gpu=True) and kept in that state, keyed by the sprite, until the
+// sprite is freed. All of it is released by `_release_gl`, which
 // vds/__init__.py registers with Python's atexit: Python runs that while the
 // interpreter finalizes, before the C library's exit handlers (EGL's among
 // them). The state itself is never destroyed by a static destructor.
@@ -18,6 +20,8 @@
 #include <cstring>
 #include <memory>
 #include <mutex>
+#include <unordered_map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -176,12 +180,23 @@ py::tuple meshArrays(const vds::TriangleMesh& mesh) {
 
 // ---- GL ------------------------------------------------------------------
 
-/// The module's GL context and GPU classifier, made on first use. Allocated
-/// once and never destroyed (no static destructor may touch GL).
+/// The module's GL context and GPU classifier, made on first use, and the
+/// sprites resident on it. Allocated once and never destroyed (no static
+/// destructor may touch GL).
 struct GlState {
+    /// Guards every GL call, the context and `resident`.
     std::mutex mutex;
     std::unique_ptr<vds::GlContext> gl;
     std::unique_ptr<vds::GpuClassifier> classifier;
+    /// GPU copies of Python sprites (`PySprite::gpuId`), kept between
+    /// contains(gpu=True) calls; released with the context.
+    std::unordered_map<std::uint64_t, std::unique_ptr<vds::GpuSprite>> resident;
+    std::uint64_t nextId = 1; // under `mutex`
+
+    /// Ids of sprites freed while `mutex` was held by another thread: their
+    /// copies are freed by the next holder of `mutex`.
+    std::mutex orphansMutex;
+    std::vector<std::uint64_t> orphans;
 
     /// The context, made if need be; the caller holds `mutex`. Current on no
     /// thread between calls.
@@ -191,6 +206,17 @@ struct GlState {
             gl = std::make_unique<vds::GlContext>();
         }
         return *gl;
+    }
+
+    /// Frees the copies of sprites freed meanwhile. The caller holds `mutex`
+    /// and has the context current (or there is none: then nothing is resident).
+    void freeOrphans() {
+        std::vector<std::uint64_t> ids;
+        {
+            const std::lock_guard<std::mutex> lock(orphansMutex);
+            ids.swap(orphans);
+        }
+        for (const std::uint64_t id : ids) resident.erase(id);
     }
 };
 
@@ -206,14 +232,56 @@ void releaseGl() {
     if (!s.gl) return;
     {
         const vds::CurrentContext scope(*s.gl);
+        s.freeOrphans();
+        s.resident.clear();
         s.classifier.reset();
     }
     s.gl.reset();
 }
 
+/// The Python Sprite: a vds::Sprite and the key of its GPU copy in
+/// GlState::resident (0: none yet). The copy is owned by the module's GL
+/// state, so `_release_gl` frees it with the context; a sprite freed later
+/// finds nothing resident and calls no GL.
+struct PySprite : vds::Sprite {
+    explicit PySprite(vds::Sprite&& sprite) : vds::Sprite(std::move(sprite)) {}
+    PySprite(const PySprite&) = delete;
+    PySprite& operator=(const PySprite&) = delete;
+    ~PySprite() { releaseGpu(); }
+
+    std::uint64_t gpuId = 0;
+
+    /// Frees the GPU copy, if any, under the GL mutex. Never blocks (Python
+    /// may free a sprite on any thread, holding the GIL, while another thread
+    /// classifies under the mutex): if the mutex is taken, the copy is left
+    /// to its holder (GlState::orphans).
+    void releaseGpu() noexcept {
+        if (!gpuId) return;
+        GlState& s = glState();
+        const std::uint64_t id = std::exchange(gpuId, 0);
+        try {
+            std::unique_lock<std::mutex> lock(s.mutex, std::try_to_lock);
+            if (!lock) {
+                const std::lock_guard<std::mutex> orphansLock(s.orphansMutex);
+                s.orphans.push_back(id);
+                return;
+            }
+            const auto it = s.resident.find(id);
+            if (it == s.resident.end() || !s.gl) return; // released with the context
+            const vds::CurrentContext scope(*s.gl);
+            s.resident.erase(it);
+            s.freeOrphans();
+        } catch (...) {
+            // A context that cannot be made current: leave the copy to _release_gl.
+        }
+    }
+};
+
+std::shared_ptr<PySprite> wrap(vds::Sprite&& sprite) { return std::make_shared<PySprite>(std::move(sprite)); }
+
 // ---- classification ------------------------------------------------------
 
-BoolArray spriteContains(const vds::Sprite& sprite, const py::object& points, const std::string& ruleName, bool gpu,
+BoolArray spriteContains(PySprite& sprite, const py::object& points, const std::string& ruleName, bool gpu,
                          unsigned threads) {
     vds::ClassifyOptions options;
     options.rule = vds::parseRule(ruleName);
@@ -231,13 +299,22 @@ BoolArray spriteContains(const vds::Sprite& sprite, const py::object& points, co
     GlState& s = glState();
     const std::lock_guard<std::mutex> lock(s.mutex);
     const vds::CurrentContext scope(s.context());
+    s.freeOrphans();
     if (!s.classifier) s.classifier = std::make_unique<vds::GpuClassifier>(*s.gl);
-    const vds::GpuSprite onGpu(sprite);
-    s.classifier->classify(onGpu, p.vec3(), p.count, out, options.rule);
+    // The sprite's resident copy, uploaded on its first GPU call (or the first
+    // after _release_gl); transform() changes only the placement, set here.
+    auto it = sprite.gpuId ? s.resident.find(sprite.gpuId) : s.resident.end();
+    if (it == s.resident.end()) {
+        auto copy = std::make_unique<vds::GpuSprite>(sprite);
+        if (!sprite.gpuId) sprite.gpuId = s.nextId++;
+        it = s.resident.emplace(sprite.gpuId, std::move(copy)).first;
+    }
+    it->second->setPlacement(sprite.grid);
+    s.classifier->classify(*it->second, p.vec3(), p.count, out, options.rule);
     return labels;
 }
 
-vds::Sprite bakeMesh(const py::object& vertices, const py::object& faces, std::uint32_t resolution,
+std::shared_ptr<PySprite> bakeMesh(const py::object& vertices, const py::object& faces, std::uint32_t resolution,
                      const std::string& axis, const std::string& method, const std::string& name) {
     const vds::TriangleMesh mesh = meshFrom(vertices, faces);
     vds::BakeOptions options;
@@ -248,19 +325,19 @@ vds::Sprite bakeMesh(const py::object& vertices, const py::object& faces, std::u
     if (!autoAxis) options.axis = vds::parseAxis(axis);
     py::gil_scoped_release released;
     if (autoAxis) options.axis = vds::chooseViewAxis(mesh);
-    if (options.method == vds::BakeMethod::Cpu) return vds::bake(mesh, options);
+    if (options.method == vds::BakeMethod::Cpu) return wrap(vds::bake(mesh, options));
     GlState& s = glState();
     const std::lock_guard<std::mutex> lock(s.mutex);
-    return vds::bake(mesh, options, &s.context());
+    return wrap(vds::bake(mesh, options, &s.context()));
 }
 
-vds::Sprite spriteFromBytes(const py::bytes& data, const std::string& name) {
+std::shared_ptr<PySprite> spriteFromBytes(const py::bytes& data, const std::string& name) {
     const std::string_view view(data);
     py::gil_scoped_release released;
-    return vds::decodeSprite(view.data(), view.size(), name);
+    return wrap(vds::decodeSprite(view.data(), view.size(), name));
 }
 
-py::bytes spriteBytes(const vds::Sprite& sprite) {
+py::bytes spriteBytes(const PySprite& sprite) {
     std::vector<char> data;
     {
         py::gil_scoped_release released;
@@ -344,7 +421,7 @@ PYBIND11_MODULE(_vds, m) {
     m.doc() = "vds: point-in-solid tests with volumetric depth sprites (the compiled part; use `import vds`)";
     registerExceptions(m);
 
-    py::class_<vds::Sprite, std::shared_ptr<vds::Sprite>>(m, "Sprite", R"doc(
+    py::class_<PySprite, std::shared_ptr<PySprite>>(m, "Sprite", R"doc(
 A volumetric depth sprite: a closed mesh baked into layered depth columns.
 
 Made by `vds.bake`, `vds.read` or `vds.from_bytes`. Answers inside/outside
@@ -361,29 +438,34 @@ points: (N, 3) float32 or float64 array (any strides; float32 with x, y, z
 rule: "parity" (odd crossings in front), "winding" (non-zero winding) or
     "generalized-winding" (for sprites of closed meshes).
 gpu: classify with the GL compute shader on the module's headless context
-    (answers identical to the CPU's); the sprite is uploaded for each call,
-    and calls from several threads take turns.
+    (answers identical to the CPU's; for "generalized-winding" on an open
+    mesh the boundary term is summed in float, which can flip a label where
+    the winding number is within float error, up to about 1e-4 near the
+    holes' rims, of 1/2). The sprite is
+    uploaded on its first gpu=True call and stays resident on the GPU until
+    it is freed (or vds._release_gl runs at exit); `transform` only moves
+    it. Calls from several threads take turns.
 threads: CPU threads, 0: one per hardware thread.
 Returns a (N,) bool array, True inside. Raises ValueError for another shape,
 dtype or a non-finite coordinate. Releases the GIL while it works.)doc")
-        .def("transform", [](vds::Sprite& s, const py::object& matrix) { s.transform(matrixFrom(matrix)); },
+        .def("transform", [](PySprite& s, const py::object& matrix) { s.transform(matrixFrom(matrix)); },
              py::arg("matrix"), R"doc(
 Moves the sprite by a (4, 4) affine, invertible matrix (row-major, acting on
 column vectors [x, y, z, 1]), on top of its current placement, without
 re-baking: a sprite of solid S answers for matrix(S) afterwards.)doc")
-        .def("save", [](const vds::Sprite& s, const py::object& path) {
+        .def("save", [](const PySprite& s, const py::object& path) {
                  const std::string p = fspath(path);
                  py::gil_scoped_release released;
                  vds::writeSprite(s, p);
              }, py::arg("path"), "Writes the sprite as a .vds file, atomically (temporary file, then rename).")
         .def("to_bytes", &spriteBytes, "The bytes of the sprite's .vds file (what `save` writes).")
-        .def_property_readonly("resolution", [](const vds::Sprite& s) { return std::max(s.width(), s.height()); },
+        .def_property_readonly("resolution", [](const PySprite& s) { return std::max(s.width(), s.height()); },
                                "texels on the longer side of the view (the bake's resolution)")
         .def_property_readonly("width", &vds::Sprite::width, "texel columns along s")
         .def_property_readonly("height", &vds::Sprite::height, "texel rows along t")
-        .def_property_readonly("depth_complexity", [](const vds::Sprite& s) { return s.depthComplexity; },
+        .def_property_readonly("depth_complexity", [](const PySprite& s) { return s.depthComplexity; },
                                "d_S: the most surface crossings in any texel column (layers)")
-        .def_property_readonly("box", [](const vds::Sprite& s) {
+        .def_property_readonly("box", [](const PySprite& s) {
                  py::array_t<double> box({py::ssize_t(2), py::ssize_t(3)});
                  auto b = box.mutable_unchecked<2>();
                  for (int c = 0; c < 3; ++c) {
@@ -392,23 +474,23 @@ re-baking: a sprite of solid S answers for matrix(S) afterwards.)doc")
                  }
                  return box;
              }, "(2, 3) float64: the baked mesh's bounding box [lo, hi], mesh coordinates (before transform)")
-        .def_property_readonly("status", [](const vds::Sprite& s) {
+        .def_property_readonly("status", [](const PySprite& s) {
                  return s.status == vds::SolidStatus::Closed ? "closed" : "open";
              }, "\"closed\" (the mesh bounds a solid) or \"open\" (holes or orientation conflicts: a surface's answers)")
-        .def_property_readonly("validation", [](const vds::Sprite& s) { return s.validation; },
+        .def_property_readonly("validation", [](const PySprite& s) { return s.validation; },
                                "the mesh validation summary recorded at bake time")
-        .def_property_readonly("axis", [](const vds::Sprite& s) { return vds::toString(s.grid.axis); },
+        .def_property_readonly("axis", [](const PySprite& s) { return vds::toString(s.grid.axis); },
                                "the view axis, \"x\", \"y\" or \"z\"")
-        .def_property_readonly("source_name", [](const vds::Sprite& s) { return s.sourceName; })
+        .def_property_readonly("source_name", [](const PySprite& s) { return s.sourceName; })
         .def_property_readonly("memory_bytes", &vds::Sprite::memoryBytes, "bytes of host memory the layers take")
-        .def("__repr__", [](const vds::Sprite& s) {
+        .def("__repr__", [](const PySprite& s) {
             return "<vds.Sprite " + std::to_string(s.width()) + "x" + std::to_string(s.height()) + ", " +
                    std::to_string(s.depthComplexity) + " layers, axis " + vds::toString(s.grid.axis) + ", " +
                    (s.status == vds::SolidStatus::Closed ? "closed" : "open") +
                    (s.sourceName.empty() ? "" : ", from " + s.sourceName) + ">";
         })
-        .def(py::pickle([](const vds::Sprite& s) { return spriteBytes(s); },
-                        [](const py::bytes& b) { return std::make_shared<vds::Sprite>(spriteFromBytes(b, "<pickle>")); }));
+        .def(py::pickle([](const PySprite& s) { return spriteBytes(s); },
+                        [](const py::bytes& b) { return spriteFromBytes(b, "<pickle>"); }));
 
     py::class_<PyExact>(m, "ExactClassifier", R"doc(
 The exact classifier on a mesh's triangles (exact predicates, no sprite).
@@ -454,7 +536,7 @@ that cannot be read, vds.FormatError (a ValueError) for a malformed one.)doc");
     m.def("read", [](const py::object& path) {
               const std::string p = fspath(path);
               py::gil_scoped_release released;
-              return vds::readSprite(p);
+              return wrap(vds::readSprite(p));
           }, py::arg("path"),
           "Reads a .vds file. Raises vds.IoError (an OSError) if it cannot be read, vds.FormatError (a ValueError) if it is not a valid .vds file.");
     m.def("from_bytes", &spriteFromBytes, py::arg("data"), py::arg("name") = "<memory>",
@@ -464,5 +546,16 @@ that cannot be read, vds.FormatError (a ValueError) for a malformed one.)doc");
               const bool ok = vds::glAvailable(&reason);
               return py::make_tuple(ok, reason);
           }, "(bool, reason): whether a headless GL context can be had here, and why not.");
+    m.def("_gpu_resident", [] {
+              py::gil_scoped_release released;
+              GlState& s = glState();
+              const std::lock_guard<std::mutex> lock(s.mutex);
+              std::size_t orphans;
+              {
+                  const std::lock_guard<std::mutex> orphansLock(s.orphansMutex);
+                  orphans = s.orphans.size();
+              }
+              return s.resident.size() - std::min(orphans, s.resident.size());
+          }, "How many sprites have a GPU copy resident on the module's context (for tests).");
     m.def("_release_gl", &releaseGl, "Frees the module's GL context (registered with atexit by vds/__init__.py).");
 }

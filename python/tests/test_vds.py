@@ -1,4 +1,5 @@
 """The Python module against analytic solids, the exact classifier and the GPU."""
+import gc
 import pickle
 import subprocess
 import sys
@@ -260,3 +261,142 @@ def test_interpreter_exits_cleanly_with_gl_in_use():
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "5"
+
+
+# ---- resident GPU sprites ---------------------------------------------------
+
+
+def open_sphere(cap_z=0.8, segments=48, rings=24):
+    """A UV sphere without the triangles whose vertices all lie above z = cap_z:
+    an open surface with one hole around the north pole."""
+    V, F = sphere_mesh(segments=segments, rings=rings)
+    keep = ~np.all(V[F][:, :, 2] > cap_z, axis=1)
+    return V, F[keep]
+
+
+@pytest.mark.parametrize("rule", ["parity", "winding"])
+def test_repeated_gpu_calls_reuse_one_upload_and_agree_with_cpu(spot, rule):
+    gl_or_skip()
+    _, _, sprite = spot
+    copy = pickle.loads(pickle.dumps(sprite))  # a fresh sprite, nothing resident yet
+    before = vds._gpu_resident()
+    for k in range(5):
+        points = uniform(sprite.box[0] - 0.1, sprite.box[1] + 0.1, 50_000 + 1000 * k).astype(
+            np.float32 if k % 2 else np.float64)
+        assert np.array_equal(copy.contains(points, rule=rule, gpu=True), copy.contains(points, rule=rule))
+        assert vds._gpu_resident() == before + 1  # uploaded once, kept
+
+
+def test_gpu_answers_follow_transform_of_a_resident_sprite():
+    gl_or_skip()
+    V, F = box_mesh(LO, HI)
+    sprite = vds.bake(V, F, resolution=64, method="cpu")
+    points = uniform(np.subtract(LO, 1), np.add(HI, 1), 50_000)
+    assert np.array_equal(sprite.contains(points, gpu=True), sprite.contains(points))  # now resident
+    model = np.diag([2.0, 1.0, 0.5, 1.0])
+    model[:3, 3] = [10.0, -3.0, 1.0]
+    sprite.transform(model)
+    lo = model[:3, :3] @ LO + model[:3, 3]
+    hi = model[:3, :3] @ HI + model[:3, 3]
+    moved = uniform(lo - 1, hi + 1, 100_000)
+    gpu = sprite.contains(moved, gpu=True)
+    assert np.array_equal(gpu, sprite.contains(moved))
+    far = box_distance(moved, lo, hi) > 2 * 3.0 / 64
+    truth = np.all((moved > lo) & (moved < hi), axis=1)
+    assert np.array_equal(gpu[far], truth[far])
+    assert gpu.sum() > 1000  # the moved box is found where it went
+    sprite.transform(np.linalg.inv(model))  # and back
+    assert np.array_equal(sprite.contains(points, gpu=True), sprite.contains(points))
+
+
+def test_gpu_generalized_winding_of_an_open_mesh_agrees_with_cpu():
+    gl_or_skip()
+    V, F = open_sphere()
+    sprite = vds.bake(V, F, resolution=128, method="cpu")
+    assert sprite.status == "open"
+    points = uniform((-1.2, -1.2, -1.2), (1.2, 1.2, 1.2), 100_000)
+    cpu = sprite.contains(points, rule="generalized-winding")
+    gpu = sprite.contains(points, rule="generalized-winding", gpu=True)
+    assert np.array_equal(gpu, sprite.contains(points, rule="generalized-winding", gpu=True))  # resident, repeatable
+    w = vds.winding_numbers(V, F, points)
+    near_half = np.abs(w - 0.5) < 1e-4
+    assert np.array_equal(gpu[~near_half], cpu[~near_half]), np.flatnonzero((gpu != cpu) & ~near_half)[:10]
+    # The hole matters: many points have a fractional winding number.
+    assert ((w > 0.05) & (w < 0.95)).sum() > 1000
+    assert (cpu == (w > 0.5)).mean() > 0.99
+
+
+def test_deleting_a_resident_sprite_then_using_another():
+    gl_or_skip()
+    V, F = box_mesh(LO, HI)
+    points = uniform(np.subtract(LO, 1), np.add(HI, 1), 20_000)
+    first = vds.bake(V, F, resolution=32, method="cpu")
+    expected = first.contains(points)
+    assert np.array_equal(first.contains(points, gpu=True), expected)
+    gc.collect()  # other tests' sprites go first
+    resident = vds._gpu_resident()
+    del first
+    gc.collect()
+    assert vds._gpu_resident() == resident - 1  # freed with the sprite
+    second = vds.bake(V, F, resolution=32, method="cpu")
+    assert np.array_equal(second.contains(points, gpu=True), expected)
+    assert vds._gpu_resident() == resident
+
+
+def test_threads_free_and_use_resident_sprites_at_once(spot):
+    gl_or_skip()
+    _, _, sprite = spot
+    data = sprite.to_bytes()
+    points = uniform(sprite.box[0], sprite.box[1], 30_000, np.float32)
+    expected = sprite.contains(points)
+    failures = []
+    sprite.contains(points[:10], gpu=True)
+    gc.collect()
+    resident = vds._gpu_resident()
+
+    def work():
+        try:
+            for _ in range(4):
+                mine = vds.from_bytes(data)
+                for _ in range(2):
+                    if not np.array_equal(mine.contains(points, gpu=True), expected):
+                        failures.append("labels")
+                del mine  # freed on this thread, maybe while another holds GL
+        except Exception as error:  # noqa: BLE001 (reported below)
+            failures.append(repr(error))
+
+    threads = [threading.Thread(target=work) for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not failures
+    sprite.contains(points[:10], gpu=True)  # frees the copies left to the GL holder
+    assert vds._gpu_resident() == resident
+
+
+def test_interpreter_exits_cleanly_with_resident_gpu_sprites():
+    gl_or_skip()
+    script = (
+        "import gc, numpy as np, vds, sys\n"
+        "sys.path.insert(0, %r)\n"
+        "from conftest import box_mesh\n"
+        "V, F = box_mesh((0, 0, 0), (1, 1, 1))\n"
+        "p = np.full((5, 3), 0.5)\n"
+        "keep = vds.bake(V, F, resolution=32, method='cpu')\n"
+        "gone = vds.bake(V, F, resolution=32)\n"
+        "class Cycle: pass\n"
+        "cycle = Cycle(); cycle.me = cycle; cycle.sprite = vds.bake(V, F, resolution=16, method='cpu')\n"
+        "total = sum(int(s.contains(p, gpu=True).sum()) for s in (keep, gone, cycle.sprite))\n"
+        "del gone; gc.collect()\n"
+        "after = vds.bake(V, F, resolution=16, method='cpu'); after.contains(p, gpu=True)\n"
+        "vds._release_gl()\n"  # resident copies go with the context ...
+        "print(total, vds._gpu_resident())\n"
+        "del after; gc.collect()\n"  # ... and a sprite freed later calls no GL
+        "print(int(keep.contains(p, gpu=True).sum()), vds._gpu_resident())\n"  # a new context, uploaded again
+        "del cycle\n"  # collected during finalization, after the atexit release
+    ) % str(DATA.parent.parent / "python" / "tests")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["15", "0", "5", "1"], done.stdout
+    assert "rror" not in done.stderr, done.stderr

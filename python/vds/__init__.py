@@ -29,6 +29,7 @@ from ._vds import (  # noqa: F401  (the public API)
     InvalidMesh,
     IoError,
     Sprite,
+    _gpu_resident,
     _release_gl,
     bake,
     from_bytes,
