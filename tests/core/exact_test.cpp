@@ -138,6 +138,37 @@ TEST(ExactClassifier, BruteForceAgreesOnRandomAndDegeneratePoints) {
     }
 }
 
+/// The grid lists each cell's triangles by their nearest vertex depth and
+/// stops at the first wholly behind the point, and counts a claimed triangle
+/// wholly in front without orient3d: points whose depth equals a vertex depth
+/// of the triangles over them (on the vertices' and edges' rays, at the
+/// centroids) sit exactly on those shortcuts' boundaries.
+TEST(ExactClassifier, BruteForceAgreesAtTheTrianglesOwnVertexDepths) {
+    using namespace vds::solids;
+    const Solid solids[] = {
+        sphere({0.3f, -0.2f, 0.1f}, 1.5f, 40),
+        torus({0.0f, 0.5f, -0.25f}, 2.0f, 0.6f, 24),
+        overlappingBoxes({0.0f, 0.0f, 0.0f}, {2.0f, 2.0f, 2.0f}, {1.0f, 1.0f, 1.0f}, {3.0f, 3.0f, 3.0f}),
+    };
+    for (const auto& s : solids) {
+        const TriangleMesh& m = s.mesh;
+        std::vector<glm::vec3> points;
+        for (const auto& t : m.triangles) {
+            const glm::vec3 v[3] = {m.positions[t.x], m.positions[t.y], m.positions[t.z]};
+            const glm::vec3 onRays[] = {v[0], v[1], v[2], 0.5f * (v[0] + v[1]), 0.5f * (v[1] + v[2]),
+                                        (v[0] + v[1] + v[2]) / 3.0f};
+            for (const glm::vec3& p : onRays)
+                for (int a = 0; a < 3; ++a)
+                    for (const glm::vec3& depth : v) {
+                        glm::vec3 q = p;
+                        q[a] = depth[a];
+                        points.push_back(q);
+                    }
+        }
+        expectAgreement(m, points);
+    }
+}
+
 TEST(ExactClassifier, CoplanarTouchingBoxes) {
     // Two boxes sharing the face x = 1, with opposite facings there.
     const TriangleMesh mesh = vds::solids::merge(vds::solids::box({0, 0, 0}, {1, 1, 1}).mesh,

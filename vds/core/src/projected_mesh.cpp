@@ -75,7 +75,7 @@ void CellGrid::layout(const std::vector<Box2>& boxes) {
         setDims((dims_[0] + 1) / 2, (dims_[1] + 1) / 2);
 }
 
-void CellGrid::fill(const std::vector<Box2>& boxes) {
+void CellGrid::fill(const std::vector<Box2>& boxes, const std::vector<float>& depthLo) {
     if (boxes.empty()) return;
     const std::size_t cellCount = std::size_t(dims_[0]) * dims_[1];
     offsets_.assign(cellCount + 1, 0);
@@ -97,9 +97,16 @@ void CellGrid::fill(const std::vector<Box2>& boxes) {
                 e.hi[0] = std::uint8_t(i == hi[0] / kSub ? hi[0] % kSub : kSub - 1);
                 e.lo[1] = std::uint8_t(j == lo[1] / kSub ? lo[1] % kSub : 0);
                 e.hi[1] = std::uint8_t(j == hi[1] / kSub ? hi[1] % kSub : kSub - 1);
+                e.depthLo = depthLo[k];
                 entries_[next[std::size_t(j) * dims_[0] + i]++] = e;
             }
     }
+    // Nearest first; equal depths by triangle, so the layout is reproducible.
+    for (std::size_t c = 0; c < cellCount; ++c)
+        std::sort(entries_.begin() + std::ptrdiff_t(offsets_[c]), entries_.begin() + std::ptrdiff_t(offsets_[c + 1]),
+                  [](const CellEntry& a, const CellEntry& b) {
+                      return a.depthLo < b.depthLo || (a.depthLo == b.depthLo && a.triangle < b.triangle);
+                  });
 }
 
 ProjectedMesh::ProjectedMesh(MeshView mesh, Axis viewAxis) : axis(viewAxis), perm(axisPermutation(viewAxis)) {
@@ -136,13 +143,16 @@ ProjectedMesh::ProjectedMesh(MeshView mesh, Axis viewAxis) : axis(viewAxis), per
     std::sort(order.begin(), order.end());
     tris.reserve(n);
     std::vector<Box2> sortedBoxes(crossable);
+    std::vector<float> depthLo(crossable);
     for (std::size_t k = 0; k < crossable; ++k) {
-        tris.push_back(all[crossing[order[k].second]]);
+        const Triangle& t = all[crossing[order[k].second]];
+        tris.push_back(t);
         sortedBoxes[k] = boxes[order[k].second];
+        depthLo[k] = std::min({t.v[0][2], t.v[1][2], t.v[2][2]});
     }
     for (const Triangle& t : all)
         if (t.flags & kParallel) tris.push_back(t);
-    grid.fill(sortedBoxes);
+    grid.fill(sortedBoxes, depthLo);
 }
 
 } // namespace vds::detail

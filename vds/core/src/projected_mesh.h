@@ -31,7 +31,8 @@
 //
 // Acceleration: a uniform grid over the triangles' (s,t) boxes, cells shaped
 // like the median box, each entry carrying its box rounded outwards to 1/256
-// of the cell; triangles stored in cell order. The brute-force path applies
+// of the cell and its triangle's least vertex depth, a cell's entries nearest
+// first; triangles stored in cell order. The brute-force path applies
 // the same predicates to every triangle.
 #pragma once
 
@@ -104,11 +105,14 @@ inline int crossingInFront(const Triangle& tri, const float* q) {
 constexpr double kCellsPerTriangle = 0.5;
 
 /// One triangle listed in a grid cell, with its box clipped to the cell and
-/// rounded outwards to 1/256 of the cell: most candidates are rejected
-/// without reading the triangle.
+/// rounded outwards to 1/256 of the cell, and its nearest vertex depth: most
+/// candidates are rejected without reading the triangle. A cell lists its
+/// entries by `depthLo`, ascending: a query stops at the first entry wholly
+/// behind it.
 struct CellEntry {
     std::uint32_t triangle;
     std::uint8_t lo[2], hi[2];
+    float depthLo; ///< the least r of the triangle's vertices
 };
 
 /// A uniform grid over the (s,t) boxes of the crossable triangles. Points and
@@ -118,9 +122,10 @@ class CellGrid {
 public:
     /// Chooses bounds and cell counts for these boxes.
     void layout(const std::vector<Box2>& boxes);
-    /// Lists the triangles of every cell; `boxes[k]` is triangle k's box
-    /// (the boxes given to `layout`, in any order).
-    void fill(const std::vector<Box2>& boxes);
+    /// Lists the triangles of every cell, by `depthLo[k]` ascending;
+    /// `boxes[k]` is triangle k's box (the boxes given to `layout`, in any
+    /// order), `depthLo[k]` its least vertex r.
+    void fill(const std::vector<Box2>& boxes, const std::vector<float>& depthLo);
 
     /// Row-major cell of a point within the bounds.
     std::size_t cellIndex(const float* q) const {
@@ -192,12 +197,20 @@ struct ProjectedMesh {
         return winding(grid.find(q), q);
     }
     /// The winding of view-space point q, from its cell's entries `found`.
+    /// A claimed crossing's depth lies between its triangle's least and
+    /// greatest vertex r, so a triangle whose least r is >= q's is not
+    /// strictly in front, and one whose every vertex r is < q's is, with no
+    /// orient3d; the entries run by least r, so the first of the former ends
+    /// the scan.
     int winding(const CellGrid::Found& found, const float* q) const {
         int w = 0;
         for (const CellEntry* e = found.begin; e != found.end; ++e) {
+            if (e->depthLo >= q[2]) break;
             if (!CellGrid::mayHold(*e, found.sub)) continue;
             const Triangle& t = tris[e->triangle];
-            if (claims(t, q)) w += crossingInFront(t, q);
+            if (!claims(t, q)) continue;
+            if (t.v[0][2] < q[2] && t.v[1][2] < q[2] && t.v[2][2] < q[2]) w += (t.flags & kEntering) ? 1 : -1;
+            else w += crossingInFront(t, q);
         }
         return w;
     }
