@@ -161,13 +161,17 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
     std::vector<std::uint32_t> order(fine.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = std::uint32_t(k);
     nodes_.reserve(2 * fine.size() / kLeafTriangles + 2);
-    build(0, std::uint32_t(fine.size()), order, fine);
+    std::vector<glm::dvec3> unsignedMoments;
+    unsignedMoments.reserve(nodes_.capacity());
+    build(0, std::uint32_t(fine.size()), order, fine, unsignedMoments);
 }
 
 std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,
-                                  const std::vector<std::array<glm::dvec3, 3>>& tris) {
+                                  const std::vector<std::array<glm::dvec3, 3>>& tris,
+                                  std::vector<glm::dvec3>& unsignedMoments) {
     const std::uint32_t index = std::uint32_t(nodes_.size());
     nodes_.emplace_back();
+    unsignedMoments.emplace_back(0.0);
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     glm::dvec3 clo = lo, chi = hi; // of the triangles' centroids
     for (std::uint32_t k = first; k < last; ++k) {
@@ -184,18 +188,23 @@ std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::
     node.centre = 0.5 * (lo + hi);
     for (std::uint32_t k = first; k < last; ++k)
         for (const glm::dvec3& v : tris[order[k]]) node.radius = std::max(node.radius, glm::length(v - node.centre));
-    struct Ordered {
-        const std::vector<std::array<glm::dvec3, 3>>& tris;
-        const std::vector<std::uint32_t>& order;
-        const std::array<glm::dvec3, 3>& operator[](std::size_t k) const { return tris[order[k]]; }
-    };
-    const Moments m = momentsOf(Ordered{tris, order}, first, last, node.centre);
-    node.vectorArea = m.vectorArea;
-    node.moment = m.moment;
-    node.trace = m.moment[0] + m.moment[4] + m.moment[8];
-    node.errorScale = 3.0 * m.second / kFourPi;
-    node.area = m.area;
     if (last - first <= kLeafTriangles) {
+        struct Ordered {
+            const std::vector<std::array<glm::dvec3, 3>>& tris;
+            const std::vector<std::uint32_t>& order;
+            const std::array<glm::dvec3, 3>& operator[](std::size_t k) const { return tris[order[k]]; }
+        };
+        const Moments m = momentsOf(Ordered{tris, order}, first, last, node.centre);
+        node.vectorArea = m.vectorArea;
+        node.moment = m.moment;
+        node.trace = m.moment[0] + m.moment[4] + m.moment[8];
+        node.errorScale = 3.0 * m.second / kFourPi;
+        node.area = m.area;
+        for (std::uint32_t k = first; k < last; ++k) {
+            const auto& t = tris[order[k]];
+            unsignedMoments[index] += glm::length(glm::cross(t[1] - t[0], t[2] - t[0])) * 0.5 *
+                                      ((t[0] + t[1] + t[2]) / 3.0 - node.centre);
+        }
         node.first = std::uint32_t(leafTris_.size());
         node.count = last - first;
         for (std::uint32_t k = first; k < last; ++k) leafTris_.push_back(tris[order[k]]);
@@ -211,8 +220,25 @@ std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::
                          const auto& b = tris[y];
                          return a[0][split] + a[1][split] + a[2][split] < b[0][split] + b[1][split] + b[2][split];
                      });
-    node.left = build(first, middle, order, tris);
-    node.right = build(middle, last, order, tris);
+    node.left = build(first, middle, order, tris, unsignedMoments);
+    node.right = build(middle, last, order, tris, unsignedMoments);
+    // The children's moments moved to this centre: with d = c' - c, M_ij
+    // gains A_i d_j, the unsigned first moment P gains area d, and S gains
+    // 2 d . P' + area |d|^2.
+    double second = 0.0;
+    for (const std::uint32_t child : {node.left, node.right}) {
+        const Node& n = nodes_[child];
+        const glm::dvec3 d = n.centre - node.centre;
+        node.vectorArea += n.vectorArea;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                node.moment[std::size_t(3 * i + j)] += n.moment[std::size_t(3 * i + j)] + n.vectorArea[i] * d[j];
+        node.area += n.area;
+        second += n.errorScale * kFourPi / 3.0 + 2.0 * glm::dot(d, unsignedMoments[child]) + n.area * glm::dot(d, d);
+        unsignedMoments[index] += unsignedMoments[child] + n.area * d;
+    }
+    node.trace = node.moment[0] + node.moment[4] + node.moment[8];
+    node.errorScale = 3.0 * second / kFourPi;
     nodes_[index] = node;
     return index;
 }

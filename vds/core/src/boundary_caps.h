@@ -130,8 +130,11 @@ private:
         std::uint32_t left, right;  ///< inner: children (count == 0)
     };
     double exact(int winding, const glm::vec3& q) const;
+    /// `unsignedMoments[node]`: the integral of |n| (x - centre) dA, for the
+    /// parent's moments from its children's.
     std::uint32_t build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,
-                        const std::vector<std::array<glm::dvec3, 3>>& tris);
+                        const std::vector<std::array<glm::dvec3, 3>>& tris,
+                        std::vector<glm::dvec3>& unsignedMoments);
 
     int axisIndex_;
     bool closed_ = true;
