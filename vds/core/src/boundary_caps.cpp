@@ -23,7 +23,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kFourPi = 4.0 * kPi;
 constexpr std::uint32_t kLeafTriangles = 4;
 /// Most pieces a fan triangle's sides are cut into for the tree.
-constexpr int kMaxCut = 16;
+constexpr int kMaxCut = 8;
 /// Rounding slack on the estimate: the solid angles and the expansion are
 /// summed in double, some 1e-15 each.
 constexpr double kRoundingSlack = 1e-9;
