@@ -61,11 +61,10 @@ Moments momentsOf(const Tris& tris, std::size_t first, std::size_t last, const g
 }
 
 // The node's error bound over its errorScale (3 S / 4 pi), at distance
-// d = |q - c| > R, e = d - R: 2 (D - R)^4 times the integral over t in
-// [0, 1] of (1 - t) / (D - t R)^4, Taylor's integral remainder with the
-// kernel's second derivative taken at distance D - t|h| >= D - t R rather
-// than D - R, in closed form. At most 1 / e^4 (the bound of boundary_caps.h);
-// 1/6 of it at D = 2R.
+// d = |q - c| > R, e = d - R: twice the integral over t in [0, 1] of
+// (1 - t) / (d - t R)^4 (Taylor's integral remainder with the kernel's
+// second derivative taken at distance d - t|h| >= d - t R), in closed form.
+// At most 1 / e^4 (the kernel taken at d - R all along); 1/6 of it at d = 2R.
 double remainderFactor(double d, double e) { return (d + 2.0 * e) / (3.0 * d * d * d * e * e); }
 
 } // namespace
