@@ -245,6 +245,58 @@ TEST(SpriteGeneralizedWinding, AgreesWithTheExactGwnAwayFromTheSurface) {
         }
 }
 
+TEST(SpriteGeneralizedWinding, CapsLabelsEqualTheExactTermsNearOneHalf) {
+    // Points where the GWN at the texel centre is within ~1e-6 of 1/2, found
+    // by bisection in depth along columns (the value is continuous there
+    // unless a crossing lies between): the caps' refinement must reach the
+    // per-edge sum's label wherever its bound could not decide.
+    std::mt19937 rng(33);
+    std::size_t nearHalf = 0, tested = 0;
+    for (const OpenCase& c : openCases())
+        for (Axis axis : {Axis::Z, Axis::Y}) {
+            const Sprite sprite = bakeAt(c.mesh, axis, 64);
+            const SpriteGrid& g = sprite.grid;
+            std::uniform_int_distribution<std::uint32_t> ui(0, g.width - 1), uj(0, g.height - 1);
+            std::vector<glm::vec3> points;
+            for (int column = 0; column < 200; ++column) {
+                const std::uint32_t i = ui(rng), j = uj(rng);
+                const auto value = [&](float r) { return sprite.generalizedWinding(g.texelCentre(i, j, r)) - 0.5; };
+                constexpr int kSteps = 64;
+                for (int k = 0; k < kSteps; ++k) {
+                    float lo = (float(k) + 0.5f) / kSteps, hi = (float(k) + 1.5f) / kSteps;
+                    double vlo = value(lo);
+                    const double vhi = value(hi);
+                    if ((vlo > 0.0) == (vhi > 0.0)) continue; // no crossing of 1/2 (or a jump: kept too)
+                    for (int step = 0; step < 40 && hi - lo > 0.0f; ++step) {
+                        const float mid = 0.5f * (lo + hi);
+                        if (mid <= lo || mid >= hi) break;
+                        const double vmid = value(mid);
+                        if ((vmid > 0.0) == (vlo > 0.0)) {
+                            lo = mid;
+                            vlo = vmid;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    points.push_back(g.texelCentre(i, j, lo));
+                    points.push_back(g.texelCentre(i, j, hi));
+                }
+            }
+            std::vector<std::uint8_t> exactLabels(points.size()), capLabels(points.size());
+            classify(sprite, points.data(), points.size(), exactLabels.data(),
+                     {Rule::GeneralizedWinding, 0, QueryLayout::Auto, BoundaryEvaluation::Exact});
+            classify(sprite, points.data(), points.size(), capLabels.data(),
+                     {Rule::GeneralizedWinding, 0, QueryLayout::Auto, BoundaryEvaluation::Caps});
+            tested += points.size();
+            for (std::size_t k = 0; k < points.size(); ++k) {
+                ASSERT_EQ(capLabels[k], exactLabels[k]) << c.name << " point " << k;
+                nearHalf += std::fabs(sprite.generalizedWinding(points[k]) - 0.5) < 1e-3;
+            }
+        }
+    EXPECT_GT(nearHalf, tested / 10); // many are near 1/2, not at jumps
+    EXPECT_GT(nearHalf, 100u);
+}
+
 TEST(SpriteGeneralizedWinding, IsTheWindingRuleOnClosedMeshes) {
     const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.6f, 24);
     const Sprite sprite = bakeAt(shell.mesh, Axis::Z, 64);

@@ -23,10 +23,14 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kFourPi = 4.0 * kPi;
 constexpr std::uint32_t kLeafTriangles = 4;
 /// Most pieces a fan triangle's sides are cut into for the tree.
-constexpr int kMaxCut = 16;
+constexpr int kMaxCut = 8;
 /// Rounding slack on the estimate: the solid angles and the expansion are
 /// summed in double, some 1e-15 each.
 constexpr double kRoundingSlack = 1e-9;
+/// Largest error bound of a node that labels take by its expansion; nodes
+/// erring by more are opened at once (they cannot help decide a label, and
+/// keeping every taken bound small keeps the running sums' drift small).
+constexpr double kMaxTakenBound = 0.25;
 
 struct Moments {
     glm::dvec3 vectorArea{0.0};
@@ -55,6 +59,13 @@ Moments momentsOf(const Tris& tris, std::size_t first, std::size_t last, const g
     }
     return m;
 }
+
+// The node's error bound over its errorScale (3 S / 4 pi), at distance
+// d = |q - c| > R, e = d - R: twice the integral over t in [0, 1] of
+// (1 - t) / (d - t R)^4 (Taylor's integral remainder with the kernel's
+// second derivative taken at distance d - t|h| >= d - t R), in closed form.
+// At most 1 / e^4 (the kernel taken at d - R all along); 1/6 of it at d = 2R.
+double remainderFactor(double d, double e) { return (d + 2.0 * e) / (3.0 * d * d * d * e * e); }
 
 } // namespace
 
@@ -149,13 +160,17 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
     std::vector<std::uint32_t> order(fine.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = std::uint32_t(k);
     nodes_.reserve(2 * fine.size() / kLeafTriangles + 2);
-    build(0, std::uint32_t(fine.size()), order, fine);
+    std::vector<glm::dvec3> unsignedMoments;
+    unsignedMoments.reserve(nodes_.capacity());
+    build(0, std::uint32_t(fine.size()), order, fine, unsignedMoments);
 }
 
 std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,
-                                  const std::vector<std::array<glm::dvec3, 3>>& tris) {
+                                  const std::vector<std::array<glm::dvec3, 3>>& tris,
+                                  std::vector<glm::dvec3>& unsignedMoments) {
     const std::uint32_t index = std::uint32_t(nodes_.size());
     nodes_.emplace_back();
+    unsignedMoments.emplace_back(0.0);
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     glm::dvec3 clo = lo, chi = hi; // of the triangles' centroids
     for (std::uint32_t k = first; k < last; ++k) {
@@ -172,18 +187,23 @@ std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::
     node.centre = 0.5 * (lo + hi);
     for (std::uint32_t k = first; k < last; ++k)
         for (const glm::dvec3& v : tris[order[k]]) node.radius = std::max(node.radius, glm::length(v - node.centre));
-    struct Ordered {
-        const std::vector<std::array<glm::dvec3, 3>>& tris;
-        const std::vector<std::uint32_t>& order;
-        const std::array<glm::dvec3, 3>& operator[](std::size_t k) const { return tris[order[k]]; }
-    };
-    const Moments m = momentsOf(Ordered{tris, order}, first, last, node.centre);
-    node.vectorArea = m.vectorArea;
-    node.moment = m.moment;
-    node.trace = m.moment[0] + m.moment[4] + m.moment[8];
-    node.errorScale = 3.0 * m.second / kFourPi;
-    node.area = m.area;
     if (last - first <= kLeafTriangles) {
+        struct Ordered {
+            const std::vector<std::array<glm::dvec3, 3>>& tris;
+            const std::vector<std::uint32_t>& order;
+            const std::array<glm::dvec3, 3>& operator[](std::size_t k) const { return tris[order[k]]; }
+        };
+        const Moments m = momentsOf(Ordered{tris, order}, first, last, node.centre);
+        node.vectorArea = m.vectorArea;
+        node.moment = m.moment;
+        node.trace = m.moment[0] + m.moment[4] + m.moment[8];
+        node.errorScale = 3.0 * m.second / kFourPi;
+        node.area = m.area;
+        for (std::uint32_t k = first; k < last; ++k) {
+            const auto& t = tris[order[k]];
+            unsignedMoments[index] += glm::length(glm::cross(t[1] - t[0], t[2] - t[0])) * 0.5 *
+                                      ((t[0] + t[1] + t[2]) / 3.0 - node.centre);
+        }
         node.first = std::uint32_t(leafTris_.size());
         node.count = last - first;
         for (std::uint32_t k = first; k < last; ++k) leafTris_.push_back(tris[order[k]]);
@@ -199,8 +219,25 @@ std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::
                          const auto& b = tris[y];
                          return a[0][split] + a[1][split] + a[2][split] < b[0][split] + b[1][split] + b[2][split];
                      });
-    node.left = build(first, middle, order, tris);
-    node.right = build(middle, last, order, tris);
+    node.left = build(first, middle, order, tris, unsignedMoments);
+    node.right = build(middle, last, order, tris, unsignedMoments);
+    // The children's moments moved to this centre: with d = c' - c, M_ij
+    // gains A_i d_j, the unsigned first moment P gains area d, and S gains
+    // 2 d . P' + area |d|^2.
+    double second = 0.0;
+    for (const std::uint32_t child : {node.left, node.right}) {
+        const Node& n = nodes_[child];
+        const glm::dvec3 d = n.centre - node.centre;
+        node.vectorArea += n.vectorArea;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                node.moment[std::size_t(3 * i + j)] += n.moment[std::size_t(3 * i + j)] + n.vectorArea[i] * d[j];
+        node.area += n.area;
+        second += n.errorScale * kFourPi / 3.0 + 2.0 * glm::dot(d, unsignedMoments[child]) + n.area * glm::dot(d, d);
+        unsignedMoments[index] += unsignedMoments[child] + n.area * d;
+    }
+    node.trace = node.moment[0] + node.moment[4] + node.moment[8];
+    node.errorScale = 3.0 * second / kFourPi;
     nodes_[index] = node;
     return index;
 }
@@ -217,11 +254,12 @@ BoundaryCaps::Estimate BoundaryCaps::estimate(const glm::vec3& q, double nodeTol
         const Node& n = nodes_[stack[--top]];
         const glm::dvec3 y = n.centre - p;
         const double d2 = glm::dot(y, y);
-        const double d = std::sqrt(d2), e = d - n.radius, e4 = e * e * e * e;
+        const double d = std::sqrt(d2), e = d - n.radius;
         // Taken when its bound is within the tolerance per unit of solid
         // angle it subtends (about area / D^2): the taken nodes' bounds then
         // sum to about the tolerance times the caps' apparent solid angle.
-        if (e > 0.0 && e4 * nodeTolerance * n.area >= n.errorScale * d2) {
+        const double b = e > 0.0 ? n.errorScale * remainderFactor(d, e) : 0.0;
+        if (e > 0.0 && b * d2 <= nodeTolerance * n.area) {
             // Dipole and quadrupole of the node about its centre, at y = c - q.
             const double inv2 = 1.0 / d2, inv3 = inv2 / d;
             const std::array<double, 9>& M = n.moment;
@@ -229,7 +267,7 @@ BoundaryCaps::Estimate BoundaryCaps::estimate(const glm::vec3& q, double nodeTol
                                y.y * (M[3] * y.x + M[4] * y.y + M[5] * y.z) +
                                y.z * (M[6] * y.x + M[7] * y.y + M[8] * y.z);
             integral += (glm::dot(n.vectorArea, y) + n.trace - 3.0 * yMy * inv2) * inv3;
-            bound += n.errorScale / e4;
+            bound += b;
             continue;
         }
         if (n.count == 0) {
@@ -265,11 +303,92 @@ double BoundaryCaps::generalizedWinding(int winding, const glm::vec3& q, double 
 }
 
 bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
-    for (double tolerance : {kCapLabelTolerance, kCapLabelTolerance / 20.0}) {
-        const Estimate e = estimate(q, tolerance);
-        const double value = double(winding) + e.term;
-        if (std::fabs(value - 0.5) > e.bound) return value > 0.5;
-        if (e.bound == std::numeric_limits<double>::infinity()) break;
+    if (!closed_) return exact(winding, q) > 0.5;
+    if (nodes_.empty()) return winding > 0;
+    // Greedy decide-or-refine: start from the coarsest cut whose nodes each
+    // err by at most kMaxTakenBound, then open the node with the largest
+    // bound until the value lies farther from 1/2 than the summed bounds.
+    // Most points lie far from 1/2 and stop after a few nodes.
+    struct Taken {
+        double bound;
+        double value; ///< the node's expansion, in steradians
+        std::uint32_t node;
+        bool operator<(const Taken& o) const { return bound < o.bound; }
+    };
+    thread_local std::vector<Taken> heap;
+    thread_local std::vector<std::uint32_t> stack;
+    heap.clear();
+    const glm::dvec3 p(q);
+    double integral = 0.0, bound = 0.0;
+    // Opens the subtree at `index`: nodes far enough by expansion, the rest
+    // down to leaves summed exactly. False where q lies on a cap.
+    // `expand`: not by its own expansion (a leaf taken before).
+    const auto open = [&](std::uint32_t index, bool expand) {
+        stack.clear();
+        stack.push_back(index);
+        while (!stack.empty()) {
+            const std::uint32_t i = stack.back();
+            stack.pop_back();
+            const Node& n = nodes_[i];
+            const glm::dvec3 y = n.centre - p;
+            const double d2 = glm::dot(y, y);
+            const double d = std::sqrt(d2), e = d - n.radius;
+            if (e > 0.0 && !(expand && i == index)) {
+                const double b = n.errorScale * remainderFactor(d, e);
+                if (b <= kMaxTakenBound) {
+                    const double inv2 = 1.0 / d2, inv3 = inv2 / d;
+                    const std::array<double, 9>& M = n.moment;
+                    const double yMy = y.x * (M[0] * y.x + M[1] * y.y + M[2] * y.z) +
+                                       y.y * (M[3] * y.x + M[4] * y.y + M[5] * y.z) +
+                                       y.z * (M[6] * y.x + M[7] * y.y + M[8] * y.z);
+                    const double value = (glm::dot(n.vectorArea, y) + n.trace - 3.0 * yMy * inv2) * inv3;
+                    integral += value;
+                    bound += b;
+                    heap.push_back({b, value, i});
+                    std::push_heap(heap.begin(), heap.end());
+                    continue;
+                }
+            }
+            if (n.count == 0) {
+                stack.push_back(n.left);
+                stack.push_back(n.right);
+                continue;
+            }
+            for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
+                const std::array<glm::dvec3, 3>& t = leafTris_[k];
+                const glm::dvec3 u = t[0] - p, v = t[1] - p, w = t[2] - p;
+                const double lu = glm::length(u), lv = glm::length(v), lw = glm::length(w);
+                const double det = glm::dot(u, glm::cross(v, w));
+                const double den = lu * lv * lw + glm::dot(u, v) * lw + glm::dot(u, w) * lv + glm::dot(v, w) * lu;
+                const double scale = lu * lv * lw;
+                if (std::fabs(det) <= 1e-9 * scale && den <= 1e-9 * scale) return false; // on a cap
+                integral += 2.0 * std::atan2(det, den);
+            }
+        }
+        return true;
+    };
+    // value - 1/2 = offset - integral / 4 pi
+    const double offset = double(winding) + double(projected_->winding(q)) - 0.5;
+    if (open(0, false)) {
+        while (true) {
+            const double value = offset - integral / kFourPi;
+            // The running sums drift by some 1e-13 at most (each taken
+            // bound is at most kMaxTakenBound), within the slack.
+            if (std::fabs(value) > bound + kRoundingSlack) return value > 0.0;
+            if (heap.empty()) break;
+            std::pop_heap(heap.begin(), heap.end());
+            const Taken t = heap.back();
+            heap.pop_back();
+            integral -= t.value;
+            bound -= t.bound;
+            if (heap.empty()) bound = 0.0; // no drift left where nothing is taken
+            const Node& n = nodes_[t.node];
+            if (n.count == 0) {
+                if (!open(n.left, false) || !open(n.right, false)) break;
+            } else if (!open(t.node, true)) { // a leaf: summed exactly
+                break;
+            }
+        }
     }
     return exact(winding, q) > 0.5;
 }

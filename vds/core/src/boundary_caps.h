@@ -22,24 +22,32 @@
 // quadrupole), and sums the remaining leaves' triangles exactly.
 //
 // Error of a node taken by expansion, with D = |q - c| > R: Taylor's
-// remainder of the kernel K(y) = y / |y|^3 after its linear term, along the
-// segment from c - q to x - q (all at distance >= D - R from 0), is
-// n . (h^T D^2K h) / 2 for h = x - c. With y unit, D^2K contracted with a
+// remainder of the kernel K(y) = y / |y|^3 after its linear term, for the
+// point x = c + h, is the integral over t in [0, 1] of
+// (1 - t) n . D^2K(c - q + t h)[h, h] dt. With y unit, D^2K contracted with a
 // unit n and h twice is 15 (n.y)(h.y)^2 - 6 (n.h)(h.y) - 3 (n.y) over |y|^4,
 // at most 6 (maximise over n: |(15 b^2 - 3) y - 6 b h| with b = h.y, whose
-// square 45 b^4 - 18 b^2 + 9 peaks at b^2 = 1). So the node errs by at most
+// square 45 b^4 - 18 b^2 + 9 peaks at b^2 = 1), and |c - q + t h| >=
+// D - t |h| >= D - t R. The integral of 6 (1 - t) / (D - t R)^4 is
+// (D + 2e) / (D^3 e^2) with e = D - R, and |h|^2 integrates to S, so the
+// node errs by at most
 //
-//     (1 / 4 pi) * 3 * S / (D - R)^4,   S = sum over its triangles of the
-//                                        integral of |x - c|^2 dA,
+//     (1 / 4 pi) * S * (D + 2e) / (D^3 e^2),   S = sum over its triangles of
+//                                              the integral of |x - c|^2 dA,
 //
 // (S = area * (|g - c|^2 + (sum of squared sides) / 36) for a triangle of
-// centroid g). A query takes a node by expansion when that bound is at most
-// a tolerance times the solid angle the node subtends (area / D^2, so that
-// the bounds sum to about the tolerance times the caps' apparent solid
-// angle); the sum of the taken nodes' bounds comes back with the value.
-// Labels try a coarse tolerance, then a finer one, and fall back to the
-// per-edge sum (boundary_term.h) where the bound could still change the
-// answer, so they equal the exact sum's; values take a fine tolerance.
+// centroid g); that is 3 S / (4 pi e^4) (the kernel taken at D - R all along)
+// times (D + 2e) e^2 / (3 D^3): 1/6 of it at D = 2R. Values take a node by
+// expansion when that bound is at most a tolerance times the solid angle the
+// node subtends (area / D^2, so that the bounds sum to about the tolerance
+// times the caps' apparent solid angle); the sum of the taken nodes' bounds
+// comes back with the value, and values fall back to the per-edge sum
+// (boundary_term.h) where it exceeds their tolerance. Labels refine
+// greedily: from the coarsest cut whose nodes each err by at most 1/4, the
+// node with the largest bound is opened (its children, or a leaf's
+// triangles summed exactly) until the value lies farther from 1/2 than the
+// summed bounds, and the per-edge sum decides where it never does; so labels
+// equal the exact sum's.
 #pragma once
 
 #include <array>
@@ -58,11 +66,8 @@
 namespace vds::detail {
 
 /// Error bound a tree node may add when taken by its expansion, per unit of
-/// the solid angle it subtends: for labels (a first pass; most points lie
-/// far from GWN = 1/2, and those that do not are summed again with 1/20 of
-/// it, then exactly), and for values (then exactly where the bound exceeds
-/// the value's tolerance). Tuned on the bunny, teapot and suzanne.
-constexpr double kCapLabelTolerance = 1.0;
+/// the solid angle it subtends, for values (then exactly where the bound
+/// exceeds the value's tolerance).
 constexpr double kCapValueTolerance = 1e-3;
 
 /// One boundary loop and its cap, for the GLSL include's per-loop method.
@@ -99,7 +104,8 @@ public:
     double generalizedWinding(int winding, const glm::vec3& q, double tolerance) const;
 
     /// Whether `winding + B(q) > 1/2`, with the per-edge sum's answer: the
-    /// estimate decides when it is farther from 1/2 than its bound.
+    /// tree is refined greedily until the value is farther from 1/2 than its
+    /// bound.
     bool inside(int winding, const glm::vec3& q) const;
 
     /// False when the edges do not close into loops (not a mesh's boundary):
@@ -115,7 +121,7 @@ private:
     struct Node {
         glm::dvec3 centre;
         double radius;
-        double errorScale; ///< 3 S / 4 pi: the bound is errorScale / (D - R)^4
+        double errorScale; ///< 3 S / 4 pi: the bound is errorScale (D + 2e) / (3 D^3 e^2), e = D - R
         double area;       ///< unsigned
         glm::dvec3 vectorArea;
         std::array<double, 9> moment;
@@ -124,8 +130,11 @@ private:
         std::uint32_t left, right;  ///< inner: children (count == 0)
     };
     double exact(int winding, const glm::vec3& q) const;
+    /// `unsignedMoments[node]`: the integral of |n| (x - centre) dA, for the
+    /// parent's moments from its children's.
     std::uint32_t build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,
-                        const std::vector<std::array<glm::dvec3, 3>>& tris);
+                        const std::vector<std::array<glm::dvec3, 3>>& tris,
+                        std::vector<glm::dvec3>& unsignedMoments);
 
     int axisIndex_;
     bool closed_ = true;
