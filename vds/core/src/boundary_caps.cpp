@@ -67,6 +67,21 @@ Moments momentsOf(const Tris& tris, std::size_t first, std::size_t last, const g
 // At most 1 / e^4 (the kernel taken at d - R all along); 1/6 of it at d = 2R.
 double remainderFactor(double d, double e) { return (d + 2.0 * e) / (3.0 * d * d * d * e * e); }
 
+/// Adds twice the signed solid angle of cap triangle `t` seen from `p` (Van
+/// Oosterom & Strackee) to `integral`; false, adding nothing, when `p` lies
+/// in (or within rounding of) the triangle, where the angle jumps by 4 pi and
+/// the crossing count's side is not certain.
+bool addCapTriangle(const std::array<glm::dvec3, 3>& t, const glm::dvec3& p, double& integral) {
+    const glm::dvec3 u = t[0] - p, v = t[1] - p, w = t[2] - p;
+    const double lu = glm::length(u), lv = glm::length(v), lw = glm::length(w);
+    const double det = glm::dot(u, glm::cross(v, w));
+    const double den = lu * lv * lw + glm::dot(u, v) * lw + glm::dot(u, w) * lv + glm::dot(v, w) * lu;
+    const double scale = lu * lv * lw;
+    if (std::fabs(det) <= 1e-9 * scale && den <= 1e-9 * scale) return false;
+    integral += 2.0 * std::atan2(det, den);
+    return true;
+}
+
 } // namespace
 
 BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis)
@@ -275,19 +290,8 @@ BoundaryCaps::Estimate BoundaryCaps::estimate(const glm::vec3& q, double nodeTol
             stack[top++] = n.right;
             continue;
         }
-        for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
-            const std::array<glm::dvec3, 3>& t = leafTris_[k];
-            const glm::dvec3 u = t[0] - p, v = t[1] - p, w = t[2] - p;
-            const double lu = glm::length(u), lv = glm::length(v), lw = glm::length(w);
-            const double det = glm::dot(u, glm::cross(v, w));
-            const double den = lu * lv * lw + glm::dot(u, v) * lw + glm::dot(u, w) * lv + glm::dot(v, w) * lu;
-            const double scale = lu * lv * lw;
-            // q in (or within rounding of) the cap triangle, where its solid
-            // angle jumps by 4 pi: the crossing count's side is not certain.
-            if (std::fabs(det) <= 1e-9 * scale && den <= 1e-9 * scale)
-                return {0.0, std::numeric_limits<double>::infinity()};
-            integral += 2.0 * std::atan2(det, den);
-        }
+        for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
+            if (!addCapTriangle(leafTris_[k], p, integral)) return {0.0, std::numeric_limits<double>::infinity()};
     }
     const int crossings = projected_->winding(q);
     return {double(crossings) - integral / kFourPi, bound + kRoundingSlack};
@@ -354,16 +358,8 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
                 stack.push_back(n.right);
                 continue;
             }
-            for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
-                const std::array<glm::dvec3, 3>& t = leafTris_[k];
-                const glm::dvec3 u = t[0] - p, v = t[1] - p, w = t[2] - p;
-                const double lu = glm::length(u), lv = glm::length(v), lw = glm::length(w);
-                const double det = glm::dot(u, glm::cross(v, w));
-                const double den = lu * lv * lw + glm::dot(u, v) * lw + glm::dot(u, w) * lv + glm::dot(v, w) * lu;
-                const double scale = lu * lv * lw;
-                if (std::fabs(det) <= 1e-9 * scale && den <= 1e-9 * scale) return false; // on a cap
-                integral += 2.0 * std::atan2(det, den);
-            }
+            for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
+                if (!addCapTriangle(leafTris_[k], p, integral)) return false; // on a cap
         }
         return true;
     };
