@@ -52,7 +52,7 @@ void run(const std::string& name, const vds::TriangleMesh& mesh, std::size_t poi
             vds::ClassifyOptions options;
             options.threads = threads;
             start = std::chrono::steady_clock::now();
-            exact.classify(points.data(), points.size(), labels.data(), options);
+            exact.classify({points.data(), points.size()}, labels.data(), options);
             rate[threads - 1] = std::max(rate[threads - 1], double(points.size()) / seconds(start));
         }
 

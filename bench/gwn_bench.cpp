@@ -27,7 +27,7 @@
 #include <vds/eval/image.h>
 #include <vds/exact.h>
 #include <vds/mesh_io.h>
-#include <vds/parallel.h>
+#include <vds/detail/parallel.h>
 #include <vds/sprite.h>
 
 namespace {
@@ -98,8 +98,8 @@ void writeSlices(const vds::TriangleMesh& mesh, const vds::ExactClassifier& exac
             points[std::size_t(y) * w + x] = {box.lo.x - pad.x + (float(x) + 0.5f) / float(w) * (box.hi.x - box.lo.x + 2 * pad.x),
                                               box.hi.y + pad.y - (float(y) + 0.5f) / float(h) * (box.hi.y - box.lo.y + 2 * pad.y), z};
     std::vector<std::uint8_t> parity(points.size()), gwn(points.size());
-    exact.classify(points.data(), points.size(), parity.data(), {vds::Rule::Parity, threads});
-    vds::classify(sprite, points.data(), points.size(), gwn.data(), {vds::Rule::GeneralizedWinding, threads});
+    exact.classify({points.data(), points.size()}, parity.data(), {vds::Rule::Parity, threads});
+    vds::classify(sprite, {points.data(), points.size()}, gwn.data(), {vds::Rule::GeneralizedWinding, threads});
     vds::eval::Image image(2 * w + 8, h);
     for (std::size_t k = 0; k < image.rgba.size(); ++k) image.rgba[k] = 255;
     for (std::uint32_t y = 0; y < h; ++y)
@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
             const vds::ExactClassifier exact(mesh, vds::Axis::Z);
             std::vector<std::uint8_t> labels(points.size());
             for (vds::Rule rule : {vds::Rule::Parity, vds::Rule::Winding, vds::Rule::GeneralizedWinding}) {
-                exact.classify(points.data(), points.size(), labels.data(), {rule, threads});
+                exact.classify({points.data(), points.size()}, labels.data(), {rule, threads});
                 printRow(name, std::string("exact ") + vds::toString(rule), tally(w, labels));
             }
             // Throughput points, and the exact classifier's rates.
@@ -161,10 +161,10 @@ int main(int argc, char** argv) {
                 return double(many.size()) / seconds(t0) / 1e6;
             };
             const double exactParity = rate([&] {
-                exact.classify(many.data(), many.size(), manyLabels.data(), {vds::Rule::Parity, threads});
+                exact.classify({many.data(), many.size()}, manyLabels.data(), {vds::Rule::Parity, threads});
             });
             const double exactGwn = rate([&] {
-                exact.classify(many.data(), many.size(), manyLabels.data(), {vds::Rule::GeneralizedWinding, threads});
+                exact.classify({many.data(), many.size()}, manyLabels.data(), {vds::Rule::GeneralizedWinding, threads});
             });
             for (std::uint32_t resolution : resolutions) {
                 vds::BakeOptions o;
@@ -173,28 +173,28 @@ int main(int argc, char** argv) {
                 const vds::Sprite sprite = vds::bake(mesh, o);
                 const std::string tag = "sprite " + std::to_string(resolution) + " ";
                 for (vds::Rule rule : {vds::Rule::Parity, vds::Rule::Winding}) {
-                    vds::classify(sprite, points.data(), points.size(), labels.data(), {rule, threads});
+                    vds::classify(sprite, {points.data(), points.size()}, labels.data(), {rule, threads});
                     printRow(name, tag + vds::toString(rule), tally(w, labels));
                 }
                 vds::ClassifyOptions gwn{vds::Rule::GeneralizedWinding, threads, vds::QueryLayout::Auto,
                                          vds::BoundaryEvaluation::Exact};
-                vds::classify(sprite, points.data(), points.size(), labels.data(), gwn);
+                vds::classify(sprite, {points.data(), points.size()}, labels.data(), gwn);
                 printRow(name, tag + "GWN (exact boundary term)", tally(w, labels));
                 gwn.boundary = vds::BoundaryEvaluation::Caps;
-                vds::classify(sprite, points.data(), points.size(), labels.data(), gwn);
+                vds::classify(sprite, {points.data(), points.size()}, labels.data(), gwn);
                 printRow(name, tag + "GWN (capped loops)", tally(w, labels));
 
                 const double spriteParity = rate([&] {
-                    vds::classify(sprite, many.data(), many.size(), manyLabels.data(), {vds::Rule::Parity, threads});
+                    vds::classify(sprite, {many.data(), many.size()}, manyLabels.data(), {vds::Rule::Parity, threads});
                 });
                 gwn.boundary = vds::BoundaryEvaluation::Exact;
-                const double spriteExact = rate([&] { vds::classify(sprite, many.data(), many.size(), manyLabels.data(), gwn); });
+                const double spriteExact = rate([&] { vds::classify(sprite, {many.data(), many.size()}, manyLabels.data(), gwn); });
                 // A copy starts without the caps: their build is counted.
                 const vds::Sprite fresh = sprite;
                 gwn.boundary = vds::BoundaryEvaluation::Caps;
                 const double spriteCaps = rate([&] { vds::classify(fresh, many.data(), many.size(), manyLabels.data(), gwn); });
                 const double spriteWinding = rate([&] {
-                    vds::classify(sprite, many.data(), many.size(), manyLabels.data(), {vds::Rule::Winding, threads});
+                    vds::classify(sprite, {many.data(), many.size()}, manyLabels.data(), {vds::Rule::Winding, threads});
                 });
                 char line[256];
                 std::snprintf(line, sizeof line, "| %s | %zu | %zu | %u | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |",

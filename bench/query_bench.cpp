@@ -117,11 +117,11 @@ void grids(const Input& in, const std::vector<std::uint32_t>& sizes, std::uint32
     const vds::Sprite sprite = vds::bake(in.mesh, o);
     const vds::ExactClassifier exact(in.mesh);
     for (std::uint32_t n : sizes) {
-        const vds::OccupancyGrid grid = vds::cubicOccupancyGrid(vds::meshBounds(in.mesh), n);
+        const vds::Grid grid = vds::cubicGrid(vds::meshBounds(in.mesh), n);
         const std::size_t cells = grid.cellCount();
         std::vector<std::uint8_t> swept(cells), spriteSwept(cells), perPoint(cells), truth(cells);
-        const vds::OccupancyOptions opt{vds::Rule::Parity, threads};
-        const double sweep = best(2, [&] { vds::voxelize(in.mesh, grid, swept.data(), opt); });
+        const vds::ClassifyOptions opt{vds::Rule::Parity, threads};
+        const double sweep = best(2, [&] { vds::occupancy(in.mesh, grid, swept.data(), opt); });
         const double spriteSweep = best(2, [&] { vds::occupancy(sprite, grid, spriteSwept.data(), opt); });
         std::vector<glm::vec3> centres;
         centres.reserve(cells);

@@ -36,9 +36,9 @@
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
-#include <vds/gl_context.h>
-#include <vds/gpu_bake.h>
-#include <vds/gpu_sprite.h>
+#include <vds/gl/context.h>
+#include <vds/gl/bake.h>
+#include <vds/gl/sprite.h>
 #include <vds/mesh_io.h>
 #include <vds/vds_file.h>
 #include "solids.h"

@@ -1,7 +1,7 @@
 # vds_embed_shaders(TARGET NAMESPACE SYMBOL FILES...): compiles the named files
 # under shaders/ into TARGET as a table `const vds::ShaderFile SYMBOL[]` with
 # `const std::size_t SYMBOLCount`, in C++ namespace NAMESPACE. The library
-# that owns the table hands it to vds::registerShaders (<vds/shader.h>) before
+# that owns the table hands it to vds::registerShaders (<vds/gl/shader.h>) before
 # building a program from it. Each layer embeds its own shaders.
 function(vds_embed_shaders target namespace symbol)
   set(files ${ARGN})

@@ -1,7 +1,7 @@
 # Turns shader files into a C++ table (see VdsEmbedShaders.cmake). Script mode:
 # cmake -DSHADER_DIR=... -DFILES="a;b" -DNAMESPACE=ns -DSYMBOL=name -DOUTPUT=... -P embed_shaders.cmake
 set(out "// Generated from shaders/ by cmake/embed_shaders.cmake. Do not edit.\n")
-string(APPEND out "#include <cstddef>\n#include <vds/shader.h>\nnamespace ${NAMESPACE} {\nnamespace {\n")
+string(APPEND out "#include <cstddef>\n#include <vds/gl/shader.h>\nnamespace ${NAMESPACE} {\nnamespace {\n")
 set(entries "")
 set(i 0)
 foreach(rel IN LISTS FILES)

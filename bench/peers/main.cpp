@@ -21,7 +21,7 @@
 //                   one thread, as users get it.
 // Point sets, per mesh: N uniform random points in the mesh box grown by 10 %
 // on each side, then the cell centres of n^3 grids over the mesh box
-// (vds::OccupancyGrid: centre lo + (i+1/2, j+1/2, k+1/2) (hi - lo) / n).
+// (vds::Grid: centre lo + (i+1/2, j+1/2, k+1/2) (hi - lo) / n).
 //
 // Timing: std::chrono::steady_clock; one warm-up run, then the best of three.
 // A run whose warm-up took more than 1 s is timed on that run alone (marked).
@@ -50,7 +50,7 @@
 #include <vds/mesh.h>
 #include <vds/mesh_io.h>
 #include <vds/occupancy.h>
-#include <vds/parallel.h>
+#include <vds/detail/parallel.h>
 #include <vds/sprite.h>
 
 #include "points.h"
@@ -90,7 +90,7 @@ struct Method {
     double buildSeconds = 0.0;
     // Per-point methods classify a slab; grid methods (sweeps) label a whole grid.
     std::function<void(const Slab&, std::uint8_t*)> run;
-    std::function<void(const vds::OccupancyGrid&, std::uint8_t*)> runGrid;
+    std::function<void(const vds::Grid&, std::uint8_t*)> runGrid;
     bool gridOnly() const { return bool(runGrid); }
 };
 
@@ -202,14 +202,14 @@ std::vector<Method> buildMethods(const vds::TriangleMesh& mesh, unsigned threads
     }
     kSprite = methods.size() - 1;
     methods.push_back({"vds sweep" + at, threads, bakeSeconds, {},
-                       [sprite, threads](const vds::OccupancyGrid& g, std::uint8_t* out) {
+                       [sprite, threads](const vds::Grid& g, std::uint8_t* out) {
                            vds::occupancy(*sprite, g, out, {vds::Rule::Parity, threads});
                        }});
     kSweep = methods.size() - 1;
     const vds::TriangleMesh* meshPtr = &mesh;
     methods.push_back({"vds voxelize (exact sweep)", threads, 0.0, {},
-                       [meshPtr, threads](const vds::OccupancyGrid& g, std::uint8_t* out) {
-                           vds::voxelize(*meshPtr, g, out, {vds::Rule::Parity, threads});
+                       [meshPtr, threads](const vds::Grid& g, std::uint8_t* out) {
+                           vds::occupancy(*meshPtr, g, out, {vds::Rule::Parity, threads});
                        }});
 
 #if VDS_PEERS_EMBREE
@@ -230,7 +230,7 @@ std::vector<Method> buildMethods(const vds::TriangleMesh& mesh, unsigned threads
 bool isCgal(const Method& m) { return m.name.rfind("CGAL", 0) == 0; }
 
 // Centres of the cells of x layers [i0, i1) of `grid`, in its order.
-void cellCentres(const vds::OccupancyGrid& grid, std::uint32_t i0, std::uint32_t i1, glm::vec3* out, unsigned threads) {
+void cellCentres(const vds::Grid& grid, std::uint32_t i0, std::uint32_t i1, glm::vec3* out, unsigned threads) {
     const std::size_t perLayer = std::size_t(grid.dims.y) * grid.dims.z;
     vds::parallelFor(threads, i1 - i0, 1, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i)
@@ -258,7 +258,7 @@ void measureSet(PointSet& set, const Case& c, const std::vector<Method>& methods
         }
     }
 
-    vds::OccupancyGrid grid;
+    vds::Grid grid;
     std::vector<glm::vec3> centres;
     std::uint32_t layers = 0;
     std::vector<std::vector<std::uint8_t>> whole(methods.size()); // the sweeps' labels

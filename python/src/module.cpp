@@ -33,8 +33,8 @@
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
-#include <vds/gl_context.h>
-#include <vds/gpu_sprite.h>
+#include <vds/gl/context.h>
+#include <vds/gl/sprite.h>
 #include <vds/mesh_io.h>
 #include <vds/sprite.h>
 #include <vds/vds_file.h>

@@ -19,7 +19,7 @@
 
 #include <vds/error.h>
 #include <vds/eval/image.h>
-#include <vds/gl_context.h>
+#include <vds/gl/context.h>
 #include <vds/mesh_io.h>
 #include <vds/vds_file.h>
 

@@ -22,10 +22,10 @@
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
-#include <vds/gl_objects.h>
-#include <vds/gpu_sprite.h>
+#include <vds/gl/objects.h>
+#include <vds/gl/sprite.h>
 #include <vds/mesh_io.h>
-#include <vds/shader.h>
+#include <vds/gl/shader.h>
 #include <vds/voxel/representation.h>
 
 namespace vds::samples {
@@ -556,7 +556,7 @@ void SceneRenderer::Impl::peelAndClassify(std::uint32_t n) {
             }
             ClassifyOptions options;
             options.rule = scene.rule;
-            exact[i].classify(points.data(), points.size(), labels.data(), options);
+            exact[i].classify({points.data(), points.size()}, labels.data(), options);
             for (std::size_t k = 0; k < covered.size(); ++k)
                 if (labels[k]) mask[covered[k]] |= 1u << i;
         }

@@ -21,7 +21,7 @@
 #include <glm/vec3.hpp>
 
 #include <vds/eval/image.h>
-#include <vds/gl_context.h>
+#include <vds/gl/context.h>
 #include <vds/mesh.h>
 #include <vds/sprite.h>
 

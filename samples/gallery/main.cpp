@@ -20,10 +20,10 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include <vds/atomic_file.h>
+#include <vds/detail/atomic_file.h>
 #include <vds/error.h>
 #include <vds/eval/image.h>
-#include <vds/gl_context.h>
+#include <vds/gl/context.h>
 
 #include "scene.h"
 

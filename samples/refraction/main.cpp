@@ -23,7 +23,7 @@
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/eval/image.h>
-#include <vds/gl_context.h>
+#include <vds/gl/context.h>
 #include <vds/mesh_io.h>
 #include <vds/voxel/refraction.h>
 #include <vds/voxel/light_frame.h>

@@ -31,7 +31,7 @@
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/eval/image.h>
-#include <vds/gl_context.h>
+#include <vds/gl/context.h>
 #include <vds/mesh_io.h>
 #include <vds/voxel/transmittance.h>
 

@@ -10,7 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include <vds/eval/image.h>
-#include <vds/gl_context.h>
+#include <vds/gl/context.h>
 
 #include "scene.h"
 

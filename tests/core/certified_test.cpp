@@ -64,7 +64,10 @@ TEST(Certified, EqualsTheExactClassifierOnEveryPoint) {
                 const std::vector<glm::vec3> points = testPoints(*mesh, certified.grid(), resolution);
                 for (Rule rule : {Rule::Parity, Rule::Winding}) {
                     std::vector<std::uint8_t> labels(points.size(), 7);
-                    const CertifiedStats stats = certified.classify(points.data(), points.size(), labels.data(), {rule, 2});
+                    vds::ClassifyStats stats;
+                    ClassifyOptions options{rule, 2};
+                    options.stats = &stats;
+                    certified.classify(points, labels.data(), options);
                     std::size_t wrong = 0;
                     for (std::size_t k = 0; k < points.size(); ++k)
                         wrong += labels[k] != (certified.exact().contains(points[k], rule) ? 1 : 0);
@@ -72,7 +75,10 @@ TEST(Certified, EqualsTheExactClassifierOnEveryPoint) {
                     EXPECT_EQ(stats.certain + stats.exact, points.size());
                     // The 20000 uniform points come first: most are answered by the bands.
                     std::vector<std::uint8_t> uniform(20000);
-                    const CertifiedStats u = certified.classify(points.data(), 20000, uniform.data(), {rule, 1});
+                    vds::ClassifyStats u;
+                    ClassifyOptions first{rule, 1};
+                    first.stats = &u;
+                    certified.classify(vds::PointsView(points.data(), 20000), uniform.data(), first);
                     EXPECT_GT(u.certain, resolution == 200u ? 19000u : 17000u) << mesh->name << " @" << resolution;
                 }
             }
@@ -85,7 +91,10 @@ TEST(Certified, OpenMeshesTakeTheExactPath) {
     EXPECT_FALSE(certified.certifies());
     const std::vector<glm::vec3> points = testPoints(box.mesh, certified.grid(), 3);
     std::vector<std::uint8_t> labels(points.size());
-    const CertifiedStats stats = certified.classify(points.data(), points.size(), labels.data());
+    vds::ClassifyStats stats;
+    ClassifyOptions options;
+    options.stats = &stats;
+    certified.classify(points, labels.data(), options);
     EXPECT_EQ(stats.exact, points.size());
     for (std::size_t k = 0; k < points.size(); ++k) ASSERT_EQ(labels[k], certified.exact().contains(points[k]) ? 1 : 0);
 }

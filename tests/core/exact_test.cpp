@@ -10,6 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <vds/bake.h>
+
+#include <vds/detail/exact_access.h>
+
 #include <vds/error.h>
 #include "solids.h"
 
@@ -79,7 +83,7 @@ void expectAgreement(const TriangleMesh& mesh, const std::vector<glm::vec3>& poi
             for (const auto& p : points) {
                 const bool fast = exact.contains(p, rule);
                 inside += fast;
-                if (fast != exact.containsBruteForce(p, rule)) {
+                if (fast != vds::detail::ExactAccess::containsBruteForce(exact, p, rule)) {
                     if (++mismatches <= 5)
                         ADD_FAILURE() << mesh.name << " axis " << vds::toString(axis) << " rule " << vds::toString(rule)
                                       << ": disagree at (" << p.x << ", " << p.y << ", " << p.z << ")";
@@ -93,7 +97,7 @@ void expectAgreement(const TriangleMesh& mesh, const std::vector<glm::vec3>& poi
             vds::ClassifyOptions options;
             options.rule = rule;
             options.threads = 2;
-            exact.classify(points.data(), points.size(), labels.data(), options);
+            exact.classify({points.data(), points.size()}, labels.data(), options);
             for (std::size_t k = 0; k < points.size(); ++k)
                 ASSERT_EQ(labels[k], exact.contains(points[k], rule) ? 1 : 0) << "point " << k;
         }
@@ -247,7 +251,7 @@ TEST(ExactClassifier, RaysThroughSharedEdgesCountOneCrossingPerSheet) {
                 q[p.z] = depth;
                 const int expected = std::fabs(depth) < 1.0f ? 1 : 0;
                 EXPECT_EQ(exact.winding(q), expected) << vds::toString(axis) << " u " << u << " depth " << depth;
-                EXPECT_EQ(exact.containsBruteForce(q, Rule::Winding), expected == 1);
+                EXPECT_EQ(vds::detail::ExactAccess::containsBruteForce(exact, q, Rule::Winding), expected == 1);
             }
         }
     }
@@ -318,7 +322,7 @@ TEST(ExactClassifier, FarAndNonFinitePointsAreOutside) {
     for (const glm::vec3 p : {glm::vec3(5, 0, 0), glm::vec3(0, 0, -5), glm::vec3(0, 0, inf), glm::vec3(nan, 0, 0),
                               glm::vec3(0, nan, 0), glm::vec3(0, 0, nan), glm::vec3(1e30f, -1e30f, 0)}) {
         EXPECT_EQ(exact.winding(p), 0);
-        EXPECT_FALSE(exact.containsBruteForce(p, Rule::Winding));
+        EXPECT_FALSE(vds::detail::ExactAccess::containsBruteForce(exact, p, Rule::Winding));
     }
 }
 
@@ -332,7 +336,7 @@ TEST(ExactClassifier, TrianglesParallelToTheAxisAreNeverCrossed) {
         const ExactClassifier exact(wall, axis);
         for (const glm::vec3 p : {glm::vec3(0, 0.5f, 0.5f), glm::vec3(0, 0.25f, 2), glm::vec3(0, 2, 0.25f)}) {
             EXPECT_EQ(exact.winding(p), 0);
-            EXPECT_FALSE(exact.containsBruteForce(p, Rule::Winding));
+            EXPECT_FALSE(vds::detail::ExactAccess::containsBruteForce(exact, p, Rule::Winding));
         }
     }
     const ExactClassifier alongX(wall, Axis::X);
@@ -352,10 +356,10 @@ TEST(ExactClassifier, ClassifyMatchesContainsOnAnyThreadCount) {
         vds::ClassifyOptions options;
         options.rule = Rule::Winding;
         options.threads = threads;
-        exact.classify(points.data(), points.size(), labels.data(), options);
+        exact.classify({points.data(), points.size()}, labels.data(), options);
         EXPECT_EQ(labels, expected) << threads << " threads";
     }
-    exact.classify(nullptr, 0, nullptr);
+    exact.classify(vds::PointsView(), nullptr);
 }
 
 // The batched classify (cells located and prefetched sixteen points at a
@@ -369,10 +373,10 @@ TEST(ExactClassifier, BatchedClassifyMatchesBruteForce) {
     points.insert(points.begin() + 7, {{inf, 0, 0}, {0, std::nanf(""), 0}, {0, 0, -inf}, {50, 50, 50}});
     for (Rule rule : {Rule::Parity, Rule::Winding}) {
         std::vector<std::uint8_t> labels(points.size(), 9);
-        exact.classify(points.data(), points.size(), labels.data(), {rule, 2});
+        exact.classify({points.data(), points.size()}, labels.data(), {rule, 2});
         std::size_t inside = 0;
         for (std::size_t k = 0; k < points.size(); ++k) {
-            ASSERT_EQ(labels[k], exact.containsBruteForce(points[k], rule) ? 1 : 0) << k << " " << toString(rule);
+            ASSERT_EQ(labels[k], vds::detail::ExactAccess::containsBruteForce(exact, points[k], rule) ? 1 : 0) << k << " " << toString(rule);
             inside += labels[k];
         }
         EXPECT_GT(inside, points.size() / 10);
@@ -526,7 +530,7 @@ TEST(BakeCpu, FillsTheTimingsOfItsPhases) {
     options.method = vds::BakeMethod::Cpu;
     options.resolution = 48;
     options.timings = &timings;
-    const vds::Sprite s = vds::bake(torus.mesh, options);
+    const vds::Sprite s = vds::bakeCpu(torus.mesh, options);
     using vds::BakePhase;
     for (BakePhase p : {BakePhase::Validation, BakePhase::Upload, BakePhase::Raster, BakePhase::Scan, BakePhase::Assembly}) {
         EXPECT_EQ(timings[p].runs, 1u) << vds::toString(p);

@@ -200,9 +200,9 @@ TEST(SpriteGeneralizedWinding, AgreesWithTheExactGwnAwayFromTheSurface) {
                     points.push_back(0.5f * (sprite.boundaryEdges[e] + sprite.boundaryEdges[e + 1]) +
                                      glm::vec3(near(nearRng), near(nearRng), near(nearRng)));
             std::vector<std::uint8_t> exactLabels(points.size()), capLabels(points.size());
-            classify(sprite, points.data(), points.size(), exactLabels.data(),
+            classify(sprite, {points.data(), points.size()}, exactLabels.data(),
                      {Rule::GeneralizedWinding, 0, QueryLayout::Auto, BoundaryEvaluation::Exact});
-            classify(sprite, points.data(), points.size(), capLabels.data(),
+            classify(sprite, {points.data(), points.size()}, capLabels.data(),
                      {Rule::GeneralizedWinding, 0, QueryLayout::Auto, BoundaryEvaluation::Caps});
             std::size_t compared = 0, wrong = 0, farWrong = 0;
             for (std::size_t k = 0; k < points.size(); ++k) {
@@ -283,9 +283,9 @@ TEST(SpriteGeneralizedWinding, CapsLabelsEqualTheExactTermsNearOneHalf) {
                 }
             }
             std::vector<std::uint8_t> exactLabels(points.size()), capLabels(points.size());
-            classify(sprite, points.data(), points.size(), exactLabels.data(),
+            classify(sprite, {points.data(), points.size()}, exactLabels.data(),
                      {Rule::GeneralizedWinding, 0, QueryLayout::Auto, BoundaryEvaluation::Exact});
-            classify(sprite, points.data(), points.size(), capLabels.data(),
+            classify(sprite, {points.data(), points.size()}, capLabels.data(),
                      {Rule::GeneralizedWinding, 0, QueryLayout::Auto, BoundaryEvaluation::Caps});
             tested += points.size();
             for (std::size_t k = 0; k < points.size(); ++k) {
@@ -307,8 +307,8 @@ TEST(SpriteGeneralizedWinding, IsTheWindingRuleOnClosedMeshes) {
     std::vector<glm::vec3> points;
     for (int k = 0; k < 5000; ++k) points.push_back({u(rng), u(rng), u(rng)});
     std::vector<std::uint8_t> gwn(points.size()), winding(points.size());
-    classify(sprite, points.data(), points.size(), gwn.data(), {Rule::GeneralizedWinding});
-    classify(sprite, points.data(), points.size(), winding.data(), {Rule::Winding});
+    classify(sprite, {points.data(), points.size()}, gwn.data(), {Rule::GeneralizedWinding});
+    classify(sprite, {points.data(), points.size()}, winding.data(), {Rule::Winding});
     EXPECT_EQ(gwn, winding);
     for (std::size_t k = 0; k < 200; ++k)
         ASSERT_EQ(sprite.generalizedWinding(points[k]), sprite.contains(points[k], Rule::Winding) ? 1.0 : 0.0);
@@ -354,7 +354,7 @@ TEST(SpriteGeneralizedWinding, CapsFollowCopiesAndMoves) {
     for (glm::vec3& p : points) p = {u(rng), u(rng), u(rng)};
     const auto labels = [&](const Sprite& s, BoundaryEvaluation how) {
         std::vector<std::uint8_t> out(points.size());
-        classify(s, points.data(), points.size(), out.data(), {Rule::GeneralizedWinding, 1, QueryLayout::Auto, how});
+        classify(s, {points.data(), points.size()}, out.data(), {Rule::GeneralizedWinding, 1, QueryLayout::Auto, how});
         return out;
     };
     const std::vector<std::uint8_t> before = labels(sprite, BoundaryEvaluation::Caps); // builds the caps
@@ -434,10 +434,10 @@ TEST(VoxelizeGeneralizedWinding, EqualsTheExactClassifierAtCellCentres) {
     for (const OpenCase& c : openCases()) {
         const ExactClassifier exact(c.mesh, Axis::Z);
         for (std::uint32_t n : {24u, 64u}) { // 64^3 cells take the boundary grid
-            const OccupancyGrid grid = cubicOccupancyGrid(meshBounds(c.mesh), n);
+            const Grid grid = cubicGrid(meshBounds(c.mesh), n);
             const std::size_t count = std::size_t(grid.dims.x) * grid.dims.y * grid.dims.z;
             std::vector<std::uint8_t> cells(count);
-            voxelize(c.mesh, grid, cells.data(), {Rule::GeneralizedWinding, 0});
+            occupancy(c.mesh, grid, cells.data(), {Rule::GeneralizedWinding, 0});
             std::size_t differ = 0, inside = 0;
             for (std::uint32_t i = 0; i < grid.dims.x; ++i)
                 for (std::uint32_t j = 0; j < grid.dims.y; ++j)
@@ -461,7 +461,7 @@ TEST(VoxelizeGeneralizedWinding, EqualsTheExactClassifierAtCellCentres) {
 TEST(OccupancyGeneralizedWinding, EqualsTheSpritesClassify) {
     const TriangleMesh cup = sphereCup();
     const Sprite sprite = bakeAt(cup, Axis::Z, 64);
-    const OccupancyGrid grid = cubicOccupancyGrid(meshBounds(cup), 20);
+    const Grid grid = cubicGrid(meshBounds(cup), 20);
     const std::size_t count = std::size_t(grid.dims.x) * grid.dims.y * grid.dims.z;
     std::vector<std::uint8_t> cells(count), labels(count);
     occupancy(sprite, grid, cells.data(), {Rule::GeneralizedWinding, 1});
@@ -469,7 +469,7 @@ TEST(OccupancyGeneralizedWinding, EqualsTheSpritesClassify) {
     for (std::uint32_t i = 0; i < grid.dims.x; ++i)
         for (std::uint32_t j = 0; j < grid.dims.y; ++j)
             for (std::uint32_t k = 0; k < grid.dims.z; ++k) centres[grid.index(i, j, k)] = grid.cellCentre(i, j, k);
-    classify(sprite, centres.data(), count, labels.data(), {Rule::GeneralizedWinding});
+    classify(sprite, centres, labels.data(), {Rule::GeneralizedWinding});
     EXPECT_EQ(cells, labels);
     EXPECT_GT(std::count(cells.begin(), cells.end(), std::uint8_t(1)), std::ptrdiff_t(count / 20));
     EXPECT_EQ(parseRule("generalized-winding"), Rule::GeneralizedWinding);

@@ -16,7 +16,7 @@ namespace vds {
 namespace {
 
 // Every cell of `grid`, classified one by one by `answer`.
-template <class Answer> std::vector<std::uint8_t> cellByCell(const OccupancyGrid& grid, const Answer& answer) {
+template <class Answer> std::vector<std::uint8_t> cellByCell(const Grid& grid, const Answer& answer) {
     std::vector<std::uint8_t> labels(grid.cellCount());
     for (std::uint32_t i = 0; i < grid.dims.x; ++i)
         for (std::uint32_t j = 0; j < grid.dims.y; ++j)
@@ -40,7 +40,7 @@ TEST(Occupancy, ExactSweepEqualsTheExactClassifierOnEveryCell) {
     const auto unit = solids::box({0, 0, 0}, {1, 1, 1});
     const struct {
         const TriangleMesh* mesh;
-        OccupancyGrid grid;
+        Grid grid;
     } cases[] = {
         {&torus.mesh, {meshBounds(torus.mesh), {37, 41, 29}}},
         {&shell.mesh, {Box{{-1.2f, -1.1f, -1.3f}, {1.3f, 1.2f, 1.1f}}, {33, 30, 35}}},
@@ -51,7 +51,7 @@ TEST(Occupancy, ExactSweepEqualsTheExactClassifierOnEveryCell) {
         const ExactClassifier exact(*c.mesh, Axis::Z);
         for (Rule rule : {Rule::Parity, Rule::Winding}) {
             std::vector<std::uint8_t> swept(c.grid.cellCount(), 7);
-            voxelize(*c.mesh, c.grid, swept.data(), {rule, 2});
+            occupancy(*c.mesh, c.grid, swept.data(), {rule, 2});
             const auto expected = cellByCell(c.grid, [&](const glm::vec3& p) { return exact.contains(p, rule); });
             EXPECT_EQ(differing(swept, expected), 0u) << c.mesh->name << " " << toString(rule);
             std::size_t inside = 0;
@@ -64,13 +64,13 @@ TEST(Occupancy, ExactSweepEqualsTheExactClassifierOnEveryCell) {
 
 TEST(Occupancy, SpriteSweepEqualsContainsOnEveryCell) {
     const auto torus = solids::torus({0.1f, 0.2f, 0.3f}, 1.0f, 0.35f, 48);
-    const OccupancyGrid grid{meshBounds(torus.mesh), {31, 27, 23}};
+    const Grid grid{meshBounds(torus.mesh), {31, 27, 23}};
     for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
         BakeOptions o;
         o.resolution = 40;
         o.axis = axis;
         o.method = BakeMethod::Cpu;
-        Sprite sprite = bake(torus.mesh, o);
+        Sprite sprite = bakeCpu(torus.mesh, o);
         for (int moved = 0; moved < 3; ++moved) {
             if (moved == 1) sprite.transform(glm::translate(glm::mat4(1.0f), {0.05f, -0.1f, 0.02f})); // still aligned
             if (moved == 2) sprite.transform(glm::rotate(glm::mat4(1.0f), 0.3f, {0.2f, 1.0f, 0.4f}));  // rotated
@@ -85,7 +85,7 @@ TEST(Occupancy, SpriteSweepEqualsContainsOnEveryCell) {
 }
 
 TEST(Occupancy, CubicGridsAndPackedLabels) {
-    const OccupancyGrid g = cubicOccupancyGrid(Box{{0, 0, 0}, {4, 2, 1}}, 8);
+    const Grid g = cubicGrid(Box{{0, 0, 0}, {4, 2, 1}}, 8);
     EXPECT_EQ(g.dims, glm::uvec3(8, 4, 2));
     EXPECT_FLOAT_EQ(g.cellCentre(0, 0, 0).x, 0.25f);
     EXPECT_FLOAT_EQ(g.cellCentre(7, 3, 1).z, 0.75f);
@@ -99,14 +99,14 @@ TEST(Occupancy, CubicGridsAndPackedLabels) {
 TEST(Occupancy, BadGridsAreRefused) {
     const auto box = solids::box({0, 0, 0}, {1, 1, 1});
     std::vector<std::uint8_t> cells(8);
-    EXPECT_THROW(voxelize(box.mesh, {Box{{0, 0, 0}, {1, 1, 1}}, {0, 2, 2}}, cells.data()), InvalidArgument);
-    EXPECT_THROW(voxelize(box.mesh, {Box{{0, 0, 0}, {1, 1, 1}}, {1u << 20, 1u << 20, 1u << 20}}, cells.data()),
+    EXPECT_THROW(occupancy(box.mesh, {Box{{0, 0, 0}, {1, 1, 1}}, {0, 2, 2}}, cells.data()), InvalidArgument);
+    EXPECT_THROW(occupancy(box.mesh, {Box{{0, 0, 0}, {1, 1, 1}}, {1u << 20, 1u << 20, 1u << 20}}, cells.data()),
                  InvalidArgument);
-    EXPECT_THROW(voxelize(box.mesh, {Box{{0, 0, 0}, {0, 1, 1}}, {2, 2, 2}}, cells.data()), InvalidArgument);
+    EXPECT_THROW(occupancy(box.mesh, {Box{{0, 0, 0}, {0, 1, 1}}, {2, 2, 2}}, cells.data()), InvalidArgument);
     const float nan = std::nanf("");
-    EXPECT_THROW(voxelize(box.mesh, {Box{{nan, 0, 0}, {1, 1, 1}}, {2, 2, 2}}, cells.data()), InvalidArgument);
+    EXPECT_THROW(occupancy(box.mesh, {Box{{nan, 0, 0}, {1, 1, 1}}, {2, 2, 2}}, cells.data()), InvalidArgument);
     TriangleMesh empty;
-    EXPECT_THROW(voxelize(empty, {Box{{0, 0, 0}, {1, 1, 1}}, {2, 2, 2}}, cells.data()), InvalidMesh);
+    EXPECT_THROW(occupancy(empty, {Box{{0, 0, 0}, {1, 1, 1}}, {2, 2, 2}}, cells.data()), InvalidMesh);
 }
 
 } // namespace

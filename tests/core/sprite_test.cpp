@@ -109,7 +109,7 @@ TEST(Sprite, BatchClassifyEqualsSinglePointsOnAnyThreadCount) {
                 o.threads = threads;
                 o.rule = rule;
                 o.layout = layout;
-                classify(s, points.data(), points.size(), labels.data(), o);
+                classify(s, {points.data(), points.size()}, labels.data(), o);
                 for (std::size_t k = 0; k < points.size(); ++k)
                     ASSERT_EQ(labels[k], s.contains(points[k], rule) ? 1 : 0) << k << " layout " << int(layout);
             }
@@ -174,8 +174,8 @@ TEST(Sprite, PackedLayoutEqualsOffsetsLayoutOnEveryPoint) {
                 for (Rule rule : {Rule::Parity, Rule::Winding})
                     for (unsigned threads : {1u, 2u}) {
                         std::vector<std::uint8_t> offsets(points.size(), 9), packed(points.size(), 7);
-                        classify(s, points.data(), points.size(), offsets.data(), {rule, threads, QueryLayout::Offsets});
-                        classify(s, points.data(), points.size(), packed.data(), {rule, threads, QueryLayout::Packed});
+                        classify(s, {points.data(), points.size()}, offsets.data(), {rule, threads, QueryLayout::Offsets});
+                        classify(s, {points.data(), points.size()}, packed.data(), {rule, threads, QueryLayout::Packed});
                         std::size_t inside = 0;
                         for (std::size_t k = 0; k < points.size(); ++k) {
                             ASSERT_EQ(packed[k], offsets[k]) << "point " << k << " axis " << toString(axis) << " deep "
@@ -206,8 +206,8 @@ TEST(Sprite, StridedPointsGiveTheSameAnswers) {
     }
     const std::size_t n = records.size() / 4;
     std::vector<std::uint8_t> labels(n, 9), exactLabels(n, 9);
-    classify(s, records.data(), n, 4 * sizeof(float), labels.data(), {Rule::Parity, 2});
-    exact.classify(records.data(), n, 4 * sizeof(float), exactLabels.data(), {Rule::Parity, 2});
+    classify(s, PointsView::floats(records.data(), n, 4 * sizeof(float)), labels.data(), {Rule::Parity, 2});
+    exact.classify(PointsView::floats(records.data(), n, 4 * sizeof(float)), exactLabels.data(), {Rule::Parity, 2});
     std::size_t inside = 0;
     for (std::size_t k = 0; k < n; ++k) {
         const glm::vec3 p(records[4 * k], records[4 * k + 1], records[4 * k + 2]);

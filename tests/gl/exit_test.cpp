@@ -1,14 +1,14 @@
 // A program that keeps a GL context, a cached program and GL objects in
 // statics until the process exits, as users do. It must exit cleanly (also
 // under ASan, and on drivers that tear themselves down at exit): the library
-// stops calling GL and EGL once exit has begun (<vds/gl_context.h>).
+// stops calling GL and EGL once exit has begun (<vds/gl/context.h>).
 #include <cstdio>
 #include <memory>
 
 #include <vds/error.h>
-#include <vds/gl_context.h>
-#include <vds/gl_objects.h>
-#include <vds/shader.h>
+#include <vds/gl/context.h>
+#include <vds/gl/objects.h>
+#include <vds/gl/shader.h>
 
 namespace {
 std::unique_ptr<vds::GlContext> gContext; // destroyed after main returns

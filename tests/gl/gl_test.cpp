@@ -5,8 +5,8 @@
 
 #include <vds/bake.h>
 #include <vds/error.h>
-#include <vds/gl_objects.h>
-#include <vds/shader.h>
+#include <vds/gl/objects.h>
+#include <vds/gl/shader.h>
 
 #include "../support/gl_fixture.h"
 #include "solids.h"
@@ -24,7 +24,7 @@ TEST_F(GlFoundationTest, ContextIsDesktopCore43OrLater) {
                 info.version.c_str(), info.platform.c_str());
 }
 
-// Lifetime rules of <vds/gl_context.h>: scopes restore the caller's context;
+// Lifetime rules of <vds/gl/context.h>: scopes restore the caller's context;
 // destroying or moving a context never changes which other one is current.
 TEST_F(GlFoundationTest, ScopesAndDestructionKeepTheCallersCurrentContext) {
     ASSERT_TRUE(gl().isCurrent());

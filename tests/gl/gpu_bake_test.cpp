@@ -9,8 +9,8 @@
 
 #include <vds/bake.h>
 #include <vds/error.h>
-#include <vds/gpu_bake.h>
-#include <vds/gpu_sprite.h>
+#include <vds/gl/bake.h>
+#include <vds/gl/sprite.h>
 #include "solids.h"
 
 #include "../support/gl_fixture.h"

@@ -8,9 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <vds/bake.h>
-#include <vds/gpu_bake.h>
-#include <vds/gpu_sprite.h>
-#include <vds/shader.h>
+#include <vds/gl/bake.h>
+#include <vds/gl/sprite.h>
+#include <vds/gl/shader.h>
 #include "solids.h"
 
 #include "../support/gl_fixture.h"
@@ -69,7 +69,7 @@ TEST_F(GpuClassifyTest, ComputeShaderMatchesCppOnEveryPoint) {
                     std::vector<std::uint8_t> cpu(points.size()), gpuLabels(points.size(), 7);
                     ClassifyOptions options;
                     options.rule = rule;
-                    classify(sprite, points.data(), points.size(), cpu.data(), options);
+                    classify(sprite, {points.data(), points.size()}, cpu.data(), options);
                     classifier.classify(gpu, points.data(), points.size(), gpuLabels.data(), rule, 20000);
                     std::size_t differ = 0, inside = 0;
                     for (std::size_t k = 0; k < points.size(); ++k) {

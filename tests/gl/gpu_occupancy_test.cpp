@@ -14,8 +14,8 @@
 
 #include <vds/bake.h>
 #include <vds/error.h>
-#include <vds/gpu_occupancy.h>
-#include <vds/gpu_sprite.h>
+#include <vds/gl/occupancy.h>
+#include <vds/gl/sprite.h>
 #include <vds/occupancy.h>
 #include "solids.h"
 
@@ -50,7 +50,7 @@ TEST_F(GpuOccupancyTest, GpuSweepEqualsCpuSweepOnEveryCell) {
                     box = {glm::vec3(model * glm::vec4(box.lo, 1.0f)), glm::vec3(model * glm::vec4(box.hi, 1.0f))};
                 }
                 const glm::vec3 pad = 0.1f * (box.hi - box.lo);
-                const OccupancyGrid grid{{box.lo - pad, box.hi + pad}, {37, 29, 23}};
+                const Grid grid{{box.lo - pad, box.hi + pad}, {37, 29, 23}};
                 const GpuSprite gpu(sprite, GpuSpriteParts::ColumnsOnly);
                 for (Rule rule : {Rule::Parity, Rule::Winding}) {
                     std::vector<std::uint8_t> cpu(grid.cellCount(), 9), gpuCells(grid.cellCount(), 7);
@@ -87,7 +87,7 @@ TEST_F(GpuOccupancyTest, GeneralizedWindingOfOpenMeshesEqualsTheCpu) {
             ASSERT_FALSE(sprite.boundaryEdges.empty()) << m.name;
             const Box box = meshBounds(m.mesh);
             const glm::vec3 pad = 0.08f * (box.hi - box.lo);
-            const OccupancyGrid grid{{box.lo - pad, box.hi + pad}, {33, 27, 30}};
+            const Grid grid{{box.lo - pad, box.hi + pad}, {33, 27, 30}};
             const GpuSprite gpu(sprite, GpuSpriteParts::ColumnsOnly);
             ASSERT_EQ(gpu.boundaryEdgeCount(), sprite.boundaryEdges.size() / 2);
             std::vector<std::uint8_t> cpu(grid.cellCount(), 9), gpuCells(grid.cellCount(), 7);
@@ -104,7 +104,7 @@ TEST_F(GpuOccupancyTest, GeneralizedWindingOfOpenMeshesEqualsTheCpu) {
             exact.boundary = BoundaryEvaluation::Exact;
             exact.threads = 1;
             std::vector<std::uint8_t> exactCells(grid.cellCount(), 5);
-            classify(sprite, centres.data(), centres.size(), exactCells.data(), exact);
+            classify(sprite, {centres.data(), centres.size()}, exactCells.data(), exact);
             std::size_t nearHalf = 0, elsewhere = 0, cpuDiffer = 0, inside = 0, open = 0, referenceDiffer = 0;
             for (std::uint32_t i = 0; i < grid.dims.x; ++i)
                 for (std::uint32_t j = 0; j < grid.dims.y; ++j)
@@ -141,7 +141,7 @@ TEST_F(GpuOccupancyTest, GeneralizedWindingOfAClosedSpriteIsWinding) {
     const GpuSprite gpu(sprite, GpuSpriteParts::ColumnsOnly);
     ASSERT_EQ(gpu.boundaryEdgeCount(), 0u);
     const Box box = meshBounds(two.mesh);
-    const OccupancyGrid grid{{box.lo - 0.1f, box.hi + 0.1f}, {21, 22, 23}};
+    const Grid grid{{box.lo - 0.1f, box.hi + 0.1f}, {21, 22, 23}};
     std::vector<std::uint8_t> gwn(grid.cellCount(), 7), winding(grid.cellCount(), 9), cpu(grid.cellCount(), 5);
     GpuOccupancy sweep(gl());
     sweep.run(gpu, grid, gwn.data(), Rule::GeneralizedWinding);
@@ -159,7 +159,7 @@ TEST_F(GpuOccupancyTest, GeneralizedWindingNeedsAKnownBoundary) {
     sprite.boundaryKnown = false; // as read from a version 1 file
     const GpuSprite gpu(sprite, GpuSpriteParts::ColumnsOnly);
     ASSERT_FALSE(gpu.boundaryKnown());
-    const OccupancyGrid grid{sprite.grid.box, {8, 8, 8}};
+    const Grid grid{sprite.grid.box, {8, 8, 8}};
     std::vector<std::uint8_t> cells(grid.cellCount());
     GpuOccupancy sweep(gl());
     EXPECT_THROW(sweep.run(gpu, grid, cells.data(), Rule::GeneralizedWinding), InvalidArgument);
@@ -172,11 +172,11 @@ TEST_F(GpuOccupancyTest, RotatedSpritesAndMissingColumnsAreRefused) {
     o.resolution = 32;
     o.method = BakeMethod::Cpu;
     Sprite sprite = bake(torus.mesh, o);
-    const OccupancyGrid grid{meshBounds(torus.mesh), {8, 8, 8}};
+    const Grid grid{meshBounds(torus.mesh), {8, 8, 8}};
     std::vector<std::uint8_t> cells(grid.cellCount());
     GpuOccupancy sweep(gl());
     EXPECT_THROW(sweep.run(GpuSprite(sprite, GpuSpriteParts::TextureOnly), grid, cells.data()), InvalidArgument);
-    EXPECT_THROW(sweep.run(GpuSprite(sprite), OccupancyGrid{grid.box, {0, 8, 8}}, cells.data()), InvalidArgument);
+    EXPECT_THROW(sweep.run(GpuSprite(sprite), Grid{grid.box, {0, 8, 8}}, cells.data()), InvalidArgument);
     sprite.transform(glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(0, 0, 1)));
     EXPECT_THROW(sweep.run(GpuSprite(sprite), grid, cells.data()), InvalidArgument);
 }

@@ -16,9 +16,9 @@
 
 #include <vds/bake.h>
 #include <vds/error.h>
-#include <vds/gpu_bake.h>
-#include <vds/gpu_sprite.h>
-#include <vds/shader.h>
+#include <vds/gl/bake.h>
+#include <vds/gl/sprite.h>
+#include <vds/gl/shader.h>
 #include "solids.h"
 
 #include "../support/gl_fixture.h"
@@ -70,7 +70,7 @@ TEST_F(GwnGpuTest, ClassifierMatchesTheCpuOnOpenMeshes) {
                 options.rule = Rule::GeneralizedWinding;
                 options.boundary = BoundaryEvaluation::Exact;
                 std::vector<std::uint8_t> cpu(points.size());
-                classify(sprite, points.data(), points.size(), cpu.data(), options);
+                classify(sprite, {points.data(), points.size()}, cpu.data(), options);
                 for (GpuSpriteParts parts : {GpuSpriteParts::ColumnsOnly, GpuSpriteParts::TextureOnly}) {
                     const GpuSprite gpu(sprite, parts);
                     EXPECT_EQ(gpu.boundaryEdgeCount(), sprite.boundaryEdges.size() / 2);
@@ -105,7 +105,7 @@ TEST_F(GwnGpuTest, ReferenceMatchesTheCpuLabels) {
     options.rule = Rule::GeneralizedWinding;
     options.boundary = BoundaryEvaluation::Exact;
     std::vector<std::uint8_t> cpu(points.size());
-    classify(sprite, points.data(), points.size(), cpu.data(), options);
+    classify(sprite, {points.data(), points.size()}, cpu.data(), options);
     std::size_t differ = 0, open = 0;
     for (std::size_t k = 0; k < points.size(); ++k) {
         const double w = referenceGwn(sprite, points[k]);
@@ -154,8 +154,8 @@ TEST_F(GwnGpuTest, BakeToGpuCarriesTheBoundary) {
     const auto points = test::randomPoints(host.grid.box, 20000, 0.1f, 5);
     GpuClassifier classifier(gl());
     std::vector<std::uint8_t> fromBake(points.size()), fromHost(points.size(), 7);
-    classifier.classify(baked.sprite, points.data(), points.size(), fromBake.data(), Rule::GeneralizedWinding);
-    classifier.classify(GpuSprite(host), points.data(), points.size(), fromHost.data(), Rule::GeneralizedWinding);
+    classifier.classify(baked.sprite, {points.data(), points.size()}, fromBake.data(), Rule::GeneralizedWinding);
+    classifier.classify(GpuSprite(host), {points.data(), points.size()}, fromHost.data(), Rule::GeneralizedWinding);
     EXPECT_EQ(fromBake, fromHost); // the same columns, edges and float arithmetic
 }
 

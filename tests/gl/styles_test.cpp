@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include <vds/shader.h>
+#include <vds/gl/shader.h>
 
 #include "gl_fixture.h"
 #include "image_compare.h"

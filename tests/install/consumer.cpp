@@ -22,8 +22,8 @@ int main() {
         for (int j = 0; j < 20; ++j)
             for (int k = 0; k < 20; ++k) points.push_back(glm::vec3(i, j, k) * 0.1f - 0.45f);
     std::vector<std::uint8_t> labels(points.size()), exactLabels(points.size());
-    vds::classify(sprite, points.data(), points.size(), labels.data());
-    exact.classify(points.data(), points.size(), exactLabels.data());
+    vds::classify(sprite, {points.data(), points.size()}, labels.data());
+    exact.classify({points.data(), points.size()}, exactLabels.data());
     std::size_t wrong = 0;
     for (std::size_t n = 0; n < points.size(); ++n) {
         const glm::vec3 p = points[n];

@@ -12,7 +12,7 @@
 #include <GL/gl.h>
 #include <gtest/gtest.h>
 
-#include <vds/gl_context.h>
+#include <vds/gl/context.h>
 
 namespace vds::test {
 

@@ -450,7 +450,7 @@ TEST_F(Cli, VoxelizeWritesExactGridsAsNpy) {
     const vds::NpyArray grid = vds::readNpy(p("grid.npy"));
     EXPECT_EQ(grid.descr, "|b1");
     ASSERT_EQ(grid.shape, (std::vector<std::uint64_t>{23, 19, 11}));
-    const vds::OccupancyGrid cells{vds::meshBounds(mesh), {23, 19, 11}};
+    const vds::Grid cells{vds::meshBounds(mesh), {23, 19, 11}};
     const vds::ExactClassifier exact(mesh);
     std::size_t wrong = 0, inside = 0;
     for (std::uint32_t i = 0; i < 23; ++i)
@@ -475,7 +475,7 @@ TEST_F(Cli, VoxelizeWritesExactGridsAsNpy) {
     ASSERT_EQ(r.code, 0) << r.output;
     const vds::Sprite sprite = vds::readSprite(p("torus.vds"));
     const vds::NpyArray fromSprite = vds::readNpy(p("sprite.npy"));
-    const vds::OccupancyGrid g16{sprite.grid.box, {16, 16, 16}};
+    const vds::Grid g16{sprite.grid.box, {16, 16, 16}};
     wrong = 0;
     for (std::uint32_t i = 0; i < 16; ++i)
         for (std::uint32_t j = 0; j < 16; ++j)

@@ -42,7 +42,7 @@ TEST_F(GlslLookupTest, EveryRepresentationAnswersOnTheGpuAsOnTheCpu) {
             const Model model = buildModel(solid->mesh, r, {48}, &gl());
             const std::vector<glm::vec3> points = probePoints(model);
             std::vector<std::uint8_t> cpu(points.size()), gpu(points.size(), 7);
-            model.classify(points.data(), points.size(), cpu.data());
+            model.classify({points.data(), points.size()}, cpu.data());
             classifyOnGpu(gl(), model, points.data(), points.size(), gpu.data());
             std::size_t differing = 0, inside = 0;
             for (std::size_t k = 0; k < points.size(); ++k) {
@@ -64,7 +64,7 @@ TEST_F(GlslLookupTest, ManySlicesUseEveryTargetLayer) {
         ASSERT_EQ(model.slicemap()->renderTargets, 8u);
         const std::vector<glm::vec3> points = probePoints(model);
         std::vector<std::uint8_t> cpu(points.size()), gpu(points.size(), 7);
-        model.classify(points.data(), points.size(), cpu.data(), 1);
+        model.classify({points.data(), points.size()}, cpu.data(), 1);
         classifyOnGpu(gl(), model, points.data(), points.size(), gpu.data());
         EXPECT_EQ(cpu, gpu) << toString(r);
     }

@@ -6,8 +6,8 @@
 #include <vds/bake.h>
 #include <vds/certified.h>
 #include <vds/exact.h>
-#include <vds/gl_context.h>
-#include <vds/gpu_sprite.h>
+#include <vds/gl/context.h>
+#include <vds/gl/sprite.h>
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 #include <vds/vds_file.h>
@@ -145,13 +145,13 @@ void classify(ClassifyArgs& a) {
             progress("built the certified bands at " + std::to_string(a.resolution));
             startClock();
             const vds::CertifiedStats stats =
-                certified.classify(points.data(), points.size(), labels.data(), a.options);
+                certified.classify({points.data(), points.size()}, labels.data(), a.options);
             method = "certified (" + std::to_string(stats.exact) + " of " + std::to_string(points.size()) +
                      " points by the exact path)";
         } else {
             const vds::ExactClassifier exact(mesh);
             startClock();
-            exact.classify(points.data(), points.size(), labels.data(), a.options);
+            exact.classify({points.data(), points.size()}, labels.data(), a.options);
             method = "exact";
         }
     } else if (a.with != "vds") {
@@ -166,7 +166,7 @@ void classify(ClassifyArgs& a) {
             vds::voxel::classifyOnGpu(gl, model, points.data(), points.size(), labels.data());
             method = a.with + " on the GPU (" + gl.info().renderer + ")";
         } else {
-            model.classify(points.data(), points.size(), labels.data(), a.options.threads);
+            model.classify({points.data(), points.size()}, labels.data(), a.options.threads);
             method = a.with + " on the CPU";
         }
     } else {
@@ -192,7 +192,7 @@ void classify(ClassifyArgs& a) {
             method = "GPU (" + gl.info().renderer + ")";
         } else {
             startClock();
-            vds::classify(sprite, points.data(), points.size(), labels.data(), a.options);
+            vds::classify(sprite, {points.data(), points.size()}, labels.data(), a.options);
             method = "CPU";
         }
     }

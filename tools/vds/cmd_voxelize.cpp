@@ -18,7 +18,7 @@ struct VoxelizeArgs {
     std::uint32_t dims = 0;
     std::vector<std::uint32_t> dimsXyz;
     std::vector<float> box;
-    vds::OccupancyOptions options;
+    vds::ClassifyOptions options;
     bool packed = false, verbose = false, quiet = false;
 };
 
@@ -51,7 +51,7 @@ void voxelize(VoxelizeArgs& a) {
                          a.input.c_str(), report.summary().c_str());
     }
     phase("load", secondsSince(start));
-    vds::OccupancyGrid grid;
+    vds::Grid grid;
     grid.box = bounds;
     if (!a.box.empty()) grid.box = vds::Box{{a.box[0], a.box[1], a.box[2]}, {a.box[3], a.box[4], a.box[5]}};
     if (a.dims) {
@@ -59,7 +59,7 @@ void voxelize(VoxelizeArgs& a) {
     } else {
         grid.dims = glm::uvec3(a.dimsXyz[0], a.dimsXyz[1], a.dimsXyz[2]);
     }
-    vds::checkOccupancyGrid(grid);
+    vds::checkGrid(grid);
     progress("labelling " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) + "x" +
              std::to_string(grid.dims.z) + " cells " + (fromSprite ? "from the sprite" : "exactly from the mesh"));
     std::vector<std::uint8_t> cells;
@@ -72,7 +72,7 @@ void voxelize(VoxelizeArgs& a) {
     phase("allocate", secondsSince(start));
     start = std::chrono::steady_clock::now();
     if (fromSprite) vds::occupancy(sprite, grid, cells.data(), a.options);
-    else vds::voxelize(mesh, grid, cells.data(), a.options);
+    else vds::occupancy(mesh, grid, cells.data(), a.options);
     const double sweep = secondsSince(start);
     phase("sweep", sweep);
     start = std::chrono::steady_clock::now();

@@ -6,7 +6,7 @@
 #include <new>
 #include <string>
 
-#include <vds/atomic_file.h>
+#include <vds/detail/atomic_file.h>
 #include <vds/error.h>
 #include <vds/sprite.h>
 

@@ -5,21 +5,12 @@
 
 #include <vds/error.h>
 
-#include "bake_common.h"
-#include "boundary_term.h"
+#include <vds/detail/bake_common.h>
+#include "antipodal.h"
 
 namespace vds {
 
 namespace detail {
-namespace {
-// Filled by vds::gl's static initialisation, before main; read-only after.
-// Constant-initialised, so it is valid whatever the order of initialisation.
-LayerBaker gLayerBakers[3] = {nullptr, nullptr, nullptr};
-} // namespace
-
-void registerLayerBaker(BakeMethod method, LayerBaker baker) noexcept {
-    gLayerBakers[std::size_t(method)] = baker;
-}
 
 BakeSetup prepareBake(MeshView mesh, const BakeOptions& options) {
     const HostPhase phase(options.timings, BakePhase::Validation);
@@ -95,20 +86,6 @@ Axis chooseViewAxis(MeshView mesh, std::uint32_t probeResolution) {
         }
     }
     return best;
-}
-
-Sprite bake(MeshView mesh, const BakeOptions& options, const GlContext* gl) {
-    if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
-    const detail::LayerBaker baker = detail::gLayerBakers[std::size_t(options.method)];
-    if (!baker)
-        throw GlUnavailable(std::string("bake method '") + toString(options.method) +
-                            "' needs vds::gl, which this program does not link (link vds::gl or use the cpu method)");
-    const detail::BakeClock clock(options.timings);
-    const detail::BakeSetup setup = detail::prepareBake(mesh, options);
-    std::vector<std::uint32_t> offsets;
-    std::vector<float> crossings;
-    baker(mesh, setup.grid, options, gl, offsets, crossings);
-    return detail::assembleSprite(setup, options, mesh, std::move(offsets), std::move(crossings));
 }
 
 } // namespace vds

@@ -14,10 +14,10 @@
 #include <vector>
 
 #include <vds/error.h>
-#include <vds/parallel.h>
+#include <vds/detail/parallel.h>
 
 #include "projected_mesh.h"
-#include "sprite_lookup.h"
+#include "vpt.h"
 
 namespace vds {
 namespace {
@@ -305,13 +305,8 @@ bool CertifiedClassifier::contains(const glm::vec3& p, Rule rule) const {
     return impl_->exact.contains(p, rule);
 }
 
-CertifiedStats CertifiedClassifier::classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels,
-                                             const ClassifyOptions& options) const {
-    return classify(reinterpret_cast<const float*>(points), count, sizeof(glm::vec3), labels, options);
-}
-
-CertifiedStats CertifiedClassifier::classify(const float* xyz, std::size_t count, std::size_t strideBytes,
-                                             std::uint8_t* labels, const ClassifyOptions& options) const {
+void CertifiedClassifier::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes,
+                                         std::uint8_t* labels, const ClassifyOptions& options) const {
     assert(strideBytes >= 3 * sizeof(float) && ((xyz && labels) || count == 0));
     const char* base = reinterpret_cast<const char*>(xyz);
     const Impl& impl = *impl_;
@@ -356,12 +351,19 @@ CertifiedStats CertifiedClassifier::classify(const float* xyz, std::size_t count
         }
         exactCount += local;
     });
-    return {count - exactCount.load(), exactCount.load()};
+    if (options.stats) *options.stats = {count - exactCount.load(), exactCount.load()};
 }
 
 bool CertifiedClassifier::certifies() const { return impl_->certifies; }
 const SpriteGrid& CertifiedClassifier::grid() const { return impl_->grid; }
 const ExactClassifier& CertifiedClassifier::exact() const { return impl_->exact; }
+
+std::size_t CertifiedClassifier::memoryBytes() const { return bandBytes() + impl_->exact.memoryBytes(); }
+
+std::string CertifiedClassifier::summary() const {
+    return "certified bands " + std::to_string(impl_->grid.width) + " x " + std::to_string(impl_->grid.height) +
+           " along " + toString(impl_->grid.axis) + (impl_->certifies ? "" : " (mesh bounds no solid: all exact)");
+}
 
 std::size_t CertifiedClassifier::bandBytes() const {
     return impl_->offsets.size() * sizeof(std::uint32_t) + impl_->bands.size() * sizeof(Impl::Band);

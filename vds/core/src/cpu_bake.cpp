@@ -12,9 +12,9 @@
 #include <thread>
 
 #include <vds/error.h>
-#include <vds/parallel.h>
+#include <vds/detail/parallel.h>
 
-#include "bake_common.h"
+#include <vds/detail/bake_common.h>
 #include "projected_mesh.h"
 
 namespace vds {

@@ -26,9 +26,10 @@
 
 #include <glm/geometric.hpp>
 
-#include <vds/parallel.h>
+#include <vds/detail/exact_access.h>
+#include <vds/detail/parallel.h>
 
-#include "boundary_term.h"
+#include "antipodal.h"
 #include "projected_mesh.h"
 
 namespace vds {
@@ -39,8 +40,7 @@ struct BoundaryEdge {
     glm::dvec3 a, b; ///< oriented as the triangles run on the side that has them
 };
 
-std::vector<BoundaryEdge> boundaryEdges(MeshView mesh) {
-    const std::vector<glm::vec3> ends = detail::boundaryEdges(mesh);
+std::vector<BoundaryEdge> toDouble(const std::vector<glm::vec3>& ends) {
     std::vector<BoundaryEdge> edges(ends.size() / 2);
     for (std::size_t k = 0; k < edges.size(); ++k) edges[k] = {glm::dvec3(ends[2 * k]), glm::dvec3(ends[2 * k + 1])};
     return edges;
@@ -51,7 +51,9 @@ constexpr double kFourPi = 4.0 * 3.14159265358979323846;
 } // namespace
 
 struct ExactClassifier::Impl : detail::ProjectedMesh {
-    Impl(MeshView mesh, Axis viewAxis) : detail::ProjectedMesh(mesh, viewAxis), boundary(boundaryEdges(mesh)) {}
+    Impl(MeshView mesh, Axis viewAxis)
+        : detail::ProjectedMesh(mesh, viewAxis), boundaryEnds(detail::boundaryEdges(mesh)), boundary(toDouble(boundaryEnds)) {}
+    std::vector<glm::vec3> boundaryEnds; ///< as `Sprite::boundaryEdges`: 2 points an edge
     int axisIndex = axisPermutation(axis).z; ///< +axis: the apex of every boundary term's spherical triangle
     std::vector<BoundaryEdge> boundary;
 
@@ -102,19 +104,32 @@ bool ExactClassifier::contains(const glm::vec3& p, Rule rule) const {
     return impl_->contains(p, rule);
 }
 
-bool ExactClassifier::containsBruteForce(const glm::vec3& p, Rule rule) const {
-    assert(impl_ && "use of a moved-from ExactClassifier");
-    const int w = impl_->windingBruteForce(p);
-    if (rule == Rule::GeneralizedWinding && !impl_->boundary.empty()) return double(w) + impl_->boundaryTerm(p) > 0.5;
+bool detail::ExactAccess::containsBruteForce(const ExactClassifier& exact, const glm::vec3& p, Rule rule) {
+    assert(exact.impl_ && "use of a moved-from ExactClassifier");
+    const ExactClassifier::Impl& impl = *exact.impl_;
+    const int w = impl.windingBruteForce(p);
+    if (rule == Rule::GeneralizedWinding && !impl.boundary.empty()) return double(w) + impl.boundaryTerm(p) > 0.5;
     return insideByRule(w, rule);
 }
 
-void ExactClassifier::classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels,
-                               const ClassifyOptions& options) const {
-    classify(reinterpret_cast<const float*>(points), count, sizeof(glm::vec3), labels, options);
+std::size_t ExactClassifier::memoryBytes() const {
+    assert(impl_ && "use of a moved-from ExactClassifier");
+    return impl_->memoryBytes() + impl_->boundary.size() * sizeof(BoundaryEdge);
 }
 
-void ExactClassifier::classify(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+std::string ExactClassifier::summary() const {
+    assert(impl_ && "use of a moved-from ExactClassifier");
+    return "exact on " + std::to_string(impl_->tris.size()) + " triangles along " + toString(impl_->axis) +
+           (impl_->boundary.empty() ? "" : ", " + std::to_string(impl_->boundary.size()) + " boundary edges");
+}
+
+void ExactClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
+    assert(impl_ && "use of a moved-from ExactClassifier");
+    if (impl_->axis != Axis::Z) return Classifier::sweep(grid, cells, options);
+    detail::sweepExact(*impl_, impl_->boundaryEnds, grid, cells, options);
+}
+
+void ExactClassifier::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
                                const ClassifyOptions& options) const {
     assert(impl_ && "use of a moved-from ExactClassifier");
     assert(strideBytes >= 3 * sizeof(float) && ((xyz && labels) || count == 0));

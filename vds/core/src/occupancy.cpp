@@ -17,12 +17,12 @@
 #include <vector>
 
 #include <vds/error.h>
-#include <vds/parallel.h>
+#include <vds/detail/parallel.h>
 
-#include "boundary_caps.h"
-#include "boundary_term.h"
+#include "caps_tree.h"
+#include "antipodal.h"
 #include "projected_mesh.h"
-#include "sprite_lookup.h"
+#include "vpt.h"
 
 namespace vds {
 namespace {
@@ -31,7 +31,7 @@ float centreCoordinate(float lo, float hi, std::uint32_t cells, std::uint32_t in
     return float(double(lo) + (double(index) + 0.5) * (double(hi) - double(lo)) / double(cells));
 }
 
-std::vector<float> centres(const OccupancyGrid& grid, int axis) {
+std::vector<float> centres(const Grid& grid, int axis) {
     std::vector<float> c(grid.dims[axis]);
     for (std::uint32_t k = 0; k < grid.dims[axis]; ++k)
         c[k] = centreCoordinate(grid.box.lo[axis], grid.box.hi[axis], grid.dims[axis], k);
@@ -52,15 +52,15 @@ bool axisAligned(const SpriteGrid& g) {
 
 } // namespace
 
-glm::vec3 OccupancyGrid::cellCentre(std::uint32_t i, std::uint32_t j, std::uint32_t k) const {
+glm::vec3 Grid::cellCentre(std::uint32_t i, std::uint32_t j, std::uint32_t k) const {
     return {centreCoordinate(box.lo.x, box.hi.x, dims.x, i), centreCoordinate(box.lo.y, box.hi.y, dims.y, j),
             centreCoordinate(box.lo.z, box.hi.z, dims.z, k)};
 }
 
-void checkOccupancyGrid(const OccupancyGrid& grid) {
+void checkGrid(const Grid& grid) {
     if (grid.dims.x == 0 || grid.dims.y == 0 || grid.dims.z == 0)
         throw InvalidArgument("occupancy grid has a zero dimension");
-    if (std::uint64_t(grid.dims.x) * grid.dims.y * grid.dims.z > kMaxOccupancyCells)
+    if (std::uint64_t(grid.dims.x) * grid.dims.y * grid.dims.z > kMaxGridCells)
         throw InvalidArgument("occupancy grid of " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) +
                               "x" + std::to_string(grid.dims.z) + " cells is too large (at most 2^34 cells)");
     for (int a = 0; a < 3; ++a)
@@ -68,8 +68,8 @@ void checkOccupancyGrid(const OccupancyGrid& grid) {
             throw InvalidArgument("occupancy grid box is empty or not finite");
 }
 
-OccupancyGrid cubicOccupancyGrid(const Box& box, std::uint32_t n) {
-    OccupancyGrid grid;
+Grid cubicGrid(const Box& box, std::uint32_t n) {
+    Grid grid;
     grid.box = box;
     const glm::vec3 size = box.hi - box.lo;
     const float longest = std::max({size.x, size.y, size.z});
@@ -82,8 +82,8 @@ OccupancyGrid cubicOccupancyGrid(const Box& box, std::uint32_t n) {
     return grid;
 }
 
-void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* cells, const OccupancyOptions& options) {
-    checkOccupancyGrid(grid);
+void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {
+    checkGrid(grid);
     detail::requireBoundaryKnown(sprite, options.rule);
     assert(cells);
     const SpriteGrid& sg = sprite.grid;
@@ -116,7 +116,7 @@ void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* ce
                 if (boundaryTerm)
                     detail::classifyGeneralizedWinding(sprite, &points[0].x, n, sizeof(glm::vec3), labels.data(), one);
                 else
-                    classify(sprite, points.data(), n, labels.data(), one);
+                    classify(sprite, PointsView(points.data(), n), labels.data(), one);
                 c[a] = 0;
                 std::uint8_t* out = cells + grid.index(c.x, c.y, c.z);
                 for (std::uint32_t k = 0; k < n; ++k) out[k * step] = labels[k];
@@ -178,21 +178,27 @@ void occupancy(const Sprite& sprite, const OccupancyGrid& grid, std::uint8_t* ce
     });
 }
 
-void voxelize(MeshView mesh, const OccupancyGrid& grid, std::uint8_t* cells, const OccupancyOptions& options) {
-    checkOccupancyGrid(grid);
+void occupancy(MeshView mesh, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {
+    checkGrid(grid);
     assert(cells);
     const MeshReport report = validateMesh(mesh);
     requireUsable(report, "mesh");
-    // The generalized winding number of a mesh with boundary: each cell's
-    // crossing count plus the boundary term at its centre, by the boundary's
-    // capped loops (the labels of the exact per-edge sum).
     const std::vector<glm::vec3> edges = options.rule == Rule::GeneralizedWinding && !report.oriented()
                                              ? detail::boundaryEdges(mesh)
                                              : std::vector<glm::vec3>();
-    const std::size_t edgeCount = edges.size() / 2;
+    const detail::ProjectedMesh projected(mesh, Axis::Z); // (s, t, r) = (x, y, z)
+    detail::sweepExact(projected, edges, grid, cells, options);
+}
+
+void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::vec3>& edges, const Grid& grid,
+                        std::uint8_t* cells, const ClassifyOptions& options) {
+    assert(projected.axis == Axis::Z);
+    // The generalized winding number of a mesh with boundary: each cell's
+    // crossing count plus the boundary term at its centre, by the boundary's
+    // capped loops (the labels of the exact per-edge sum).
+    const std::size_t edgeCount = options.rule == Rule::GeneralizedWinding ? edges.size() / 2 : 0;
     std::optional<detail::BoundaryCaps> caps;
     if (edgeCount > 0) caps.emplace(edges.data(), edgeCount, Axis::Z);
-    const detail::ProjectedMesh projected(mesh, Axis::Z); // (s, t, r) = (x, y, z)
     const std::vector<float> xs = centres(grid, 0), ys = centres(grid, 1), zs = centres(grid, 2);
     const std::uint32_t n = grid.dims.z;
     const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;

@@ -43,6 +43,7 @@
 #include <glm/vec3.hpp>
 
 #include <vds/mesh.h>
+#include <vds/grid.h>
 #include <vds/sprite.h>
 
 #include "predicates.h"
@@ -166,6 +167,13 @@ private:
     void setDims(std::uint32_t s, std::uint32_t t);
     std::uint64_t countEntries(const std::vector<Box2>& boxes) const;
 
+public:
+    std::size_t memoryBytes() const {
+        return offsets_.size() * sizeof(std::size_t) + entries_.size() * sizeof(CellEntry);
+    }
+
+private:
+
     float lo_[2] = {1.0f, 1.0f}, hi_[2] = {0.0f, 0.0f}; // empty until laid out
     double extent_[2] = {0.0, 0.0};
     float scale_[2] = {0.0f, 0.0f};
@@ -184,6 +192,7 @@ struct ProjectedMesh {
     CellGrid grid;
 
     ProjectedMesh(MeshView mesh, Axis viewAxis);
+    std::size_t memoryBytes() const { return tris.size() * sizeof(Triangle) + grid.memoryBytes(); }
 
     void toViewSpace(const glm::vec3& p, float* q) const {
         q[0] = p[perm.x];
@@ -225,5 +234,11 @@ struct ProjectedMesh {
         return w;
     }
 };
+
+/// The exact column sweep of `occupancy(mesh, ...)` (<vds/occupancy.h>) on
+/// a mesh projected along z; `edges` (2 points an edge) its boundary for
+/// Rule::GeneralizedWinding (ignored for the other rules).
+void sweepExact(const ProjectedMesh& projected, const std::vector<glm::vec3>& edges, const Grid& grid,
+                std::uint8_t* cells, const ClassifyOptions& options);
 
 } // namespace vds::detail

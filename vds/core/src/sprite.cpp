@@ -17,10 +17,11 @@
 #include <glm/matrix.hpp>
 
 #include <vds/error.h>
-#include <vds/parallel.h>
+#include <vds/occupancy.h>
+#include <vds/detail/parallel.h>
 
-#include "boundary_term.h"
-#include "sprite_lookup.h"
+#include "antipodal.h"
+#include "vpt.h"
 
 namespace vds {
 
@@ -270,14 +271,52 @@ void classifyPacked(const Sprite& sprite, const detail::PackedTable& table, cons
 
 } // namespace
 
-void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count, std::uint8_t* labels,
-              const ClassifyOptions& options) {
-    static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "glm::vec3 must be three packed floats");
-    classify(sprite, reinterpret_cast<const float*>(points), count, sizeof(glm::vec3), labels, options);
+namespace {
+// A sprite the caller owns, as a Classifier for one call: the contract's
+// checks and float64 points come from the base class.
+class SpriteView final : public Classifier {
+public:
+    explicit SpriteView(const Sprite& sprite) : sprite_(sprite) {}
+    Method method() const override { return Method::Sprite; }
+    std::size_t memoryBytes() const override { return sprite_.memoryBytes(); }
+
+protected:
+    void classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                        const ClassifyOptions& options) const override {
+        detail::classifySpriteFloats(sprite_, xyz, count, strideBytes, labels, options);
+    }
+
+private:
+    const Sprite& sprite_;
+};
+} // namespace
+
+void classify(const Sprite& sprite, const PointsView& points, std::uint8_t* labels, const ClassifyOptions& options) {
+    SpriteView(sprite).classify(points, labels, options);
 }
 
-void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
-              std::uint8_t* labels, const ClassifyOptions& options) {
+SpriteClassifier::SpriteClassifier(Sprite sprite) : sprite_(std::move(sprite)) {}
+
+std::size_t SpriteClassifier::memoryBytes() const {
+    return sprite_.memoryBytes() + sprite_.boundaryEdges.size() * sizeof(glm::vec3);
+}
+
+std::string SpriteClassifier::summary() const {
+    return "sprite " + std::to_string(sprite_.width()) + " x " + std::to_string(sprite_.height()) + " x " +
+           std::to_string(sprite_.depthComplexity) + " along " + toString(sprite_.grid.axis);
+}
+
+void SpriteClassifier::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes,
+                                      std::uint8_t* labels, const ClassifyOptions& options) const {
+    detail::classifySpriteFloats(sprite_, xyz, count, strideBytes, labels, options);
+}
+
+void SpriteClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
+    vds::occupancy(sprite_, grid, cells, options);
+}
+
+void detail::classifySpriteFloats(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
+                                  std::uint8_t* labels, const ClassifyOptions& options) {
     detail::requireBoundaryKnown(sprite, options.rule);
     if (detail::needsBoundaryTerm(sprite, options.rule))
         return detail::classifyGeneralizedWinding(sprite, xyz, count, strideBytes, labels, options);

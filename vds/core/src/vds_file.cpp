@@ -8,7 +8,7 @@
 // content's fault (FormatError).
 #include <vds/vds_file.h>
 
-#include <vds/atomic_file.h>
+#include <vds/detail/atomic_file.h>
 
 #include "file_bytes.h"
 

@@ -1,5 +1,4 @@
-// The GL bakers' shared state handling, and their registration with
-// vds::bake() (see <vds/bake.h>: "Which layer bakes").
+// The GL bakers' shared state handling, and `bakeOnGl` (<vds/gl/bake.h>).
 #include "bake_gl.h"
 
 #include <algorithm>
@@ -8,6 +7,8 @@
 #include <GL/glext.h>
 
 #include <vds/error.h>
+#include <vds/gl/bake.h>
+#include <vds/detail/bake_common.h>
 
 namespace vds::detail {
 namespace {
@@ -17,31 +18,6 @@ bool hasClipControl(const GlContext& gl) {
     return i.major > 4 || (i.major == 4 && i.minor >= 5);
 }
 
-// Runs a GL baker on `gl`, or on a private context when `gl` is null; the
-// calling thread's current context is current again on return.
-template <auto Baker>
-void bakeOnContext(MeshView mesh, const SpriteGrid& grid, const BakeOptions& options, const GlContext* gl,
-                   std::vector<std::uint32_t>& offsets, std::vector<float>& crossings) {
-    const CurrentContext restore;
-    std::optional<GlContext> own;
-    if (!gl) gl = &own.emplace();
-    gl->makeCurrent();
-    if (options.timings) options.timings->renderer = gl->info().renderer;
-    GlPhaseClock clock(options.timings);
-    Baker(*gl, mesh, grid, options, clock, offsets, crossings);
-    clock.collect();
-}
-
-// Registers the bakers before main. The --undefined link option of vds::gl
-// names `vds_gl_bakers`, so this object file is linked into every program
-// that links vds::gl, whether or not it calls anything else in it.
-struct Registration {
-    Registration() noexcept {
-        registerLayerBaker(BakeMethod::Peel, &bakeOnContext<bakePeel>);
-        registerLayerBaker(BakeMethod::Lists, &bakeOnContext<bakeLists>);
-    }
-};
-const Registration gRegistration;
 
 } // namespace
 
@@ -154,6 +130,28 @@ void report(const BakeOptions& options, const std::string& what) {
 
 // The anchor the link option of vds::gl names (see above).
 extern "C" {
-extern const int vds_gl_bakers;
-const int vds_gl_bakers = 1;
+
 }
+
+namespace vds {
+
+Sprite bakeOnGl(MeshView mesh, const BakeOptions& options, const GlContext& gl) {
+    if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
+    const detail::BakeClock clock(options.timings);
+    const detail::BakeSetup setup = detail::prepareBake(mesh, options);
+    std::vector<std::uint32_t> offsets;
+    std::vector<float> crossings;
+    {
+        const CurrentContext restore(gl);
+        if (options.timings) options.timings->renderer = gl.info().renderer;
+        detail::GlPhaseClock phases(options.timings);
+        if (options.method == BakeMethod::Peel)
+            detail::bakePeel(gl, mesh, setup.grid, options, phases, offsets, crossings);
+        else
+            detail::bakeLists(gl, mesh, setup.grid, options, phases, offsets, crossings);
+        phases.collect();
+    }
+    return detail::assembleSprite(setup, options, mesh, std::move(offsets), std::move(crossings));
+}
+
+} // namespace vds

@@ -10,8 +10,8 @@
 #include <GL/gl.h>
 
 #include <vds/bake.h>
-#include <vds/gl_context.h>
-#include <vds/gl_objects.h>
+#include <vds/gl/context.h>
+#include <vds/gl/objects.h>
 
 namespace vds::detail {
 
@@ -64,7 +64,7 @@ private:
 };
 
 /// Runs `BakePhase::Validation`: validates the mesh (throws `InvalidMesh`)
-/// and makes the grid, as vds::bake() does.
+/// and makes the grid, as every baker does.
 struct ValidatedMesh {
     MeshReport report;
     SpriteGrid grid;
@@ -79,7 +79,7 @@ void dispatchGroups(std::uint64_t groups);
 /// per group: enough to fill any GPU, at most 65535.
 GLuint strideGroups(std::uint64_t items, std::uint32_t local = 256);
 
-/// The GL bakers behind vds::bake(): fill the CSR layers of `grid` on `gl`
+/// The GL bakers behind bakeOnGl(): fill the CSR layers of `grid` on `gl`
 /// (current), timing their phases on `clock`.
 void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const BakeOptions& options,
               GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings);

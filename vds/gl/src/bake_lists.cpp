@@ -16,7 +16,7 @@
 #include <GL/glext.h>
 
 #include <vds/error.h>
-#include <vds/shader.h>
+#include <vds/gl/shader.h>
 
 namespace vds::detail {
 namespace {

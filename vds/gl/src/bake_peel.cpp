@@ -8,8 +8,8 @@
 #include <GL/glext.h>
 
 #include <vds/error.h>
-#include <vds/gpu_mesh.h>
-#include <vds/shader.h>
+#include <vds/gl/mesh.h>
+#include <vds/gl/shader.h>
 
 namespace vds::detail {
 

@@ -1,4 +1,4 @@
-#include <vds/gl_context.h>
+#include <vds/gl/context.h>
 
 #include <algorithm>
 #include <atomic>

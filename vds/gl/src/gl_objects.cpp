@@ -1,9 +1,9 @@
-#include <vds/gl_objects.h>
+#include <vds/gl/objects.h>
 
 #include <GL/glext.h>
 
 #include <vds/error.h>
-#include <vds/gl_context.h>
+#include <vds/gl/context.h>
 
 namespace vds::detail {
 namespace {

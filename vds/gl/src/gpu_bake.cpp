@@ -1,5 +1,5 @@
 // vds::bakeToGpu: the fragment-list bake (bake_lists.cpp) without the read-back.
-#include <vds/gpu_bake.h>
+#include <vds/gl/bake.h>
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 #include <GL/glext.h>
 
 #include <vds/error.h>
-#include <vds/shader.h>
+#include <vds/gl/shader.h>
 
 #include "lists_bake.h"
 #include "sprite_parts.h"
@@ -86,7 +86,7 @@ GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlContex
     out.grid = v.grid;
     out.crossings = lists.crossings();
     out.depthComplexity = lists.depthComplexity();
-    out.status = v.report.closed() ? SolidStatus::Closed : SolidStatus::Open;
+    out.status = v.report.oriented() ? SolidStatus::Closed : SolidStatus::Open; // as bakeCpu marks it
     out.validation = v.report.summary();
     Texture texture;
     if (parts != GpuSpriteParts::ColumnsOnly) {
@@ -99,7 +99,7 @@ GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlContex
     out.sprite = detail::GpuSpriteAccess::make(std::move(texture), std::move(offsets), std::move(crossings),
                                                out.crossings, size, v.grid, out.status,
                                                v.report.oriented() ? std::vector<glm::vec3>{}
-                                                                   : meshBoundaryEdges(mesh)); // as bake() keeps them
+                                                                   : meshBoundaryEdges(mesh)); // as bakeCpu keeps them
     clock.collect();
     if (options.timings) options.timings->crossings = out.crossings;
     return out;
@@ -116,7 +116,7 @@ GpuBake bakeToGpu(MeshView mesh, const BakeOptions& options, const GlContext& gl
         if (options.timings) options.timings->renderer = gl.info().renderer;
         out = bakeListsToGpu(mesh, options, gl, parts);
     } else {
-        const Sprite sprite = bake(mesh, options, &gl);
+        const Sprite sprite = bakeOnGl(mesh, options, gl);
         {
             GlPhaseClock clock(options.timings);
             clock.begin(BakePhase::TextureFill);

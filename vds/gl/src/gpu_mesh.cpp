@@ -1,4 +1,4 @@
-#include <vds/gpu_mesh.h>
+#include <vds/gl/mesh.h>
 
 #include <algorithm>
 #include <limits>
@@ -7,7 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include <vds/error.h>
-#include <vds/gl_context.h>
+#include <vds/gl/context.h>
 
 namespace vds {
 

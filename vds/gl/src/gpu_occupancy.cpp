@@ -1,11 +1,11 @@
-// vds: occupancy grids on the GPU (see <vds/gpu_occupancy.h>): the sprite
+// vds: occupancy grids on the GPU (see <vds/gl/occupancy.h>): the sprite
 // sweep of occupancy.cpp (Trapp & Döllner 2008, section 3.2, for a whole
 // column of cells at once) with the walk down each column in
 // shaders/vds/occupancy.comp. The per-column texels and per-slice depths
 // are computed here, on the CPU, exactly as occupancy.cpp computes them.
 // Rule::GeneralizedWinding on an open sprite adds vpt.glsl's boundary term
 // per cell in the shader, where the CPU classifies the cells one by one.
-#include <vds/gpu_occupancy.h>
+#include <vds/gl/occupancy.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include <vds/error.h>
-#include <vds/shader.h>
+#include <vds/gl/shader.h>
 
 #include "bake_gl.h"
 
@@ -50,8 +50,8 @@ GpuOccupancy::GpuOccupancy() : program_(buildProgram({{GL_COMPUTE_SHADER, "vds/o
 
 GpuOccupancy::GpuOccupancy(const GlContext& gl) : GpuOccupancy() { (void)gl; }
 
-void GpuOccupancy::run(const GpuSprite& sprite, const OccupancyGrid& grid, GLuint cells, Rule rule) {
-    checkOccupancyGrid(grid);
+void GpuOccupancy::run(const GpuSprite& sprite, const Grid& grid, GLuint cells, Rule rule) {
+    checkGrid(grid);
     if (rule == Rule::GeneralizedWinding && !sprite.boundaryKnown())
         throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
                               "store the boundary edges the generalized winding number needs: bake it again");
@@ -151,8 +151,8 @@ void GpuOccupancy::run(const GpuSprite& sprite, const OccupancyGrid& grid, GLuin
     // The small buffers may go: GL keeps them alive until the dispatch is done.
 }
 
-void GpuOccupancy::run(const GpuSprite& sprite, const OccupancyGrid& grid, std::uint8_t* cells, Rule rule) {
-    checkOccupancyGrid(grid);
+void GpuOccupancy::run(const GpuSprite& sprite, const Grid& grid, std::uint8_t* cells, Rule rule) {
+    checkGrid(grid);
     const std::size_t bytes = labelBytes(grid);
     Buffer out = Buffer::create();
     glNamedBufferStorage(out.id(), GLsizeiptr(std::max<std::size_t>(bytes, 4)), nullptr, 0);

@@ -1,4 +1,4 @@
-#include <vds/gpu_sprite.h>
+#include <vds/gl/sprite.h>
 
 #include <algorithm>
 #include <cassert>
@@ -11,8 +11,8 @@
 #include <glm/vec4.hpp>
 
 #include <vds/error.h>
-#include <vds/parallel.h>
-#include <vds/shader.h>
+#include <vds/detail/parallel.h>
+#include <vds/gl/shader.h>
 
 #include "bake_gl.h"
 #include "sprite_parts.h"

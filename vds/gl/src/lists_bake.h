@@ -6,7 +6,7 @@
 #include <functional>
 #include <vector>
 
-#include <vds/gpu_mesh.h>
+#include <vds/gl/mesh.h>
 
 #include "bake_gl.h"
 

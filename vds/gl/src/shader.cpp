@@ -1,4 +1,4 @@
-#include <vds/shader.h>
+#include <vds/gl/shader.h>
 
 #include <algorithm>
 #include <cctype>

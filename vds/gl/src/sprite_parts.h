@@ -6,7 +6,7 @@
 
 #include <glm/vec3.hpp>
 
-#include <vds/gpu_sprite.h>
+#include <vds/gl/sprite.h>
 
 namespace vds::detail {
 

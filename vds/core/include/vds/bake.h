@@ -12,12 +12,11 @@
 //  - Cpu:   exact ray casting on the CPU (<vds/exact.h>), no GL needed.
 // Crossings at equal depth are ordered by triangle index in all three.
 //
-// Which layer bakes: `bake()` lives in vds::core and runs the Cpu method
-// itself. The GL methods live in vds::gl, which registers them with `bake()`
-// when it is linked (a registry rather than a second entry point, so that
-// code written against the single library keeps calling `bake(mesh, {})`).
-// A program that links vds::core alone gets `GlUnavailable` for Peel and
-// Lists, with a message that says to link vds::gl or use BakeMethod::Cpu.
+// Which layer bakes: vds::core has the Cpu method, `bakeCpu` below, and no
+// GL word. vds::gl has the GL methods, `bakeOnGl(mesh, options, gl)` in
+// <vds/gl/bake.h>, on a context the caller passes. `vds::bake(mesh,
+// options)`, which picks by `options.method` and makes a context when none
+// is given, lives in the umbrella (<vds/all.h>, vds::vds).
 #pragma once
 
 #include <array>
@@ -31,8 +30,6 @@
 #include <vds/sprite.h>
 
 namespace vds {
-
-class GlContext;
 
 enum class BakeMethod : std::uint8_t { Peel, Lists, Cpu };
 
@@ -121,38 +118,24 @@ struct BakeOptions {
 /// go to fewer crossings in all), found by exact CPU bakes at a coarse
 /// `probeResolution` along x, y and z. Trapp & Doellner 2008, section 6, name
 /// this "optimal view direction" as future work: fewer layers mean a smaller
-/// texture and fewer lookups per test. Throws like `bake`.
+/// texture and fewer lookups per test. Throws like `bakeCpu`.
 Axis chooseViewAxis(MeshView mesh, std::uint32_t probeResolution = 64);
 
-/// Bakes `mesh`. Validates it first: empty meshes, non-finite coordinates and
-/// bad indices throw `InvalidMesh`; an open or inconsistently oriented mesh is
-/// baked, its sprite marked `SolidStatus::Open` (the caller should warn: the
-/// answers are those of a surface, not a solid). A closed, oriented mesh with
-/// non-manifold edges bounds a solid and is marked `SolidStatus::Closed`. GL methods use `gl` if given (made
-/// current for the call), else make a private context for the call; either
-/// way the calling thread's current context is the same on return. Throws
-/// `GlUnavailable` if no GL can be had or vds::gl is not linked.
-Sprite bake(MeshView mesh, const BakeOptions& options, const GlContext* gl = nullptr);
-
 /// The CPU baker: the sprite the GL bakers make, by exact ray casting at
-/// texel centres (`bake()` calls this for `BakeMethod::Cpu`). A column holds
+/// texel centres (what every entry point runs for `BakeMethod::Cpu`). A column holds
 /// one crossing per triangle whose projection claims the texel centre (the
 /// rule of `ExactClassifier`, <vds/exact.h>), at the depth of the triangle's
 /// plane there in LDI texture space, sorted by depth, then triangle index.
-/// Validates like `bake()` (throws `InvalidMesh`); `options.maxListNodes` is
+/// Validates the mesh first: empty meshes, non-finite coordinates and bad
+/// indices throw `InvalidMesh`; an open or inconsistently oriented mesh is
+/// baked, its sprite marked `SolidStatus::Open` (the caller should warn: the
+/// answers are those of a surface, not a solid); a closed, oriented mesh
+/// with non-manifold edges bounds a solid and is marked
+/// `SolidStatus::Closed`. Throws `InvalidArgument` for a resolution out of
+/// range; `options.maxListNodes` is
 /// ignored. Runs on every hardware thread; `options.progress` is called on
 /// the calling thread. Fills `options.timings` (validation, upload = indexing
 /// the triangles, raster = casting the rays, assembly) if set.
 Sprite bakeCpu(MeshView mesh, const BakeOptions& options);
-
-namespace detail {
-/// A GL baker as vds::gl registers it: fills the CSR layers (`offsets`,
-/// `crossings`, see `Sprite`) of `grid` for a mesh `bake()` has validated.
-/// `gl` may be null (the baker then makes its own context).
-using LayerBaker = void (*)(MeshView mesh, const SpriteGrid& grid, const BakeOptions& options, const GlContext* gl,
-                            std::vector<std::uint32_t>& offsets, std::vector<float>& crossings);
-/// Called by vds::gl at load time; not for users.
-void registerLayerBaker(BakeMethod method, LayerBaker baker) noexcept;
-} // namespace detail
 
 } // namespace vds

@@ -29,9 +29,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include <glm/vec3.hpp>
 
+#include <vds/axis.h>
+#include <vds/classify.h>
 #include <vds/exact.h>
 #include <vds/mesh.h>
 #include <vds/sprite.h>
@@ -44,14 +47,7 @@ struct CertifiedOptions {
     unsigned threads = 0; ///< for building; 0: one per hardware thread
 };
 
-/// What a batch did: how many points the bands answered and how many went
-/// to the exact classifier.
-struct CertifiedStats {
-    std::size_t certain = 0;
-    std::size_t exact = 0;
-};
-
-class CertifiedClassifier {
+class CertifiedClassifier final : public Classifier {
 public:
     /// Copies the mesh's triangles, builds the exact classifier and the
     /// bands. Throws `InvalidMesh` for an unusable mesh, `InvalidArgument`
@@ -66,15 +62,13 @@ public:
     /// The exact classifier's answer for `p` (mesh coordinates).
     bool contains(const glm::vec3& p, Rule rule = Rule::Parity) const;
 
-    /// Batch form: `labels[k]` = 1 inside, 0 outside for `count` points,
-    /// caller-owned; on `options.threads` threads (`options.layout` is
-    /// ignored). Returns how many points each path answered.
-    CertifiedStats classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels,
-                            const ClassifyOptions& options = {}) const;
-    /// Strided form: point k is the floats (x, y, z) at byte offset
-    /// `k * strideBytes` from `xyz` (`strideBytes` >= 12).
-    CertifiedStats classify(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
-                            const ClassifyOptions& options = {}) const;
+    /// Batches go through `Classifier::classify` (<vds/classify.h>);
+    /// `options.stats`, if set, receives how many points the bands answered
+    /// (`certain`) and how many the exact classifier (`exact`).
+    Method method() const override { return Method::Certified; }
+    /// The bands and the exact classifier behind them.
+    std::size_t memoryBytes() const override;
+    std::string summary() const override;
 
     /// False when the mesh does not bound a solid (`MeshReport::closed()`):
     /// every answer is then the exact classifier's own. The winding rules
@@ -86,6 +80,10 @@ public:
     std::size_t bandBytes() const;
     /// The exact classifier behind it.
     const ExactClassifier& exact() const;
+
+protected:
+    void classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                        const ClassifyOptions& options) const override;
 
 private:
     struct Impl;

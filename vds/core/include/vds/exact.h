@@ -16,15 +16,22 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
-#include <vds/bake.h>
+#include <vds/axis.h>
+#include <vds/classify.h>
 #include <vds/mesh.h>
+#include <vds/rule.h>
 #include <vds/sprite.h>
 
 namespace vds {
+
+namespace detail {
+struct ExactAccess;
+} // namespace detail
 
 /// Exact classifier over a copy of a mesh's triangles, with an acceleration
 /// structure over their projections along `axis` (a uniform grid; about 100
@@ -37,7 +44,7 @@ namespace vds {
 /// fill rule with t up. So a ray through a shared edge or vertex of a closed
 /// mesh counts one crossing per surface sheet. Triangles parallel to the
 /// axis are never crossed.
-class ExactClassifier {
+class ExactClassifier final : public Classifier {
 public:
     /// Copies the triangles. Throws `InvalidMesh` if the mesh is not usable
     /// (empty, non-finite, bad indices).
@@ -66,21 +73,20 @@ public:
     std::size_t boundaryEdgeCount() const;
     /// Parity (odd crossings), non-zero winding, or generalized winding > 1/2.
     bool contains(const glm::vec3& p, Rule rule = Rule::Parity) const;
-    /// Batch form: `points` and `labels` hold `count` elements, owned by the
-    /// caller; `labels[k]` = 1 inside, 0 outside. Runs on `options.threads`
-    /// threads (0: one per hardware thread).
-    void classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels,
-                  const ClassifyOptions& options = {}) const;
-    /// Strided form: point k is the floats (x, y, z) at byte offset
-    /// `k * strideBytes` from `xyz` (`strideBytes` >= 12).
-    void classify(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
-                  const ClassifyOptions& options = {}) const;
+    /// Batches go through `Classifier::classify` (<vds/classify.h>); every
+    /// rule is answered.
+    Method method() const override { return Method::Exact; }
+    std::size_t memoryBytes() const override;
+    std::string summary() const override;
 
-    /// Same answer as `contains`, by a loop over every triangle (no
-    /// acceleration): the reference the accelerated path is tested against.
-    bool containsBruteForce(const glm::vec3& p, Rule rule = Rule::Parity) const;
+protected:
+    void classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                        const ClassifyOptions& options) const override;
+    /// Along z: one sweep per column (the labels of `occupancy(mesh, ...)`).
+    void sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const override;
 
 private:
+    friend struct detail::ExactAccess;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

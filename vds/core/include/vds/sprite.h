@@ -22,52 +22,13 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include <vds/axis.h>
+#include <vds/classify.h>
 #include <vds/enum_names.h>
 #include <vds/mesh.h>
+#include <vds/rule.h>
 
 namespace vds {
-
-/// The axis the sprite looks along. The viewer sits at the box's low side and
-/// looks towards +axis. The texture's s and t follow the two other axes in
-/// cyclic order: Z -> (x,y), X -> (y,z), Y -> (z,x), so no view mirrors.
-enum class Axis : std::uint8_t { X = 0, Y = 1, Z = 2 };
-
-/// How crossings in front of a point decide inside.
-enum class Rule : std::uint8_t {
-    Parity,  ///< the paper's rule: an odd number of crossings in front is inside
-    Winding, ///< non-zero winding: entering crossings +1, leaving -1, inside if the sum != 0
-    /// The generalized winding number (Jacobson et al. 2013) above 1/2: the
-    /// solid angle the surface subtends, over 4 pi. On a mesh that bounds a
-    /// solid it is the winding number; on open meshes, soups and meshes with
-    /// holes it stays meaningful. The exact classifier, sprites (which store
-    /// the mesh's boundary edges), the GPU classifier and the voxelizers
-    /// answer it for any mesh; see `Sprite::generalizedWinding` for a
-    /// sprite's error bound.
-    GeneralizedWinding,
-};
-
-template <> struct EnumNames<Axis> {
-    static constexpr const char* kind = "axis";
-    static constexpr EnumName<Axis> table[] = {{"x", Axis::X}, {"y", Axis::Y}, {"z", Axis::Z}};
-};
-template <> struct EnumNames<Rule> {
-    static constexpr const char* kind = "rule";
-    static constexpr EnumName<Rule> table[] = {
-        {"parity", Rule::Parity}, {"winding", Rule::Winding}, {"generalized-winding", Rule::GeneralizedWinding}};
-};
-
-/// Parses "x"/"y"/"z" and "parity"/"winding" (`parseEnum`); throws `InvalidArgument`.
-Axis parseAxis(const std::string& s);
-Rule parseRule(const std::string& s);
-const char* toString(Axis a);
-const char* toString(Rule r);
-
-/// Inside or outside by `rule`, from the signed count of crossings in front
-/// of a point (its parity is the count's): for a mesh that bounds a solid
-/// the generalized winding number is this count, so it reads as Winding.
-constexpr bool insideByRule(int winding, Rule rule) {
-    return rule == Rule::Parity ? (winding & 1) != 0 : winding != 0;
-}
 
 /// Index of the texture's s, t and r axes in mesh coordinates for a view axis.
 glm::ivec3 axisPermutation(Axis axis);
@@ -123,7 +84,7 @@ enum class SolidStatus : std::uint8_t {
 namespace detail {
 class BoundaryCaps;
 /// A sprite's derived data for Rule::GeneralizedWinding (its boundary loops
-/// and their caps, boundary_caps.h), built from `Sprite::boundaryEdges` on
+/// and their caps, caps_tree.h), built from `Sprite::boundaryEdges` on
 /// first use, thread safe. Not part of the sprite's value: a copy or an
 /// assignment starts empty, a move takes it along.
 class BoundaryCapsCache {
@@ -238,46 +199,29 @@ struct Sprite {
     void checkConsistent() const;
 };
 
-/// How batch classification reads the sprite.
-enum class QueryLayout : std::uint8_t {
-    Auto,    ///< Packed when the batch has at least half as many points as the sprite has columns
-    Offsets, ///< the sprite's own arrays: offsets, then crossings (two dependent cache misses a point)
-    /// A table of 16 bytes a column with its first four crossings (32 bytes
-    /// and eight where many columns have more), built for the call in huge
-    /// pages: one cache miss a point and no branch on the data, unless it
-    /// lies behind those crossings. The same answers as Offsets.
-    Packed,
+/// The sprite's answers for `points` (world coordinates, the placement
+/// applied), the contract of <vds/classify.h>: the same answers as
+/// `Sprite::contains`, batched on `options.threads` threads (the sprite is
+/// only read). `SpriteClassifier` is the same as a `Classifier`.
+void classify(const Sprite& sprite, const PointsView& points, std::uint8_t* labels,
+              const ClassifyOptions& options = {});
+
+/// `Method::Sprite` as a `Classifier` (<vds/classify.h>): owns its sprite.
+class SpriteClassifier final : public Classifier {
+public:
+    explicit SpriteClassifier(Sprite sprite);
+    const Sprite& sprite() const { return sprite_; }
+    Method method() const override { return Method::Sprite; }
+    std::size_t memoryBytes() const override;
+    std::string summary() const override;
+
+protected:
+    void classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                        const ClassifyOptions& options) const override;
+    void sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const override;
+
+private:
+    Sprite sprite_;
 };
-
-/// How a sprite's batch evaluates the boundary term of Rule::GeneralizedWinding.
-enum class BoundaryEvaluation : std::uint8_t {
-    /// The boundary loops closed by caps: the caps' signed crossing count
-    /// minus their solid angle, the latter by a tree of multipole expansions
-    /// with a proven error bound, and the per-edge sum wherever that bound
-    /// could change a label. The same labels as Exact; about O(log edges) a
-    /// point away from the boundary. The caps are built once per sprite.
-    Caps,
-    Exact, ///< the per-edge sum for every point: O(boundary edges) a point
-};
-
-/// Options for batch classification.
-struct ClassifyOptions {
-    Rule rule = Rule::Parity;
-    unsigned threads = 0; ///< 0: one per hardware thread
-    QueryLayout layout = QueryLayout::Auto;
-    BoundaryEvaluation boundary = BoundaryEvaluation::Caps; ///< Rule::GeneralizedWinding on open sprites only
-};
-
-/// Classifies `count` world points; `labels[k]` becomes 1 inside, 0 outside.
-/// `points` and `labels` hold `count` elements, owned by the caller. Runs on
-/// `options.threads` threads; the sprite is only read (thread safe).
-void classify(const Sprite& sprite, const glm::vec3* points, std::size_t count,
-              std::uint8_t* labels, const ClassifyOptions& options = {});
-
-/// Strided form, for points inside larger records or arrays of another
-/// layout: point k is the three floats (x, y, z) at byte offset
-/// `k * strideBytes` from `xyz` (`strideBytes` >= 12; 12 = packed).
-void classify(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
-              std::uint8_t* labels, const ClassifyOptions& options = {});
 
 } // namespace vds

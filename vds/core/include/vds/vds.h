@@ -18,8 +18,8 @@
 //               headers; links no GL (a server or a Python process that only
 //               classifies never loads libEGL).
 //   vds::gl     headless EGL contexts, GL objects, shaders, GPU bakers and
-//               classifiers, sprites as 3D textures (<vds/gl_context.h>,
-//               <vds/gpu_sprite.h>, <vds/shader.h>). Linking it makes the GL
+//               classifiers, sprites as 3D textures (<vds/gl/context.h>,
+//               <vds/gl/sprite.h>, <vds/gl/shader.h>). Linking it makes the GL
 //               bake methods available to `bake()` below.
 //   vds::voxel  slicemaps and solid voxelizations, the representations the
 //               VDS is compared with (<vds/voxel/...>).
@@ -112,9 +112,9 @@
 //
 // ---- 4b. Ask it for a whole grid ------------------------------------------------
 //
-//   OccupancyGrid{box, dims}; cell (i, j, k) centre lo + (i+1/2, j+1/2, k+1/2)
+//   Grid{box, dims}; cell (i, j, k) centre lo + (i+1/2, j+1/2, k+1/2)
 //     * (hi - lo) / dims, labels in C order [i][j][k]      <vds/occupancy.h>
-//   voxelize(mesh, grid, cells, OccupancyOptions{rule, threads})
+//   voxelize(mesh, grid, cells, ClassifyOptions{rule, threads})
 //     exact labels by one sweep per column: equal to the exact classifier
 //     on every cell centre.
 //   occupancy(sprite, grid, cells, options)   the sprite's labels, one walk
@@ -142,23 +142,23 @@
 //   GlContext            a headless EGL context (NVIDIA's EGL device,
 //                        Mesa's llvmpipe without a GPU); GlUnavailable with
 //                        the reasons when none can be had. `glAvailable()`
-//                        is the cheap probe.               <vds/gl_context.h>
+//                        is the cheap probe.               <vds/gl/context.h>
 //   GpuSprite(sprite)    the paper's R32F 3D texture and placement, for
 //                        shaders/vds/vpt.glsl (`vdsContains(...)` in any
 //                        stage; the same answers as the CPU), and the
 //                        boundary edges for `vdsContainsGeneralized(...)`
-//                        (setBoundaryUniforms).              <vds/gpu_sprite.h>
+//                        (setBoundaryUniforms).              <vds/gl/sprite.h>
 //   GpuClassifier        the VPT over many points in a compute shader: host
 //                        arrays in and out, or points and labels already in
 //                        GL buffers (no host round trip).
 //   bakeToGpu(mesh, options, gl)  a GpuSprite straight from the fragment-list
-//                        bake, nothing read back.            <vds/gpu_bake.h>
+//                        bake, nothing read back.            <vds/gl/bake.h>
 //   Lifetime: a context is current on the thread that made it; destroying
 //   or moving one never changes another current context; `CurrentContext`
 //   scopes restore the caller's; no GL call happens once the process exits.
 #pragma once
 
-#include <vds/atomic_file.h>
+#include <vds/detail/atomic_file.h>
 #include <vds/bake.h>
 #include <vds/certified.h>
 #include <vds/enum_names.h>
@@ -168,6 +168,6 @@
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 #include <vds/occupancy.h>
-#include <vds/parallel.h>
+#include <vds/detail/parallel.h>
 #include <vds/sprite.h>
 #include <vds/vds_file.h>

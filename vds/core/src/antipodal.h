@@ -1,0 +1,89 @@
+// vds internal: the boundary term of the Antipodal split of the generalized
+// winding number (Martens, Trettner & Bessmeltsev 2026), shared by the exact
+// classifier, sprites and the voxelizers (the per-edge sum: the reference;
+// caps_tree.h makes it fast).
+//
+// GWN(q) = integer term + boundary term. The integer term is the signed
+// count of surface crossings on the ray from q towards -axis (what a
+// sprite's column and the exact classifier count). The boundary term sums,
+// over the boundary edges a -> b, the signed solid angle of the spherical
+// triangle (+axis, a - q, b - q), over 4 pi. It is smooth except on the
+// boundary curve and on the curve's sweep towards +axis (the points whose
+// ray towards -axis passes over the curve), where it jumps by -+1 exactly
+// as the integer term jumps by +-1.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include <vds/mesh.h>
+#include <vds/sprite.h>
+
+namespace vds::detail {
+
+/// The mesh's boundary edges as endpoint pairs: edge k runs from `[2k]` to
+/// `[2k+1]`. Edges whose uses do not cancel after welding vertices with
+/// bitwise-equal positions; an edge used n times more one way than the
+/// other appears |n| times, oriented as the majority of its uses run (so
+/// non-manifold edges count by their unbalanced orientation).
+std::vector<glm::vec3> boundaryEdges(MeshView mesh);
+
+/// Signed solid angle of the triangle (u, v, w) seen from the origin (Van
+/// Oosterom & Strackee), in double.
+double solidAngle(const glm::dvec3& u, const glm::dvec3& v, const glm::dvec3& w);
+
+/// One edge's solid angle (+axis, a - q, b - q). On the edge's sweep, where
+/// it jumps, it takes the side of the integer term's tie rule (q moved by
+/// (eps, -eps^2) in the texture's (s, t)), so that a ray exactly over the
+/// boundary still gets a consistent sum; an edge along the axis adds 0.
+double edgeSolidAngle(int axis, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& q);
+
+/// The boundary term at `q` by the per-edge sum: `edges` holds 2 *
+/// `edgeCount` points (mesh coordinates), `axis` the index (0..2) of the
+/// view axis. O(edgeCount).
+double boundaryTermExact(const glm::vec3* edges, std::size_t edgeCount, int axis, const glm::dvec3& q);
+
+
+/// Signed count of a column's crossings strictly in front of depth r.
+inline int columnWinding(const float* begin, const float* end, float r) {
+    int winding = 0;
+    for (const float* e = begin; e != end; ++e) {
+        if (!(std::fabs(*e) < r)) break;
+        winding += crossingEnters(*e) ? 1 : -1;
+    }
+    return winding;
+}
+
+/// The point the column's count belongs to: the centre of texel `column` at
+/// texture depth r, in the mesh coordinates of the bake, rounded to float as
+/// the CPU baker's ray is (`SpriteGrid::texelCentre`).
+glm::vec3 columnPoint(const SpriteGrid& grid, std::ptrdiff_t column, float r);
+
+/// Throws `InvalidArgument` when `sprite` cannot answer `rule`: the
+/// generalized winding number of an open sprite read from a version-1 file,
+/// which has no boundary edges.
+void requireBoundaryKnown(const Sprite& sprite, Rule rule);
+
+/// True when the sprite answers Rule::GeneralizedWinding with a boundary
+/// term (it has boundary edges); otherwise the rule reads as Winding.
+inline bool needsBoundaryTerm(const Sprite& sprite, Rule rule) {
+    return rule == Rule::GeneralizedWinding && !sprite.boundaryEdges.empty();
+}
+
+/// `Sprite::contains` for Rule::GeneralizedWinding on a sprite with
+/// boundary edges: the label of the per-edge sum, by the capped loops.
+bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world);
+
+/// The tolerance of `Sprite::generalizedWinding`'s value.
+constexpr double kGeneralizedWindingTolerance = 1e-3;
+
+/// Batch GWN labels for a sprite with boundary edges (sprite.cpp's
+/// `classify` hands over to it), by `options.boundary`.
+void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
+                                std::uint8_t* labels, const ClassifyOptions& options);
+
+} // namespace vds::detail

@@ -1,0 +1,402 @@
+// vds: the boundary term of the generalized winding number by capping the
+// boundary loops (see caps_tree.h); the Antipodal split is Martens,
+// Trettner & Bessmeltsev 2026, the tree expansion Barill, Dickson, Schmidt,
+// Levin & Jacobson 2018, section 3.
+#include "caps_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <tuple>
+
+#include <glm/geometric.hpp>
+
+#include "antipodal.h"
+
+namespace vds::detail {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kFourPi = 4.0 * kPi;
+constexpr std::uint32_t kLeafTriangles = 4;
+/// Most pieces a fan triangle's sides are cut into for the tree.
+constexpr int kMaxCut = 8;
+/// Rounding slack on the estimate: the solid angles and the expansion are
+/// summed in double, some 1e-15 each.
+constexpr double kRoundingSlack = 1e-9;
+/// Largest error bound of a node that labels take by its expansion; nodes
+/// erring by more are opened at once (they cannot help decide a label, and
+/// keeping every taken bound small keeps the running sums' drift small).
+constexpr double kMaxTakenBound = 0.25;
+
+struct Moments {
+    glm::dvec3 vectorArea{0.0};
+    std::array<double, 9> moment{};
+    double area = 0.0;
+    double second = 0.0; ///< S: the integral of |x - centre|^2 dA
+};
+
+// Sum over triangles of their vector areas, first moments about `centre`
+// and unsigned areas.
+template <class Tris>
+Moments momentsOf(const Tris& tris, std::size_t first, std::size_t last, const glm::dvec3& centre) {
+    Moments m;
+    for (std::size_t k = first; k < last; ++k) {
+        const auto& t = tris[k];
+        const glm::dvec3 a = 0.5 * glm::cross(t[1] - t[0], t[2] - t[0]);
+        const glm::dvec3 arm = (t[0] + t[1] + t[2]) / 3.0 - centre;
+        m.vectorArea += a;
+        const double area = glm::length(a);
+        m.area += area;
+        const double sides = glm::dot(t[1] - t[0], t[1] - t[0]) + glm::dot(t[2] - t[1], t[2] - t[1]) +
+                             glm::dot(t[0] - t[2], t[0] - t[2]);
+        m.second += area * (glm::dot(arm, arm) + sides / 36.0);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) m.moment[std::size_t(3 * i + j)] += a[i] * arm[j];
+    }
+    return m;
+}
+
+// The node's error bound over its errorScale (3 S / 4 pi), at distance
+// d = |q - c| > R, e = d - R: twice the integral over t in [0, 1] of
+// (1 - t) / (d - t R)^4 (Taylor's integral remainder with the kernel's
+// second derivative taken at distance d - t|h| >= d - t R), in closed form.
+// At most 1 / e^4 (the kernel taken at d - R all along); 1/6 of it at d = 2R.
+double remainderFactor(double d, double e) { return (d + 2.0 * e) / (3.0 * d * d * d * e * e); }
+
+/// Adds twice the signed solid angle of cap triangle `t` seen from `p` (Van
+/// Oosterom & Strackee) to `integral`; false, adding nothing, when `p` lies
+/// in (or within rounding of) the triangle, where the angle jumps by 4 pi and
+/// the crossing count's side is not certain.
+bool addCapTriangle(const std::array<glm::dvec3, 3>& t, const glm::dvec3& p, double& integral) {
+    const glm::dvec3 u = t[0] - p, v = t[1] - p, w = t[2] - p;
+    const double lu = glm::length(u), lv = glm::length(v), lw = glm::length(w);
+    const double det = glm::dot(u, glm::cross(v, w));
+    const double den = lu * lv * lw + glm::dot(u, v) * lw + glm::dot(u, w) * lv + glm::dot(v, w) * lu;
+    const double scale = lu * lv * lw;
+    if (std::fabs(det) <= 1e-9 * scale && den <= 1e-9 * scale) return false;
+    integral += 2.0 * std::atan2(det, den);
+    return true;
+}
+
+} // namespace
+
+BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis)
+    : axisIndex_(axisPermutation(axis).z), edges_(edges, edges + 2 * edgeCount) {
+    // Weld endpoints by bitwise-equal positions, as boundaryEdges() does.
+    std::map<std::tuple<float, float, float>, std::uint32_t> ids;
+    const auto idOf = [&](const glm::vec3& p) {
+        return ids.emplace(std::make_tuple(p.x, p.y, p.z), std::uint32_t(ids.size())).first->second;
+    };
+    std::vector<std::uint32_t> tail(edgeCount), head(edgeCount);
+    for (std::size_t k = 0; k < edgeCount; ++k) {
+        tail[k] = idOf(edges[2 * k]);
+        head[k] = idOf(edges[2 * k + 1]);
+    }
+    std::vector<std::vector<std::uint32_t>> out(ids.size());
+    for (std::size_t k = 0; k < edgeCount; ++k) out[tail[k]].push_back(std::uint32_t(k));
+    std::vector<std::size_t> nextOut(ids.size(), 0);
+    std::vector<std::uint8_t> used(edgeCount, 0);
+    const auto takeOut = [&](std::uint32_t v) -> std::ptrdiff_t {
+        for (std::size_t& n = nextOut[v]; n < out[v].size(); ++n)
+            if (!used[out[v][n]]) return std::ptrdiff_t(out[v][n++]);
+        return -1;
+    };
+
+    // Walk each loop along unused outgoing edges until it returns to its start.
+    std::vector<std::array<glm::dvec3, 3>> tris, fine; // the caps' fans, and cut finer for the tree
+    const glm::ivec3 perm = axisPermutation(axis);
+    for (std::size_t start = 0; start < edgeCount && closed_; ++start) {
+        if (used[start]) continue;
+        CapLoop loop;
+        loop.first = std::uint32_t(loopEdges_.size() / 2);
+        std::ptrdiff_t e = std::ptrdiff_t(start);
+        while (true) {
+            used[std::size_t(e)] = 1;
+            loopEdges_.push_back(edges[2 * std::size_t(e)]);
+            loopEdges_.push_back(edges[2 * std::size_t(e) + 1]);
+            if (head[std::size_t(e)] == tail[start]) break;
+            e = takeOut(head[std::size_t(e)]);
+            if (e < 0) {
+                closed_ = false; // an open chain: these are not a mesh's boundary
+                break;
+            }
+        }
+        loop.count = std::uint32_t(loopEdges_.size() / 2) - loop.first;
+        glm::dvec3 sum(0.0);
+        for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k) sum += glm::dvec3(loopEdges_[2 * k]);
+        const glm::vec3 c(sum / double(loop.count)); // rounded: the caps' float and double forms agree
+        loop.centroid = glm::dvec3(c);
+        const std::uint32_t apex = std::uint32_t(capPositions_.size());
+        capPositions_.push_back(c);
+        loop.lo = loop.hi = glm::vec2(c[perm.x], c[perm.y]);
+        const std::size_t firstTri = tris.size();
+        for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k) {
+            const glm::vec3 a = loopEdges_[2 * k], b = loopEdges_[2 * k + 1];
+            const std::uint32_t ia = std::uint32_t(capPositions_.size());
+            capPositions_.push_back(a);
+            capPositions_.push_back(b);
+            capTriangles_.emplace_back(apex, ia + 1, ia); // (c, b, a): the cap's boundary is the loop reversed
+            tris.push_back({loop.centroid, glm::dvec3(b), glm::dvec3(a)});
+            loop.radius = std::max(loop.radius, glm::length(glm::dvec3(a) - loop.centroid));
+            loop.lo = glm::min(loop.lo, glm::vec2(a[perm.x], a[perm.y]));
+            loop.hi = glm::max(loop.hi, glm::vec2(a[perm.x], a[perm.y]));
+        }
+        const Moments moments = momentsOf(tris, firstTri, tris.size(), loop.centroid);
+        loop.vectorArea = moments.vectorArea;
+        loop.moment = moments.moment;
+        loop.area = moments.area;
+        loops_.push_back(loop);
+        // The tree sums the same surface, each fan triangle cut into m^2
+        // triangles of about the loop's edge length: fan triangles of a long
+        // loop are slivers as long as its radius, which a tree cannot split.
+        double length = 0.0;
+        for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k)
+            length += glm::length(glm::dvec3(loopEdges_[2 * k + 1]) - glm::dvec3(loopEdges_[2 * k]));
+        const double meanEdge = length / double(loop.count);
+        const int m = meanEdge > 0.0 ? int(std::clamp(std::ceil(loop.radius / meanEdge), 1.0, double(kMaxCut))) : 1;
+        const std::size_t fanEnd = tris.size();
+        for (std::size_t f = firstTri; f < fanEnd; ++f) {
+            const glm::dvec3 corner = tris[f][0], db = (tris[f][1] - corner) / double(m), da = (tris[f][2] - corner) / double(m);
+            const auto at = [&](int i, int j) { return corner + double(i) * db + double(j) * da; };
+            for (int i = 0; i < m; ++i)
+                for (int j = 0; i + j < m; ++j) {
+                    fine.push_back({{at(i, j), at(i + 1, j), at(i, j + 1)}});
+                    if (i + j < m - 1) fine.push_back({{at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}});
+                }
+        }
+    }
+    if (!closed_ || tris.empty()) return;
+    projected_.emplace(MeshView(capPositions_.data(), capPositions_.size(), capTriangles_.data(), capTriangles_.size()),
+                       axis);
+    std::vector<std::uint32_t> order(fine.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = std::uint32_t(k);
+    nodes_.reserve(2 * fine.size() / kLeafTriangles + 2);
+    std::vector<glm::dvec3> unsignedMoments;
+    unsignedMoments.reserve(nodes_.capacity());
+    build(0, std::uint32_t(fine.size()), order, fine, unsignedMoments);
+}
+
+std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,
+                                  const std::vector<std::array<glm::dvec3, 3>>& tris,
+                                  std::vector<glm::dvec3>& unsignedMoments) {
+    const std::uint32_t index = std::uint32_t(nodes_.size());
+    nodes_.emplace_back();
+    unsignedMoments.emplace_back(0.0);
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    glm::dvec3 clo = lo, chi = hi; // of the triangles' centroids
+    for (std::uint32_t k = first; k < last; ++k) {
+        const auto& t = tris[order[k]];
+        for (const glm::dvec3& v : t) {
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
+        const glm::dvec3 g = (t[0] + t[1] + t[2]) / 3.0;
+        clo = glm::min(clo, g);
+        chi = glm::max(chi, g);
+    }
+    Node node{};
+    node.centre = 0.5 * (lo + hi);
+    for (std::uint32_t k = first; k < last; ++k)
+        for (const glm::dvec3& v : tris[order[k]]) node.radius = std::max(node.radius, glm::length(v - node.centre));
+    if (last - first <= kLeafTriangles) {
+        struct Ordered {
+            const std::vector<std::array<glm::dvec3, 3>>& tris;
+            const std::vector<std::uint32_t>& order;
+            const std::array<glm::dvec3, 3>& operator[](std::size_t k) const { return tris[order[k]]; }
+        };
+        const Moments m = momentsOf(Ordered{tris, order}, first, last, node.centre);
+        node.vectorArea = m.vectorArea;
+        node.moment = m.moment;
+        node.trace = m.moment[0] + m.moment[4] + m.moment[8];
+        node.errorScale = 3.0 * m.second / kFourPi;
+        node.area = m.area;
+        for (std::uint32_t k = first; k < last; ++k) {
+            const auto& t = tris[order[k]];
+            unsignedMoments[index] += glm::length(glm::cross(t[1] - t[0], t[2] - t[0])) * 0.5 *
+                                      ((t[0] + t[1] + t[2]) / 3.0 - node.centre);
+        }
+        node.first = std::uint32_t(leafTris_.size());
+        node.count = last - first;
+        for (std::uint32_t k = first; k < last; ++k) leafTris_.push_back(tris[order[k]]);
+        nodes_[index] = node;
+        return index;
+    }
+    const glm::dvec3 extent = chi - clo;
+    const int split = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    const std::uint32_t middle = first + (last - first) / 2;
+    std::nth_element(order.begin() + first, order.begin() + middle, order.begin() + last,
+                     [&](std::uint32_t x, std::uint32_t y) {
+                         const auto& a = tris[x];
+                         const auto& b = tris[y];
+                         return a[0][split] + a[1][split] + a[2][split] < b[0][split] + b[1][split] + b[2][split];
+                     });
+    node.left = build(first, middle, order, tris, unsignedMoments);
+    node.right = build(middle, last, order, tris, unsignedMoments);
+    // The children's moments moved to this centre: with d = c' - c, M_ij
+    // gains A_i d_j, the unsigned first moment P gains area d, and S gains
+    // 2 d . P' + area |d|^2.
+    double second = 0.0;
+    for (const std::uint32_t child : {node.left, node.right}) {
+        const Node& n = nodes_[child];
+        const glm::dvec3 d = n.centre - node.centre;
+        node.vectorArea += n.vectorArea;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                node.moment[std::size_t(3 * i + j)] += n.moment[std::size_t(3 * i + j)] + n.vectorArea[i] * d[j];
+        node.area += n.area;
+        second += n.errorScale * kFourPi / 3.0 + 2.0 * glm::dot(d, unsignedMoments[child]) + n.area * glm::dot(d, d);
+        unsignedMoments[index] += unsignedMoments[child] + n.area * d;
+    }
+    node.trace = node.moment[0] + node.moment[4] + node.moment[8];
+    node.errorScale = 3.0 * second / kFourPi;
+    nodes_[index] = node;
+    return index;
+}
+
+BoundaryCaps::Estimate BoundaryCaps::estimate(const glm::vec3& q, double nodeTolerance) const {
+    if (!closed_) return {0.0, std::numeric_limits<double>::infinity()};
+    if (nodes_.empty()) return {0.0, 0.0};
+    const glm::dvec3 p(q);
+    double integral = 0.0, bound = 0.0;
+    std::uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& n = nodes_[stack[--top]];
+        const glm::dvec3 y = n.centre - p;
+        const double d2 = glm::dot(y, y);
+        const double d = std::sqrt(d2), e = d - n.radius;
+        // Taken when its bound is within the tolerance per unit of solid
+        // angle it subtends (about area / D^2): the taken nodes' bounds then
+        // sum to about the tolerance times the caps' apparent solid angle.
+        const double b = e > 0.0 ? n.errorScale * remainderFactor(d, e) : 0.0;
+        if (e > 0.0 && b * d2 <= nodeTolerance * n.area) {
+            // Dipole and quadrupole of the node about its centre, at y = c - q.
+            const double inv2 = 1.0 / d2, inv3 = inv2 / d;
+            const std::array<double, 9>& M = n.moment;
+            const double yMy = y.x * (M[0] * y.x + M[1] * y.y + M[2] * y.z) +
+                               y.y * (M[3] * y.x + M[4] * y.y + M[5] * y.z) +
+                               y.z * (M[6] * y.x + M[7] * y.y + M[8] * y.z);
+            integral += (glm::dot(n.vectorArea, y) + n.trace - 3.0 * yMy * inv2) * inv3;
+            bound += b;
+            continue;
+        }
+        if (n.count == 0) {
+            stack[top++] = n.left;
+            stack[top++] = n.right;
+            continue;
+        }
+        for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
+            if (!addCapTriangle(leafTris_[k], p, integral)) return {0.0, std::numeric_limits<double>::infinity()};
+    }
+    const int crossings = projected_->winding(q);
+    return {double(crossings) - integral / kFourPi, bound + kRoundingSlack};
+}
+
+double BoundaryCaps::exact(int winding, const glm::vec3& q) const {
+    return double(winding) + boundaryTermExact(edges_.data(), edges_.size() / 2, axisIndex_, glm::dvec3(q));
+}
+
+double BoundaryCaps::generalizedWinding(int winding, const glm::vec3& q, double tolerance) const {
+    const Estimate e = estimate(q, kCapValueTolerance);
+    return e.bound <= tolerance ? double(winding) + e.term : exact(winding, q);
+}
+
+bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
+    if (!closed_) return exact(winding, q) > 0.5;
+    if (nodes_.empty()) return winding > 0;
+    // Greedy decide-or-refine: start from the coarsest cut whose nodes each
+    // err by at most kMaxTakenBound, then open the node with the largest
+    // bound until the value lies farther from 1/2 than the summed bounds.
+    // Most points lie far from 1/2 and stop after a few nodes.
+    struct Taken {
+        double bound;
+        double value; ///< the node's expansion, in steradians
+        std::uint32_t node;
+        bool operator<(const Taken& o) const { return bound < o.bound; }
+    };
+    thread_local std::vector<Taken> heap;
+    thread_local std::vector<std::uint32_t> stack;
+    heap.clear();
+    const glm::dvec3 p(q);
+    double integral = 0.0, bound = 0.0;
+    // Opens the subtree at `index`: nodes far enough by expansion, the rest
+    // down to leaves summed exactly. False where q lies on a cap.
+    // `expand`: not by its own expansion (a leaf taken before).
+    const auto open = [&](std::uint32_t index, bool expand) {
+        stack.clear();
+        stack.push_back(index);
+        while (!stack.empty()) {
+            const std::uint32_t i = stack.back();
+            stack.pop_back();
+            const Node& n = nodes_[i];
+            const glm::dvec3 y = n.centre - p;
+            const double d2 = glm::dot(y, y);
+            const double d = std::sqrt(d2), e = d - n.radius;
+            if (e > 0.0 && !(expand && i == index)) {
+                const double b = n.errorScale * remainderFactor(d, e);
+                if (b <= kMaxTakenBound) {
+                    const double inv2 = 1.0 / d2, inv3 = inv2 / d;
+                    const std::array<double, 9>& M = n.moment;
+                    const double yMy = y.x * (M[0] * y.x + M[1] * y.y + M[2] * y.z) +
+                                       y.y * (M[3] * y.x + M[4] * y.y + M[5] * y.z) +
+                                       y.z * (M[6] * y.x + M[7] * y.y + M[8] * y.z);
+                    const double value = (glm::dot(n.vectorArea, y) + n.trace - 3.0 * yMy * inv2) * inv3;
+                    integral += value;
+                    bound += b;
+                    heap.push_back({b, value, i});
+                    std::push_heap(heap.begin(), heap.end());
+                    continue;
+                }
+            }
+            if (n.count == 0) {
+                stack.push_back(n.left);
+                stack.push_back(n.right);
+                continue;
+            }
+            for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
+                if (!addCapTriangle(leafTris_[k], p, integral)) return false; // on a cap
+        }
+        return true;
+    };
+    // value - 1/2 = offset - integral / 4 pi
+    const double offset = double(winding) + double(projected_->winding(q)) - 0.5;
+    if (open(0, false)) {
+        while (true) {
+            const double value = offset - integral / kFourPi;
+            // The running sums drift by some 1e-13 at most (each taken
+            // bound is at most kMaxTakenBound), within the slack.
+            if (std::fabs(value) > bound + kRoundingSlack) return value > 0.0;
+            if (heap.empty()) break;
+            std::pop_heap(heap.begin(), heap.end());
+            const Taken t = heap.back();
+            heap.pop_back();
+            integral -= t.value;
+            bound -= t.bound;
+            if (heap.empty()) bound = 0.0; // no drift left where nothing is taken
+            const Node& n = nodes_[t.node];
+            if (n.count == 0) {
+                if (!open(n.left, false) || !open(n.right, false)) break;
+            } else if (!open(t.node, true)) { // a leaf: summed exactly
+                break;
+            }
+        }
+    }
+    return exact(winding, q) > 0.5;
+}
+
+const BoundaryCaps& BoundaryCapsCache::get(const std::vector<glm::vec3>& edges, Axis axis) const {
+    if (const BoundaryCaps* caps = caps_.load(std::memory_order_acquire)) return *caps;
+    auto built = std::make_unique<BoundaryCaps>(edges.data(), edges.size() / 2, axis);
+    const BoundaryCaps* expected = nullptr;
+    if (caps_.compare_exchange_strong(expected, built.get(), std::memory_order_acq_rel)) return *built.release();
+    return *expected; // another thread built it first
+}
+
+void BoundaryCapsCache::reset() noexcept { delete caps_.exchange(nullptr); }
+
+} // namespace vds::detail

@@ -1,0 +1,48 @@
+// vds: the GL bakers (fragment lists, depth peeling; <vds/bake.h>) on a
+// context the caller passes, into a host sprite (`bakeOnGl`) or straight
+// into a GpuSprite (`bakeToGpu`), for programs that bake at run time and
+// only use the sprite on the GPU (renderers, GPU classification).
+//
+// With the fragment-list method nothing crosses the bus but the mesh: the
+// columns built on the GPU (see <vds/bake.h>) become the sprite's columns
+// and fill its 3D texture in a compute pass. The other methods bake on the
+// host and upload, as `GpuSprite(bake(...))` would.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <vds/bake.h>
+#include <vds/gl/context.h>
+#include <vds/gl/sprite.h>
+
+namespace vds {
+
+/// Bakes `mesh` with `options.method` on `gl`, which is made current for the
+/// call (the caller's current context is current again on return); the
+/// Cpu method runs `bakeCpu`. Validates the mesh and throws like `bakeCpu`;
+/// `GlError`/`OutOfMemory` from GL.
+Sprite bakeOnGl(MeshView mesh, const BakeOptions& options, const GlContext& gl);
+
+/// A sprite baked into GL, with what a host `Sprite` would say about it.
+struct GpuBake {
+    GpuSprite sprite;                  ///< placed as `grid` says
+    SpriteGrid grid;                   ///< the texel grid and placement (P_S, M_S) of the bake
+    std::uint32_t depthComplexity = 0; ///< d_S: the most crossings in any column
+    std::uint64_t crossings = 0;       ///< crossings in all columns
+    SolidStatus status = SolidStatus::Closed;
+    std::string validation;            ///< `MeshReport::summary()` of the mesh
+};
+
+/// Bakes `mesh` into a GpuSprite on `gl`, which is made current for the call
+/// (the caller's current context is current again on return); the sprite
+/// belongs to `gl`. Validates the mesh and throws like `bake()`; also throws
+/// `InvalidArgument` when the texture is asked for and d_S or the size
+/// exceed GL_MAX_3D_TEXTURE_SIZE. Equal, texel for texel and offset for
+/// offset, to `GpuSprite(bake(mesh, options), parts)`. Fills
+/// `options.timings` if set; `BakePhase::TextureFill` is the compute pass that
+/// fills the 3D texture (for Peel and Cpu: the upload).
+GpuBake bakeToGpu(MeshView mesh, const BakeOptions& options, const GlContext& gl,
+                  GpuSpriteParts parts = GpuSpriteParts::Both);
+
+} // namespace vds

@@ -1,0 +1,67 @@
+// vds: occupancy grids on the GPU — the column sweep of <vds/occupancy.h>
+// in a compute shader (shaders/vds/occupancy.comp), one invocation per grid
+// column, the labels left in a GL buffer.
+//
+// Belongs to the GL context current at construction, which must be current
+// for every call and at destruction.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include <vds/gl/context.h>
+#include <vds/gl/objects.h>
+#include <vds/gl/sprite.h>
+#include <vds/occupancy.h>
+
+namespace vds {
+
+/// Labels the cell centres of an `Grid` with a `GpuSprite` on the
+/// GPU: the same labels as `vds::occupancy` on the CPU for the same sprite
+/// (the host computes each column's texel and each slice's depth with the
+/// CPU's arithmetic; the shader only compares depths). Not thread safe.
+///
+/// Rule::GeneralizedWinding on a sprite with boundary edges adds, per cell,
+/// the boundary term at the cell's texel-centre point (the point the CPU
+/// takes) to the column's signed count, in float (vpt.glsl): a label may
+/// then differ from the CPU's (double) only where |w - 1/2| is within float
+/// error (vpt.glsl gives its size, and the near-tie of a boundary edge along
+/// the view axis), and the sweep costs O(boundary edges) a cell. With no
+/// boundary edges the rule is Winding.
+class GpuOccupancy {
+public:
+    /// Builds the compute program on the current context. Throws `GlError`.
+    GpuOccupancy();
+    /// The same; `gl` must be the current context (it is not kept).
+    explicit GpuOccupancy(const GlContext& gl);
+    GpuOccupancy(GpuOccupancy&&) noexcept = default;
+    GpuOccupancy& operator=(GpuOccupancy&&) noexcept = default;
+    GpuOccupancy(const GpuOccupancy&) = delete;
+    GpuOccupancy& operator=(const GpuOccupancy&) = delete;
+
+    /// Bytes the label buffer needs for `grid`: 4 * ceil(cellCount / 4).
+    static std::size_t labelBytes(const Grid& grid) { return (grid.cellCount() + 3) / 4 * 4; }
+
+    /// GL buffer to GL buffer: byte `grid.index(i, j, k)` of `cells` (at
+    /// least `labelBytes(grid)` bytes from offset 0) becomes 1 inside, 0
+    /// outside, written as 32-bit words (low byte first); the buffer is
+    /// cleared first. Only queues GL commands: a glMemoryBarrier after it
+    /// makes the labels visible to later GL commands.
+    /// `sprite` needs its columns (`hasColumns()`) and must be placed with
+    /// its axes along the grid's (as baked, moved or scaled but not rotated);
+    /// throws `InvalidArgument` otherwise, for a grid `checkGrid`
+    /// refuses, for more than 2^32 cells, for a buffer larger than GL's
+    /// largest shader storage block, and for Rule::GeneralizedWinding on a
+    /// sprite whose boundary is unknown (`boundaryKnown()`: a version 1 file).
+    void run(const GpuSprite& sprite, const Grid& grid, GLuint cells, Rule rule = Rule::Parity);
+
+    /// Host array out: `cells` holds `grid.cellCount()` bytes (caller-owned).
+    /// Waits for the GPU and reads the labels back.
+    void run(const GpuSprite& sprite, const Grid& grid, std::uint8_t* cells, Rule rule = Rule::Parity);
+
+private:
+    Program program_;
+    std::uint64_t maxBlock_ = 0;
+};
+
+} // namespace vds

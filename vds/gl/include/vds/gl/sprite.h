@@ -1,0 +1,191 @@
+// vds: sprites on the GPU, for the GLSL include shaders/vds/vpt.glsl, and the
+// GPU classifier.
+//
+// `GpuSprite` holds a sprite in GL in up to two forms:
+//  - the paper's texture: a width x height x d_S R32F 3D texture, nearest
+//    filtering, border value 1, clamp to border (Trapp & Döllner 2008,
+//    section 4.1 step 2), padded with 1.0 behind each column's crossings. A
+//    shader needs the texture and the placement (P_S, M_S):
+//      uniform sampler3D u_ldi; uniform VdsPlacement u_placement;
+//  - the compact columns, as `Sprite` holds them (CSR: offsets + crossings)
+//    in two shader storage buffers: what `GpuClassifier` reads, a column's
+//    crossings side by side instead of one texture slice apart.
+// and, for the generalized winding number of an open mesh, the baked mesh's
+// boundary edges in a third storage buffer (vpt.glsl's VdsBoundaryEdges).
+// `GpuClassifier` runs the test over many points in a compute shader, from
+// host arrays or from GL buffers that stay on the GPU.
+//
+// Every object here belongs to the GL context current when it was made; that
+// context must be current whenever it is used or destroyed.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <vds/gl/context.h>
+#include <vds/gl/objects.h>
+#include <vds/sprite.h>
+
+namespace vds {
+
+namespace detail {
+struct GpuSpriteAccess;
+} // namespace detail
+
+/// Which forms of a sprite a `GpuSprite` keeps in GL.
+enum class GpuSpriteParts : std::uint8_t {
+    Both,        ///< the texture and the columns (the default)
+    TextureOnly, ///< for shaders; the classifier then reads the texture
+    ColumnsOnly, ///< for the classifier, without the dense texture's memory
+};
+
+class GpuSprite {
+public:
+    GpuSprite() = default;
+    /// Uploads `sprite` to the current context. Throws `InvalidArgument` if
+    /// the texture is asked for and exceeds GL_MAX_3D_TEXTURE_SIZE (bake at a
+    /// lower resolution) and `OutOfMemory` if GL cannot hold it.
+    explicit GpuSprite(const Sprite& sprite, GpuSpriteParts parts = GpuSpriteParts::Both);
+
+    bool hasTexture() const { return bool(texture_); }
+    bool hasColumns() const { return bool(offsets_); }
+    /// The 3D texture (empty unless `hasTexture()`).
+    const Texture& texture() const { return texture_; }
+    /// The columns (empty unless `hasColumns()`): `offsets` holds at least
+    /// width * height + 1 uint32 (column c = j * width + i has crossings
+    /// [offsets[c], offsets[c+1])), `crossings` holds `crossingCount()`
+    /// encoded crossings as floats (see `encodeCrossing`), each column sorted.
+    const Buffer& offsets() const { return offsets_; }
+    const Buffer& crossings() const { return crossings_; }
+    std::uint64_t crossingCount() const { return crossingCount_; }
+    glm::uvec3 size() const { return size_; }          ///< width, height, layers (d_S, at least 1)
+    const glm::mat3& matrix() const { return matrix_; } ///< M_S
+    const glm::vec3& position() const { return position_; } ///< P_S
+    /// Whether the baked mesh bounded a solid (as `Sprite::status`).
+    SolidStatus status() const { return status_; }
+    /// Moves the sprite on the GPU without re-uploading (see Sprite::transform).
+    void setPlacement(const SpriteGrid& grid);
+
+    /// The boundary edges, for Rule::GeneralizedWinding: 2 * boundaryEdgeCount()
+    /// vec4 (16 bytes each, at least one), edge k from entry 2k to 2k+1, xyz
+    /// the endpoint in the baked mesh's coordinates in the sprite's (s, t, r)
+    /// order (see shaders/vds/vpt.glsl). Empty only on a default-made sprite.
+    const Buffer& boundaryEdges() const { return boundaryEdges_; }
+    std::uint32_t boundaryEdgeCount() const { return boundaryEdgeCount_; }
+    /// False for a sprite of an open mesh read from a version-1 .vds file:
+    /// its boundary is unknown, and Rule::GeneralizedWinding refuses it.
+    bool boundaryKnown() const { return boundaryKnown_; }
+    /// Binds the boundary edges to shader storage binding `binding` (the
+    /// shader's VDS_BOUNDARY_BINDING) and sets, in `program` (in use), the
+    /// VdsBoundary uniform `boundary` (e.g. "u_boundary"). Throws
+    /// `InvalidArgument` when `boundaryKnown()` is false.
+    void setBoundaryUniforms(GLuint program, const std::string& boundary, GLuint binding) const;
+
+    /// Binds the texture to texture unit `unit`.
+    void bind(GLuint unit) const;
+    /// Binds to `unit` and sets, in `program` (which must be in use), the
+    /// sampler uniform `sampler` and the VdsPlacement uniform `placement`
+    /// (e.g. "u_ldi[2]" and "u_placement[2]"). Unknown names are ignored, as GL does.
+    void setUniforms(GLuint program, const std::string& sampler, const std::string& placement, GLuint unit) const;
+
+private:
+    friend struct detail::GpuSpriteAccess;
+    Texture texture_;
+    Buffer offsets_;
+    Buffer crossings_;
+    std::uint64_t crossingCount_ = 0;
+    glm::uvec3 size_{0};
+    glm::mat3 matrix_{1.0f};
+    glm::vec3 position_{0.0f};
+    SolidStatus status_ = SolidStatus::Closed;
+    Buffer boundaryEdges_;
+    std::uint32_t boundaryEdgeCount_ = 0;
+    bool boundaryKnown_ = true;
+    glm::vec3 boundaryLo_{0.0f};   ///< the baked box's low corner, (s, t, r) order
+    glm::vec3 boundaryStep_{0.0f}; ///< (texel, texel, extent along r)
+    void setBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>& edges, bool known);
+};
+
+/// Classifies points against a GpuSprite with a compute shader. Answers are
+/// identical to `classify()` on the CPU for the same sprite and points: the
+/// same arithmetic, in the same order (shaders/vds/vpt.glsl).
+///
+/// Reads the sprite's columns when it has them (and they fit one shader
+/// storage block), else its 3D texture. Owns its programs and, for the host
+/// array call, persistently mapped staging buffers that grow to the largest
+/// batch and are kept between calls. Belongs to the context current at
+/// construction, which must be current for every call and at destruction.
+/// Not thread safe.
+class GpuClassifier {
+public:
+    /// Builds the compute programs on the current context. Throws `GlError`.
+    GpuClassifier();
+    /// The same; `gl` must be the current context (it is not kept).
+    explicit GpuClassifier(const GlContext& gl);
+    ~GpuClassifier();
+    GpuClassifier(GpuClassifier&&) noexcept;
+    GpuClassifier& operator=(GpuClassifier&&) noexcept;
+    GpuClassifier(const GpuClassifier&) = delete;
+    GpuClassifier& operator=(const GpuClassifier&) = delete;
+
+    /// Every rule of `Rule`: Rule::GeneralizedWinding on a sprite with
+    /// boundary edges adds the boundary term in float (vpt.glsl says where
+    /// that can change a label against the CPU's double), O(boundary edges)
+    /// a point; with none it reads as Winding. Throws `InvalidArgument` for
+    /// it on a sprite whose boundary is unknown (`boundaryKnown()`).
+    ///
+    /// Host arrays to host arrays. `points` and `labels` hold `count`
+    /// elements (caller-owned); labels get 1 inside, 0 outside. Points go in
+    /// batches of `batch` (rounded down to a multiple of 4, at least 1024):
+    /// while the GPU classifies one batch, the next is copied into the other
+    /// staging buffer and the previous one's labels out. Returns when every
+    /// label is written.
+    void classify(const GpuSprite& sprite, const glm::vec3* points, std::size_t count, std::uint8_t* labels,
+                  Rule rule = Rule::Parity, std::size_t batch = std::size_t(1) << 22);
+
+    /// GL buffers to GL buffers, with no host transfer: for renderers, and
+    /// for CUDA or other APIs that share buffers with GL.
+    ///  - `points`: a buffer of at least 12 * count bytes from offset 0,
+    ///    point k's x, y, z as floats at bytes 12k, 12k+4, 12k+8 (tightly
+    ///    packed vec3, the layout of glm::vec3 and CUDA's float3 arrays);
+    ///  - `labels`: a buffer of at least 4 * ceil(count / 4) bytes; byte k
+    ///    receives point k's label, 1 inside or 0 outside (one byte a point,
+    ///    like the host call's uint8 array), written as 32-bit words, four
+    ///    labels each (the word's low byte first: bytes on little-endian
+    ///    hosts, which every supported platform is); the tail word's unused
+    ///    bytes become 0.
+    /// Only queues GL commands, does not wait: a glMemoryBarrier before the
+    /// dispatch makes earlier shader writes to `points` visible, one after
+    /// it (all bits) makes the labels visible to every later GL command.
+    /// Mapping the buffer into CUDA afterwards (cudaGraphicsMapResources)
+    /// waits for them.
+    void classify(const GpuSprite& sprite, GLuint points, GLuint labels, std::size_t count,
+                  Rule rule = Rule::Parity);
+
+private:
+    struct Slot {
+        Buffer points, labels;
+        void* pointsMap = nullptr;
+        const void* labelsMap = nullptr;
+        Fence done;
+        std::size_t first = 0, count = 0;
+    };
+    void dispatch(const GpuSprite& sprite, GLuint points, GLintptr pointsOffset, GLuint labels,
+                  GLintptr labelsOffset, std::size_t count, Rule rule);
+    void reserve(std::size_t points);
+    void finish(Slot& slot, std::uint8_t* labels);
+
+    Program columns_, texture_;
+    std::uint64_t maxBlock_ = 0;
+    std::size_t maxDispatch_ = 0;
+    std::array<Slot, 2> slots_;
+    std::size_t capacity_ = 0;
+};
+
+} // namespace vds

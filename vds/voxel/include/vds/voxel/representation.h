@@ -1,0 +1,111 @@
+// vds::voxel: one entry point for every voxel representation that answers
+// point-in-solid queries, so a tool can offer them beside the VDS:
+//   auto model = vds::voxel::buildModel(mesh, vds::voxel::parseRepresentation("slicemap-local"), {256});
+//   model.classify({points.data(), points.size()}, labels.data());
+//
+// Representations (details in their headers and docs/voxel.md):
+//  - Slicemap:      front/back slicemap pair, uniform slicing    (<vds/voxel/slicemap.h>)
+//  - SlicemapLocal: front/back slicemap pair, local slicing      (<vds/voxel/slicemap.h>)
+//  - Solid:         solid voxels by rasterization, per-fragment XOR (<vds/voxel/solid.h>)
+//  - SolidCompute:  solid voxels in compute, flip + prefix XOR   (<vds/voxel/solid.h>)
+// All are laid over the mesh's bounding box with cubic cells, `resolution`
+// of them along the box's longest side (like vds::makeGrid for a sprite's
+// texels); slicemaps get the box depth in cells as slices, rounded up to a
+// multiple of 32 and capped at 1024.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <variant>
+
+#include <glm/vec3.hpp>
+
+#include <vds/enum_names.h>
+#include <vds/gl/context.h>
+#include <vds/mesh.h>
+#include <vds/voxel/grid.h>
+#include <vds/voxel/slicemap.h>
+
+namespace vds::voxel {
+
+enum class Representation : std::uint8_t { Slicemap, SlicemapLocal, Solid, SolidCompute };
+
+} // namespace vds::voxel
+
+template <> struct vds::EnumNames<vds::voxel::Representation> {
+    static constexpr const char* kind = "voxel representation";
+    static constexpr EnumName<voxel::Representation> table[] = {{"slicemap", voxel::Representation::Slicemap},
+                                                                {"slicemap-local", voxel::Representation::SlicemapLocal},
+                                                                {"solid", voxel::Representation::Solid},
+                                                                {"solid-compute", voxel::Representation::SolidCompute}};
+};
+
+namespace vds::voxel {
+
+/// Parses "slicemap", "slicemap-local", "solid", "solid-compute" (`parseEnum`);
+/// throws `InvalidArgument` naming the accepted names.
+Representation parseRepresentation(const std::string& name);
+/// The name `parseRepresentation` accepts (`enumName`).
+const char* toString(Representation r);
+
+struct ModelOptions {
+    std::uint32_t resolution = 128; ///< cells along the box's longest side, 1..16384
+    std::uint32_t slices = 0;       ///< slicemaps only: 0 = box depth in cells (see SlicemapOptions)
+};
+
+/// A built representation in host memory; queries are thread safe.
+class Model {
+public:
+    Model(Representation representation, Slicemap slicemap, double buildSeconds);
+    Model(Representation representation, BitGrid solid, double buildSeconds);
+
+    Representation representation() const { return representation_; }
+
+    /// Inside test of a point in mesh coordinates; points outside the grid are outside.
+    bool contains(const glm::vec3& p) const;
+    /// Batch form: `points` and `labels` hold `count` elements (caller-owned);
+    /// labels get 1 inside, 0 outside. `threads` 0: one per hardware thread.
+    void classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels, unsigned threads = 0) const;
+
+    /// Wall-clock seconds of the build on the GPU, read-back included (the
+    /// first build on a context also compiles its shaders).
+    double buildSeconds() const { return buildSeconds_; }
+    /// Bytes the point query reads (host), see Slicemap::memoryBytes / BitGrid::memoryBytes.
+    std::size_t memoryBytes() const;
+    /// Bytes of the GL objects the GLSL lookup reads.
+    std::size_t gpuBytes() const;
+    /// Cells: columns along x and y, and slices or voxels along z.
+    glm::uvec3 cells() const;
+    /// Edge of a cell across the columns, mesh units.
+    float cellSize() const;
+    /// One line, e.g. "solid-compute: 128x96x80 voxels, 122880 bytes".
+    std::string summary() const;
+
+    /// The slicemap pair, or nullptr for solid voxels.
+    const Slicemap* slicemap() const { return std::get_if<Slicemap>(&data_); }
+    /// The solid voxels, or nullptr for a slicemap.
+    const BitGrid* solid() const { return std::get_if<BitGrid>(&data_); }
+
+private:
+    Representation representation_;
+    std::variant<Slicemap, BitGrid> data_;
+    double buildSeconds_ = 0.0;
+};
+
+/// Builds a representation of the closed mesh over its bounding box. Uses
+/// `gl` if given (made current), else makes a context for the call. Throws
+/// `InvalidMesh` for an open or unusable mesh, `InvalidArgument` for a bad
+/// resolution or slice count, `GlUnavailable` without GL, `OutOfMemory` for a
+/// grid GL cannot hold.
+Model buildModel(MeshView mesh, Representation representation, const ModelOptions& options = {},
+                 GlContext* gl = nullptr);
+
+/// Classifies points on the GPU with the GLSL lookups (shaders/voxel/solid.glsl
+/// and slicemap.glsl, in shaders/voxel/classify.comp): the model is uploaded
+/// to `gl` (made current), the answers equal `Model::classify`. `points` and
+/// `labels` hold `count` elements.
+void classifyOnGpu(const GlContext& gl, const Model& model, const glm::vec3* points, std::size_t count,
+                   std::uint8_t* labels);
+
+} // namespace vds::voxel
