@@ -18,6 +18,7 @@
 
 #include <vds/error.h>
 #include <vds/exact.h>
+#include <vds/detail/exact_access.h>
 #include <vds/mesh.h>
 #include <vds/mesh_io.h>
 #include "solids.h"
@@ -59,7 +60,7 @@ void run(const std::string& name, const vds::TriangleMesh& mesh, std::size_t poi
     const std::size_t sample = std::min(sampleCount, points.size());
     std::vector<std::uint8_t> brute(sample);
     start = std::chrono::steady_clock::now();
-    for (std::size_t k = 0; k < sample; ++k) brute[k] = exact.containsBruteForce(points[k]) ? 1 : 0;
+    for (std::size_t k = 0; k < sample; ++k) brute[k] = vds::detail::ExactAccess::containsBruteForce(exact, points[k]) ? 1 : 0;
     const double bruteRate = double(sample) / seconds(start);
     std::size_t agree = 0, inside = 0;
     for (std::size_t k = 0; k < sample; ++k) {

@@ -22,6 +22,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/geometric.hpp>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/eval/image.h>
@@ -192,7 +193,7 @@ int main(int argc, char** argv) {
                 // A copy starts without the caps: their build is counted.
                 const vds::Sprite fresh = sprite;
                 gwn.boundary = vds::BoundaryEvaluation::Caps;
-                const double spriteCaps = rate([&] { vds::classify(fresh, many.data(), many.size(), manyLabels.data(), gwn); });
+                const double spriteCaps = rate([&] { vds::classify(fresh, vds::PointsView(many.data(), many.size()), manyLabels.data(), gwn); });
                 const double spriteWinding = rate([&] {
                     vds::classify(sprite, {many.data(), many.size()}, manyLabels.data(), {vds::Rule::Winding, threads});
                 });

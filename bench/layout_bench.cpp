@@ -26,6 +26,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/mesh_io.h>
 #include <vds/sprite.h>
@@ -122,7 +123,7 @@ void measure(const Input& in, std::size_t count, std::uint32_t resolution, int r
             if (v.layout == vds::QueryLayout::Auto)
                 classifyPrevious(sprite, points.data(), count, v.labels.data());
             else
-                vds::classify(sprite, points.data(), count, v.labels.data(), {vds::Rule::Parity, v.threads, v.layout});
+                vds::classify(sprite, vds::PointsView(points.data(), count), v.labels.data(), {vds::Rule::Parity, v.threads, v.layout});
             if (round == 0) continue;
             v.best = std::min(v.best, cpuSeconds() - cpu); // all threads: the time of one busy thread
             v.bestWall = std::min(v.bestWall, wallSeconds() - wall);

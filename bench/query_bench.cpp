@@ -14,6 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/certified.h>
 #include <vds/exact.h>
@@ -71,7 +72,7 @@ void randomPoints(const Input& in, std::size_t count, std::uint32_t resolution, 
     const double certifiedBuild = secondsSince(start);
 
     std::vector<std::uint8_t> truth(count), labels(count);
-    const double exactSeconds = best(1, [&] { exact.classify(points.data(), count, truth.data(), {vds::Rule::Parity, threads}); });
+    const double exactSeconds = best(1, [&] { exact.classify(vds::PointsView(points.data(), count), truth.data(), {vds::Rule::Parity, threads}); });
     struct Row {
         const char* method;
         unsigned threads;
@@ -83,15 +84,17 @@ void randomPoints(const Input& in, std::size_t count, std::uint32_t resolution, 
     for (unsigned t : {1u, threads}) {
         for (vds::QueryLayout layout : {vds::QueryLayout::Offsets, vds::QueryLayout::Packed}) {
             const vds::ClassifyOptions co{vds::Rule::Parity, t, layout};
-            const double s = best(2, [&] { vds::classify(sprite, points.data(), count, labels.data(), co); });
+            const double s = best(2, [&] { vds::classify(sprite, vds::PointsView(points.data(), count), labels.data(), co); });
             rows.push_back({layout == vds::QueryLayout::Packed ? "sprite, packed columns" : "sprite, offsets", t,
                             bakeSeconds, s, differing(labels, truth), ""});
         }
         if (t == threads && threads == 1) break;
     }
-    vds::CertifiedStats stats;
+    vds::ClassifyStats stats;
     const double certifiedSeconds = best(2, [&] {
-        stats = certified.classify(points.data(), count, labels.data(), {vds::Rule::Parity, threads});
+        vds::ClassifyOptions options{vds::Rule::Parity, threads};
+        options.stats = &stats;
+        certified.classify(vds::PointsView(points.data(), count), labels.data(), options);
     });
     char note[64];
     std::snprintf(note, sizeof note, "%.3f%% to the exact path", 100.0 * double(stats.exact) / double(count));
@@ -129,9 +132,9 @@ void grids(const Input& in, const std::vector<std::uint32_t>& sizes, std::uint32
             for (std::uint32_t j = 0; j < grid.dims.y; ++j)
                 for (std::uint32_t k = 0; k < grid.dims.z; ++k) centres.push_back(grid.cellCentre(i, j, k));
         const double spritePoints =
-            best(1, [&] { vds::classify(sprite, centres.data(), cells, perPoint.data(), {vds::Rule::Parity, threads}); });
+            best(1, [&] { vds::classify(sprite, vds::PointsView(centres.data(), cells), perPoint.data(), {vds::Rule::Parity, threads}); });
         const auto start = Clock::now();
-        exact.classify(centres.data(), cells, truth.data(), {vds::Rule::Parity, threads});
+        exact.classify(vds::PointsView(centres.data(), cells), truth.data(), {vds::Rule::Parity, threads});
         const double exactPoints = secondsSince(start);
         std::printf("| %ux%ux%u | %.2f | %.2f | %.3f | %.4f | %.0fx | %zu, %zu |\n", grid.dims.x, grid.dims.y,
                     grid.dims.z, cells / sweep * 1e-9, cells / spriteSweep * 1e-9, cells / spritePoints * 1e-9,

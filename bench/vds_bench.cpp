@@ -33,6 +33,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
@@ -231,22 +232,22 @@ void bakeTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchM
             // Untimed first bakes: the GL bakers' scratch space grows to this
             // size once, and the allocator warms up for the CPU baker.
             o.method = vds::BakeMethod::Lists;
-            vds::bake(m.mesh, o, &gl);
+            vds::bake(gl, m.mesh, o);
             if (set.cpuBake) {
                 o.method = vds::BakeMethod::Cpu;
                 vds::bake(m.mesh, o);
                 o.method = vds::BakeMethod::Lists;
             }
             double cLists = 0, cCpu = 0;
-            const double tLists = best(set.bakeRuns, [&] { lists = vds::bake(m.mesh, o, &gl); }, &cLists);
+            const double tLists = best(set.bakeRuns, [&] { lists = vds::bake(gl, m.mesh, o); }, &cLists);
             const double tGpu = best(set.bakeRuns, [&] {
-                const vds::GpuBake b = vds::bakeToGpu(m.mesh, o, gl);
+                const vds::GpuBake b = vds::bakeToGpu(gl, m.mesh, o);
                 glFinish();
             });
             double tPeel = -1, tCpu = -1;
             if (set.peel) {
                 o.method = vds::BakeMethod::Peel;
-                tPeel = seconds([&] { peel = vds::bake(m.mesh, o, &gl); });
+                tPeel = seconds([&] { peel = vds::bake(gl, m.mesh, o); });
             }
             if (set.cpuBake) {
                 o.method = vds::BakeMethod::Cpu;
@@ -259,9 +260,9 @@ void bakeTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchM
             PhaseRow row{m.mesh.name, res, {}, {}};
             o.method = vds::BakeMethod::Lists;
             o.timings = &row.host;
-            vds::bake(m.mesh, o, &gl);
+            vds::bake(gl, m.mesh, o);
             o.timings = &row.gpu;
-            vds::bakeToGpu(m.mesh, o, gl);
+            vds::bakeToGpu(gl, m.mesh, o);
             phases.push_back(row);
             std::printf("| %s | %zu | %u | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", m.mesh.name.c_str(),
                         m.mesh.triangles.size(), res, sizeText(lists.width(), lists.height(), lists.depthComplexity).c_str(),
@@ -362,7 +363,7 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
     for (const auto& m : meshes) {
         vds::BakeOptions o;
         o.resolution = set.classifyResolution;
-        const vds::Sprite sprite = vds::bake(m.mesh, o, &gl);
+        const vds::Sprite sprite = vds::bake(gl, m.mesh, o);
         const vds::GpuSprite gpu(sprite, vds::GpuSpriteParts::ColumnsOnly);
         const vds::Box box = sprite.grid.box;
         for (std::size_t k = 0; k < n; ++k) random[k] = box.lo + unit[k] * (box.hi - box.lo);
@@ -371,10 +372,10 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
         vds::ClassifyOptions one, all;
         one.threads = 1;
         all.threads = threads;
-        const double t1 = best(1, [&] { vds::classify(sprite, random.data(), n, cpu1.data(), one); });
-        const double tN = best(set.classifyRuns, [&] { vds::classify(sprite, random.data(), n, cpuN.data(), all); });
-        classifier.classify(gpu, random.data(), std::min<std::size_t>(n, 4096), hostToHost.data()); // warm-up
-        const double tHost = best(set.classifyRuns, [&] { classifier.classify(gpu, random.data(), n, hostToHost.data()); });
+        const double t1 = best(1, [&] { vds::classify(sprite, vds::PointsView(random.data(), n), cpu1.data(), one); });
+        const double tN = best(set.classifyRuns, [&] { vds::classify(sprite, vds::PointsView(random.data(), n), cpuN.data(), all); });
+        classifier.classify(gpu, vds::PointsView(random.data(), std::min<std::size_t>(n, 4096)), hostToHost.data()); // warm-up
+        const double tHost = best(set.classifyRuns, [&] { classifier.classify(gpu, vds::PointsView(random.data(), n), hostToHost.data()); });
 
         // Resident: the points uploaded once, the labels left in GL.
         double residentWall = 1e300, residentGpu = 1e300, coherentWall = 1e300, coherentGpu_ = 1e300;
@@ -386,10 +387,10 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
             glNamedBufferStorage(labels.id(), GLsizeiptr(labelBytes), nullptr, 0);
             vds::checkGl("allocating the benchmark's buffers");
             auto measure = [&](const vds::Buffer& points, double& wall, double& gpuTime, std::vector<std::uint8_t>& out) {
-                classifier.classify(gpu, points.id(), labels.id(), n); // warm-up
+                classifier.classify(gpu, points.id(), n, labels.id()); // warm-up
                 for (unsigned k = 0; k < std::max(1u, set.classifyRuns); ++k) {
                     double w = 0;
-                    const double g = gpuSeconds([&] { classifier.classify(gpu, points.id(), labels.id(), n); }, &w);
+                    const double g = gpuSeconds([&] { classifier.classify(gpu, points.id(), n, labels.id()); }, &w);
                     wall = std::min(wall, w);
                     if (g > 0) gpuTime = std::min(gpuTime, g);
                 }
@@ -400,12 +401,12 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
             measure(randomBuffer, residentWall, residentGpu, resident);
             measure(coherentBuffer, coherentWall, coherentGpu_, coherentGpu);
         }
-        vds::classify(sprite, coherent.data(), n, coherentCpu.data(), all);
+        vds::classify(sprite, vds::PointsView(coherent.data(), n), coherentCpu.data(), all);
 
         const std::size_t ne = std::min(n, set.exactPoints);
         std::vector<std::uint8_t> exactLabels(ne);
         const vds::ExactClassifier exact(m.mesh);
-        const double tExact = seconds([&] { exact.classify(random.data(), ne, exactLabels.data(), all); });
+        const double tExact = seconds([&] { exact.classify(vds::PointsView(random.data(), ne), exactLabels.data(), all); });
         std::size_t differ = 0;
         for (std::size_t k = 0; k < ne; ++k) differ += cpuN[k] != exactLabels[k];
         const bool equal = cpu1 == cpuN && cpuN == hostToHost && cpuN == resident && coherentCpu == coherentGpu;
@@ -490,9 +491,9 @@ int main(int argc, char** argv) {
             const auto box = vds::solids::box({0, 0, 0}, {1, 1, 1}).mesh;
             for (auto method : {vds::BakeMethod::Peel, vds::BakeMethod::Lists}) {
                 o.method = method;
-                vds::bake(box, o, &gl);
+                vds::bake(gl, box, o);
             }
-            vds::bakeToGpu(box, o, gl);
+            vds::bakeToGpu(gl, box, o);
         }
         std::vector<SizeRow> sizes;
         if (set.bakeTable) bakeTable(set, gl, meshes, sizes);

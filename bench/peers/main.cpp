@@ -43,6 +43,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/certified.h>
 #include <vds/error.h>
@@ -173,7 +174,7 @@ std::vector<Method> buildMethods(const vds::TriangleMesh& mesh, unsigned threads
     auto t0 = Clock::now();
     auto exact = std::make_shared<const vds::ExactClassifier>(mesh, vds::Axis::Z);
     methods.push_back({"vds exact", threads, since(t0), [exact, threads](const Slab& s, std::uint8_t* out) {
-                           exact->classify(s.points, s.count, out, {vds::Rule::Parity, threads});
+                           exact->classify(vds::PointsView(s.points, s.count), out, {vds::Rule::Parity, threads});
                        }, {}});
 
     t0 = Clock::now();
@@ -181,7 +182,7 @@ std::vector<Method> buildMethods(const vds::TriangleMesh& mesh, unsigned threads
         mesh, vds::CertifiedOptions{resolution, vds::Axis::Z, threads});
     methods.push_back({"vds certified @" + std::to_string(resolution), threads, since(t0),
                        [certified, threads](const Slab& s, std::uint8_t* out) {
-                           certified->classify(s.points, s.count, out, {vds::Rule::Parity, threads});
+                           certified->classify(vds::PointsView(s.points, s.count), out, {vds::Rule::Parity, threads});
                        }, {}});
 
     vds::BakeOptions bake;
@@ -197,7 +198,7 @@ std::vector<Method> buildMethods(const vds::TriangleMesh& mesh, unsigned threads
     for (unsigned t : {1u, threads}) {
         if (t == 1 && threads == 1) continue;
         methods.push_back({"vds sprite" + at, t, bakeSeconds, [sprite, t](const Slab& s, std::uint8_t* out) {
-                               vds::classify(*sprite, s.points, s.count, out, {vds::Rule::Parity, t});
+                               vds::classify(*sprite, vds::PointsView(s.points, s.count), out, {vds::Rule::Parity, t});
                            }, {}});
     }
     kSprite = methods.size() - 1;

@@ -30,6 +30,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
@@ -293,7 +294,7 @@ BoolArray spriteContains(PySprite& sprite, const py::object& points, const std::
     p.prepare(gpu);
     if (p.count == 0) return labels;
     if (!gpu) {
-        vds::classify(sprite, p.xyz, p.count, p.stride, out, options);
+        vds::classify(sprite, vds::PointsView::floats(p.xyz, p.count, p.stride), out, options);
         return labels;
     }
     GlState& s = glState();
@@ -310,7 +311,7 @@ BoolArray spriteContains(PySprite& sprite, const py::object& points, const std::
         it = s.resident.emplace(sprite.gpuId, std::move(copy)).first;
     }
     it->second->setPlacement(sprite.grid);
-    s.classifier->classify(*it->second, p.vec3(), p.count, out, options.rule);
+    s.classifier->classify(*it->second, vds::PointsView(p.vec3(), p.count), out, options);
     return labels;
 }
 
@@ -328,7 +329,7 @@ std::shared_ptr<PySprite> bakeMesh(const py::object& vertices, const py::object&
     if (options.method == vds::BakeMethod::Cpu) return wrap(vds::bake(mesh, options));
     GlState& s = glState();
     const std::lock_guard<std::mutex> lock(s.mutex);
-    return wrap(vds::bake(mesh, options, &s.context()));
+    return wrap(vds::bake(s.context(), mesh, options));
 }
 
 std::shared_ptr<PySprite> spriteFromBytes(const py::bytes& data, const std::string& name) {
@@ -377,7 +378,7 @@ public:
         auto* out = reinterpret_cast<std::uint8_t*>(labels.mutable_data());
         py::gil_scoped_release released;
         p.prepare(false);
-        if (p.count) exact_->classify(p.xyz, p.count, p.stride, out, options);
+        if (p.count) exact_->classify(vds::PointsView::floats(p.xyz, p.count, p.stride), out, options);
         return labels;
     }
     py::array_t<double> windingNumbers(const py::object& points) const {

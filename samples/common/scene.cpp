@@ -19,6 +19,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
@@ -299,7 +300,7 @@ SceneRenderer::SceneRenderer(const GlContext& gl, const Scene& scene, Lookup loo
             BakeOptions options;
             options.resolution = size.resolution;
             options.axis = chooseViewAxis(solid.mesh);
-            sprite = bake(solid.mesh, options, &gl);
+            sprite = bake(gl, solid.mesh, options);
         }
         switch (lookup) {
         case Lookup::Vds:
@@ -321,7 +322,7 @@ SceneRenderer::SceneRenderer(const GlContext& gl, const Scene& scene, Lookup loo
             options.resolution = size.equalMemory
                                      ? equalMemoryResolution(meshBounds(solid.mesh), representation, sprite->denseBytes())
                                      : size.resolution;
-            d.models.push_back(voxel::buildModel(solid.mesh, representation, options, &context));
+            d.models.push_back(voxel::buildModel(context, solid.mesh, representation, options));
             gl.makeCurrent();
             d.resolutions.push_back(options.resolution);
             d.bytes += d.models.back().gpuBytes();

@@ -20,6 +20,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/eval/image.h>
@@ -129,7 +130,7 @@ int run(const Options& o) {
         vds::BakeOptions bo;
         bo.resolution = o.resolution;
         bo.axis = vds::Axis::Z;
-        const vds::Sprite sprite = vds::bake(mesh, bo, &gl);
+        const vds::Sprite sprite = vds::bake(gl, mesh, bo);
         if (sprite.status != vds::SolidStatus::Closed)
             std::fprintf(stderr, "%s: warning: the mesh is not a closed solid; lengths inside it are not defined (%s)\n",
                          "vds_refraction", sprite.validation.c_str());

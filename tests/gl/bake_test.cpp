@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include "solids.h"
@@ -26,7 +27,7 @@ Sprite bakeWith(GlContext& gl, const TriangleMesh& mesh, BakeMethod method, std:
     o.resolution = resolution;
     o.axis = axis;
     o.maxListNodes = maxNodes;
-    return bake(mesh, o, &gl);
+    return bake(gl, mesh, o);
 }
 
 void expectIdentical(const Sprite& a, const Sprite& b) {
@@ -111,7 +112,7 @@ TEST_F(BakeTest, DeepColumnsGrowThePoolAndSortLikePeeling) {
     o.method = BakeMethod::Lists;
     o.resolution = 48;
     o.timings = &timings;
-    const Sprite lists = bake(stack, o, &gl());
+    const Sprite lists = bake(gl(), stack, o);
     EXPECT_EQ(lists.depthComplexity, 40u);
     EXPECT_EQ(timings[BakePhase::Raster].runs, 2u) << "the pool should have grown once";
     std::size_t pooled = 0; // the first two crossings of a column have places of their own
@@ -136,7 +137,7 @@ TEST_F(BakeTest, TimingsNameEveryPhaseOfEachBaker) {
     o.resolution = 64;
     o.timings = &t;
     o.method = BakeMethod::Lists;
-    const Sprite lists = bake(torus.mesh, o, &gl());
+    const Sprite lists = bake(gl(), torus.mesh, o);
     for (BakePhase p : {BakePhase::Validation, BakePhase::Upload, BakePhase::Raster, BakePhase::Scan, BakePhase::Sort,
                         BakePhase::ReadBack, BakePhase::Assembly}) {
         EXPECT_EQ(t[p].runs, 1u) << toString(p);
@@ -150,13 +151,13 @@ TEST_F(BakeTest, TimingsNameEveryPhaseOfEachBaker) {
     EXPECT_NE(t.report().find("read-back"), std::string::npos) << t.report();
 
     o.method = BakeMethod::Peel;
-    const Sprite peel = bake(torus.mesh, o, &gl());
+    const Sprite peel = bake(gl(), torus.mesh, o);
     EXPECT_EQ(t[BakePhase::Raster].runs, peel.depthComplexity + 1) << "one pass per layer and one that finds none";
     EXPECT_EQ(t[BakePhase::ReadBack].runs, peel.depthComplexity);
     EXPECT_EQ(t[BakePhase::Sort].runs, 0u) << "the timings of the lists bake must be reset";
 
     o.method = BakeMethod::Cpu;
-    bake(torus.mesh, o, &gl());
+    bake(gl(), torus.mesh, o);
     EXPECT_EQ(t[BakePhase::Raster].runs, 1u);
     EXPECT_TRUE(t.renderer.empty());
     EXPECT_LT(t[BakePhase::Raster].gpuSeconds, 0.0) << "the CPU baker measures no GPU time";

@@ -3,6 +3,7 @@
 
 #include <optional>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/gl/objects.h>

@@ -7,6 +7,7 @@
 #include <GL/glext.h>
 #include <gtest/gtest.h>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/gl/bake.h>
@@ -35,9 +36,9 @@ class GpuBakeTest : public test::GlTest {
 protected:
     // bakeToGpu against GpuSprite(bake()) for the same options, bit for bit.
     void expectSameAsHostBake(const TriangleMesh& mesh, const BakeOptions& options) {
-        const Sprite host = bake(mesh, options, &gl());
+        const Sprite host = bake(gl(), mesh, options);
         const GpuSprite uploaded(host);
-        const GpuBake baked = bakeToGpu(mesh, options, gl());
+        const GpuBake baked = bakeToGpu(gl(), mesh, options);
         ASSERT_TRUE(baked.sprite.hasTexture());
         ASSERT_TRUE(baked.sprite.hasColumns());
         EXPECT_EQ(baked.depthComplexity, host.depthComplexity);
@@ -101,11 +102,11 @@ TEST_F(GpuBakeTest, KeepsOnlyThePartsAskedFor) {
     const auto sphere = solids::sphere({0, 0, 0}, 1.0f, 48);
     BakeOptions o;
     o.resolution = 32;
-    const GpuBake columns = bakeToGpu(sphere.mesh, o, gl(), GpuSpriteParts::ColumnsOnly);
+    const GpuBake columns = bakeToGpu(gl(), sphere.mesh, o, GpuSpriteParts::ColumnsOnly);
     EXPECT_FALSE(columns.sprite.hasTexture());
     EXPECT_TRUE(columns.sprite.hasColumns());
     EXPECT_EQ(columns.sprite.size(), glm::uvec3(32, 32, 2));
-    const GpuBake texture = bakeToGpu(sphere.mesh, o, gl(), GpuSpriteParts::TextureOnly);
+    const GpuBake texture = bakeToGpu(gl(), sphere.mesh, o, GpuSpriteParts::TextureOnly);
     EXPECT_TRUE(texture.sprite.hasTexture());
     EXPECT_FALSE(texture.sprite.hasColumns());
     EXPECT_EQ(texture.depthComplexity, 2u);
@@ -117,7 +118,7 @@ TEST_F(GpuBakeTest, TimesTheTextureFillAndNoReadBack) {
     BakeOptions o;
     o.resolution = 64;
     o.timings = &t;
-    const GpuBake baked = bakeToGpu(torus.mesh, o, gl());
+    const GpuBake baked = bakeToGpu(gl(), torus.mesh, o);
     EXPECT_EQ(t[BakePhase::TextureFill].runs, 1u);
     EXPECT_EQ(t[BakePhase::ReadBack].runs, 0u);
     EXPECT_EQ(t[BakePhase::Assembly].runs, 0u);
@@ -128,7 +129,7 @@ TEST_F(GpuBakeTest, TimesTheTextureFillAndNoReadBack) {
 
 TEST_F(GpuBakeTest, InvalidMeshesThrowAsBakeDoes) {
     TriangleMesh empty;
-    EXPECT_THROW(bakeToGpu(empty, {}, gl()), InvalidMesh);
+    EXPECT_THROW(bakeToGpu(gl(), empty, {}), InvalidMesh);
 }
 
 } // namespace

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/gl/bake.h>
 #include <vds/gl/sprite.h>
@@ -25,7 +26,7 @@ protected:
         BakeOptions o;
         o.resolution = resolution;
         o.axis = axis;
-        return bake(mesh, o, &gl());
+        return bake(gl(), mesh, o);
     }
 };
 
@@ -70,7 +71,7 @@ TEST_F(GpuClassifyTest, ComputeShaderMatchesCppOnEveryPoint) {
                     ClassifyOptions options;
                     options.rule = rule;
                     classify(sprite, {points.data(), points.size()}, cpu.data(), options);
-                    classifier.classify(gpu, points.data(), points.size(), gpuLabels.data(), rule, 20000);
+                    classifier.classify(gpu, {points.data(), points.size()}, gpuLabels.data(), {rule});
                     std::size_t differ = 0, inside = 0;
                     for (std::size_t k = 0; k < points.size(); ++k) {
                         differ += cpu[k] != gpuLabels[k];
@@ -88,7 +89,7 @@ TEST_F(GpuClassifyTest, ComputeShaderMatchesCppOnEveryPoint) {
 TEST_F(GpuClassifyTest, ResidentBuffersMatchCppOnEveryPoint) {
     const auto torus = solids::torus({0.2f, -0.1f, 0.0f}, 1.0f, 0.4f, 96);
     const auto two = solids::overlappingBoxes({-1, -1, -1}, {0.3f, 0.3f, 0.3f}, {-0.3f, -0.3f, -0.3f}, {1, 1, 1});
-    GpuClassifier classifier;
+    GpuClassifier classifier(gl());
     for (const TriangleMesh* mesh : {&torus.mesh, &two.mesh}) {
         Sprite sprite = bakeSolid(*mesh, 96, Axis::Y);
         sprite.transform(glm::rotate(glm::mat4(1.0f), 0.4f, glm::vec3(0, 0, 1)));
@@ -105,13 +106,13 @@ TEST_F(GpuClassifyTest, ResidentBuffersMatchCppOnEveryPoint) {
                 const std::uint32_t poison = 0x07070707u;
                 std::vector<std::uint32_t> fill(words + 1, poison);
                 glNamedBufferSubData(labelBuffer.id(), 0, GLsizeiptr(fill.size() * 4), fill.data());
-                classifier.classify(gpu, pointBuffer.id(), labelBuffer.id(), n, rule);
+                classifier.classify(gpu, pointBuffer.id(), n, labelBuffer.id(), {rule});
                 std::vector<std::uint8_t> labels((words + 1) * 4);
                 glGetNamedBufferSubData(labelBuffer.id(), 0, GLsizeiptr(labels.size()), labels.data());
                 std::vector<std::uint8_t> cpu(n);
                 ClassifyOptions options;
                 options.rule = rule;
-                classify(sprite, points.data(), n, cpu.data(), options);
+                classify(sprite, PointsView(points.data(), n), cpu.data(), options);
                 std::size_t differ = 0, inside = 0;
                 for (std::size_t k = 0; k < n; ++k) {
                     differ += cpu[k] != labels[k];
@@ -131,17 +132,17 @@ TEST_F(GpuClassifyTest, SpriteBakedOnTheGpuClassifiesLikeTheHostSprite) {
     const auto shell = solids::shell({0, 0, 0}, 1.0f, 0.55f, 64);
     BakeOptions o;
     o.resolution = 128;
-    const Sprite host = bake(shell.mesh, o, &gl());
-    const GpuBake baked = bakeToGpu(shell.mesh, o, gl());
+    const Sprite host = bake(gl(), shell.mesh, o);
+    const GpuBake baked = bakeToGpu(gl(), shell.mesh, o);
     const auto points = test::randomPoints(host.grid.box, 100001, 0.1f, 5);
     Buffer pointBuffer = Buffer::create(), labelBuffer = Buffer::create();
     glNamedBufferStorage(pointBuffer.id(), GLsizeiptr(points.size() * 12), points.data(), 0);
     glNamedBufferStorage(labelBuffer.id(), GLsizeiptr((points.size() + 3) / 4 * 4), nullptr, 0);
-    GpuClassifier classifier;
-    classifier.classify(baked.sprite, pointBuffer.id(), labelBuffer.id(), points.size());
+    GpuClassifier classifier(gl());
+    classifier.classify(baked.sprite, pointBuffer.id(), points.size(), labelBuffer.id());
     std::vector<std::uint8_t> labels((points.size() + 3) / 4 * 4), cpu(points.size());
     glGetNamedBufferSubData(labelBuffer.id(), 0, GLsizeiptr(labels.size()), labels.data());
-    classify(host, points.data(), points.size(), cpu.data());
+    classify(host, points, cpu.data());
     std::size_t differ = 0, inside = 0;
     for (std::size_t k = 0; k < points.size(); ++k) {
         differ += cpu[k] != labels[k];
@@ -162,8 +163,8 @@ TEST_F(GpuClassifyTest, HostArraysInManyBatchesMatchCpp) {
         for (std::size_t batch : {std::size_t(1024), std::size_t(4096), std::size_t(1) << 22}) {
             const auto points = test::randomPoints(sprite.grid.box, n, 0.1f, std::uint32_t(n + batch));
             std::vector<std::uint8_t> cpu(n), labels(n, 9);
-            classify(sprite, points.data(), n, cpu.data());
-            classifier.classify(gpu, points.data(), n, labels.data(), Rule::Parity, batch);
+            classify(sprite, PointsView(points.data(), n), cpu.data());
+            classifier.classify(gpu, {points.data(), n}, labels.data(), {Rule::Parity});
             EXPECT_EQ(cpu, labels) << n << " points in batches of " << batch;
         }
 }

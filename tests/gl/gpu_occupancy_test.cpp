@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/gl/occupancy.h>
@@ -55,7 +56,7 @@ TEST_F(GpuOccupancyTest, GpuSweepEqualsCpuSweepOnEveryCell) {
                 for (Rule rule : {Rule::Parity, Rule::Winding}) {
                     std::vector<std::uint8_t> cpu(grid.cellCount(), 9), gpuCells(grid.cellCount(), 7);
                     occupancy(sprite, grid, cpu.data(), {rule, 1});
-                    sweep.run(gpu, grid, gpuCells.data(), rule);
+                    sweep.occupancy(gpu, grid, gpuCells.data(), {rule});
                     std::size_t differ = 0, inside = 0;
                     for (std::size_t k = 0; k < cpu.size(); ++k) {
                         differ += cpu[k] != gpuCells[k];
@@ -92,7 +93,7 @@ TEST_F(GpuOccupancyTest, GeneralizedWindingOfOpenMeshesEqualsTheCpu) {
             ASSERT_EQ(gpu.boundaryEdgeCount(), sprite.boundaryEdges.size() / 2);
             std::vector<std::uint8_t> cpu(grid.cellCount(), 9), gpuCells(grid.cellCount(), 7);
             occupancy(sprite, grid, cpu.data(), {Rule::GeneralizedWinding, 1});
-            sweep.run(gpu, grid, gpuCells.data(), Rule::GeneralizedWinding);
+            sweep.occupancy(gpu, grid, gpuCells.data(), {Rule::GeneralizedWinding});
             // The CPU's exact per-edge sum at the same cell centres.
             std::vector<glm::vec3> centres;
             centres.reserve(grid.cellCount());
@@ -144,8 +145,8 @@ TEST_F(GpuOccupancyTest, GeneralizedWindingOfAClosedSpriteIsWinding) {
     const Grid grid{{box.lo - 0.1f, box.hi + 0.1f}, {21, 22, 23}};
     std::vector<std::uint8_t> gwn(grid.cellCount(), 7), winding(grid.cellCount(), 9), cpu(grid.cellCount(), 5);
     GpuOccupancy sweep(gl());
-    sweep.run(gpu, grid, gwn.data(), Rule::GeneralizedWinding);
-    sweep.run(gpu, grid, winding.data(), Rule::Winding);
+    sweep.occupancy(gpu, grid, gwn.data(), {Rule::GeneralizedWinding});
+    sweep.occupancy(gpu, grid, winding.data(), {Rule::Winding});
     occupancy(sprite, grid, cpu.data(), {Rule::GeneralizedWinding, 1});
     EXPECT_EQ(gwn, winding);
     EXPECT_EQ(gwn, cpu);
@@ -162,8 +163,8 @@ TEST_F(GpuOccupancyTest, GeneralizedWindingNeedsAKnownBoundary) {
     const Grid grid{sprite.grid.box, {8, 8, 8}};
     std::vector<std::uint8_t> cells(grid.cellCount());
     GpuOccupancy sweep(gl());
-    EXPECT_THROW(sweep.run(gpu, grid, cells.data(), Rule::GeneralizedWinding), InvalidArgument);
-    EXPECT_NO_THROW(sweep.run(gpu, grid, cells.data(), Rule::Winding));
+    EXPECT_THROW(sweep.occupancy(gpu, grid, cells.data(), {Rule::GeneralizedWinding}), InvalidArgument);
+    EXPECT_NO_THROW(sweep.occupancy(gpu, grid, cells.data(), {Rule::Winding}));
 }
 
 TEST_F(GpuOccupancyTest, RotatedSpritesAndMissingColumnsAreRefused) {
@@ -175,10 +176,10 @@ TEST_F(GpuOccupancyTest, RotatedSpritesAndMissingColumnsAreRefused) {
     const Grid grid{meshBounds(torus.mesh), {8, 8, 8}};
     std::vector<std::uint8_t> cells(grid.cellCount());
     GpuOccupancy sweep(gl());
-    EXPECT_THROW(sweep.run(GpuSprite(sprite, GpuSpriteParts::TextureOnly), grid, cells.data()), InvalidArgument);
-    EXPECT_THROW(sweep.run(GpuSprite(sprite), Grid{grid.box, {0, 8, 8}}, cells.data()), InvalidArgument);
+    EXPECT_THROW(sweep.occupancy(GpuSprite(sprite, GpuSpriteParts::TextureOnly), grid, cells.data()), InvalidArgument);
+    EXPECT_THROW(sweep.occupancy(GpuSprite(sprite), Grid{grid.box, {0, 8, 8}}, cells.data()), InvalidArgument);
     sprite.transform(glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(0, 0, 1)));
-    EXPECT_THROW(sweep.run(GpuSprite(sprite), grid, cells.data()), InvalidArgument);
+    EXPECT_THROW(sweep.occupancy(GpuSprite(sprite), grid, cells.data()), InvalidArgument);
 }
 
 } // namespace

@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/gl/bake.h>
@@ -47,7 +48,7 @@ protected:
         BakeOptions o;
         o.resolution = resolution;
         o.axis = axis;
-        return bake(mesh, o, &gl());
+        return bake(gl(), mesh, o);
     }
 };
 
@@ -75,8 +76,7 @@ TEST_F(GwnGpuTest, ClassifierMatchesTheCpuOnOpenMeshes) {
                     const GpuSprite gpu(sprite, parts);
                     EXPECT_EQ(gpu.boundaryEdgeCount(), sprite.boundaryEdges.size() / 2);
                     std::vector<std::uint8_t> labels(points.size(), 7);
-                    classifier.classify(gpu, points.data(), points.size(), labels.data(), Rule::GeneralizedWinding,
-                                        8192);
+                    classifier.classify(gpu, {points.data(), points.size()}, labels.data(), {Rule::GeneralizedWinding});
                     std::size_t nearHalf = 0, elsewhere = 0, inside = 0;
                     for (std::size_t k = 0; k < points.size(); ++k) {
                         inside += cpu[k];
@@ -126,8 +126,8 @@ TEST_F(GwnGpuTest, ClosedMeshReadsAsWinding) {
     const GpuSprite gpu(sprite);
     EXPECT_EQ(gpu.boundaryEdgeCount(), 0u);
     std::vector<std::uint8_t> winding(points.size()), gwn(points.size(), 7);
-    classifier.classify(gpu, points.data(), points.size(), winding.data(), Rule::Winding);
-    classifier.classify(gpu, points.data(), points.size(), gwn.data(), Rule::GeneralizedWinding);
+    classifier.classify(gpu, {points.data(), points.size()}, winding.data(), {Rule::Winding});
+    classifier.classify(gpu, {points.data(), points.size()}, gwn.data(), {Rule::GeneralizedWinding});
     EXPECT_EQ(winding, gwn);
 }
 
@@ -139,23 +139,23 @@ TEST_F(GwnGpuTest, UnknownBoundaryIsRefused) {
     const GpuSprite gpu(sprite);
     const std::vector<glm::vec3> points{{0.0f, 0.0f, 0.0f}};
     std::vector<std::uint8_t> labels(1);
-    EXPECT_THROW(classifier.classify(gpu, points.data(), 1, labels.data(), Rule::GeneralizedWinding), InvalidArgument);
-    EXPECT_NO_THROW(classifier.classify(gpu, points.data(), 1, labels.data(), Rule::Winding));
+    EXPECT_THROW(classifier.classify(gpu, {points.data(), 1}, labels.data(), {Rule::GeneralizedWinding}), InvalidArgument);
+    EXPECT_NO_THROW(classifier.classify(gpu, {points.data(), 1}, labels.data(), {Rule::Winding}));
 }
 
 TEST_F(GwnGpuTest, BakeToGpuCarriesTheBoundary) {
     const TriangleMesh cup = solids::sphereCup();
     BakeOptions o;
     o.resolution = 64;
-    const Sprite host = bake(cup, o, &gl());
-    const GpuBake baked = bakeToGpu(cup, o, gl(), GpuSpriteParts::ColumnsOnly);
+    const Sprite host = bake(gl(), cup, o);
+    const GpuBake baked = bakeToGpu(gl(), cup, o, GpuSpriteParts::ColumnsOnly);
     ASSERT_EQ(baked.sprite.boundaryEdgeCount(), host.boundaryEdges.size() / 2);
     ASSERT_GT(baked.sprite.boundaryEdgeCount(), 0u);
     const auto points = test::randomPoints(host.grid.box, 20000, 0.1f, 5);
     GpuClassifier classifier(gl());
     std::vector<std::uint8_t> fromBake(points.size()), fromHost(points.size(), 7);
-    classifier.classify(baked.sprite, {points.data(), points.size()}, fromBake.data(), Rule::GeneralizedWinding);
-    classifier.classify(GpuSprite(host), {points.data(), points.size()}, fromHost.data(), Rule::GeneralizedWinding);
+    classifier.classify(baked.sprite, {points.data(), points.size()}, fromBake.data(), {Rule::GeneralizedWinding});
+    classifier.classify(GpuSprite(host), {points.data(), points.size()}, fromHost.data(), {Rule::GeneralizedWinding});
     EXPECT_EQ(fromBake, fromHost); // the same columns, edges and float arithmetic
 }
 

@@ -39,11 +39,11 @@ TEST_F(GlslLookupTest, EveryRepresentationAnswersOnTheGpuAsOnTheCpu) {
     for (const auto* solid : {&torus, &shell})
         for (Representation r : {Representation::Slicemap, Representation::SlicemapLocal, Representation::Solid,
                                  Representation::SolidCompute}) {
-            const Model model = buildModel(solid->mesh, r, {48}, &gl());
+            const Model model = buildModel(gl(), solid->mesh, r, {48});
             const std::vector<glm::vec3> points = probePoints(model);
             std::vector<std::uint8_t> cpu(points.size()), gpu(points.size(), 7);
             model.classify({points.data(), points.size()}, cpu.data());
-            classifyOnGpu(gl(), model, points.data(), points.size(), gpu.data());
+            GpuModelClassifier(gl(), model).classify(points, gpu.data());
             std::size_t differing = 0, inside = 0;
             for (std::size_t k = 0; k < points.size(); ++k) {
                 differing += cpu[k] != gpu[k];
@@ -60,12 +60,12 @@ TEST_F(GlslLookupTest, ManySlicesUseEveryTargetLayer) {
     options.resolution = 32;
     options.slices = 1024;
     for (Representation r : {Representation::Slicemap, Representation::SlicemapLocal}) {
-        const Model model = buildModel(torus.mesh, r, options, &gl());
+        const Model model = buildModel(gl(), torus.mesh, r, options);
         ASSERT_EQ(model.slicemap()->renderTargets, 8u);
         const std::vector<glm::vec3> points = probePoints(model);
         std::vector<std::uint8_t> cpu(points.size()), gpu(points.size(), 7);
-        model.classify({points.data(), points.size()}, cpu.data(), 1);
-        classifyOnGpu(gl(), model, points.data(), points.size(), gpu.data());
+        model.classify(points, cpu.data(), {Rule::Parity, 1});
+        GpuModelClassifier(gl(), model).classify(points, gpu.data());
         EXPECT_EQ(cpu, gpu) << toString(r);
     }
 }

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/voxel/refraction.h>
@@ -142,7 +143,7 @@ TEST_F(RefractionTest, GpuMatchesCpuAndApproachesTheExactTracer) {
     BakeOptions bo;
     bo.resolution = 96;
     bo.axis = Axis::Z;
-    const Sprite sprite = bake(mesh, bo, &gl());
+    const Sprite sprite = bake(gl(), mesh, bo);
     const SlicedVoxels voxels = voxelizeSlices(gl(), mesh, makeVoxelGrid(box, 96));
 
     struct Case {
@@ -187,7 +188,7 @@ TEST_F(RefractionTest, FrostedGlassMatchesTheCpu) {
     BakeOptions bo;
     bo.resolution = 64;
     bo.axis = Axis::Z;
-    const Sprite sprite = bake(mesh, bo, &gl());
+    const Sprite sprite = bake(gl(), mesh, bo);
     const RefractionImage gpu = renderRefraction(gl(), GpuRefractionCaster(sprite), view, params);
     const RefractionImage cpu = refractOnCpu(sprite, view, params);
     const Delta d = compare(gpu, cpu);
@@ -210,7 +211,7 @@ TEST_F(RefractionTest, BadInput) {
     BakeOptions bo;
     bo.resolution = 16;
     bo.axis = Axis::Y;
-    const Sprite sideways = bake(box, bo, &gl());
+    const Sprite sideways = bake(gl(), box, bo);
     EXPECT_THROW(GpuRefractionCaster{sideways}, InvalidArgument);
     RefractionView empty;
     empty.height = 0;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>

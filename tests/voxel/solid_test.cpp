@@ -116,11 +116,11 @@ TEST_F(SolidTest, BadInputIsRejectedWithAClearError) {
     open.triangles.pop_back();
     const VoxelGrid grid = makeVoxelGrid(meshBounds(open), 16);
     EXPECT_THROW(voxelizeSolid(gl(), open, grid, SolidMethod::Raster), InvalidMesh);
-    EXPECT_THROW(buildModel(open, Representation::Solid, {16}, &gl()), InvalidMesh);
+    EXPECT_THROW(buildModel(gl(), open, Representation::Solid, {16}), InvalidMesh);
     const auto sphere = solids::sphere({0, 0, 0}, 1.0f, 16);
-    EXPECT_THROW(buildModel(sphere.mesh, Representation::SolidCompute, {0}, &gl()), InvalidArgument);
-    EXPECT_THROW(buildModel(sphere.mesh, Representation::Solid, {100000}, &gl()), InvalidArgument);
-    EXPECT_THROW(buildModel(sphere.mesh, Representation::Solid, {kMaxResolution}, &gl()), InvalidArgument);
+    EXPECT_THROW(buildModel(gl(), sphere.mesh, Representation::SolidCompute, {0}), InvalidArgument);
+    EXPECT_THROW(buildModel(gl(), sphere.mesh, Representation::Solid, {100000}), InvalidArgument);
+    EXPECT_THROW(buildModel(gl(), sphere.mesh, Representation::Solid, {kMaxResolution}), InvalidArgument);
     EXPECT_THROW(parseSolidMethod("xor"), InvalidArgument);
 }
 
@@ -147,7 +147,7 @@ TEST(VoxelNames, ParseAndPrintFromOneTable) {
 
 TEST_F(SolidTest, ModelsAnswerPointQueriesLikeTheirGrid) {
     const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.4f, 32);
-    const Model model = buildModel(torus.mesh, parseRepresentation("solid-compute"), {40}, &gl());
+    const Model model = buildModel(gl(), torus.mesh, parseRepresentation("solid-compute"), {40});
     ASSERT_NE(model.solid(), nullptr);
     EXPECT_EQ(model.slicemap(), nullptr);
     EXPECT_EQ(model.cells(), model.solid()->grid.size);

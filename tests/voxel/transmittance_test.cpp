@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/eval/image.h>
@@ -190,7 +191,7 @@ TEST_F(TransmittanceTest, SpriteThicknessMatchesTheCpuAndTheExactPathLength) {
     BakeOptions bo;
     bo.resolution = 128;
     bo.axis = Axis::Z;
-    const Sprite sprite = bake(light, bo, &gl());
+    const Sprite sprite = bake(gl(), light, bo);
     TransmittanceParameters params;
     params.extinction = 1.5f;
     const TransmittanceImage gpu = renderTransmittance(gl(), GpuTransmittanceCaster(sprite), frame, plane, params);
@@ -247,7 +248,7 @@ TEST_F(TransmittanceTest, ReceiversAmongTheCasters) {
     bo.resolution = 96;
     bo.axis = Axis::Z;
     const TransmittanceImage fromSprite =
-        renderTransmittance(gl(), GpuTransmittanceCaster(bake(light, bo, &gl())), frame, plane, params);
+        renderTransmittance(gl(), GpuTransmittanceCaster(bake(gl(), light, bo)), frame, plane, params);
     double countError = 0.0, lengthError = 0.0;
     for (std::size_t k = 0; k < surfaces.quantity.size(); ++k) {
         countError += std::fabs(fromMap.quantity[k] - surfaces.quantity[k]);
@@ -314,11 +315,11 @@ TEST_F(TransmittanceTest, BadInput) {
     BakeOptions bo;
     bo.resolution = 16;
     bo.axis = Axis::X;
-    const Sprite sideways = bake(box, bo, &gl());
+    const Sprite sideways = bake(gl(), box, bo);
     EXPECT_THROW(GpuTransmittanceCaster{sideways}, InvalidArgument);
     EXPECT_THROW(spriteThicknessInFront(sideways, {0.5f, 0.5f, 0.5f}), InvalidArgument);
     bo.axis = Axis::Z;
-    const GpuTransmittanceCaster caster{bake(box, bo, &gl())};
+    const GpuTransmittanceCaster caster{bake(gl(), box, bo)};
     ReceiverPlane empty;
     empty.width = 0;
     EXPECT_THROW(renderTransmittance(gl(), caster, makeLightFrame({0, 0, 1}), empty, {}), InvalidArgument);

@@ -1,6 +1,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/mesh_io.h>
 #include <vds/vds_file.h>

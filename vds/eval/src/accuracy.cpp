@@ -2,6 +2,7 @@
 // section 5.2 names the errors (resolution, surfaces nearly parallel to the
 // view); this measures them: how many points are wrong, and how far from the
 // surface, in texels.
+#include <vds/all.h>
 #include <vds/eval/accuracy.h>
 
 #include <algorithm>
@@ -159,7 +160,7 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
         bakeOptions.sourceName = mesh.name;
         say("baking at " + std::to_string(resolution));
         t0 = now();
-        const Sprite sprite = bake(mesh, bakeOptions, gl);
+        const Sprite sprite = gl ? bake(*gl, mesh, bakeOptions) : bake(mesh, bakeOptions);
         row.bakeSeconds = now() - t0;
         row.width = sprite.width();
         row.height = sprite.height();

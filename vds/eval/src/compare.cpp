@@ -1,6 +1,7 @@
 // The VDS (Trapp & Döllner 2008) against slicemaps (Eisemann & Décoret 2006)
 // and solid voxelizations (Schwarz 2012) as point-in-solid tests: see
 // <vds/eval/compare.h>.
+#include <vds/all.h>
 #include <vds/eval/compare.h>
 
 #include <algorithm>
@@ -122,12 +123,12 @@ Built buildOnce(MeshView mesh, const std::string& method, std::uint32_t resoluti
         o.resolution = resolution;
         o.sourceName = name;
         const auto start = std::chrono::steady_clock::now();
-        b.sprite = std::make_unique<Sprite>(bake(mesh, o, &gl));
+        b.sprite = std::make_unique<Sprite>(bake(gl, mesh, o));
         b.seconds = secondsSince(start);
     } else {
         ModelOptions o;
         o.resolution = resolution;
-        b.model = std::make_unique<Model>(buildModel(mesh, parseRepresentation(method), o, &gl));
+        b.model = std::make_unique<Model>(buildModel(gl, mesh, parseRepresentation(method), o));
         b.seconds = b.model->buildSeconds();
     }
     return b;
@@ -232,16 +233,16 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
     ClassifyOptions parity;
     parity.threads = options.threads;
     start = std::chrono::steady_clock::now();
-    exact.classify(samples.points.data(), count, samples.parity.data(), parity);
+    exact.classify(PointsView(samples.points.data(), count), samples.parity.data(), parity);
     result.exactPointsPerSecond = double(count) / std::max(secondsSince(start), 1e-9);
     ClassifyOptions winding = parity;
     winding.rule = Rule::Winding;
-    exact.classify(samples.points.data(), count, samples.winding.data(), winding);
+    exact.classify(PointsView(samples.points.data(), count), samples.winding.data(), winding);
     if (gwn) {
         samples.gwn.resize(count);
         ClassifyOptions generalized = parity;
         generalized.rule = Rule::GeneralizedWinding;
-        exact.classify(samples.points.data(), count, samples.gwn.data(), generalized);
+        exact.classify(PointsView(samples.points.data(), count), samples.gwn.data(), generalized);
     }
     const std::vector<std::uint8_t>& inside = gwn ? samples.gwn : samples.parity;
     for (std::size_t k = 0; k < samples.uniform; ++k) result.uniformInside += inside[k];
@@ -273,9 +274,9 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
                 o.rule = method == "vds-winding" ? Rule::Winding
                          : method == "vds-gwn"   ? Rule::GeneralizedWinding
                                                  : Rule::Parity;
-                vds::classify(*built.sprite, samples.points.data(), count, labels.data(), o);
+                vds::classify(*built.sprite, PointsView(samples.points.data(), count), labels.data(), o);
             } else {
-                built.model->classify(samples.points.data(), count, labels.data(), options.threads);
+                built.model->classify(PointsView(samples.points.data(), count), labels.data(), {Rule::Parity, options.threads});
             }
             ++passes;
         } while (secondsSince(queryStart) < 0.1);

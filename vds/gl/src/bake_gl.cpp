@@ -135,7 +135,7 @@ extern "C" {
 
 namespace vds {
 
-Sprite bakeOnGl(MeshView mesh, const BakeOptions& options, const GlContext& gl) {
+Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options) {
     if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
     const detail::BakeClock clock(options.timings);
     const detail::BakeSetup setup = detail::prepareBake(mesh, options);

@@ -107,7 +107,7 @@ GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlContex
 
 } // namespace
 
-GpuBake bakeToGpu(MeshView mesh, const BakeOptions& options, const GlContext& gl, GpuSpriteParts parts) {
+GpuBake bakeToGpu(const GlContext& gl, MeshView mesh, const BakeOptions& options, GpuSpriteParts parts) {
     const auto start = std::chrono::steady_clock::now();
     const CurrentContext restore(gl);
     if (options.timings) *options.timings = BakeTimings{};
@@ -116,7 +116,7 @@ GpuBake bakeToGpu(MeshView mesh, const BakeOptions& options, const GlContext& gl
         if (options.timings) options.timings->renderer = gl.info().renderer;
         out = bakeListsToGpu(mesh, options, gl, parts);
     } else {
-        const Sprite sprite = bakeOnGl(mesh, options, gl);
+        const Sprite sprite = bakeOnGl(gl, mesh, options);
         {
             GlPhaseClock clock(options.timings);
             clock.begin(BakePhase::TextureFill);

@@ -42,15 +42,16 @@ Buffer upload(const void* data, std::size_t bytes, const char* what) {
 
 } // namespace
 
-GpuOccupancy::GpuOccupancy() : program_(buildProgram({{GL_COMPUTE_SHADER, "vds/occupancy.comp", ""}})) {
+GpuOccupancy::GpuOccupancy(const GlContext& gl) {
+    const CurrentContext current(gl);
+    program_ = buildProgram({{GL_COMPUTE_SHADER, "vds/occupancy.comp", ""}});
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     maxBlock_ = std::uint64_t(maxBlock);
 }
 
-GpuOccupancy::GpuOccupancy(const GlContext& gl) : GpuOccupancy() { (void)gl; }
-
-void GpuOccupancy::run(const GpuSprite& sprite, const Grid& grid, GLuint cells, Rule rule) {
+void GpuOccupancy::occupancy(const GpuSprite& sprite, const Grid& grid, GLuint cells, const ClassifyOptions& options) {
+    const Rule rule = options.rule;
     checkGrid(grid);
     if (rule == Rule::GeneralizedWinding && !sprite.boundaryKnown())
         throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
@@ -151,13 +152,14 @@ void GpuOccupancy::run(const GpuSprite& sprite, const Grid& grid, GLuint cells, 
     // The small buffers may go: GL keeps them alive until the dispatch is done.
 }
 
-void GpuOccupancy::run(const GpuSprite& sprite, const Grid& grid, std::uint8_t* cells, Rule rule) {
+void GpuOccupancy::occupancy(const GpuSprite& sprite, const Grid& grid, std::uint8_t* cells,
+                             const ClassifyOptions& options) {
     checkGrid(grid);
     const std::size_t bytes = labelBytes(grid);
     Buffer out = Buffer::create();
     glNamedBufferStorage(out.id(), GLsizeiptr(std::max<std::size_t>(bytes, 4)), nullptr, 0);
     checkGl("allocating the occupancy labels");
-    run(sprite, grid, out.id(), rule);
+    occupancy(sprite, grid, out.id(), options);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(grid.cellCount()), cells);
     checkGl("reading the occupancy labels");

@@ -165,7 +165,10 @@ Program buildClassifier(bool columns) {
 
 } // namespace
 
-GpuClassifier::GpuClassifier() : columns_(buildClassifier(true)), texture_(buildClassifier(false)) {
+GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints) : batch_(batchPoints) {
+    const CurrentContext current(gl);
+    columns_ = buildClassifier(true);
+    texture_ = buildClassifier(false);
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     maxBlock_ = std::uint64_t(maxBlock);
@@ -175,16 +178,12 @@ GpuClassifier::GpuClassifier() : columns_(buildClassifier(true)), texture_(build
     checkGl("building the GPU classifier");
 }
 
-GpuClassifier::GpuClassifier(const GlContext& gl) : GpuClassifier() {
-    static_cast<void>(gl);
-    assert(gl.isCurrent() && "GpuClassifier: the context must be current");
-}
-
 GpuClassifier::~GpuClassifier() = default;
 
 GpuClassifier::GpuClassifier(GpuClassifier&& o) noexcept
     : columns_(std::move(o.columns_)), texture_(std::move(o.texture_)), maxBlock_(o.maxBlock_),
-      maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)), capacity_(std::exchange(o.capacity_, 0)) {}
+      maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)), capacity_(std::exchange(o.capacity_, 0)),
+      batch_(o.batch_) {}
 
 GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
     if (this != &o) {
@@ -194,6 +193,7 @@ GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
         maxDispatch_ = o.maxDispatch_;
         slots_ = std::move(o.slots_);
         capacity_ = std::exchange(o.capacity_, 0);
+        batch_ = o.batch_;
     }
     return *this;
 }
@@ -241,7 +241,9 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
     glUseProgram(0);
 }
 
-void GpuClassifier::classify(const GpuSprite& sprite, GLuint points, GLuint labels, std::size_t count, Rule rule) {
+void GpuClassifier::classify(const GpuSprite& sprite, GLuint points, std::size_t count, GLuint labels,
+                             const ClassifyOptions& options) {
+    const Rule rule = options.rule;
     if (count == 0) return;
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     dispatch(sprite, points, 0, labels, 0, count, rule);
@@ -277,10 +279,14 @@ void GpuClassifier::finish(Slot& slot, std::uint8_t* labels) {
     slot.count = 0;
 }
 
-void GpuClassifier::classify(const GpuSprite& sprite, const glm::vec3* points, std::size_t count,
-                             std::uint8_t* labels, Rule rule, std::size_t batch) {
+void GpuClassifier::classify(const GpuSprite& sprite, const PointsView& points, std::uint8_t* labels,
+                             const ClassifyOptions& options) {
+    const std::size_t count = points.count;
+    const Rule rule = options.rule;
+    if (options.stats) *options.stats = {count, 0};
     if (count == 0) return;
-    batch = std::clamp<std::size_t>(batch, 1024, maxDispatch_) & ~std::size_t(3);
+    const bool packed = points.scalar == Scalar::Float32 && points.strideBytes == kPointBytes;
+    const std::size_t batch = std::clamp<std::size_t>(batch_, 1024, maxDispatch_) & ~std::size_t(3);
     reserve(std::min(batch, labelBytes(count)));
     const std::size_t step = std::min(batch, capacity_);
     std::size_t next = 0;
@@ -290,7 +296,13 @@ void GpuClassifier::classify(const GpuSprite& sprite, const glm::vec3* points, s
             finish(slot, labels); // the batch before last: its buffers are free again
             slot.first = first;
             slot.count = std::min(step, count - first);
-            copyParallel(slot.pointsMap, points + first, slot.count * kPointBytes);
+            if (packed) {
+                copyParallel(slot.pointsMap, static_cast<const char*>(points.data) + first * kPointBytes,
+                             slot.count * kPointBytes);
+            } else {
+                auto* to = static_cast<glm::vec3*>(slot.pointsMap);
+                for (std::size_t k = 0; k < slot.count; ++k) to[k] = points[first + k];
+            }
             dispatch(sprite, slot.points.id(), 0, slot.labels.id(), 0, slot.count, rule);
             glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
             slot.done = Fence::insert();

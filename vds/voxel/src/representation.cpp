@@ -3,6 +3,7 @@
 #include <vds/voxel/representation.h>
 
 #include <algorithm>
+#include <cstring>
 #include <optional>
 #include <thread>
 #include <vector>
@@ -33,9 +34,31 @@ bool Model::contains(const glm::vec3& p) const {
     return std::get<BitGrid>(data_).contains(p);
 }
 
-void Model::classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels, unsigned threads) const {
-    parallelFor(threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) labels[k] = contains(points[k]) ? 1 : 0;
+Method methodOf(Representation representation) {
+    switch (representation) {
+    case Representation::Slicemap: return Method::Slicemap;
+    case Representation::SlicemapLocal: return Method::SlicemapLocal;
+    case Representation::Solid: return Method::Solid;
+    case Representation::SolidCompute: return Method::SolidCompute;
+    }
+    throw InvalidArgument("unknown voxel representation");
+}
+
+Representation representationOf(Method method) {
+    for (const auto& entry : EnumNames<Representation>::table)
+        if (methodOf(entry.value) == cpuForm(method)) return entry.value;
+    throw InvalidArgument(std::string("method '") + enumName(method) + "' is not a voxel representation");
+}
+
+void Model::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                           const ClassifyOptions& options) const {
+    const char* base = reinterpret_cast<const char*>(xyz);
+    parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            glm::vec3 p;
+            std::memcpy(&p, base + k * strideBytes, sizeof p);
+            labels[k] = contains(p) ? 1 : 0;
+        }
     });
 }
 
@@ -65,19 +88,14 @@ std::string Model::summary() const {
            std::to_string(c.z) + (slicemap() ? " slices" : " voxels") + ", " + std::to_string(memoryBytes()) + " bytes";
 }
 
-Model buildModel(MeshView mesh, Representation representation, const ModelOptions& options, GlContext* gl) {
+Model buildModel(const GlContext& gl, MeshView mesh, Representation representation, const ModelOptions& options) {
     requireClosed(mesh, "mesh");
     const Box box = meshBounds(mesh);
     const bool isSlicemap =
         representation == Representation::Slicemap || representation == Representation::SlicemapLocal;
     // Grid checks before any GL work, so bad arguments fail fast.
     const VoxelGrid grid = makeVoxelGrid(box, options.resolution, isSlicemap ? ~std::uint64_t(0) : kMaxCells);
-    const CurrentContext restore; // the caller's context is current again on return
-    std::optional<GlContext> own;
-    if (!gl) {
-        gl = &own.emplace();
-    }
-    gl->makeCurrent();
+    const CurrentContext current(gl); // the caller's context is current again on return
     const std::uint64_t start = detail::nowNanoseconds();
     switch (representation) {
     case Representation::Slicemap:
@@ -85,71 +103,100 @@ Model buildModel(MeshView mesh, Representation representation, const ModelOption
         SlicemapOptions o;
         o.slicing = representation == Representation::Slicemap ? Slicing::Uniform : Slicing::Local;
         o.slices = options.slices;
-        Slicemap map = buildSlicemap(*gl, mesh, box, options.resolution, o);
+        Slicemap map = buildSlicemap(gl, mesh, box, options.resolution, o);
         return Model(representation, std::move(map), detail::secondsSince(start));
     }
     case Representation::Solid:
     case Representation::SolidCompute: {
         BitGrid bits = voxelizeSolid(
-            *gl, mesh, grid, representation == Representation::Solid ? SolidMethod::Raster : SolidMethod::Compute);
+            gl, mesh, grid, representation == Representation::Solid ? SolidMethod::Raster : SolidMethod::Compute);
         return Model(representation, std::move(bits), detail::secondsSince(start));
     }
     }
     throw InvalidArgument("unknown voxel representation");
 }
 
-void classifyOnGpu(const GlContext& gl, const Model& model, const glm::vec3* points, std::size_t count,
-                   std::uint8_t* labels) {
-    gl.makeCurrent();
-    const Slicemap* map = model.slicemap();
-    const char* define = !map                               ? "VDS_CLASSIFY_SOLID"
-                         : map->slicing == Slicing::Uniform ? "VDS_CLASSIFY_SLICEMAP"
-                                                            : "VDS_CLASSIFY_SLICEMAP_LOCAL";
-    const Program& program = gl.program(std::string("voxel.classify.") + define, [&] {
-        return detail::buildVoxelProgram({{GL_COMPUTE_SHADER, "voxel/classify.comp", ""}}, std::string("#define ") + define + "\n");
-    });
-    const GLuint id = program.id();
+// The model's GL objects and the lookup program, made once per classifier.
+struct GpuModelClassifier::Resources {
+    GLuint program = 0; // from the context's cache
     Buffer words;
     Texture wordTexture;
     detail::SlicemapTextures slicemapTextures;
+};
+
+GpuModelClassifier::GpuModelClassifier(const GlContext& gl, Model model)
+    : gl_(gl), model_(std::move(model)), gpu_(std::make_unique<Resources>()) {
+    const CurrentContext current(gl_);
+    const Slicemap* map = model_.slicemap();
+    const char* define = !map                               ? "VDS_CLASSIFY_SOLID"
+                         : map->slicing == Slicing::Uniform ? "VDS_CLASSIFY_SLICEMAP"
+                                                            : "VDS_CLASSIFY_SLICEMAP_LOCAL";
+    gpu_->program = gl.program(std::string("voxel.classify.") + define, [&] {
+        return detail::buildVoxelProgram({{GL_COMPUTE_SHADER, "voxel/classify.comp", ""}}, std::string("#define ") + define + "\n");
+    }).id();
+    const GLuint id = gpu_->program;
     if (!map) {
-        const BitGrid& bits = *model.solid();
+        const BitGrid& bits = *model_.solid();
         GLint maxTexels = 0;
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
         if (bits.words.size() > std::size_t(maxTexels))
             throw OutOfMemory("the voxel grid exceeds GL's texture buffer size; lower the resolution");
-        words = Buffer::create();
-        glNamedBufferStorage(words.id(), GLsizeiptr(bits.memoryBytes()), bits.words.data(), 0);
-        wordTexture = Texture::create(GL_TEXTURE_BUFFER);
-        glTextureBuffer(wordTexture.id(), GL_R32UI, words.id());
-        glBindTextureUnit(0, wordTexture.id());
+        gpu_->words = Buffer::create();
+        glNamedBufferStorage(gpu_->words.id(), GLsizeiptr(bits.memoryBytes()), bits.words.data(), 0);
+        gpu_->wordTexture = Texture::create(GL_TEXTURE_BUFFER);
+        glTextureBuffer(gpu_->wordTexture.id(), GL_R32UI, gpu_->words.id());
         glProgramUniform1i(id, glGetUniformLocation(id, "u_voxels"), 0);
         detail::setGridUniform(id, "u_voxelGrid", bits.grid);
     } else {
-        slicemapTextures = detail::uploadSlicemap(*map);
-        glBindTextureUnit(0, slicemapTextures.maps.id());
+        gpu_->slicemapTextures = detail::uploadSlicemap(*map);
         glProgramUniform1i(id, glGetUniformLocation(id, "u_slicemap"), 0);
-        if (map->slicing == Slicing::Local) {
-            glBindTextureUnit(1, slicemapTextures.ranges.id());
-            glProgramUniform1i(id, glGetUniformLocation(id, "u_ranges"), 1);
-        }
+        if (map->slicing == Slicing::Local) glProgramUniform1i(id, glGetUniformLocation(id, "u_ranges"), 1);
         detail::setGridUniform(id, "u_map.grid", map->grid);
         glProgramUniform1i(id, glGetUniformLocation(id, "u_map.backLayer"), GLint(map->renderTargets));
     }
-    checkGl("binding a voxel representation");
+    checkGl("uploading a voxel representation");
+}
 
+GpuModelClassifier::~GpuModelClassifier() {
+    const CurrentContext current(gl_);
+    gpu_.reset();
+}
+
+Method GpuModelClassifier::method() const { return gpuForm(model_.method()); }
+
+std::string GpuModelClassifier::summary() const { return model_.summary() + ", looked up on " + gl_.info().renderer; }
+
+void GpuModelClassifier::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes,
+                                        std::uint8_t* labels, const ClassifyOptions&) const {
+    const CurrentContext current(gl_);
+    const Slicemap* map = model_.slicemap();
+    const GLuint id = gpu_->program;
+    if (!map) {
+        glBindTextureUnit(0, gpu_->wordTexture.id());
+    } else {
+        glBindTextureUnit(0, gpu_->slicemapTextures.maps.id());
+        if (map->slicing == Slicing::Local) glBindTextureUnit(1, gpu_->slicemapTextures.ranges.id());
+    }
+    checkGl("binding a voxel representation");
     const std::size_t batch = std::size_t(1) << 22;
     Buffer pointBuffer = Buffer::create(), labelBuffer = Buffer::create();
     const std::size_t capacity = std::max<std::size_t>(1, std::min(count, batch));
     glNamedBufferStorage(pointBuffer.id(), GLsizeiptr(capacity * sizeof(glm::vec3)), nullptr, GL_DYNAMIC_STORAGE_BIT);
     glNamedBufferStorage(labelBuffer.id(), GLsizeiptr(capacity * sizeof(GLuint)), nullptr, 0);
     std::vector<GLuint> out(capacity);
+    std::vector<glm::vec3> packed(strideBytes == sizeof(glm::vec3) ? 0 : capacity);
+    const char* base = reinterpret_cast<const char*>(xyz);
     glUseProgram(id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pointBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, labelBuffer.id());
     for (std::size_t begin = 0; begin < count; begin += batch) {
         const std::size_t n = std::min(batch, count - begin);
-        glNamedBufferSubData(pointBuffer.id(), 0, GLsizeiptr(n * sizeof(glm::vec3)), points + begin);
+        const void* points = base + begin * strideBytes;
+        if (!packed.empty()) {
+            for (std::size_t k = 0; k < n; ++k) std::memcpy(&packed[k], base + (begin + k) * strideBytes, sizeof(glm::vec3));
+            points = packed.data();
+        }
+        glNamedBufferSubData(pointBuffer.id(), 0, GLsizeiptr(n * sizeof(glm::vec3)), points);
         glProgramUniform1ui(id, glGetUniformLocation(id, "u_count"), GLuint(n));
         detail::dispatchLinear(n, 256);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

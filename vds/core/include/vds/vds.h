@@ -158,16 +158,18 @@
 //   scopes restore the caller's; no GL call happens once the process exits.
 #pragma once
 
-#include <vds/detail/atomic_file.h>
+#include <vds/axis.h>
 #include <vds/bake.h>
 #include <vds/certified.h>
+#include <vds/classify.h>
 #include <vds/enum_names.h>
 #include <vds/error.h>
 #include <vds/exact.h>
+#include <vds/grid.h>
 #include <vds/mesh.h>
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 #include <vds/occupancy.h>
-#include <vds/detail/parallel.h>
+#include <vds/rule.h>
 #include <vds/sprite.h>
 #include <vds/vds_file.h>

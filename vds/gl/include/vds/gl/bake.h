@@ -22,7 +22,7 @@ namespace vds {
 /// call (the caller's current context is current again on return); the
 /// Cpu method runs `bakeCpu`. Validates the mesh and throws like `bakeCpu`;
 /// `GlError`/`OutOfMemory` from GL.
-Sprite bakeOnGl(MeshView mesh, const BakeOptions& options, const GlContext& gl);
+Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options);
 
 /// A sprite baked into GL, with what a host `Sprite` would say about it.
 struct GpuBake {
@@ -42,7 +42,7 @@ struct GpuBake {
 /// offset, to `GpuSprite(bake(mesh, options), parts)`. Fills
 /// `options.timings` if set; `BakePhase::TextureFill` is the compute pass that
 /// fills the 3D texture (for Peel and Cpu: the upload).
-GpuBake bakeToGpu(MeshView mesh, const BakeOptions& options, const GlContext& gl,
+GpuBake bakeToGpu(const GlContext& gl, MeshView mesh, const BakeOptions& options,
                   GpuSpriteParts parts = GpuSpriteParts::Both);
 
 } // namespace vds

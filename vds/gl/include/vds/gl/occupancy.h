@@ -12,7 +12,8 @@
 #include <vds/gl/context.h>
 #include <vds/gl/objects.h>
 #include <vds/gl/sprite.h>
-#include <vds/occupancy.h>
+#include <vds/classify.h>
+#include <vds/grid.h>
 
 namespace vds {
 
@@ -30,9 +31,8 @@ namespace vds {
 /// boundary edges the rule is Winding.
 class GpuOccupancy {
 public:
-    /// Builds the compute program on the current context. Throws `GlError`.
-    GpuOccupancy();
-    /// The same; `gl` must be the current context (it is not kept).
+    /// Builds the compute program on `gl` (made current for the call).
+    /// Throws `GlError`.
     explicit GpuOccupancy(const GlContext& gl);
     GpuOccupancy(GpuOccupancy&&) noexcept = default;
     GpuOccupancy& operator=(GpuOccupancy&&) noexcept = default;
@@ -53,11 +53,11 @@ public:
     /// refuses, for more than 2^32 cells, for a buffer larger than GL's
     /// largest shader storage block, and for Rule::GeneralizedWinding on a
     /// sprite whose boundary is unknown (`boundaryKnown()`: a version 1 file).
-    void run(const GpuSprite& sprite, const Grid& grid, GLuint cells, Rule rule = Rule::Parity);
+    void occupancy(const GpuSprite& sprite, const Grid& grid, GLuint cells, const ClassifyOptions& options = {});
 
     /// Host array out: `cells` holds `grid.cellCount()` bytes (caller-owned).
     /// Waits for the GPU and reads the labels back.
-    void run(const GpuSprite& sprite, const Grid& grid, std::uint8_t* cells, Rule rule = Rule::Parity);
+    void occupancy(const GpuSprite& sprite, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options = {});
 
 private:
     Program program_;

@@ -30,6 +30,7 @@
 
 #include <vds/gl/context.h>
 #include <vds/gl/objects.h>
+#include <vds/classify.h>
 #include <vds/sprite.h>
 
 namespace vds {
@@ -124,10 +125,10 @@ private:
 /// Not thread safe.
 class GpuClassifier {
 public:
-    /// Builds the compute programs on the current context. Throws `GlError`.
-    GpuClassifier();
-    /// The same; `gl` must be the current context (it is not kept).
-    explicit GpuClassifier(const GlContext& gl);
+    /// Builds the compute programs on `gl` (made current for the call).
+    /// Host batches go to the GPU `batchPoints` at a time (rounded down to a
+    /// multiple of 4, at least 1024). Throws `GlError`.
+    explicit GpuClassifier(const GlContext& gl, std::size_t batchPoints = std::size_t(1) << 22);
     ~GpuClassifier();
     GpuClassifier(GpuClassifier&&) noexcept;
     GpuClassifier& operator=(GpuClassifier&&) noexcept;
@@ -140,14 +141,15 @@ public:
     /// a point; with none it reads as Winding. Throws `InvalidArgument` for
     /// it on a sprite whose boundary is unknown (`boundaryKnown()`).
     ///
-    /// Host arrays to host arrays. `points` and `labels` hold `count`
-    /// elements (caller-owned); labels get 1 inside, 0 outside. Points go in
-    /// batches of `batch` (rounded down to a multiple of 4, at least 1024):
-    /// while the GPU classifies one batch, the next is copied into the other
-    /// staging buffer and the previous one's labels out. Returns when every
-    /// label is written.
-    void classify(const GpuSprite& sprite, const glm::vec3* points, std::size_t count, std::uint8_t* labels,
-                  Rule rule = Rule::Parity, std::size_t batch = std::size_t(1) << 22);
+    /// Host arrays to host arrays, the contract of <vds/classify.h>:
+    /// `labels` holds `points.count` bytes (caller-owned), 1 inside, 0
+    /// outside; `options.rule` is answered, `threads` ignored. Points go in
+    /// batches (see the constructor): while the GPU classifies one batch,
+    /// the next is copied (converted from strided or double points) into the
+    /// other staging buffer and the previous one's labels out. Returns when
+    /// every label is written.
+    void classify(const GpuSprite& sprite, const PointsView& points, std::uint8_t* labels,
+                  const ClassifyOptions& options = {});
 
     /// GL buffers to GL buffers, with no host transfer: for renderers, and
     /// for CUDA or other APIs that share buffers with GL.
@@ -165,8 +167,8 @@ public:
     /// it (all bits) makes the labels visible to every later GL command.
     /// Mapping the buffer into CUDA afterwards (cudaGraphicsMapResources)
     /// waits for them.
-    void classify(const GpuSprite& sprite, GLuint points, GLuint labels, std::size_t count,
-                  Rule rule = Rule::Parity);
+    void classify(const GpuSprite& sprite, GLuint points, std::size_t count, GLuint labels,
+                  const ClassifyOptions& options = {});
 
 private:
     struct Slot {
@@ -179,6 +181,7 @@ private:
     void dispatch(const GpuSprite& sprite, GLuint points, GLintptr pointsOffset, GLuint labels,
                   GLintptr labelsOffset, std::size_t count, Rule rule);
     void reserve(std::size_t points);
+    std::size_t batch_ = std::size_t(1) << 22;
     void finish(Slot& slot, std::uint8_t* labels);
 
     Program columns_, texture_;

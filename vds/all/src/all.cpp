@@ -1,0 +1,120 @@
+// vds: the umbrella's entry points over every layer (<vds/all.h>): one
+// switch over `Method`, no registry.
+#include <vds/all.h>
+
+#include <utility>
+
+#include <vds/error.h>
+
+namespace vds {
+
+namespace {
+
+std::uint32_t resolutionFor(Method method, const MethodOptions& options) {
+    return options.resolution ? options.resolution : methodInfo(method).defaultResolution;
+}
+
+Sprite bakeFor(const GlContext* gl, MeshView mesh, Method method, const MethodOptions& options) {
+    BakeOptions bakeOptions;
+    bakeOptions.resolution = resolutionFor(method, options);
+    bakeOptions.axis = options.axis;
+    bakeOptions.method = options.bakeMethod;
+    bakeOptions.sourceName = options.sourceName;
+    return gl ? bakeOnGl(*gl, mesh, bakeOptions) : bake(mesh, bakeOptions);
+}
+
+// A GL classifier with the private context it was made on: the classifier
+// goes first, then the context.
+class OwnContext final : public Classifier {
+public:
+    template <class Make>
+    explicit OwnContext(Make&& make) : gl_(std::make_unique<GlContext>()) {
+        const CurrentContext restore; // GlContext() made its context current
+        inner_ = make(*gl_);
+    }
+    ~OwnContext() override { inner_.reset(); }
+    Method method() const override { return inner_->method(); }
+    std::size_t memoryBytes() const override { return inner_->memoryBytes(); }
+    std::string summary() const override { return inner_->summary(); }
+
+protected:
+    void classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                        const ClassifyOptions& options) const override {
+        inner_->classify(PointsView::floats(xyz, count, strideBytes), labels, options);
+    }
+    void sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const override {
+        inner_->occupancy(grid, cells, options);
+    }
+
+private:
+    std::unique_ptr<GlContext> gl_;
+    std::unique_ptr<Classifier> inner_;
+};
+
+std::unique_ptr<Classifier> makeCore(MeshView mesh, Method method, const MethodOptions& options) {
+    switch (method) {
+    case Method::Sprite: return std::make_unique<SpriteClassifier>(bakeFor(nullptr, mesh, method, options));
+    case Method::Exact: return std::make_unique<ExactClassifier>(mesh, options.axis);
+    case Method::Certified: {
+        CertifiedOptions o;
+        o.resolution = resolutionFor(method, options);
+        o.axis = options.axis;
+        o.threads = options.threads;
+        return std::make_unique<CertifiedClassifier>(mesh, o);
+    }
+    default: return nullptr;
+    }
+}
+
+} // namespace
+
+std::unique_ptr<Classifier> makeClassifier(const GlContext& gl, MeshView mesh, Method method,
+                                           const MethodOptions& options) {
+    if (method == Method::Sprite) return std::make_unique<SpriteClassifier>(bakeFor(&gl, mesh, method, options));
+    if (auto core = makeCore(mesh, method, options)) return core;
+    if (method == Method::SpriteGpu)
+        return std::make_unique<GpuSpriteClassifier>(gl, bakeFor(&gl, mesh, method, options));
+    voxel::ModelOptions o;
+    o.resolution = resolutionFor(method, options);
+    o.slices = options.slices;
+    voxel::Model model = voxel::buildModel(gl, mesh, voxel::representationOf(method), o);
+    if (!methodInfo(method).gpu) return std::make_unique<voxel::Model>(std::move(model));
+    return std::make_unique<voxel::GpuModelClassifier>(gl, std::move(model));
+}
+
+std::unique_ptr<Classifier> makeClassifier(MeshView mesh, Method method, const MethodOptions& options) {
+    const bool needsGl = methodInfo(method).layer != Layer::Core ||
+                         (method == Method::Sprite && options.bakeMethod != BakeMethod::Cpu);
+    if (!needsGl) return makeCore(mesh, method, options);
+    // Build on a private context; CPU lookups (the voxel models) keep no GL.
+    if (!methodInfo(method).gpu) {
+        const CurrentContext restore;
+        const GlContext gl;
+        return makeClassifier(gl, mesh, method, options);
+    }
+    return std::make_unique<OwnContext>([&](const GlContext& gl) { return makeClassifier(gl, mesh, method, options); });
+}
+
+std::unique_ptr<Classifier> makeClassifier(const GlContext& gl, Sprite sprite, Method method) {
+    if (method == Method::SpriteGpu) return std::make_unique<GpuSpriteClassifier>(gl, sprite);
+    return makeClassifier(std::move(sprite), method);
+}
+
+std::unique_ptr<Classifier> makeClassifier(Sprite sprite, Method method) {
+    if (method == Method::Sprite) return std::make_unique<SpriteClassifier>(std::move(sprite));
+    if (method == Method::SpriteGpu)
+        return std::make_unique<OwnContext>([&](const GlContext& gl) { return makeClassifier(gl, std::move(sprite), method); });
+    throw InvalidArgument(std::string("method '") + enumName(method) +
+                          "' is built from the mesh, not from a sprite (sprite methods: sprite, sprite-gpu)");
+}
+
+Sprite bake(MeshView mesh, const BakeOptions& options) {
+    if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
+    const CurrentContext restore;
+    const GlContext gl;
+    return bakeOnGl(gl, mesh, options);
+}
+
+Sprite bake(const GlContext& gl, MeshView mesh, const BakeOptions& options) { return bakeOnGl(gl, mesh, options); }
+
+} // namespace vds

@@ -1,0 +1,59 @@
+// vds: the GPU sprite behind the classify contract (<vds/gl/classifier.h>).
+#include <vds/gl/classifier.h>
+
+#include <cmath>
+
+namespace vds {
+
+namespace {
+
+// True when each texture axis still follows one world axis (the sprite was
+// moved or scaled since the bake, not rotated): the GPU sweep's precondition.
+bool axisAligned(const SpriteGrid& grid) {
+    for (int row = 0; row < 3; ++row) {
+        int nonZero = 0;
+        for (int col = 0; col < 3; ++col) nonZero += grid.matrix[col][row] != 0.0f;
+        if (nonZero != 1) return false;
+    }
+    return true;
+}
+
+} // namespace
+
+GpuSpriteClassifier::GpuSpriteClassifier(const GlContext& gl, const Sprite& sprite)
+    : gl_(gl), axisAligned_(axisAligned(sprite.grid)),
+      summary_("sprite-gpu " + std::to_string(sprite.width()) + " x " + std::to_string(sprite.height()) + " x " +
+               std::to_string(sprite.depthComplexity) + " along " + toString(sprite.grid.axis)) {
+    const CurrentContext current(gl_);
+    sprite_.emplace(sprite, GpuSpriteParts::ColumnsOnly);
+    classifier_.emplace(gl_);
+    occupancy_.emplace(gl_);
+}
+
+GpuSpriteClassifier::~GpuSpriteClassifier() {
+    const CurrentContext current(gl_);
+    occupancy_.reset();
+    classifier_.reset();
+    sprite_.reset();
+}
+
+std::size_t GpuSpriteClassifier::memoryBytes() const {
+    return (std::size_t(sprite_->size().x) * sprite_->size().y + 1) * sizeof(std::uint32_t) +
+           sprite_->crossingCount() * sizeof(float) + std::size_t(sprite_->boundaryEdgeCount()) * 2 * 16;
+}
+
+std::string GpuSpriteClassifier::summary() const { return summary_ + " on " + gl_.info().renderer; }
+
+void GpuSpriteClassifier::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes,
+                                         std::uint8_t* labels, const ClassifyOptions& options) const {
+    const CurrentContext current(gl_);
+    classifier_->classify(*sprite_, PointsView::floats(xyz, count, strideBytes), labels, options);
+}
+
+void GpuSpriteClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
+    if (!axisAligned_ || grid.cellCount() > (std::uint64_t(1) << 32)) return Classifier::sweep(grid, cells, options);
+    const CurrentContext current(gl_);
+    occupancy_->occupancy(*sprite_, grid, cells, options);
+}
+
+} // namespace vds
