@@ -278,8 +278,9 @@ TEST_F(Cli, HelpShowsDefaultsAndChoices) {
          {"--resolutions N,N=[32,64,128]", "each 1..4096", "--points N=100000", "--surface-points N=50000"})
         EXPECT_NE(compare.find(shown), std::string::npos) << shown << " in\n" << compare;
     const std::string classify = vds("classify --help").output;
-    for (const char* shown : {"--with vds|slicemap|slicemap-local|solid|solid-compute=vds",
-                              "=1024 for vds, 256 for the others", "--threads N=0"})
+    for (const char* shown : {"--method sprite|exact|certified|sprite-gpu|slicemap|slicemap-local|solid|solid-compute|"
+                              "slicemap-gpu|slicemap-local-gpu|solid-gpu|solid-compute-gpu=sprite",
+                              "=1024 for sprites and certified bands, 256 for voxels", "--threads N=0"})
         EXPECT_NE(classify.find(shown), std::string::npos) << shown << " in\n" << classify;
 }
 
@@ -299,7 +300,10 @@ TEST_F(Cli, BadCommandLinesExitTwoWithOneLine) {
         "bake " + box + " " + box + " -o x.vds",
         "classify " + sprite,
         "classify --exact " + points + " -o x.txt",
-        "classify --mesh " + box + " " + points + " -o x.txt",
+        "classify --method exact " + sprite + " " + points + " -o x.txt",
+        "classify --method slicemap --gpu --exact --mesh " + box + " " + points + " -o x.txt",
+        "classify --method exact --gpu --mesh " + box + " " + points + " -o x.txt",
+        "classify --method sprite --resolution 64 " + sprite + " " + points + " -o x.txt",
         "classify --mesh " + box + " --with solid --rule winding " + points + " -o x.txt",
         "classify --with solid " + sprite + " " + points + " -o x.txt",
         "classify --mesh " + box + " --with solid --resolution 20000 " + points + " -o x.txt",

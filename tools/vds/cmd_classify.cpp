@@ -1,13 +1,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <memory>
 #include <vector>
 
-#include <vds/bake.h>
-#include <vds/certified.h>
-#include <vds/exact.h>
-#include <vds/gl/context.h>
-#include <vds/gl/sprite.h>
+#include <vds/all.h>
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 #include <vds/vds_file.h>
@@ -19,17 +17,14 @@ namespace cli {
 
 namespace {
 
-// --with's default resolution for the voxel representations: their memory
-// grows with its cube, a sprite's with its square.
-constexpr std::uint32_t kVoxelResolution = 256;
-
 struct ClassifyArgs {
     std::vector<std::string> files; // [SPRITE] POINTS
-    std::string output, mesh, with = "vds", outputFormat = "auto";
-    std::uint32_t resolution = 0; // 0: not given (CLI11 refuses 0 given)
+    std::string output, mesh, with, outputFormat = "auto";
+    std::uint32_t resolution = 0; // 0: the method's default (CLI11 refuses 0 given)
     vds::ClassifyOptions options;
+    vds::Method method = vds::Method::Sprite;
     bool gpu = false, exact = false, certified = false, allowOpen = false, quiet = false;
-    const CLI::Option* withGiven = nullptr;
+    const CLI::Option* methodGiven = nullptr;
 };
 
 bool endsWith(const std::string& s, const std::string& tail) {
@@ -91,139 +86,123 @@ void writeLabels(const std::string& path, const std::string& format, const std::
     writeTextFile(path, text);
 }
 
-// What CLI11's option relations cannot say.
-void checkCombination(ClassifyArgs& a) {
+// The old spellings (--exact, --certified, --with NAME, --gpu) as the
+// method they name, then what CLI11's option relations cannot say.
+void resolveMethod(ClassifyArgs& a) {
+    const int spellings = int(a.methodGiven->count() > 0) + int(a.exact) + int(a.certified) + int(!a.with.empty());
+    if (spellings > 1) throw CLI::ValidationError("--method, --exact, --certified and --with name one method: give one");
+    if (a.exact) a.method = vds::Method::Exact;
+    if (a.certified) a.method = vds::Method::Certified;
+    if (!a.with.empty()) a.method = a.with == "vds" ? vds::Method::Sprite : vds::parseEnum<vds::Method>(a.with);
+    if (a.gpu) {
+        const vds::Method gpu = vds::gpuForm(a.method);
+        if (gpu == a.method && !vds::methodInfo(a.method).gpu)
+            throw CLI::ValidationError(std::string("--gpu: method '") + vds::enumName(a.method) + "' has no GPU form");
+        a.method = gpu;
+    }
+    const vds::MethodInfo& info = vds::methodInfo(a.method);
     const bool fromMesh = !a.mesh.empty();
     if (a.files.size() != (fromMesh ? 1u : 2u))
         throw CLI::ValidationError(fromMesh ? "expected one points file (with --mesh)"
                                             : "expected a sprite file and a points file");
-    if (fromMesh && !a.exact && !a.certified && !a.withGiven->count())
-        throw CLI::ValidationError("--mesh needs --exact, --certified or --with REPRESENTATION");
-    if (a.exact && a.certified) throw CLI::ValidationError("--exact and --certified exclude each other");
-    if (!a.exact && !a.certified && a.with != "vds" && a.options.rule != vds::Rule::Parity)
-        throw CLI::ValidationError(std::string("--rule ") + vds::toString(a.options.rule) +
-                                   " needs a sprite (--with vds), --exact or --certified");
-    if (a.resolution == 0) a.resolution = a.with == "vds" ? vds::BakeOptions{}.resolution : kVoxelResolution;
+    if (!fromMesh && !info.fromSprite)
+        throw CLI::ValidationError(std::string("method '") + info.name + "' is built from a mesh: give --mesh MESH");
+    if (!fromMesh && a.resolution != 0)
+        throw CLI::ValidationError("--resolution needs --mesh (a sprite file has its own)");
+    if (!vds::answers(a.method, a.options.rule)) {
+        try {
+            vds::requireRule(a.method, a.options.rule);
+        } catch (const vds::InvalidArgument& e) {
+            throw CLI::ValidationError(e.what());
+        }
+    }
+}
+
+// Refuses or warns about a mesh that bounds no solid, by the rule asked.
+void checkMesh(const ClassifyArgs& a, const vds::TriangleMesh& mesh) {
+    const vds::MeshReport report = vds::validateMesh(mesh);
+    if (a.allowOpen || vds::methodInfo(a.method).needsClosedMesh) {
+        vds::requireUsable(report, a.mesh);
+    } else {
+        try {
+            vds::requireInsideDefined(report, a.mesh, a.options.rule);
+        } catch (const vds::InvalidMesh& e) {
+            throw vds::InvalidMesh(std::string(e.what()) + " (--allow-open classifies by crossing count anyway)");
+        }
+    }
+    const std::string warning = vds::insideWarning(report, a.options.rule);
+    if (!warning.empty()) std::fprintf(stderr, "vds classify: warning: %s: %s\n", a.mesh.c_str(), warning.c_str());
 }
 
 void classify(ClassifyArgs& a) {
-    checkCombination(a);
+    resolveMethod(a);
     const auto progress = progressPrinter(a.quiet);
     const std::string& pointsPath = a.files.back();
     const std::vector<glm::vec3> points = readPoints(pointsPath);
     progress("read " + std::to_string(points.size()) + " points from " + pointsPath);
-    std::vector<std::uint8_t> labels(points.size());
-    // Only the classification is timed; loading, baking and building are not.
-    std::chrono::steady_clock::time_point start;
-    auto startClock = [&start] { start = std::chrono::steady_clock::now(); };
-    std::string method;
-    vds::TriangleMesh mesh;
-    if (!a.mesh.empty()) mesh = vds::loadMesh(a.mesh);
 
-    if (a.exact || a.certified) {
-        const vds::MeshReport report = vds::validateMesh(mesh);
-        if (a.allowOpen) {
-            vds::requireUsable(report, a.mesh);
-        } else {
-            try {
-                vds::requireInsideDefined(report, a.mesh, a.options.rule);
-            } catch (const vds::InvalidMesh& e) {
-                throw vds::InvalidMesh(std::string(e.what()) + " (--allow-open classifies by crossing count anyway)");
-            }
-        }
-        const std::string warning = vds::insideWarning(report, a.options.rule);
-        if (!warning.empty()) std::fprintf(stderr, "vds classify: warning: %s: %s\n", a.mesh.c_str(), warning.c_str());
-        if (a.allowOpen && !report.closed() && a.options.rule != vds::Rule::GeneralizedWinding)
-            std::fprintf(stderr, "vds classify: warning: %s is %s; inside is not well defined by this rule "
-                         "(--rule generalized-winding answers for open meshes)\n", a.mesh.c_str(),
-                         report.summary().c_str());
-        if (a.certified) {
-            vds::CertifiedOptions certifiedOptions;
-            certifiedOptions.resolution = a.resolution;
-            certifiedOptions.threads = a.options.threads;
-            const vds::CertifiedClassifier certified(mesh, certifiedOptions);
-            progress("built the certified bands at " + std::to_string(a.resolution));
-            startClock();
-            const vds::CertifiedStats stats =
-                certified.classify({points.data(), points.size()}, labels.data(), a.options);
-            method = "certified (" + std::to_string(stats.exact) + " of " + std::to_string(points.size()) +
-                     " points by the exact path)";
-        } else {
-            const vds::ExactClassifier exact(mesh);
-            startClock();
-            exact.classify({points.data(), points.size()}, labels.data(), a.options);
-            method = "exact";
-        }
-    } else if (a.with != "vds") {
-        vds::GlContext gl;
-        vds::voxel::ModelOptions modelOptions;
-        modelOptions.resolution = a.resolution;
-        const vds::voxel::Model model =
-            vds::voxel::buildModel(mesh, vds::voxel::parseRepresentation(a.with), modelOptions, &gl);
-        progress("built " + model.summary());
-        startClock();
-        if (a.gpu) {
-            vds::voxel::classifyOnGpu(gl, model, points.data(), points.size(), labels.data());
-            method = a.with + " on the GPU (" + gl.info().renderer + ")";
-        } else {
-            model.classify({points.data(), points.size()}, labels.data(), a.options.threads);
-            method = a.with + " on the CPU";
-        }
+    // One dispatch: the method built from the mesh or the sprite file.
+    std::unique_ptr<vds::Classifier> classifier;
+    if (!a.mesh.empty()) {
+        const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
+        checkMesh(a, mesh);
+        vds::MethodOptions options;
+        options.resolution = a.resolution;
+        options.threads = a.options.threads;
+        options.sourceName = mesh.name;
+        classifier = vds::makeClassifier(mesh, a.method, options);
     } else {
-        vds::Sprite sprite;
-        if (!a.mesh.empty()) {
-            vds::BakeOptions bakeOptions;
-            bakeOptions.resolution = a.resolution;
-            bakeOptions.sourceName = mesh.name;
-            sprite = vds::bake(mesh, bakeOptions);
-        } else {
-            sprite = vds::readSprite(a.files.front());
-        }
+        vds::Sprite sprite = vds::readSprite(a.files.front());
         // The generalized winding number answers open meshes: no warning then.
         if (sprite.status == vds::SolidStatus::Open && a.options.rule != vds::Rule::GeneralizedWinding)
             std::fprintf(stderr, "vds classify: warning: the sprite was baked from an open mesh (%s)\n",
                          sprite.validation.c_str());
-        if (a.gpu) {
-            vds::GlContext gl;
-            const vds::GpuSprite gpu(sprite);
-            vds::GpuClassifier classifier(gl);
-            startClock();
-            classifier.classify(gpu, points.data(), points.size(), labels.data(), a.options.rule);
-            method = "GPU (" + gl.info().renderer + ")";
-        } else {
-            startClock();
-            vds::classify(sprite, {points.data(), points.size()}, labels.data(), a.options);
-            method = "CPU";
-        }
+        classifier = vds::makeClassifier(std::move(sprite), a.method);
     }
+    progress("built " + classifier->summary());
+
+    std::vector<std::uint8_t> labels(points.size());
+    vds::ClassifyStats stats;
+    a.options.stats = &stats;
+    // Only the classification is timed; loading, baking and building are not.
+    const auto start = std::chrono::steady_clock::now();
+    classifier->classify(points, labels.data(), a.options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::string method = classifier->summary();
+    if (a.method == vds::Method::Certified)
+        method += " (" + std::to_string(stats.exact) + " of " + std::to_string(points.size()) +
+                  " points by the exact path)";
     writeLabels(a.output, a.outputFormat, labels);
     std::size_t inside = 0;
     for (auto l : labels) inside += l;
     // With the labels on stdout, the summary goes to stderr.
-    std::fprintf(a.output == kStdio ? stderr : stdout, "wrote %s: %zu points, %zu inside, %s, %s rule, classified in %.3f s\n", a.output.c_str(),
-                points.size(), inside, method.c_str(), vds::toString(a.options.rule), seconds);
+    std::fprintf(a.output == kStdio ? stderr : stdout,
+                 "wrote %s: %zu points, %zu inside, %s, %s rule, classified in %.3f s\n", a.output.c_str(),
+                 points.size(), inside, method.c_str(), vds::toString(a.options.rule), seconds);
 }
 
 } // namespace
 
 void addClassify(CLI::App& app) {
+    std::string methods;
+    for (const vds::MethodInfo* m = vds::methodTable(); m != vds::methodTable() + vds::kMethodCount; ++m)
+        methods += std::string("  ") + m->name + std::string(20 - std::min<std::size_t>(19, std::strlen(m->name)), ' ') +
+                   m->summary + (m->fromSprite ? "" : " (--mesh)") + "\n";
     const auto [c, a] = addCommand<ClassifyArgs>(
         app, "classify", "label points 1 inside / 0 outside",
-        "  vds classify SPRITE.vds POINTS -o LABELS.txt\n"
-        "  vds classify --exact --mesh MESH POINTS -o LABELS.txt\n"
-        "  vds classify --certified --mesh MESH POINTS -o LABELS.npy\n"
-        "  vds classify --mesh MESH --with REPRESENTATION POINTS -o LABELS.txt\n"
+        "  vds classify SPRITE.vds POINTS -o LABELS.txt [--method sprite|sprite-gpu]\n"
+        "  vds classify --mesh MESH POINTS -o LABELS.txt --method METHOD [--resolution N]\n"
         "Labels each point 1 (inside) or 0 (outside), one line per point, in the order given (or a\n"
         "boolean .npy array when LABELS ends in .npy). POINTS is a .npy array of N x 3 float32 or\n"
         "float64, a text file of lines 'x y z' in the mesh's coordinates ('#' comments and blank lines\n"
         "skipped) or a PLY file's vertices (ascii or binary, either byte order). POINTS '-' reads stdin, any of\n"
         "these told apart by their first bytes; LABELS '-' writes to stdout (text, or .npy with\n"
-        "--output-format npy), with the summary line on stderr. Points outside the sprite's box are outside. --certified\n"
-        "gives the exact classifier's answers at close to a sprite's speed (docs/accuracy.md). --with builds\n"
-        "the representation from the mesh in memory first: vds (a sprite), slicemap, slicemap-local\n"
-        "(front/back slicemap pair, uniform or local slicing), solid, solid-compute (solid voxels by\n"
-        "rasterization or in compute); see docs/voxel.md.",
+        "--output-format npy), with the summary line on stderr. Points outside the sprite's box are outside.\n"
+        "Methods (built from the mesh in memory, or read from a sprite file where noted):\n" +
+            methods +
+            "The older spellings still work: --exact (= --method exact), --certified (= --method certified),\n"
+            "--with NAME (= --method NAME; vds = sprite), and --gpu (the method's GPU form).\n"
+            "The voxel representations answer the parity rule only; docs/voxel.md compares them.",
         classify);
     c->add_option("FILES", a->files, "a sprite file and a points file; with --mesh, the points file")
         ->required()
@@ -233,23 +212,20 @@ void addClassify(CLI::App& app) {
         ->type_name("FILE");
     addChoice(*c, "--output-format", a->outputFormat, {"auto", "text", "npy"},
               "labels as text lines or a boolean .npy array; auto: .npy when LABELS ends in .npy");
+    a->methodGiven = addEnum(*c, "--method", a->method, "how to answer (see below); default sprite");
     addEnum(*c, "--rule", a->options.rule,
-            "the paper's parity, non-zero winding, or the generalized winding number (open meshes; --exact)");
-    c->add_flag("--gpu", a->gpu, "classify with the GL compute shader instead of the CPU");
+            "the paper's parity, non-zero winding, or the generalized winding number (open meshes)");
+    c->add_flag("--gpu", a->gpu, "the method's GPU form (sprite -> sprite-gpu, slicemap -> slicemap-gpu, ...)");
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
-    CLI::Option* mesh =
-        c->add_option("--mesh", a->mesh, "classify against a mesh: --exact, or --with")->type_name("MESH");
-    CLI::Option* exact = c->add_flag("--exact", a->exact, "exact classification on the mesh's triangles")->needs(mesh);
-    CLI::Option* certified =
-        c->add_flag("--certified", a->certified, "exact answers, most from certified bands at --resolution")->needs(mesh);
-    c->add_flag("--allow-open", a->allowOpen, "let --exact classify an open mesh by crossing count");
+    c->add_option("--mesh", a->mesh, "build the method from this mesh")->type_name("MESH");
+    c->add_flag("--exact", a->exact, "= --method exact");
+    c->add_flag("--certified", a->certified, "= --method certified");
+    c->add_flag("--allow-open", a->allowOpen, "classify an open mesh by crossing count anyway");
     std::vector<std::string> with = vds::enumNames<vds::voxel::Representation>();
     with.insert(with.begin(), "vds");
-    a->withGiven =
-        addChoice(*c, "--with", a->with, with, "build this from the mesh first")->needs(mesh)->excludes(exact)->excludes(certified);
-    addResolution(*c, a->resolution, "texels or voxels on the box's longest side for --with and --certified")
-        ->default_str(std::to_string(vds::BakeOptions{}.resolution) + " for vds, " + std::to_string(kVoxelResolution) +
-                      " for the others");
+    addChoice(*c, "--with", a->with, with, "= --method NAME (vds: sprite)");
+    addResolution(*c, a->resolution, "texels or cells on the box's longest side (with --mesh)")
+        ->default_str("1024 for sprites and certified bands, 256 for voxels");
 }
 
 } // namespace cli
