@@ -18,6 +18,7 @@
 
 #include <vds/error.h>
 #include <vds/detail/parallel.h>
+#include <vds/detail/sweep_plan.h>
 
 #include "caps_tree.h"
 #include "antipodal.h"
@@ -38,17 +39,6 @@ std::vector<float> centres(const Grid& grid, int axis) {
     return c;
 }
 
-
-// True when the sprite's texture s, t and r each depend on one world axis
-// (its permutation's), with depth growing along that axis: then the cells of
-// a grid column along the view axis fall in one texel column, in depth order.
-bool axisAligned(const SpriteGrid& g) {
-    const glm::ivec3 p = axisPermutation(g.axis);
-    for (int row = 0; row < 3; ++row)
-        for (int col = 0; col < 3; ++col)
-            if (col != p[row] && g.matrix[col][row] != 0.0f) return false;
-    return g.matrix[p.z][2] > 0.0f;
-}
 
 } // namespace
 
@@ -82,32 +72,70 @@ Grid cubicGrid(const Box& box, std::uint32_t n) {
     return grid;
 }
 
+detail::SweepPlan detail::planSweep(const SpriteGrid& sg, const Grid& grid, unsigned threads) {
+    SweepPlan plan;
+    // The world axis depth follows (r's row of the matrix), and every texture
+    // coordinate following one world axis: the permutation of that axis.
+    int a = -1;
+    for (int col = 0; col < 3; ++col)
+        if (sg.matrix[col][2] > 0.0f) a = col;
+    if (a < 0) return plan;
+    const glm::ivec3 p = axisPermutation(Axis(a)); // axisPermutation(X).z = 0, Y: 1, Z: 2
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col)
+            if (col != p[row] && sg.matrix[col][row] != 0.0f) return plan;
+    plan.aligned = true;
+    plan.a = a;
+    plan.u = p.x;
+    plan.v = p.y;
+    plan.n = grid.dims[a];
+    plan.step = a == 2 ? 1 : a == 1 ? grid.dims.z : std::size_t(grid.dims.y) * grid.dims.z;
+    plan.columns = std::size_t(grid.dims[plan.u]) * grid.dims[plan.v];
+    const std::vector<float> along = centres(grid, a), acrossU = centres(grid, plan.u),
+                             acrossV = centres(grid, plan.v);
+    // toTexture adds only exact zeros to a slice's depth: one depth a slice.
+    plan.depth.resize(plan.n);
+    glm::vec3 probe = sg.position;
+    for (std::uint32_t k = 0; k < plan.n; ++k) {
+        probe[a] = along[k];
+        plan.depth[k] = sg.toTexture(probe).z;
+    }
+    plan.firstSlice = std::uint32_t(std::lower_bound(plan.depth.begin(), plan.depth.end(), 0.0f) - plan.depth.begin());
+    plan.endSlice = std::uint32_t(std::upper_bound(plan.depth.begin(), plan.depth.end(), 1.0f) - plan.depth.begin());
+    plan.texels.assign(plan.columns, -1);
+    if (plan.firstSlice >= plan.endSlice) return plan;
+    parallelFor(threads, plan.columns, 4096, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t column = begin; column < end; ++column) {
+            glm::vec3 world;
+            world[plan.u] = acrossU[column / grid.dims[plan.v]];
+            world[plan.v] = acrossV[column % grid.dims[plan.v]];
+            world[a] = along[plan.firstSlice];
+            plan.texels[column] = std::int32_t(columnOf(sg, sg.toTexture(world))); // exactly as Sprite::contains
+        }
+    });
+    return plan;
+}
+
 void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {
     checkGrid(grid);
     detail::requireBoundaryKnown(sprite, options.rule);
     assert(cells);
-    const SpriteGrid& sg = sprite.grid;
-    const glm::ivec3 p = axisPermutation(sg.axis);
-    const int a = p.z, u = p.x, v = p.y; // sweep along a; columns indexed by (u, v)
-    const std::uint32_t n = grid.dims[a];
-    const std::size_t columns = std::size_t(grid.dims[u]) * grid.dims[v];
-    // Distance between consecutive cells of a column in the label array.
-    const std::size_t step = a == 2 ? 1 : a == 1 ? grid.dims.z : std::size_t(grid.dims.y) * grid.dims.z;
-    const auto firstCell = [&](std::size_t column) {
-        glm::uvec3 c(0u);
-        c[u] = std::uint32_t(column / grid.dims[v]);
-        c[v] = std::uint32_t(column % grid.dims[v]);
-        return c;
-    };
     const bool boundaryTerm = detail::needsBoundaryTerm(sprite, options.rule);
-    if (!axisAligned(sg) || boundaryTerm) {
+    const detail::SweepPlan plan = detail::planSweep(sprite.grid, grid, options.threads);
+    if (!plan.aligned || boundaryTerm) {
         // A rotated sprite, or the GWN of an open one: each cell on its own,
         // the same answers as classify (the sprite's boundary caps for the GWN).
-        parallelFor(options.threads, columns, 64, [&](std::size_t begin, std::size_t end) {
+        const glm::ivec3 p = axisPermutation(sprite.grid.axis);
+        const int a = p.z, u = p.x, v = p.y;
+        const std::uint32_t n = grid.dims[a];
+        const std::size_t step = a == 2 ? 1 : a == 1 ? grid.dims.z : std::size_t(grid.dims.y) * grid.dims.z;
+        parallelFor(options.threads, std::size_t(grid.dims[u]) * grid.dims[v], 64, [&](std::size_t begin, std::size_t end) {
             std::vector<glm::vec3> points(n);
             std::vector<std::uint8_t> labels(n);
             for (std::size_t column = begin; column < end; ++column) {
-                glm::uvec3 c = firstCell(column);
+                glm::uvec3 c(0u);
+                c[u] = std::uint32_t(column / grid.dims[v]);
+                c[v] = std::uint32_t(column % grid.dims[v]);
                 for (std::uint32_t k = 0; k < n; ++k) {
                     c[a] = k;
                     points[k] = grid.cellCentre(c.x, c.y, c.z);
@@ -124,37 +152,19 @@ void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, cons
         });
         return;
     }
-    const std::vector<float> along = centres(grid, a), acrossU = centres(grid, u), acrossV = centres(grid, v);
-    // With an axis-aligned sprite a cell's texture depth depends on its
-    // position along the view axis alone, and toTexture adds only exact
-    // zeros to it: one depth per slice, shared by every column, in
-    // increasing order. Cells outside [0, 1] in depth are outside.
-    std::vector<float> depth(n);
-    glm::vec3 probe = sg.position;
-    for (std::uint32_t k = 0; k < n; ++k) {
-        probe[a] = along[k];
-        depth[k] = sg.toTexture(probe).z;
-    }
-    const auto firstValid = std::uint32_t(std::lower_bound(depth.begin(), depth.end(), 0.0f) - depth.begin());
-    const auto endValid = std::uint32_t(std::upper_bound(depth.begin(), depth.end(), 1.0f) - depth.begin());
+    const std::uint32_t n = plan.n, firstValid = plan.firstSlice, endValid = plan.endSlice;
+    const std::vector<float>& depth = plan.depth;
     const float* crossings = sprite.crossings.data();
-    parallelFor(options.threads, columns, 64, [&](std::size_t begin, std::size_t end) {
+    parallelFor(options.threads, plan.columns, 64, [&](std::size_t begin, std::size_t end) {
         for (std::size_t column = begin; column < end; ++column) {
-            glm::uvec3 c = firstCell(column);
+            const glm::uvec3 c = plan.firstCell(column, grid);
             std::uint8_t* out = cells + grid.index(c.x, c.y, c.z);
             const auto fill = [&](std::uint32_t from, std::uint32_t to, std::uint8_t label) {
                 if (from >= to) return;
-                if (step == 1) std::memset(out + from, label, to - from);
-                else for (std::uint32_t k = from; k < to; ++k) out[k * step] = label;
+                if (plan.step == 1) std::memset(out + from, label, to - from);
+                else for (std::uint32_t k = from; k < to; ++k) out[k * plan.step] = label;
             };
-            std::ptrdiff_t texel = -1;
-            if (firstValid < endValid) {
-                glm::vec3 world;
-                world[u] = acrossU[c[u]];
-                world[v] = acrossV[c[v]];
-                world[a] = along[firstValid];
-                texel = detail::columnOf(sg, sg.toTexture(world)); // exactly as Sprite::contains
-            }
+            const std::int32_t texel = plan.texels[column];
             if (texel < 0) {
                 fill(0, n, 0);
                 continue;

@@ -2,7 +2,7 @@
 // sweep of occupancy.cpp (Trapp & Döllner 2008, section 3.2, for a whole
 // column of cells at once) with the walk down each column in
 // shaders/vds/occupancy.comp. The per-column texels and per-slice depths
-// are computed here, on the CPU, exactly as occupancy.cpp computes them.
+// come from the one sweep plan the CPU sweep consumes too (detail::planSweep).
 // Rule::GeneralizedWinding on an open sprite adds vpt.glsl's boundary term
 // per cell in the shader, where the CPU classifies the cells one by one.
 #include <vds/gl/occupancy.h>
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <vds/error.h>
+#include <vds/detail/sweep_plan.h>
 #include <vds/gl/shader.h>
 
 #include "bake_gl.h"
@@ -23,15 +24,6 @@ namespace {
 
 constexpr std::uint32_t kLocalSize = 64;    // occupancy.comp's local_size_x
 constexpr GLuint kBoundaryBinding = 5;     // occupancy.comp's VDS_BOUNDARY_BINDING
-
-// The texel column of a texture-space point, or -1 outside (Sprite::contains's rule).
-std::int32_t texelOf(const SpriteGrid& grid, const glm::vec3& t) {
-    if (!(t.z >= 0.0f && t.z <= 1.0f)) return -1;
-    const float fs = std::floor(t.x * float(grid.width));
-    const float ft = std::floor(t.y * float(grid.height));
-    if (!(fs >= 0.0f && fs < float(grid.width) && ft >= 0.0f && ft < float(grid.height))) return -1;
-    return std::int32_t(ft) * std::int32_t(grid.width) + std::int32_t(fs);
-}
 
 Buffer upload(const void* data, std::size_t bytes, const char* what) {
     Buffer b = Buffer::create();
@@ -63,59 +55,21 @@ void GpuOccupancy::occupancy(const GpuSprite& sprite, const Grid& grid, GLuint c
         throw InvalidArgument("GpuOccupancy: " + std::to_string(labelBytes(grid)) +
                               " bytes of labels exceed GL's largest shader storage block (" +
                               std::to_string(maxBlock_) + ")");
-    // The sprite's placement as a grid, and its view axis: the world axis
-    // its depth follows. The sweep needs s, t and r to follow one axis each.
+    // The sprite's placement as a grid: the same sweep plan as the CPU's
+    // (occupancy.cpp), so both give the same labels by construction.
     SpriteGrid sg;
     sg.width = sprite.size().x;
     sg.height = sprite.size().y;
     sg.matrix = sprite.matrix();
     sg.position = sprite.position();
-    int a = -1;
-    for (int col = 0; col < 3; ++col)
-        if (sg.matrix[col][2] > 0.0f) a = col;
-    bool aligned = a >= 0;
-    if (aligned) {
-        sg.axis = Axis(a); // axisPermutation(X).z = 0, Y: 1, Z: 2
-        const glm::ivec3 p = axisPermutation(sg.axis);
-        for (int row = 0; row < 3; ++row)
-            for (int col = 0; col < 3; ++col)
-                if (col != p[row] && sg.matrix[col][row] != 0.0f) aligned = false;
-    }
-    if (!aligned)
+    const detail::SweepPlan plan = detail::planSweep(sg, grid, options.threads);
+    if (!plan.aligned)
         throw InvalidArgument("GpuOccupancy: the sprite is rotated against the grid (use vds::occupancy on the CPU)");
-    const glm::ivec3 p = axisPermutation(sg.axis);
-    const int u = p.x, v = p.y;
-    const std::uint32_t n = grid.dims[a];
-
-    // As occupancy.cpp: one depth per slice, shared by every column.
-    const auto centre = [&](int axis, std::uint32_t index) {
-        glm::uvec3 c(0u);
-        c[axis] = index;
-        return grid.cellCentre(c.x, c.y, c.z)[axis];
-    };
-    std::vector<float> depth(n);
-    glm::vec3 probe = sg.position;
-    for (std::uint32_t k = 0; k < n; ++k) {
-        probe[a] = centre(a, k);
-        depth[k] = sg.toTexture(probe).z;
-    }
-    const auto firstSlice = std::uint32_t(std::lower_bound(depth.begin(), depth.end(), 0.0f) - depth.begin());
-    const auto endSlice = std::uint32_t(std::upper_bound(depth.begin(), depth.end(), 1.0f) - depth.begin());
-    const std::size_t columns = std::size_t(grid.dims[u]) * grid.dims[v];
-    std::vector<std::int32_t> texels(columns, -1);
-    if (firstSlice < endSlice) {
-        std::vector<float> acrossV(grid.dims[v]);
-        for (std::uint32_t j = 0; j < grid.dims[v]; ++j) acrossV[j] = centre(v, j);
-        for (std::uint32_t i = 0; i < grid.dims[u]; ++i) {
-            glm::vec3 world;
-            world[u] = centre(u, i);
-            world[a] = centre(a, firstSlice);
-            for (std::uint32_t j = 0; j < grid.dims[v]; ++j) {
-                world[v] = acrossV[j];
-                texels[std::size_t(i) * grid.dims[v] + j] = texelOf(sg, sg.toTexture(world));
-            }
-        }
-    }
+    const std::size_t columns = plan.columns;
+    const std::vector<std::int32_t>& texels = plan.texels;
+    const std::vector<float>& depth = plan.depth;
+    const std::uint32_t firstSlice = plan.firstSlice, endSlice = plan.endSlice;
+    const int a = plan.a, u = plan.u, v = plan.v;
     const Buffer texelBuffer = upload(texels.data(), texels.size() * 4, "uploading the occupancy columns");
     const Buffer depthBuffer = upload(depth.data(), depth.size() * 4, "uploading the occupancy depths");
     const glm::uvec3 stride(grid.dims.y * grid.dims.z, grid.dims.z, 1u);
