@@ -325,7 +325,7 @@ std::shared_ptr<PySprite> bakeMesh(const py::object& vertices, const py::object&
     const bool autoAxis = axis == "auto";
     if (!autoAxis) options.axis = vds::parseAxis(axis);
     py::gil_scoped_release released;
-    if (autoAxis) options.axis = vds::chooseViewAxis(mesh);
+    if (autoAxis) options.axis = vds::chooseViewAxis(mesh, options.resolution).axis;
     if (options.method == vds::BakeMethod::Cpu) return wrap(vds::bake(mesh, options));
     GlState& s = glState();
     const std::lock_guard<std::mutex> lock(s.mutex);

@@ -299,7 +299,7 @@ SceneRenderer::SceneRenderer(const GlContext& gl, const Scene& scene, Lookup loo
         if (!sprite && (lookup == Lookup::Vds || size.equalMemory)) {
             BakeOptions options;
             options.resolution = size.resolution;
-            options.axis = chooseViewAxis(solid.mesh);
+            options.axis = chooseViewAxis(solid.mesh, size.resolution).axis;
             sprite = bake(gl, solid.mesh, options);
         }
         switch (lookup) {

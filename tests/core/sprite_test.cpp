@@ -243,11 +243,39 @@ TEST(Sprite, CrossingEncodingKeepsFacingAtDepthZero) {
 TEST(ChooseViewAxis, PicksTheAxisWithTheFewestLayers) {
     // A torus seen along its symmetry axis has two layers, from the side four.
     auto torus = solids::torus({0, 0, 0}, 1.0f, 0.3f, 48).mesh;
-    EXPECT_EQ(chooseViewAxis(torus), Axis::Z);
+    EXPECT_EQ(chooseViewAxis(torus, 64).axis, Axis::Z);
     for (auto& p : torus.positions) p = glm::vec3(p.z, p.x, p.y); // symmetry axis now x
-    EXPECT_EQ(chooseViewAxis(torus), Axis::X);
+    EXPECT_EQ(chooseViewAxis(torus, 64).axis, Axis::X);
     for (auto& p : torus.positions) p = glm::vec3(p.z, p.x, p.y); // and now y
-    EXPECT_EQ(chooseViewAxis(torus), Axis::Y);
+    const AxisChoice choice = chooseViewAxis(torus, 64);
+    EXPECT_EQ(choice.axis, Axis::Y);
+    EXPECT_EQ(choice.summary(), "axis y: 2 layers (x 4, y 2, z 4 at 64 texels)");
+}
+
+// The choice counts what the bakers make, at the resolution baked: its layers
+// and crossings per axis equal those of the CPU baker's sprites, on meshes
+// where a coarse probe and the real resolution disagree.
+TEST(ChooseViewAxis, CountsExactlyWhatTheBakerMakesAtThatResolution) {
+    std::vector<TriangleMesh> meshes = {solids::torusKnot({0, 0, 0}, 1.0f, 2, 3, 0.25f, 96, 12).mesh,
+                                        solids::merge(solids::sphere({0, 0, 0}, 1.0f, 24).mesh,
+                                                      solids::box({1.5f, -0.2f, -2.0f}, {1.6f, 0.2f, 2.0f}).mesh)};
+    for (const TriangleMesh& mesh : meshes)
+        for (std::uint32_t resolution : {7u, 64u, 300u}) {
+            const AxisChoice choice = chooseViewAxis(mesh, resolution);
+            EXPECT_EQ(choice.resolution, resolution);
+            for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+                BakeOptions o;
+                o.resolution = resolution;
+                o.axis = axis;
+                const Sprite sprite = bakeCpu(mesh, o);
+                EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis) << " " << resolution;
+                EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis);
+            }
+            // No axis assigned: the bakers take the choice.
+            BakeOptions unset;
+            unset.resolution = resolution;
+            EXPECT_EQ(bakeCpu(mesh, unset).grid.axis, choice.axis);
+        }
 }
 
 } // namespace

@@ -110,6 +110,7 @@ TEST_F(BakeTest, DeepColumnsGrowThePoolAndSortLikePeeling) {
     BakeTimings timings;
     BakeOptions o;
     o.method = BakeMethod::Lists;
+    o.axis = Axis::Z;
     o.resolution = 48;
     o.timings = &timings;
     const Sprite lists = bake(gl(), stack, o);

@@ -87,7 +87,7 @@ protected:
 
 TEST_F(Cli, BakeInfoClassifyRoundTrip) {
     // --opt=value, and a leading zero read as decimal (not octal 52).
-    Result r = vds("bake " + p("box.obj") + " -o " + p("box.vds") + " --resolution=064 --quiet");
+    Result r = vds("bake " + p("box.obj") + " -o " + p("box.vds") + " --resolution=064 --axis z --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
     r = vds("info " + p("box.vds"));
     ASSERT_EQ(r.code, 0) << r.output;
@@ -267,7 +267,7 @@ TEST_F(Cli, SampleAndBenchmarkCommandLines) {
 // choices are the enums' names.
 TEST_F(Cli, HelpShowsDefaultsAndChoices) {
     const std::string bake = vds("bake --help").output;
-    for (const char* shown : {"--resolution 1..16384=1024", "--axis x|y|z|auto=z", "--method lists|peel|cpu=lists"})
+    for (const char* shown : {"--resolution 1..16384=1024", "--axis x|y|z|auto=auto", "--method auto|lists|peel|cpu=auto"})
         EXPECT_NE(bake.find(shown), std::string::npos) << shown << " in\n" << bake;
     const std::string eval = vds("eval --help").output;
     for (const char* shown :
@@ -392,12 +392,18 @@ TEST_F(Cli, OpenMeshIsBakedWithAWarningAndRecorded) {
 TEST_F(Cli, NoGlGivesAClearErrorAndTheCpuBakerStillWorks) {
     // glvnd finds no EGL vendor: as on a machine without any GL driver.
     const std::string noGl = "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json __EGL_VENDOR_LIBRARY_DIRS=/nonexistent ";
-    Result r = run(noGl + VDS_TOOL + " bake " + p("box.obj") + " -o " + p("gl.vds") + " --quiet");
+    Result r = run(noGl + VDS_TOOL + " bake " + p("box.obj") + " -o " + p("gl.vds") + " --method lists --quiet");
     EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_NE(r.output.find("no OpenGL"), std::string::npos) << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "gl.vds"));
     r = run(noGl + VDS_TOOL + " bake " + p("box.obj") + " -o " + p("cpu.vds") + " --method cpu --resolution 32 --quiet");
     EXPECT_EQ(r.code, 0) << r.output;
+    // The default, --method auto, bakes on the CPU where there is no GL, and says why with --verbose.
+    r = run(noGl + VDS_TOOL + " bake " + p("box.obj") + " -o " + p("auto.vds") + " --resolution 32 --verbose --quiet");
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("bake method auto: cpu, because no GL is available"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "auto.vds"));
     r = run(noGl + VDS_TOOL + " classify " + p("cpu.vds") + " " + p("points.txt") + " -o " + p("l.txt") + " --quiet");
     EXPECT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(readFile(dir / "l.txt"), "1\n1\n0\n0\n0\n1\n");
@@ -533,10 +539,17 @@ TEST_F(Cli, ClassifyReadsAndWritesNpyAndCertifiedEqualsExact) {
 namespace {
 
 TEST_F(Cli, BakeVerbosePrintsEveryPhase) {
-    const Result r = vds("bake " + p("box.obj") + " -o " + p("v.vds") + " --resolution 32 --verbose --quiet");
+    Result r = vds("bake " + p("box.obj") + " -o " + p("v.vds") + " --resolution 32 --method lists --verbose --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
     for (const char* phase : {"validation", "upload", "raster", "scan", "sort", "read-back", "total"})
         EXPECT_NE(r.output.find(phase), std::string::npos) << phase << " missing in:\n" << r.output;
+    // The defaults, axis and method auto, say what they measured and chose
+    // (a box has two layers along every axis: the tie goes to fewer crossings).
+    r = vds("bake " + p("box.obj") + " -o " + p("a.vds") + " --resolution 32 --verbose --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("bake method auto: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(" layers (x "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(" at 32 texels): the fewest layers"), std::string::npos) << r.output;
 }
 
 } // namespace

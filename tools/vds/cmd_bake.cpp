@@ -13,7 +13,7 @@ namespace cli {
 namespace {
 
 struct BakeArgs {
-    std::string mesh, output, axis = "z";
+    std::string mesh, output, axis = "auto";
     vds::BakeOptions options;
     bool quiet = false, verbose = false;
 };
@@ -26,8 +26,9 @@ void bake(BakeArgs& a) {
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, a.mesh);
     if (a.axis == "auto") {
-        a.options.axis = vds::chooseViewAxis(mesh);
-        progress(std::string("axis auto: ") + vds::toString(a.options.axis) + " has the fewest layers");
+        const vds::AxisChoice choice = vds::chooseViewAxis(mesh, a.options.resolution);
+        a.options.axis = choice.axis;
+        if (a.verbose) std::fprintf(stderr, "%s: the fewest layers\n", choice.summary().c_str());
     } else {
         a.options.axis = vds::parseAxis(a.axis);
     }
@@ -35,11 +36,16 @@ void bake(BakeArgs& a) {
         std::fprintf(stderr, "vds bake: warning: %s is %s; parity and winding answer for a surface, not a solid "
                      "(classify with --rule generalized-winding)\n",
                      a.mesh.c_str(), report.summary().c_str());
+    if (a.options.method == vds::BakeMethod::Auto) {
+        std::string why;
+        a.options.method = vds::chooseBakeMethod(&why);
+        if (a.verbose) std::fprintf(stderr, "%s\n", why.c_str());
+    }
     a.options.progress = progress;
     vds::BakeTimings timings;
     if (a.verbose) a.options.timings = &timings;
     progress("baking " + a.mesh + " (" + std::to_string(mesh.triangles.size()) + " triangles) at " +
-             std::to_string(a.options.resolution) + " along " + vds::toString(a.options.axis) + " with " +
+             std::to_string(a.options.resolution) + " along " + vds::toString(*a.options.axis) + " with " +
              vds::toString(a.options.method));
     const vds::Sprite sprite = vds::bake(mesh, a.options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -64,9 +70,14 @@ void addBake(CLI::App& app) {
     addResolution(*c, a->options.resolution, "texels on the longer side of the view");
     std::vector<std::string> axes = vds::enumNames<vds::Axis>();
     axes.push_back("auto");
-    addChoice(*c, "--axis", a->axis, axes, "view direction; auto: the axis with the fewest layers");
-    addEnum(*c, "--method", a->options.method, "fragment lists, depth peeling, or exact CPU ray casting");
-    c->add_flag("--verbose", a->verbose, "print the time of each phase (validation, upload, raster, scan, sort, read-back...)");
+    addChoice(*c, "--axis", a->axis, axes,
+              "view direction; auto: the axis with the fewest layers at this resolution, counted exactly");
+    addEnum(*c, "--method", a->options.method,
+            "auto: GL fragment lists on a GPU, the CPU baker on a software renderer or without GL; or lists, "
+            "peel (depth peeling), cpu (exact ray casting)");
+    c->add_flag("--verbose", a->verbose,
+                "say which axis and bake method auto chose and why, and the time of each phase (validation, "
+                "upload, raster, scan, sort, read-back...)");
 }
 
 } // namespace cli

@@ -54,11 +54,11 @@ private:
 std::unique_ptr<Classifier> makeCore(MeshView mesh, Method method, const MethodOptions& options) {
     switch (method) {
     case Method::Sprite: return std::make_unique<SpriteClassifier>(bakeFor(nullptr, mesh, method, options));
-    case Method::Exact: return std::make_unique<ExactClassifier>(mesh, options.axis);
+    case Method::Exact: return std::make_unique<ExactClassifier>(mesh, options.axis.value_or(Axis::Z));
     case Method::Certified: {
         CertifiedOptions o;
         o.resolution = resolutionFor(method, options);
-        o.axis = options.axis;
+        o.axis = options.axis.value_or(Axis::Z);
         o.threads = options.threads;
         return std::make_unique<CertifiedClassifier>(mesh, o);
     }
@@ -116,8 +116,20 @@ std::unique_ptr<Classifier> makeClassifier(Sprite sprite, Method method) {
                           "' is built from the mesh, not from a sprite (sprite methods: sprite, sprite-gpu)");
 }
 
+BakeMethod chooseBakeMethod(std::string* why) {
+    std::string reason;
+    if (!glAvailable(&reason)) {
+        if (why) *why = "bake method auto: cpu, because no GL is available (" + reason + ")";
+        return BakeMethod::Cpu;
+    }
+    const CurrentContext restore;
+    const GlContext gl;
+    return chooseBakeMethod(gl, why);
+}
+
 Sprite bake(MeshView mesh, const BakeOptions& options) {
     if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
+    if (options.method == BakeMethod::Auto && !glAvailable()) return bakeCpu(mesh, options);
     const CurrentContext restore;
     const GlContext gl;
     return bakeOnGl(gl, mesh, options);

@@ -1,12 +1,15 @@
 #include <vds/bake.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 
 #include <vds/error.h>
 
 #include <vds/detail/bake_common.h>
 #include "antipodal.h"
+#include "projected_mesh.h"
+#include <vds/detail/parallel.h>
 
 namespace vds {
 
@@ -17,7 +20,8 @@ BakeSetup prepareBake(MeshView mesh, const BakeOptions& options) {
     BakeSetup setup;
     setup.report = validateMesh(mesh);
     requireUsable(setup.report, options.sourceName);
-    setup.grid = makeGrid(setup.report.bounds, options.axis, options.resolution);
+    const Axis axis = options.axis ? *options.axis : chooseViewAxis(mesh, options.resolution).axis;
+    setup.grid = makeGrid(setup.report.bounds, axis, options.resolution);
     return setup;
 }
 
@@ -71,21 +75,73 @@ std::string BakeTimings::report() const {
     return out;
 }
 
-Axis chooseViewAxis(MeshView mesh, std::uint32_t probeResolution) {
-    Axis best = Axis::Z;
+std::string AxisChoice::summary() const {
+    std::string s = std::string("axis ") + toString(axis) + ": " + std::to_string(layers[std::size_t(axis)]) +
+                    " layers (";
+    for (int a = 0; a < 3; ++a)
+        s += std::string(a ? ", " : "") + toString(Axis(a)) + " " + std::to_string(layers[std::size_t(a)]);
+    return s + " at " + std::to_string(resolution) + " texels)";
+}
+
+AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution, unsigned threads) {
+    const MeshReport report = validateMesh(mesh);
+    requireUsable(report, "mesh");
+    AxisChoice choice;
+    choice.resolution = resolution;
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+        const SpriteGrid grid = makeGrid(report.bounds, axis, resolution);
+        const detail::ProjectedMesh projected(mesh, axis);
+        // Texel centres along s and t (a baking grid is axis-aligned: s
+        // follows i alone, t follows j alone), to bound each triangle's texels.
+        std::vector<float> sAt(grid.width), tAt(grid.height);
+        float q[3];
+        for (std::uint32_t i = 0; i < grid.width; ++i) {
+            projected.toViewSpace(grid.texelCentre(i, 0, 0.0f), q);
+            sAt[i] = q[0];
+        }
+        for (std::uint32_t j = 0; j < grid.height; ++j) {
+            projected.toViewSpace(grid.texelCentre(0, j, 0.0f), q);
+            tAt[j] = q[1];
+        }
+        std::vector<std::atomic<std::uint32_t>> count(std::size_t(grid.width) * grid.height);
+        parallelFor(threads, projected.crossable, 256, [&](std::size_t begin, std::size_t end) {
+            float c[3];
+            for (std::size_t k = begin; k < end; ++k) {
+                const detail::Triangle& t = projected.tris[k];
+                const float slo = std::min({t.v[0][0], t.v[1][0], t.v[2][0]}), shi = std::max({t.v[0][0], t.v[1][0], t.v[2][0]});
+                const float tlo = std::min({t.v[0][1], t.v[1][1], t.v[2][1]}), thi = std::max({t.v[0][1], t.v[1][1], t.v[2][1]});
+                // Every texel whose centre lies in the triangle's box, one more each side.
+                const std::size_t i0 = std::size_t(std::max<std::ptrdiff_t>(0, std::lower_bound(sAt.begin(), sAt.end(), slo) - sAt.begin() - 1));
+                const std::size_t i1 = std::min<std::size_t>(grid.width, std::size_t(std::upper_bound(sAt.begin(), sAt.end(), shi) - sAt.begin()) + 1);
+                const std::size_t j0 = std::size_t(std::max<std::ptrdiff_t>(0, std::lower_bound(tAt.begin(), tAt.end(), tlo) - tAt.begin() - 1));
+                const std::size_t j1 = std::min<std::size_t>(grid.height, std::size_t(std::upper_bound(tAt.begin(), tAt.end(), thi) - tAt.begin()) + 1);
+                for (std::size_t j = j0; j < j1; ++j)
+                    for (std::size_t i = i0; i < i1; ++i) {
+                        // The CPU baker's texel centre, exactly.
+                        projected.toViewSpace(grid.texelCentre(std::uint32_t(i), std::uint32_t(j), 0.0f), c);
+                        if (detail::claims(t, c)) count[j * grid.width + i].fetch_add(1, std::memory_order_relaxed);
+                    }
+            }
+        });
+        std::uint32_t most = 0;
+        std::uint64_t total = 0;
+        for (const auto& n : count) {
+            const std::uint32_t v = n.load(std::memory_order_relaxed);
+            most = std::max(most, v);
+            total += v;
+        }
+        choice.layers[std::size_t(axis)] = most;
+        choice.crossings[std::size_t(axis)] = total;
+    }
     std::uint64_t bestKey = ~std::uint64_t(0);
     for (Axis axis : {Axis::Z, Axis::X, Axis::Y}) {
-        BakeOptions o;
-        o.axis = axis;
-        o.resolution = probeResolution;
-        const Sprite probe = bakeCpu(mesh, o);
-        const std::uint64_t key = (std::uint64_t(probe.depthComplexity) << 40) | probe.crossings.size();
+        const std::uint64_t key = (std::uint64_t(choice.layers[std::size_t(axis)]) << 40) | choice.crossings[std::size_t(axis)];
         if (key < bestKey) {
             bestKey = key;
-            best = axis;
+            choice.axis = axis;
         }
     }
-    return best;
+    return choice;
 }
 
 } // namespace vds

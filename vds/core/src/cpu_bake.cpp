@@ -62,7 +62,7 @@ Sprite bakeCpu(MeshView mesh, const BakeOptions& options) {
     };
     report("cpu bake: indexing " + std::to_string(mesh.triangleCount) + " triangles");
     std::optional<detail::HostPhase> phase(std::in_place, options.timings, BakePhase::Upload);
-    const ProjectedMesh projected(mesh, options.axis);
+    const ProjectedMesh projected(mesh, grid.axis);
 
     // Texture-space depth of every vertex, as the GL bakers' vertex stage computes it.
     std::vector<std::array<float, 3>> vertexDepth(projected.crossable);

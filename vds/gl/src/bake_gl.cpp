@@ -66,7 +66,8 @@ ValidatedMesh validateForBake(MeshView mesh, const BakeOptions& options, GlPhase
     ValidatedMesh v;
     v.report = validateMesh(mesh);
     requireUsable(v.report, options.sourceName);
-    v.grid = makeGrid(v.report.bounds, options.axis, options.resolution);
+    const Axis axis = options.axis ? *options.axis : chooseViewAxis(mesh, options.resolution).axis;
+    v.grid = makeGrid(v.report.bounds, axis, options.resolution);
     return v;
 }
 
@@ -128,14 +129,27 @@ void report(const BakeOptions& options, const std::string& what) {
 
 } // namespace vds::detail
 
-// The anchor the link option of vds::gl names (see above).
-extern "C" {
-
-}
-
 namespace vds {
 
+BakeMethod chooseBakeMethod(const GlContext& gl, std::string* why) {
+    const std::string& renderer = gl.info().renderer;
+    const bool software = gl.info().platform.find("software") != std::string::npos ||
+                          renderer.find("llvmpipe") != std::string::npos ||
+                          renderer.find("softpipe") != std::string::npos ||
+                          renderer.find("SwiftShader") != std::string::npos;
+    if (why)
+        *why = software ? "bake method auto: cpu, because GL here is the software renderer " + renderer +
+                              " (the CPU baker is faster for a one-shot bake there)"
+                        : "bake method auto: lists (GL fragment lists) on the GPU " + renderer;
+    return software ? BakeMethod::Cpu : BakeMethod::Lists;
+}
+
 Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options) {
+    if (options.method == BakeMethod::Auto) {
+        BakeOptions chosen = options;
+        chosen.method = chooseBakeMethod(gl);
+        return bakeOnGl(gl, mesh, chosen);
+    }
     if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
     const detail::BakeClock clock(options.timings);
     const detail::BakeSetup setup = detail::prepareBake(mesh, options);

@@ -112,7 +112,8 @@ GpuBake bakeToGpu(const GlContext& gl, MeshView mesh, const BakeOptions& options
     const CurrentContext restore(gl);
     if (options.timings) *options.timings = BakeTimings{};
     GpuBake out;
-    if (options.method == BakeMethod::Lists) {
+    // Auto is the fragment lists here: the point of baking to the GPU is that nothing comes back.
+    if (options.method == BakeMethod::Lists || options.method == BakeMethod::Auto) {
         if (options.timings) options.timings->renderer = gl.info().renderer;
         out = bakeListsToGpu(mesh, options, gl, parts);
     } else {

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <vds/bake.h>
@@ -35,7 +36,10 @@ struct MethodOptions {
     /// Texels (sprites, certified bands) or cells (voxel representations) on
     /// the box's longest side; 0: the method's `MethodInfo::defaultResolution`.
     std::uint32_t resolution = 0;
-    Axis axis = Axis::Z;                    ///< sprites, certified bands and the exact classifier
+    /// Sprites: the view axis, unset (the default) for the one with the fewest
+    /// layers at `resolution` (`chooseViewAxis`); certified bands and the exact
+    /// classifier: their axis, unset for z.
+    std::optional<Axis> axis;
     BakeMethod bakeMethod = BakeMethod::Cpu; ///< how sprite methods bake (the CPU baker needs no GL)
     std::uint32_t slices = 0;               ///< slicemaps: 0 = the box depth in cells
     unsigned threads = 0;                   ///< for building; 0: one per hardware thread
@@ -54,7 +58,12 @@ std::unique_ptr<Classifier> makeClassifier(const GlContext& gl, MeshView mesh, M
 std::unique_ptr<Classifier> makeClassifier(Sprite sprite, Method method);
 std::unique_ptr<Classifier> makeClassifier(const GlContext& gl, Sprite sprite, Method method);
 
-/// Bakes `mesh` by `options.method`: the CPU baker, or the GL bakers on a
+/// The baker `BakeMethod::Auto` means here: Cpu where no GL can be had,
+/// else `chooseBakeMethod(gl)` on a private context (Lists on a GPU, Cpu
+/// on a software renderer). `why` gets one line saying which and why.
+BakeMethod chooseBakeMethod(std::string* why = nullptr);
+
+/// Bakes `mesh` by `options.method` (Auto: `chooseBakeMethod()`): the CPU baker, or the GL bakers on a
 /// private headless context (the caller's current context is current again
 /// on return). Throws like `bakeCpu` and `bakeOnGl`, `GlUnavailable`
 /// without GL.

@@ -23,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,15 +32,21 @@
 
 namespace vds {
 
-enum class BakeMethod : std::uint8_t { Peel, Lists, Cpu };
+/// How to bake. Auto (the default): the fastest correct baker where it
+/// runs: the GL fragment lists on a GPU, the CPU baker on a software
+/// renderer (llvmpipe: a one-shot CPU bake is faster there) or without GL
+/// (`chooseBakeMethod` in <vds/gl/bake.h> and <vds/all.h>).
+enum class BakeMethod : std::uint8_t { Peel, Lists, Cpu, Auto };
 
 template <> struct EnumNames<BakeMethod> {
     static constexpr const char* kind = "bake method";
-    static constexpr EnumName<BakeMethod> table[] = {
-        {"lists", BakeMethod::Lists}, {"peel", BakeMethod::Peel}, {"cpu", BakeMethod::Cpu}};
+    static constexpr EnumName<BakeMethod> table[] = {{"auto", BakeMethod::Auto},
+                                                     {"lists", BakeMethod::Lists},
+                                                     {"peel", BakeMethod::Peel},
+                                                     {"cpu", BakeMethod::Cpu}};
 };
 
-/// Parses "peel" / "lists" / "cpu"; throws `InvalidArgument`.
+/// Parses "auto" / "peel" / "lists" / "cpu"; throws `InvalidArgument`.
 BakeMethod parseBakeMethod(const std::string& s);
 const char* toString(BakeMethod m);
 
@@ -99,8 +106,10 @@ struct BakeTimings {
 
 struct BakeOptions {
     std::uint32_t resolution = 1024;        ///< texels on the longer side of the view, 1..16384
-    Axis axis = Axis::Z;                    ///< view direction
-    BakeMethod method = BakeMethod::Lists;
+    /// View direction. Unset (the default): the axis with the fewest layers
+    /// at this resolution, `chooseViewAxis(mesh, resolution)`.
+    std::optional<Axis> axis;
+    BakeMethod method = BakeMethod::Auto;
     std::string sourceName;                 ///< recorded in the sprite (e.g. the mesh file name)
     /// Fragment lists: limit of the node pool, which holds the crossings past
     /// the first two of each column; 0 = as many as one GL buffer may hold.
@@ -114,12 +123,26 @@ struct BakeOptions {
     BakeTimings* timings = nullptr;
 };
 
+/// What `chooseViewAxis` measured: for each axis (x, y, z), the sprite's
+/// depth complexity d_S (its layers) and crossings at `resolution`.
+struct AxisChoice {
+    Axis axis = Axis::Z;          ///< the fewest layers; ties: fewer crossings, then z, x, y
+    std::uint32_t resolution = 0;
+    std::array<std::uint32_t, 3> layers{};  ///< d_S along x, y, z
+    std::array<std::uint64_t, 3> crossings{};
+    /// One line, e.g. "axis y: 12 layers (x 20, y 12, z 14 at 1024 texels)".
+    std::string summary() const;
+};
+
 /// The view axis with the fewest layers (the least depth complexity d_S; ties
-/// go to fewer crossings in all), found by exact CPU bakes at a coarse
-/// `probeResolution` along x, y and z. Trapp & Doellner 2008, section 6, name
-/// this "optimal view direction" as future work: fewer layers mean a smaller
-/// texture and fewer lookups per test. Throws like `bakeCpu`.
-Axis chooseViewAxis(MeshView mesh, std::uint32_t probeResolution = 64);
+/// go to fewer crossings in all) at `resolution`: the d_S and crossing counts
+/// of the sprites the bakers would make along x, y and z, counted exactly
+/// (the CPU baker's texel centres and claim rule, triangle by triangle,
+/// without sorting or storing crossings: a fraction of one CPU bake). Trapp &
+/// Doellner 2008, section 6, name this "optimal view direction" as future
+/// work: fewer layers mean a smaller texture and fewer lookups per test.
+/// Throws like `bakeCpu` (an unusable mesh, a resolution out of range).
+AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution = 1024, unsigned threads = 0);
 
 /// The CPU baker: the sprite the GL bakers make, by exact ray casting at
 /// texel centres (what every entry point runs for `BakeMethod::Cpu`). A column holds

@@ -124,8 +124,12 @@
 //   Sprite bakeCpu(mesh, BakeOptions)                     <vds/bake.h>
 //     exact ray casting on every core, no GL. BakeOptions: resolution
 //     (texels on the longer side of the view, 1..16384, default 1024),
-//     axis (Axis X, Y, Z, <vds/axis.h>; `chooseViewAxis(mesh)` picks the one
-//     with the fewest layers), method (BakeMethod: Lists, Peel, Cpu),
+//     axis (Axis X, Y, Z, <vds/axis.h>; unset, the default: the one with
+//     the fewest layers at that resolution, `chooseViewAxis(mesh,
+//     resolution)`, whose AxisChoice says what it counted), method
+//     (BakeMethod: Auto, the default, Lists, Peel, Cpu; Auto is the GL
+//     fragment lists on a GPU and the CPU baker on a software renderer or
+//     without GL: `chooseBakeMethod([gl,] &why)`),
 //     progress callback, timings. Unusable meshes throw InvalidMesh; open or
 //     non-manifold ones are baked and marked `SolidStatus::Open`.
 //   Sprite bakeOnGl(gl, mesh, options)                     <vds/gl/bake.h>

@@ -18,7 +18,12 @@
 
 namespace vds {
 
-/// Bakes `mesh` with `options.method` on `gl`, which is made current for the
+/// The baker `BakeMethod::Auto` means on `gl`: Lists on a GPU, Cpu on a
+/// software renderer (llvmpipe, softpipe, SwiftShader), where a one-shot
+/// CPU bake is faster. `why`, if given, gets one line saying which and why.
+BakeMethod chooseBakeMethod(const GlContext& gl, std::string* why = nullptr);
+
+/// Bakes `mesh` with `options.method` on `gl` (Auto: `chooseBakeMethod(gl)`), which is made current for the
 /// call (the caller's current context is current again on return); the
 /// Cpu method runs `bakeCpu`. Validates the mesh and throws like `bakeCpu`;
 /// `GlError`/`OutOfMemory` from GL.
