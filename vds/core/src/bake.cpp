@@ -105,20 +105,22 @@ AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution, unsigned thre
         }
         std::vector<std::atomic<std::uint32_t>> count(std::size_t(grid.width) * grid.height);
         parallelFor(threads, projected.crossable, 256, [&](std::size_t begin, std::size_t end) {
-            float c[3];
+            float c[3] = {0.0f, 0.0f, 0.0f};
             for (std::size_t k = begin; k < end; ++k) {
                 const detail::Triangle& t = projected.tris[k];
                 const float slo = std::min({t.v[0][0], t.v[1][0], t.v[2][0]}), shi = std::max({t.v[0][0], t.v[1][0], t.v[2][0]});
                 const float tlo = std::min({t.v[0][1], t.v[1][1], t.v[2][1]}), thi = std::max({t.v[0][1], t.v[1][1], t.v[2][1]});
-                // Every texel whose centre lies in the triangle's box, one more each side.
-                const std::size_t i0 = std::size_t(std::max<std::ptrdiff_t>(0, std::lower_bound(sAt.begin(), sAt.end(), slo) - sAt.begin() - 1));
-                const std::size_t i1 = std::min<std::size_t>(grid.width, std::size_t(std::upper_bound(sAt.begin(), sAt.end(), shi) - sAt.begin()) + 1);
-                const std::size_t j0 = std::size_t(std::max<std::ptrdiff_t>(0, std::lower_bound(tAt.begin(), tAt.end(), tlo) - tAt.begin() - 1));
-                const std::size_t j1 = std::min<std::size_t>(grid.height, std::size_t(std::upper_bound(tAt.begin(), tAt.end(), thi) - tAt.begin()) + 1);
+                // Every texel whose centre lies in the triangle's closed box (no
+                // other can be claimed); the centre (sAt[i], tAt[j]) is the
+                // baker's `texelCentre(i, j)` exactly: s follows i alone, t j alone.
+                const std::size_t i0 = std::size_t(std::lower_bound(sAt.begin(), sAt.end(), slo) - sAt.begin());
+                const std::size_t i1 = std::size_t(std::upper_bound(sAt.begin(), sAt.end(), shi) - sAt.begin());
+                const std::size_t j0 = std::size_t(std::lower_bound(tAt.begin(), tAt.end(), tlo) - tAt.begin());
+                const std::size_t j1 = std::size_t(std::upper_bound(tAt.begin(), tAt.end(), thi) - tAt.begin());
                 for (std::size_t j = j0; j < j1; ++j)
                     for (std::size_t i = i0; i < i1; ++i) {
-                        // The CPU baker's texel centre, exactly.
-                        projected.toViewSpace(grid.texelCentre(std::uint32_t(i), std::uint32_t(j), 0.0f), c);
+                        c[0] = sAt[i];
+                        c[1] = tAt[j];
                         if (detail::claims(t, c)) count[j * grid.width + i].fetch_add(1, std::memory_order_relaxed);
                     }
             }
