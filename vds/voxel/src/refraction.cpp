@@ -377,7 +377,7 @@ RefractionImage renderRefraction(const GlContext& gl, const GpuRefractionCaster&
     requireView(view);
     gl.makeCurrent();
     const std::string defines = "#define VDS_METHOD " + std::to_string(int(caster.method())) + "\n";
-    const Program program = detail::buildVoxelProgram(
+    const Program program = buildProgram(
         {{GL_VERTEX_SHADER, "voxel/transmittance_plane.vert", ""}, {GL_FRAGMENT_SHADER, "voxel/refraction.frag", ""}},
         defines);
     const GLsizei w = GLsizei(view.width), h = GLsizei(view.height);

@@ -121,7 +121,7 @@ struct RangeMaps {
 
 RangeMaps renderRanges(const GlContext& gl, const detail::MeshBuffers& mesh, Slicemap& map, std::uint32_t viewport) {
     const Program& program = gl.program("voxel.slicemap.range", [] {
-        return detail::buildVoxelProgram(
+        return buildProgram(
             {{GL_VERTEX_SHADER, "voxel/raster.vert", ""}, {GL_FRAGMENT_SHADER, "voxel/slicemap_range.frag", ""}});
     });
     const VoxelGrid& grid = map.grid;
@@ -210,7 +210,7 @@ Slicemap buildSlicemap(const GlContext& gl, MeshView mesh, const Box& box, std::
     const Program& program = gl.program("voxel.slicemap." + std::to_string(targets) + "." + std::to_string(outputs) +
                                             (options.slicing == Slicing::Local ? ".local" : ".uniform"),
                                         [&] {
-                                            return detail::buildVoxelProgram({{GL_VERTEX_SHADER, "voxel/raster.vert", ""},
+                                            return buildProgram({{GL_VERTEX_SHADER, "voxel/raster.vert", ""},
                                                                  {GL_FRAGMENT_SHADER, "voxel/slicemap.frag", ""}},
                                                                 defines);
                                         });

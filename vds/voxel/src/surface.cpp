@@ -17,7 +17,7 @@ BitGrid voxelizeSurface(const GlContext& gl, MeshView mesh, const VoxelGrid& gri
     requireUsable(validateMesh(mesh), "mesh");
     gl.makeCurrent();
     const Program& program = gl.program("voxel.surface", [] {
-        return detail::buildVoxelProgram({{GL_COMPUTE_SHADER, "voxel/surface.comp", ""}});
+        return buildProgram({{GL_COMPUTE_SHADER, "voxel/surface.comp", ""}});
     });
     BitGrid result = makeBitGrid(grid);
     const Buffer voxels = detail::zeroedBuffer(result.memoryBytes(), "the surface voxel grid");

@@ -261,7 +261,7 @@ TransmittanceImage renderTransmittance(const GlContext& gl, const GpuTransmittan
     const bool local = caster.source() == TransmittanceSource::SlicemapSurfaces && caster.isLocal();
     const std::string defines = "#define VDS_SOURCE " + std::to_string(int(caster.source())) +
                                 "\n#define VDS_SLICEMAP_LOCAL " + (local ? "1" : "0") + "\n";
-    const Program program = detail::buildVoxelProgram({{GL_VERTEX_SHADER, "voxel/transmittance_plane.vert", ""},
+    const Program program = buildProgram({{GL_VERTEX_SHADER, "voxel/transmittance_plane.vert", ""},
                                                        {GL_FRAGMENT_SHADER, "voxel/transmittance_plane.frag", ""}},
                                                       defines);
     const GLsizei w = GLsizei(plane.width), h = GLsizei(plane.height);
