@@ -174,7 +174,7 @@ Slicemap buildSlicemap(const GlContext& gl, MeshView mesh, const Box& box, std::
     if (slices % 32 != 0 || slices < 32 || slices > kMaxSlices)
         throw InvalidArgument("slicemap slices " + std::to_string(slices) + " must be a multiple of 32 in [32, " +
                               std::to_string(kMaxSlices) + "]");
-    gl.makeCurrent();
+    const CurrentContext current(gl); // the caller's context is current again on return
     Slicemap map;
     map.slicing = options.slicing;
     map.grid = makeVoxelGrid(box, resolution, ~std::uint64_t(0));

@@ -69,7 +69,7 @@ void computeFlips(const GlContext& gl, const detail::MeshBuffers& mesh, const Vo
 
 BitGrid voxelizeSolid(const GlContext& gl, MeshView mesh, const VoxelGrid& grid, SolidMethod method) {
     requireClosed(mesh, "mesh");
-    gl.makeCurrent();
+    const CurrentContext current(gl); // the caller's context is current again on return
     BitGrid result = makeBitGrid(grid);
     const Buffer voxels = detail::zeroedBuffer(result.memoryBytes(), "the solid voxel grid");
     const detail::MeshBuffers buffers(mesh);

@@ -15,7 +15,7 @@ namespace vds::voxel {
 
 BitGrid voxelizeSurface(const GlContext& gl, MeshView mesh, const VoxelGrid& grid) {
     requireUsable(validateMesh(mesh), "mesh");
-    gl.makeCurrent();
+    const CurrentContext current(gl); // the caller's context is current again on return
     const Program& program = gl.program("voxel.surface", [] {
         return buildProgram({{GL_COMPUTE_SHADER, "voxel/surface.comp", ""}});
     });
