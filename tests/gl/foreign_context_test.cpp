@@ -214,6 +214,15 @@ TEST_F(ForeignContext, MisuseGivesOneLineErrorsNamingTheMistake) {
     std::string fromThread;
     std::thread([&] { fromThread = message([&] { sprite.bind(0); }); }).join();
     EXPECT_NE(fromThread.find("another thread"), std::string::npos) << fromThread;
+    // Handing the context over to the thread (current there) is allowed: one thread at a time.
+    RawEgl::release();
+    std::string handedOver;
+    std::thread([&] {
+        handedOver = egl.makeCurrent() ? message([&] { sprite.bind(0); }) : "cannot make the context current";
+        RawEgl::release();
+    }).join();
+    EXPECT_EQ(handedOver, "no GlError");
+    ASSERT_TRUE(egl.makeCurrent());
     for (const std::string& m : {none, fromThread}) EXPECT_EQ(m.find('\n'), std::string::npos) << m;
     EXPECT_TRUE(contextWorks());
 }

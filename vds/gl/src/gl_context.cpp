@@ -341,7 +341,7 @@ void GlContext::makeCurrent() const {
     const detail::NativeContext target = impl_->native();
     if (detail::NativeContext::current().same(target)) return;
     if (!target.makeCurrent())
-        throw GlError(impl_->owned ? "cannot make the GL context current"
+        throw GlError(impl_->owned ? "cannot make the GL context current (is it current on another thread?)"
                                    : "cannot make the adopted GL context current again (destroyed, or current "
                                      "on another thread?)");
 }
@@ -401,14 +401,17 @@ ContextStamp ContextStamp::current(const char* what) {
 }
 
 bool ContextStamp::isCurrent() const noexcept {
-    return native_.api != NativeContext::Api::None && thread_ == threadKey() && NativeContext::current().same(native_);
+    return native_.api != NativeContext::Api::None && NativeContext::current().same(native_);
 }
 
+// Another thread may use an object only once its context has been handed
+// over (made current there): EGL and GLX allow a context on one thread at a time.
 void ContextStamp::checkThread(const char* what) const {
     if (native_.api == NativeContext::Api::None)
         throw GlError(std::string(what) + ": the object is empty (default-made or moved from)");
-    if (thread_ != threadKey())
-        throw GlError(std::string(what) + ": called on another thread than the one the object was made on");
+    if (thread_ != threadKey() && !NativeContext::current().same(native_))
+        throw GlError(std::string(what) +
+                      ": called on another thread than the one the object was made on, without its GL context current");
 }
 
 void ContextStamp::check(const char* what) const {

@@ -14,9 +14,10 @@
 //  4. Programs come from the context's cache (`GlContext::program`): built
 //     once per context, never per call or per object.
 //  5. GL objects belong to the context and the thread they were made on;
-//     using one under another context or on another thread throws a
-//     one-line `GlError` naming the mistake, as does calling GL with no
-//     context current. Nothing GL runs from static destructors (see below).
+//     using one under another context, or on another thread without first
+//     handing its context over (made current there), throws a one-line
+//     `GlError` naming the mistake, as does calling with no context
+//     current. Nothing GL runs from static destructors (see below).
 //
 // The headless context: platforms tried (unless VDS_EGL_PLATFORM=surfaceless|device
 // forces one): a hardware EGL device (NVIDIA's EGL, or Mesa on a GPU), then
@@ -131,8 +132,9 @@ struct NativeContext {
 };
 
 /// What a GL object remembers of where it was made: the context and the
-/// thread. `check` throws a one-line `GlError` naming `what` when the
-/// calling thread is another, no context is current, or another context is.
+/// thread. `check` throws a one-line `GlError` naming `what` when no
+/// context is current, another context is, or the calling thread is
+/// another one where the object's context is not current.
 class ContextStamp {
 public:
     ContextStamp() noexcept = default;
@@ -141,8 +143,7 @@ public:
     void check(const char* what) const;
     /// Only the thread half of `check`.
     void checkThread(const char* what) const;
-    /// True when this is the calling thread and its context is current
-    /// (false for an empty stamp).
+    /// True when its context is current on the calling thread (false for an empty stamp).
     bool isCurrent() const noexcept;
     explicit operator bool() const noexcept { return native_.api != NativeContext::Api::None; }
 

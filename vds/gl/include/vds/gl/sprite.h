@@ -17,8 +17,8 @@
 //
 // The GL rule of <vds/gl/context.h> holds: a `GpuSprite` belongs to the
 // context (and thread) it was made in, and refuses, with a one-line
-// `GlError`, to be bound under another context, on another thread or with
-// none current; destroyed while its context is not current, it leaves its
+// `GlError`, to be bound under another context, with none current, or on
+// another thread that its context was not handed over to; destroyed while its context is not current, it leaves its
 // GL names to that context instead of deleting another context's objects.
 // `GpuClassifier` keeps the context it is given and makes it current for
 // every call, restoring the caller's.
