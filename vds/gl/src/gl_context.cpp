@@ -258,6 +258,10 @@ struct GlContext::Impl {
             why = "no OpenGL 4.3 core context";
             return false;
         }
+        // One API's context at a time on a thread: a GLX context (the
+        // application's window) is released first; a CurrentContext scope
+        // of the caller's brings it back.
+        if (detail::NativeContext::current().api == detail::NativeContext::Api::Glx) detail::NativeContext().makeCurrent();
         if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
             const EGLint pb[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
             if (config != EGL_NO_CONFIG_KHR) surface = eglCreatePbufferSurface(d, config, pb);
@@ -290,6 +294,7 @@ struct GlContext::Impl {
 };
 
 GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
+    const detail::NativeContext before = detail::NativeContext::current(); // current again if this fails
     std::string notes;
     const auto order = candidates(notes);
     std::string reasons;
@@ -302,6 +307,7 @@ GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
     std::string message = "no OpenGL 4.3+ context could be created (" + reasons + notes;
     if (order.empty()) message += "no EGL platform available; ";
     message.resize(message.size() - 2);
+    before.makeCurrent();
     throw GlUnavailable(message + ")");
 }
 
