@@ -31,15 +31,24 @@ namespace {
 using namespace vds;
 
 // A plain EGL 4.3 core context on Mesa's surfaceless platform (the display
-// vds's own headless context uses too: the case that once broke).
+// vds's own headless context uses too: the case that once broke), else on
+// the first EGL device.
 class RawEgl {
 public:
     RawEgl() {
         auto getDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
         if (!getDisplay) return;
         display_ = getDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-        if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr) || !eglBindAPI(EGL_OPENGL_API))
-            return;
+        if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr)) {
+            // No Mesa surfaceless platform (NVIDIA's EGL): the first EGL device.
+            auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+            EGLDeviceEXT device = nullptr;
+            EGLint count = 0;
+            if (!queryDevices || !queryDevices(1, &device, &count) || count < 1) return;
+            display_ = getDisplay(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
+            if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr)) return;
+        }
+        if (!eglBindAPI(EGL_OPENGL_API)) return;
         const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
         context_ = eglCreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);

@@ -103,8 +103,18 @@ int main() {
     // The renderer's own context.
     auto getDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
     EGLDisplay display = getDisplay ? getDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr) : EGL_NO_DISPLAY;
-    if (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr) || !eglBindAPI(EGL_OPENGL_API)) {
-        std::printf("no surfaceless EGL: nothing to check\n");
+    if (getDisplay && (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr))) {
+        // No Mesa surfaceless platform (NVIDIA's EGL): the first EGL device.
+        auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+        EGLDeviceEXT device = nullptr;
+        EGLint count = 0;
+        display = queryDevices && queryDevices(1, &device, &count) && count > 0
+                      ? getDisplay(EGL_PLATFORM_DEVICE_EXT, device, nullptr)
+                      : EGL_NO_DISPLAY;
+        if (display != EGL_NO_DISPLAY && !eglInitialize(display, nullptr, nullptr)) display = EGL_NO_DISPLAY;
+    }
+    if (display == EGL_NO_DISPLAY || !eglBindAPI(EGL_OPENGL_API)) {
+        std::printf("no EGL display: nothing to check\n");
         return 0;
     }
     const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
