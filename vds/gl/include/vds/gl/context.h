@@ -3,7 +3,12 @@
 // THE GL RULE (every entry point of vds::gl and vds::voxel keeps it):
 //  1. A context is passed as `const GlContext&`: first argument of a free
 //     function; the constructor's first argument of an object, which keeps
-//     it (and must not outlive it).
+//     it (and must not outlive it). The low-level helpers that act on GL
+//     names the caller holds in its current context — `buildProgram`,
+//     `setUniforms`, `setStyleUniforms`, `checkGl`, the RAII wrappers of
+//     <vds/gl/objects.h> — work on the current context, as GL itself does;
+//     objects that upload (`GpuSprite`, the voxel uploads and casters) take
+//     a context or, without one, the current context of any origin.
 //  2. Any application's context is a valid one: `GlContext::adoptCurrent()`
 //     wraps the context current on the calling thread (EGL, GLX, a GLFW or
 //     SDL window), without owning it; `GlContext()` makes a headless one of
