@@ -104,7 +104,7 @@ GpuSprite& GpuSprite::operator=(GpuSprite&& o) noexcept {
 // Deleting the names under another context would delete that context's
 // objects: leave them to the sprite's own context instead.
 void GpuSprite::releaseIfForeign() noexcept {
-    if (!context_ || context_.isCurrent()) return;
+    if (!context_ || !detail::glUsable() || context_.isCurrent()) return; // at exit the wrappers skip GL anyway
     texture_.release();
     offsets_.release();
     crossings_.release();
