@@ -29,6 +29,10 @@
 //   int           u_vdsCombineAway, u_vdsCombineTo   VDS_COMBINE_* (default 0: union)
 //   sampler3D     u_vdsLdi[i]                sprite i's texture  } GpuSprite::setUniforms(program,
 //   VdsPlacement  u_vdsPlacement[i]          sprite i's placement } "u_vdsLdi[i]", "u_vdsPlacement[i]", unit)
+// From C++, vds::setStyleUniforms (<vds/gl/styles.h>) sets all of these, with
+// the roles as vds::StyleRole and the sprites on texture units from a base
+// unit the caller picks; it points the unused slots' samplers there too, so
+// that they never share unit 0 with the application's own samplers.
 // Moving a solid (a lens along a path) is a new placement: Sprite::transform
 // or GpuSprite::setPlacement, no re-bake.
 //

@@ -9,7 +9,10 @@
 #include <mutex>
 #include <sstream>
 #include <unordered_map>
+#include <thread>
 #include <vector>
+
+#include <dlfcn.h>
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -40,21 +43,47 @@ void registerExitHandler() {
     std::call_once(once, [] { std::atexit(onExit); });
 }
 
-// EGL displays are per process: terminate one only when its last context goes.
-std::mutex gDisplayMutex;
-std::map<EGLDisplay, int> gDisplayUsers;
+// GLX, looked up only in a process that has loaded it (an application with
+// a GLX context, e.g. a GLFW window on X11): vds itself never links GLX.
+struct Glx {
+    using GetContext = void* (*)();
+    using GetDisplay = void* (*)();
+    using GetDrawable = unsigned long (*)();
+    using MakeContextCurrent = int (*)(void*, unsigned long, unsigned long, void*);
+    GetContext getCurrentContext = nullptr;
+    GetDisplay getCurrentDisplay = nullptr;
+    GetDrawable getCurrentDrawable = nullptr;
+    GetDrawable getCurrentReadDrawable = nullptr;
+    MakeContextCurrent makeContextCurrent = nullptr;
 
-void retainDisplay(EGLDisplay d) {
-    std::lock_guard<std::mutex> lock(gDisplayMutex);
-    ++gDisplayUsers[d];
-}
-void releaseDisplay(EGLDisplay d) {
-    std::lock_guard<std::mutex> lock(gDisplayMutex);
-    if (--gDisplayUsers[d] == 0) {
-        gDisplayUsers.erase(d);
-        eglTerminate(d);
+    // Looked up on every call until found: the application may load GLX
+    // after the library's first call.
+    static const Glx* get() noexcept {
+        static std::atomic<const Glx*> found{nullptr};
+        if (const Glx* g = found.load()) return g;
+        for (const char* name : {"libGLX.so.0", "libGL.so.1"}) {
+            void* lib = dlopen(name, RTLD_LAZY | RTLD_NOLOAD);
+            if (!lib) continue;
+            auto* g = new Glx; // kept for the process: `found` hands it out
+            g->getCurrentContext = reinterpret_cast<GetContext>(dlsym(lib, "glXGetCurrentContext"));
+            g->getCurrentDisplay = reinterpret_cast<GetDisplay>(dlsym(lib, "glXGetCurrentDisplay"));
+            g->getCurrentDrawable = reinterpret_cast<GetDrawable>(dlsym(lib, "glXGetCurrentDrawable"));
+            g->getCurrentReadDrawable = reinterpret_cast<GetDrawable>(dlsym(lib, "glXGetCurrentReadDrawable"));
+            g->makeContextCurrent = reinterpret_cast<MakeContextCurrent>(dlsym(lib, "glXMakeContextCurrent"));
+            if (!g->getCurrentContext || !g->getCurrentDisplay || !g->getCurrentDrawable ||
+                !g->getCurrentReadDrawable || !g->makeContextCurrent) {
+                delete g;
+                continue;
+            }
+            const Glx* expected = nullptr;
+            if (!found.compare_exchange_strong(expected, g)) delete g;
+            return found.load();
+        }
+        return nullptr;
     }
-}
+};
+
+std::size_t threadKey() { return std::hash<std::thread::id>()(std::this_thread::get_id()); }
 
 bool hasExtension(const char* list, const char* name) {
     if (!list) return false;
@@ -115,6 +144,8 @@ std::string GlInfo::glslVersionLine() const {
 }
 
 struct GlContext::Impl {
+    bool owned = true;
+    detail::NativeContext adopted; // the application's context, when not owned
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext context = EGL_NO_CONTEXT;
     EGLSurface surface = EGL_NO_SURFACE;
@@ -133,12 +164,24 @@ struct GlContext::Impl {
             for (auto& entry : scratch) entry.second.buffer.release();
             return;
         }
+        if (!owned) {
+            // Not ours to destroy: free what we cached in it if it is still
+            // current, else leave the names to it (never free them in another).
+            if (detail::NativeContext::current().same(adopted)) {
+                programs.clear();
+                scratch.clear();
+            } else {
+                for (auto& entry : programs) entry.second.release();
+                for (auto& entry : scratch) entry.second.buffer.release();
+            }
+            return;
+        }
         if (display == EGL_NO_DISPLAY) return;
         if (context != EGL_NO_CONTEXT) {
             const bool wasCurrent = eglGetCurrentContext() == context;
             {
                 const CurrentContext scope; // the caller's context comes back after the programs go
-                eglMakeCurrent(display, surface, surface, context);
+                native().makeCurrent();
                 programs.clear();
                 scratch.clear();
             }
@@ -146,7 +189,28 @@ struct GlContext::Impl {
             eglDestroyContext(display, context); // deferred by EGL while still current elsewhere
         }
         if (surface != EGL_NO_SURFACE) eglDestroySurface(display, surface);
-        releaseDisplay(display);
+    }
+
+    detail::NativeContext native() const {
+        if (!owned) return adopted;
+        detail::NativeContext n;
+        n.api = detail::NativeContext::Api::Egl;
+        n.display = display;
+        n.context = context;
+        n.eglDraw = n.eglRead = surface;
+        return n;
+    }
+
+    void readInfo() {
+        auto str = [](GLenum e) {
+            const GLubyte* s = glGetString(e);
+            return s ? std::string(reinterpret_cast<const char*>(s)) : std::string();
+        };
+        info.vendor = str(GL_VENDOR);
+        info.renderer = str(GL_RENDERER);
+        info.version = str(GL_VERSION);
+        glGetIntegerv(GL_MAJOR_VERSION, &info.major);
+        glGetIntegerv(GL_MINOR_VERSION, &info.minor);
     }
 
     // Tries one platform; on failure leaves `why` and cleans up.
@@ -164,8 +228,7 @@ struct GlContext::Impl {
             return false;
         }
         registerExitHandler();
-        retainDisplay(d);
-        display = d;
+        display = d; // never terminated: other contexts of the process may share it (see context.h)
         if (!eglBindAPI(EGL_OPENGL_API)) {
             why = "no desktop OpenGL API";
             return false;
@@ -195,6 +258,10 @@ struct GlContext::Impl {
             why = "no OpenGL 4.3 core context";
             return false;
         }
+        // One API's context at a time on a thread: a GLX context (the
+        // application's window) is released first; a CurrentContext scope
+        // of the caller's brings it back.
+        if (detail::NativeContext::current().api == detail::NativeContext::Api::Glx) detail::NativeContext().makeCurrent();
         if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
             const EGLint pb[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
             if (config != EGL_NO_CONFIG_KHR) surface = eglCreatePbufferSurface(d, config, pb);
@@ -203,16 +270,8 @@ struct GlContext::Impl {
                 return false;
             }
         }
-        auto str = [](GLenum e) {
-            const GLubyte* s = glGetString(e);
-            return s ? std::string(reinterpret_cast<const char*>(s)) : std::string();
-        };
         info.platform = c.name;
-        info.vendor = str(GL_VENDOR);
-        info.renderer = str(GL_RENDERER);
-        info.version = str(GL_VERSION);
-        glGetIntegerv(GL_MAJOR_VERSION, &info.major);
-        glGetIntegerv(GL_MINOR_VERSION, &info.minor);
+        readInfo();
         if (info.major < 4 || (info.major == 4 && info.minor < 3)) {
             why = "GL " + info.version + " is below 4.3";
             return false;
@@ -227,7 +286,6 @@ struct GlContext::Impl {
                 eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
             if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
             if (surface != EGL_NO_SURFACE) eglDestroySurface(display, surface);
-            releaseDisplay(display);
         }
         display = EGL_NO_DISPLAY;
         context = EGL_NO_CONTEXT;
@@ -236,6 +294,7 @@ struct GlContext::Impl {
 };
 
 GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
+    const detail::NativeContext before = detail::NativeContext::current(); // current again if this fails
     std::string notes;
     const auto order = candidates(notes);
     std::string reasons;
@@ -248,7 +307,35 @@ GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
     std::string message = "no OpenGL 4.3+ context could be created (" + reasons + notes;
     if (order.empty()) message += "no EGL platform available; ";
     message.resize(message.size() - 2);
+    before.makeCurrent();
     throw GlUnavailable(message + ")");
+}
+
+GlContext::GlContext(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+GlContext GlContext::adoptCurrent() {
+    const detail::NativeContext now = detail::NativeContext::current();
+    if (now.api == detail::NativeContext::Api::None)
+        throw GlError("GlContext::adoptCurrent: no GL context current on this thread");
+    auto impl = std::make_unique<Impl>();
+    impl->owned = false;
+    impl->adopted = now;
+    impl->info.platform = now.api == detail::NativeContext::Api::Egl ? "adopted EGL" : "adopted GLX";
+    impl->readInfo();
+    if (impl->info.major < 4 || (impl->info.major == 4 && impl->info.minor < 3))
+        throw GlUnavailable("GlContext::adoptCurrent: the current context is GL " + impl->info.version +
+                            "; vds needs a 4.3+ core context");
+    return GlContext(std::move(impl));
+}
+
+bool GlContext::owned() const { return impl_ && impl_->owned; }
+
+void GlContext::requireCurrent(const char* what) const {
+    if (!impl_) throw GlError(std::string(what) + ": the GL context was moved from");
+    const detail::NativeContext now = detail::NativeContext::current();
+    if (now.same(impl_->native())) return;
+    if (now.api == detail::NativeContext::Api::None) throw GlError(std::string(what) + ": no GL context current");
+    throw GlError(std::string(what) + ": another GL context is current, not the one given");
 }
 
 GlContext::~GlContext() = default;
@@ -257,38 +344,112 @@ GlContext& GlContext::operator=(GlContext&&) noexcept = default;
 
 void GlContext::makeCurrent() const {
     if (!impl_) throw GlError("cannot make a moved-from GL context current");
-    if (eglGetCurrentContext() == impl_->context) return;
-    if (!eglMakeCurrent(impl_->display, impl_->surface, impl_->surface, impl_->context))
-        throw GlError("cannot make the GL context current");
+    const detail::NativeContext target = impl_->native();
+    if (detail::NativeContext::current().same(target)) return;
+    if (!target.makeCurrent())
+        throw GlError(impl_->owned ? "cannot make the GL context current (is it current on another thread?)"
+                                   : "cannot make the adopted GL context current again (destroyed, or current "
+                                     "on another thread?)");
 }
 
-bool GlContext::isCurrent() const { return impl_ && eglGetCurrentContext() == impl_->context; }
+bool GlContext::isCurrent() const { return impl_ && detail::NativeContext::current().same(impl_->native()); }
 
-CurrentContext::CurrentContext() noexcept
-    : display_(eglGetCurrentDisplay()), draw_(eglGetCurrentSurface(EGL_DRAW)), read_(eglGetCurrentSurface(EGL_READ)),
-      context_(eglGetCurrentContext()) {}
+namespace detail {
+
+NativeContext NativeContext::current() noexcept {
+    NativeContext n;
+    if (EGLContext c = eglGetCurrentContext(); c != EGL_NO_CONTEXT) {
+        n.api = Api::Egl;
+        n.context = c;
+        n.display = eglGetCurrentDisplay();
+        n.eglDraw = eglGetCurrentSurface(EGL_DRAW);
+        n.eglRead = eglGetCurrentSurface(EGL_READ);
+        return n;
+    }
+    if (const Glx* glx = Glx::get()) {
+        if (void* c = glx->getCurrentContext()) {
+            n.api = Api::Glx;
+            n.context = c;
+            n.display = glx->getCurrentDisplay();
+            n.glxDraw = glx->getCurrentDrawable();
+            n.glxRead = glx->getCurrentReadDrawable();
+        }
+    }
+    return n;
+}
+
+bool NativeContext::makeCurrent() const noexcept {
+    const NativeContext now = current();
+    if (now.same(*this)) return true;
+    // One API's context at a time on a thread (GLVND refuses a switch
+    // across APIs): release the current one first.
+    if (now.api == Api::Egl && (api != Api::Egl || context == nullptr))
+        eglMakeCurrent(now.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (now.api == Api::Glx && api != Api::Glx)
+        if (const Glx* glx = Glx::get()) glx->makeContextCurrent(now.display, 0, 0, nullptr);
+    switch (api) {
+    case Api::None: return true;
+    case Api::Egl: return eglMakeCurrent(display, eglDraw, eglRead, context) == EGL_TRUE;
+    case Api::Glx: {
+        const Glx* glx = Glx::get();
+        return glx && glx->makeContextCurrent(display, glxDraw, glxRead, context) != 0;
+    }
+    }
+    return false;
+}
+
+ContextStamp ContextStamp::current(const char* what) {
+    ContextStamp s;
+    s.native_ = NativeContext::current();
+    if (s.native_.api == NativeContext::Api::None) throw GlError(std::string(what) + ": no GL context current");
+    s.thread_ = threadKey();
+    return s;
+}
+
+bool ContextStamp::isCurrent() const noexcept {
+    return native_.api != NativeContext::Api::None && NativeContext::current().same(native_);
+}
+
+// Another thread may use an object only once its context has been handed
+// over (made current there): EGL and GLX allow a context on one thread at a time.
+void ContextStamp::checkThread(const char* what) const {
+    if (native_.api == NativeContext::Api::None)
+        throw GlError(std::string(what) + ": the object is empty (default-made or moved from)");
+    if (thread_ != threadKey() && !NativeContext::current().same(native_))
+        throw GlError(std::string(what) +
+                      ": called on another thread than the one the object was made on, without its GL context current");
+}
+
+void ContextStamp::check(const char* what) const {
+    checkThread(what);
+    const NativeContext now = NativeContext::current();
+    if (now.same(native_)) return;
+    if (now.api == NativeContext::Api::None) throw GlError(std::string(what) + ": no GL context current");
+    throw GlError(std::string(what) + ": made in another GL context than the one current");
+}
+
+} // namespace detail
+
+CurrentContext::CurrentContext() noexcept : saved_(detail::NativeContext::current()) {}
 
 CurrentContext::CurrentContext(const GlContext& context) : CurrentContext() { context.makeCurrent(); }
 
 CurrentContext::~CurrentContext() {
-    if (gExiting || eglGetCurrentContext() == context_) return;
-    if (context_ != EGL_NO_CONTEXT) {
-        eglMakeCurrent(display_, draw_, read_, context_);
-    } else if (EGLDisplay now = eglGetCurrentDisplay(); now != EGL_NO_DISPLAY) {
-        eglMakeCurrent(now, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    }
+    if (gExiting) return;
+    saved_.makeCurrent();
 }
 
 const GlInfo& GlContext::info() const { return impl_->info; }
 
 const Program& GlContext::program(const std::string& key, const std::function<Program()>& make) const {
-    if (!isCurrent()) throw GlError("program '" + key + "' asked of a GL context that is not current");
+    requireCurrent(("program '" + key + "'").c_str());
     auto it = impl_->programs.find(key);
     if (it == impl_->programs.end()) it = impl_->programs.emplace(key, make()).first;
     return it->second;
 }
 
 const Buffer& GlContext::scratchBuffer(const std::string& key, std::size_t bytes, std::size_t* capacity) const {
+    requireCurrent(("scratch buffer '" + key + "'").c_str());
     Impl::Scratch& entry = impl_->scratch[key];
     if (capacity) *capacity = std::max(entry.bytes, bytes);
     if (entry.buffer && entry.bytes >= bytes) return entry.buffer;
@@ -310,6 +471,7 @@ bool glAvailable(std::string* reason) {
     static std::string why;
     std::call_once(once, [] {
         try {
+            const CurrentContext keep; // the caller's context (or none) is current again after the probe
             GlContext probe;
             available = true;
         } catch (const std::exception& e) {

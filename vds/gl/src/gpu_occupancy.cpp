@@ -34,15 +34,23 @@ Buffer upload(const void* data, std::size_t bytes, const char* what) {
 
 } // namespace
 
-GpuOccupancy::GpuOccupancy(const GlContext& gl) {
+GpuOccupancy::GpuOccupancy(const GlContext& gl) : gl_(&gl) {
     const CurrentContext current(gl);
-    program_ = buildProgram({{GL_COMPUTE_SHADER, "vds/occupancy.comp", ""}});
+    stamp_ = detail::ContextStamp::current("GpuOccupancy");
+    program_ = &gl.program("vds.occupancy", [] { return buildProgram({{GL_COMPUTE_SHADER, "vds/occupancy.comp", ""}}); });
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     maxBlock_ = std::uint64_t(maxBlock);
 }
 
 void GpuOccupancy::occupancy(const GpuSprite& sprite, const Grid& grid, GLuint cells, const ClassifyOptions& options) {
+    stamp_.checkThread("GpuOccupancy::occupancy");
+    const CurrentContext current(*gl_);
+    sprite.requireContext("GpuOccupancy::occupancy: the sprite");
+    sweep(sprite, grid, cells, options);
+}
+
+void GpuOccupancy::sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells, const ClassifyOptions& options) {
     const Rule rule = options.rule;
     checkGrid(grid);
     if (rule == Rule::GeneralizedWinding && !sprite.boundaryKnown())
@@ -77,7 +85,7 @@ void GpuOccupancy::occupancy(const GpuSprite& sprite, const Grid& grid, GLuint c
     const GLuint zero = 0;
     glClearNamedBufferSubData(cells, GL_R32UI, 0, GLsizeiptr(labelBytes(grid)), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    const GLuint id = program_.id();
+    const GLuint id = program_->id();
     glUseProgram(id);
     const std::uint64_t offsetBytes = (std::uint64_t(sg.width) * sg.height + 1) * 4;
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sprite.offsets().id(), 0, GLsizeiptr(offsetBytes));
@@ -108,12 +116,15 @@ void GpuOccupancy::occupancy(const GpuSprite& sprite, const Grid& grid, GLuint c
 
 void GpuOccupancy::occupancy(const GpuSprite& sprite, const Grid& grid, std::uint8_t* cells,
                              const ClassifyOptions& options) {
+    stamp_.checkThread("GpuOccupancy::occupancy");
+    const CurrentContext current(*gl_);
+    sprite.requireContext("GpuOccupancy::occupancy: the sprite");
     checkGrid(grid);
     const std::size_t bytes = labelBytes(grid);
     Buffer out = Buffer::create();
     glNamedBufferStorage(out.id(), GLsizeiptr(std::max<std::size_t>(bytes, 4)), nullptr, 0);
     checkGl("allocating the occupancy labels");
-    occupancy(sprite, grid, out.id(), options);
+    sweep(sprite, grid, out.id(), options);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(grid.cellCount()), cells);
     checkGl("reading the occupancy labels");

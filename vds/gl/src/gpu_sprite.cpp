@@ -24,6 +24,7 @@ namespace detail {
 Texture makeSpriteTexture(glm::uvec3 size) {
     GLint max3d = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
+    if (max3d <= 0) throw GlError("GpuSprite: no GL context current (GL reports no 3D texture size)");
     if (size.x > std::uint32_t(max3d) || size.y > std::uint32_t(max3d) || size.z > std::uint32_t(max3d))
         throw InvalidArgument("sprite " + std::to_string(size.x) + "x" + std::to_string(size.y) + "x" +
                               std::to_string(size.z) + " exceeds this GL's 3D texture limit " + std::to_string(max3d) +
@@ -45,6 +46,7 @@ GpuSprite GpuSpriteAccess::make(Texture texture, Buffer offsets, Buffer crossing
                                 glm::uvec3 size, const SpriteGrid& grid, SolidStatus status,
                                 const std::vector<glm::vec3>& boundaryEdges) {
     GpuSprite s;
+    s.context_ = ContextStamp::current("GpuSprite");
     s.setBoundary(grid, boundaryEdges, true);
     s.status_ = status;
     s.texture_ = std::move(texture);
@@ -69,7 +71,50 @@ Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what) {
 
 } // namespace
 
-GpuSprite::GpuSprite(const Sprite& sprite, GpuSpriteParts parts) {
+GpuSprite::GpuSprite(const GlContext& gl, const Sprite& sprite, GpuSpriteParts parts) {
+    const CurrentContext current(gl);
+    upload(sprite, parts);
+}
+
+GpuSprite::GpuSprite(const Sprite& sprite, GpuSpriteParts parts) { upload(sprite, parts); }
+
+GpuSprite::~GpuSprite() { releaseIfForeign(); }
+
+GpuSprite& GpuSprite::operator=(GpuSprite&& o) noexcept {
+    if (this != &o) {
+        releaseIfForeign();
+        context_ = o.context_;
+        texture_ = std::move(o.texture_);
+        offsets_ = std::move(o.offsets_);
+        crossings_ = std::move(o.crossings_);
+        crossingCount_ = o.crossingCount_;
+        size_ = o.size_;
+        matrix_ = o.matrix_;
+        position_ = o.position_;
+        status_ = o.status_;
+        boundaryEdges_ = std::move(o.boundaryEdges_);
+        boundaryEdgeCount_ = o.boundaryEdgeCount_;
+        boundaryKnown_ = o.boundaryKnown_;
+        boundaryLo_ = o.boundaryLo_;
+        boundaryStep_ = o.boundaryStep_;
+    }
+    return *this;
+}
+
+// Deleting the names under another context would delete that context's
+// objects: leave them to the sprite's own context instead.
+void GpuSprite::releaseIfForeign() noexcept {
+    if (!context_ || !detail::glUsable() || context_.isCurrent()) return; // at exit the wrappers skip GL anyway
+    texture_.release();
+    offsets_.release();
+    crossings_.release();
+    boundaryEdges_.release();
+}
+
+void GpuSprite::requireContext(const char* what) const { context_.check(what); }
+
+void GpuSprite::upload(const Sprite& sprite, GpuSpriteParts parts) {
+    context_ = detail::ContextStamp::current("GpuSprite upload");
     const std::uint32_t w = sprite.width(), h = sprite.height(), d = std::max<std::uint32_t>(1, sprite.depthComplexity);
     size_ = {w, h, d};
     crossingCount_ = sprite.crossings.size();
@@ -115,10 +160,13 @@ void GpuSprite::setBoundaryUniforms(GLuint program, const std::string& boundary,
     if (!boundaryKnown_)
         throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
                               "store the boundary edges the generalized winding number needs: bake it again");
+    requireContext("GpuSprite::setBoundaryUniforms");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, boundaryEdges_.id());
-    glUniform3fv(glGetUniformLocation(program, (boundary + ".lo").c_str()), 1, &boundaryLo_[0]);
-    glUniform3fv(glGetUniformLocation(program, (boundary + ".step").c_str()), 1, &boundaryStep_[0]);
-    glUniform1i(glGetUniformLocation(program, (boundary + ".edgeCount").c_str()), GLint(boundaryEdgeCount_));
+    glProgramUniform3fv(program, glGetUniformLocation(program, (boundary + ".lo").c_str()), 1, &boundaryLo_[0]);
+    glProgramUniform3fv(program, glGetUniformLocation(program, (boundary + ".step").c_str()), 1, &boundaryStep_[0]);
+    glProgramUniform1i(program, glGetUniformLocation(program, (boundary + ".edgeCount").c_str()),
+                       GLint(boundaryEdgeCount_));
+    checkGl("GpuSprite::setBoundaryUniforms");
 }
 
 void GpuSprite::setPlacement(const SpriteGrid& grid) {
@@ -126,14 +174,19 @@ void GpuSprite::setPlacement(const SpriteGrid& grid) {
     position_ = grid.position;
 }
 
-void GpuSprite::bind(GLuint unit) const { glBindTextureUnit(unit, texture_.id()); }
+void GpuSprite::bind(GLuint unit) const {
+    requireContext("GpuSprite::bind");
+    glBindTextureUnit(unit, texture_.id());
+}
 
 void GpuSprite::setUniforms(GLuint program, const std::string& sampler, const std::string& placement,
                             GLuint unit) const {
     bind(unit);
-    glUniform1i(glGetUniformLocation(program, sampler.c_str()), GLint(unit));
-    glUniformMatrix3fv(glGetUniformLocation(program, (placement + ".matrix").c_str()), 1, GL_FALSE, &matrix_[0][0]);
-    glUniform3fv(glGetUniformLocation(program, (placement + ".position").c_str()), 1, &position_[0]);
+    glProgramUniform1i(program, glGetUniformLocation(program, sampler.c_str()), GLint(unit));
+    glProgramUniformMatrix3fv(program, glGetUniformLocation(program, (placement + ".matrix").c_str()), 1, GL_FALSE,
+                              &matrix_[0][0]);
+    glProgramUniform3fv(program, glGetUniformLocation(program, (placement + ".position").c_str()), 1, &position_[0]);
+    checkGl("GpuSprite::setUniforms");
 }
 
 // --- GpuClassifier ---------------------------------------------------------
@@ -159,16 +212,19 @@ void copyParallel(void* dst, const void* src, std::size_t bytes) {
     });
 }
 
-Program buildClassifier(bool columns) {
-    return buildProgram({{GL_COMPUTE_SHADER, "vds/classify.comp", ""}}, columns ? "#define VDS_COLUMNS\n" : "");
+const Program& classifierProgram(const GlContext& gl, bool columns) {
+    return gl.program(columns ? "vds.classify.columns" : "vds.classify.texture", [columns] {
+        return buildProgram({{GL_COMPUTE_SHADER, "vds/classify.comp", ""}}, columns ? "#define VDS_COLUMNS\n" : "");
+    });
 }
 
 } // namespace
 
-GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints) : batch_(batchPoints) {
+GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints) : gl_(&gl), batch_(batchPoints) {
     const CurrentContext current(gl);
-    columns_ = buildClassifier(true);
-    texture_ = buildClassifier(false);
+    stamp_ = detail::ContextStamp::current("GpuClassifier");
+    columns_ = &classifierProgram(gl, true);
+    texture_ = &classifierProgram(gl, false);
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     maxBlock_ = std::uint64_t(maxBlock);
@@ -178,17 +234,31 @@ GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints) : bat
     checkGl("building the GPU classifier");
 }
 
-GpuClassifier::~GpuClassifier() = default;
+GpuClassifier::~GpuClassifier() {
+    if (!gl_ || capacity_ == 0 || !detail::glUsable()) return;
+    try {
+        const CurrentContext current(*gl_); // the staging buffers are freed in their own context
+        slots_ = {};
+    } catch (const std::exception&) {
+        for (Slot& slot : slots_) { // cannot reach the context (another thread): leave the names to it
+            slot.points.release();
+            slot.labels.release();
+            slot.done = Fence();
+        }
+    }
+}
 
 GpuClassifier::GpuClassifier(GpuClassifier&& o) noexcept
-    : columns_(std::move(o.columns_)), texture_(std::move(o.texture_)), maxBlock_(o.maxBlock_),
-      maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)), capacity_(std::exchange(o.capacity_, 0)),
-      batch_(o.batch_) {}
+    : gl_(std::exchange(o.gl_, nullptr)), stamp_(o.stamp_), batch_(o.batch_), columns_(o.columns_),
+      texture_(o.texture_), maxBlock_(o.maxBlock_), maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)),
+      capacity_(std::exchange(o.capacity_, 0)) {}
 
 GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
     if (this != &o) {
-        columns_ = std::move(o.columns_);
-        texture_ = std::move(o.texture_);
+        gl_ = std::exchange(o.gl_, nullptr);
+        stamp_ = o.stamp_;
+        columns_ = o.columns_;
+        texture_ = o.texture_;
         maxBlock_ = o.maxBlock_;
         maxDispatch_ = o.maxDispatch_;
         slots_ = std::move(o.slots_);
@@ -207,7 +277,7 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
     if (rule == Rule::GeneralizedWinding && !sprite.boundaryKnown())
         throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
                               "store the boundary edges the generalized winding number needs: bake it again");
-    const Program& program = columns ? columns_ : texture_;
+    const Program& program = columns ? *columns_ : *texture_;
     glUseProgram(program.id());
     if (columns) {
         // The ranges the shader reads: a baked sprite's buffers may be padded.
@@ -241,8 +311,16 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
     glUseProgram(0);
 }
 
+void GpuClassifier::enter(const char* what) const {
+    if (!gl_) throw GlError(std::string(what) + ": the classifier is moved from");
+    stamp_.checkThread(what);
+}
+
 void GpuClassifier::classify(const GpuSprite& sprite, GLuint points, std::size_t count, GLuint labels,
                              const ClassifyOptions& options) {
+    enter("GpuClassifier::classify");
+    const CurrentContext current(*gl_);
+    sprite.requireContext("GpuClassifier::classify: the sprite");
     const Rule rule = options.rule;
     if (count == 0) return;
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -281,6 +359,9 @@ void GpuClassifier::finish(Slot& slot, std::uint8_t* labels) {
 
 void GpuClassifier::classify(const GpuSprite& sprite, const PointsView& points, std::uint8_t* labels,
                              const ClassifyOptions& options) {
+    enter("GpuClassifier::classify");
+    const CurrentContext current(*gl_);
+    sprite.requireContext("GpuClassifier::classify: the sprite");
     const std::size_t count = points.count;
     const Rule rule = options.rule;
     if (options.stats) *options.stats = {count, 0};

@@ -11,16 +11,6 @@
 
 namespace vds::voxel::detail {
 
-// Generated from shaders/voxel by cmake/embed_shaders.cmake.
-extern const ShaderFile kVoxelShaders[];
-extern const std::size_t kVoxelShadersCount;
-
-Program buildVoxelProgram(const std::vector<ShaderStage>& stages, const std::string& defines) {
-    static std::once_flag once;
-    std::call_once(once, [] { registerShaders(kVoxelShaders, kVoxelShadersCount); });
-    return buildProgram(stages, defines);
-}
-
 namespace {
 MeshView checkedForStorage(MeshView mesh) {
     requireStorageSize(mesh.positionCount * sizeof(glm::vec3), "the mesh positions");

@@ -18,10 +18,6 @@
 
 namespace vds::voxel::detail {
 
-/// vds::buildProgram for shaders/voxel files: registers vds::voxel's embedded
-/// shaders (once) before building.
-Program buildVoxelProgram(const std::vector<ShaderStage>& stages, const std::string& defines = "");
-
 /// The mesh on the GPU (vds::GpuMesh), checked first to fit the shader
 /// storage of voxel/triangles.glsl (`bindStorage`).
 struct MeshBuffers : GpuMesh {

@@ -314,8 +314,17 @@ RefractionImage refractExactly(MeshView mesh, const RefractionView& view, const 
     });
 }
 
+// The scope (a temporary of the delegating call) keeps `gl` current while
+// the delegated constructor runs, and restores the caller's context after.
+GpuRefractionCaster::GpuRefractionCaster(const GlContext& gl, const Slicemap& map)
+    : GpuRefractionCaster((CurrentContext(gl), map)) {}
+GpuRefractionCaster::GpuRefractionCaster(const GlContext& gl, const Sprite& sprite)
+    : GpuRefractionCaster((CurrentContext(gl), sprite)) {}
+GpuRefractionCaster::GpuRefractionCaster(const GlContext& gl, const SlicedVoxels& voxels)
+    : GpuRefractionCaster((CurrentContext(gl), voxels)) {}
+
 GpuRefractionCaster::GpuRefractionCaster(const Slicemap& map)
-    : method_(RefractionMethod::SlicemapTwoSurface), grid_(map.grid) {
+    : method_(RefractionMethod::SlicemapTwoSurface), stamp_(vds::detail::ContextStamp::current("GpuRefractionCaster")), grid_(map.grid) {
     if (map.slicing != Slicing::Local) throw InvalidArgument("two-surface refraction needs a locally sliced slicemap");
     detail::SlicemapTextures t = detail::uploadSlicemap(map);
     maps_ = std::move(t.maps);
@@ -325,7 +334,8 @@ GpuRefractionCaster::GpuRefractionCaster(const Slicemap& map)
     gpuBytes_ = t.bytes;
 }
 
-GpuRefractionCaster::GpuRefractionCaster(const Sprite& sprite) : method_(RefractionMethod::SpriteTwoSurface) {
+GpuRefractionCaster::GpuRefractionCaster(const Sprite& sprite)
+    : method_(RefractionMethod::SpriteTwoSurface), stamp_(vds::detail::ContextStamp::current("GpuRefractionCaster")) {
     if (sprite.grid.axis != Axis::Z) throw InvalidArgument("refraction needs a sprite baked along z (the view)");
     sprite_ = GpuSprite(sprite, GpuSpriteParts::TextureOnly);
     depthLo_ = sprite.grid.box.lo.z;
@@ -335,7 +345,7 @@ GpuRefractionCaster::GpuRefractionCaster(const Sprite& sprite) : method_(Refract
 }
 
 GpuRefractionCaster::GpuRefractionCaster(const SlicedVoxels& voxels)
-    : method_(RefractionMethod::VoxelMarch), grid_(voxels.grid) {
+    : method_(RefractionMethod::VoxelMarch), stamp_(vds::detail::ContextStamp::current("GpuRefractionCaster")), grid_(voxels.grid) {
     const VoxelGrid& g = voxels.grid;
     maps_ = Texture::create(GL_TEXTURE_3D);
     glTextureStorage3D(maps_.id(), 1, GL_RGBA32F, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(g.size.z));
@@ -375,11 +385,14 @@ void GpuRefractionCaster::setUniforms(GLuint program) const {
 RefractionImage renderRefraction(const GlContext& gl, const GpuRefractionCaster& caster, const RefractionView& view,
                                  const RefractionParameters& parameters) {
     requireView(view);
-    gl.makeCurrent();
+    const CurrentContext current(gl);
+    caster.requireContext("renderRefraction: the caster");
     const std::string defines = "#define VDS_METHOD " + std::to_string(int(caster.method())) + "\n";
-    const Program program = detail::buildVoxelProgram(
-        {{GL_VERTEX_SHADER, "voxel/transmittance_plane.vert", ""}, {GL_FRAGMENT_SHADER, "voxel/refraction.frag", ""}},
-        defines);
+    const Program& program = gl.program("voxel.refraction." + std::to_string(int(caster.method())), [&] {
+        return buildProgram({{GL_VERTEX_SHADER, "voxel/transmittance_plane.vert", ""},
+                             {GL_FRAGMENT_SHADER, "voxel/refraction.frag", ""}},
+                            defines);
+    });
     const GLsizei w = GLsizei(view.width), h = GLsizei(view.height);
     Texture hits = Texture::create(GL_TEXTURE_2D), colours = Texture::create(GL_TEXTURE_2D);
     glTextureStorage2D(hits.id(), 1, GL_RGBA32F, w, h);

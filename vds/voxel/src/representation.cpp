@@ -143,7 +143,7 @@ GpuModelClassifier::GpuModelClassifier(const GlContext& gl, Model model)
                          : map->slicing == Slicing::Uniform ? "VDS_CLASSIFY_SLICEMAP"
                                                             : "VDS_CLASSIFY_SLICEMAP_LOCAL";
     gpu_->program = gl.program(std::string("voxel.classify.") + define, [&] {
-        return detail::buildVoxelProgram({{GL_COMPUTE_SHADER, "voxel/classify.comp", ""}}, std::string("#define ") + define + "\n");
+        return buildProgram({{GL_COMPUTE_SHADER, "voxel/classify.comp", ""}}, std::string("#define ") + define + "\n");
     }).id();
     const GLuint id = gpu_->program;
     if (!map) {

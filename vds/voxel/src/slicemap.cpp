@@ -121,7 +121,7 @@ struct RangeMaps {
 
 RangeMaps renderRanges(const GlContext& gl, const detail::MeshBuffers& mesh, Slicemap& map, std::uint32_t viewport) {
     const Program& program = gl.program("voxel.slicemap.range", [] {
-        return detail::buildVoxelProgram(
+        return buildProgram(
             {{GL_VERTEX_SHADER, "voxel/raster.vert", ""}, {GL_FRAGMENT_SHADER, "voxel/slicemap_range.frag", ""}});
     });
     const VoxelGrid& grid = map.grid;
@@ -174,7 +174,7 @@ Slicemap buildSlicemap(const GlContext& gl, MeshView mesh, const Box& box, std::
     if (slices % 32 != 0 || slices < 32 || slices > kMaxSlices)
         throw InvalidArgument("slicemap slices " + std::to_string(slices) + " must be a multiple of 32 in [32, " +
                               std::to_string(kMaxSlices) + "]");
-    gl.makeCurrent();
+    const CurrentContext current(gl); // the caller's context is current again on return
     Slicemap map;
     map.slicing = options.slicing;
     map.grid = makeVoxelGrid(box, resolution, ~std::uint64_t(0));
@@ -210,7 +210,7 @@ Slicemap buildSlicemap(const GlContext& gl, MeshView mesh, const Box& box, std::
     const Program& program = gl.program("voxel.slicemap." + std::to_string(targets) + "." + std::to_string(outputs) +
                                             (options.slicing == Slicing::Local ? ".local" : ".uniform"),
                                         [&] {
-                                            return detail::buildVoxelProgram({{GL_VERTEX_SHADER, "voxel/raster.vert", ""},
+                                            return buildProgram({{GL_VERTEX_SHADER, "voxel/raster.vert", ""},
                                                                  {GL_FRAGMENT_SHADER, "voxel/slicemap.frag", ""}},
                                                                 defines);
                                         });

@@ -38,7 +38,7 @@ SlicedVoxels voxelizeSlices(const GlContext& gl, MeshView mesh, const VoxelGrid&
     requireUsable(validateMesh(mesh), "mesh");
     if (!(options.slabPadding >= 0.0f && options.slabPadding < 1.0f))
         throw InvalidArgument("slab padding must be in [0, 1) cells");
-    gl.makeCurrent();
+    const CurrentContext current(gl); // the caller's context is current again on return
     GLint max3d = 0, maxLayers = 0, maxVertices = 0, maxComponents = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
     glGetIntegerv(GL_MAX_FRAMEBUFFER_LAYERS, &maxLayers);
@@ -55,7 +55,7 @@ SlicedVoxels voxelizeSlices(const GlContext& gl, MeshView mesh, const VoxelGrid&
     const std::uint32_t perInstance =
         std::uint32_t(std::clamp(std::min(maxVertices / 3, maxComponents / (3 * perVertex)), 1, 32));
     const Program& program = gl.program("voxel.slicing." + std::to_string(perInstance), [&] {
-        return detail::buildVoxelProgram({{GL_VERTEX_SHADER, "voxel/slicing.vert", ""},
+        return buildProgram({{GL_VERTEX_SHADER, "voxel/slicing.vert", ""},
                              {GL_GEOMETRY_SHADER, "voxel/slicing.geom", ""},
                              {GL_FRAGMENT_SHADER, "voxel/slicing.frag", ""}},
                             "#define VDS_SLICES_PER_INSTANCE " + std::to_string(perInstance) + "\n");

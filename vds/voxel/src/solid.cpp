@@ -19,7 +19,7 @@ namespace {
 
 void rasterize(const GlContext& gl, const detail::MeshBuffers& mesh, const VoxelGrid& grid, const Buffer& voxels) {
     const Program& program = gl.program("voxel.solid.raster", [] {
-        return detail::buildVoxelProgram(
+        return buildProgram(
             {{GL_VERTEX_SHADER, "voxel/raster.vert", ""}, {GL_FRAGMENT_SHADER, "voxel/solid.frag", ""}});
     });
     const std::uint32_t viewport = detail::rasterViewport(grid);
@@ -44,10 +44,10 @@ void rasterize(const GlContext& gl, const detail::MeshBuffers& mesh, const Voxel
 
 void computeFlips(const GlContext& gl, const detail::MeshBuffers& mesh, const VoxelGrid& grid, const Buffer& voxels) {
     const Program& flip = gl.program("voxel.solid.flip", [] {
-        return detail::buildVoxelProgram({{GL_COMPUTE_SHADER, "voxel/solid_flip.comp", ""}});
+        return buildProgram({{GL_COMPUTE_SHADER, "voxel/solid_flip.comp", ""}});
     });
     const Program& propagate = gl.program("voxel.solid.propagate", [] {
-        return detail::buildVoxelProgram({{GL_COMPUTE_SHADER, "voxel/solid_propagate.comp", ""}});
+        return buildProgram({{GL_COMPUTE_SHADER, "voxel/solid_propagate.comp", ""}});
     });
     detail::setGridUniform(flip.id(), "u_grid", grid);
     glProgramUniform1ui(flip.id(), glGetUniformLocation(flip.id(), "u_triangleCount"), GLuint(mesh.triangleCount()));
@@ -69,7 +69,7 @@ void computeFlips(const GlContext& gl, const detail::MeshBuffers& mesh, const Vo
 
 BitGrid voxelizeSolid(const GlContext& gl, MeshView mesh, const VoxelGrid& grid, SolidMethod method) {
     requireClosed(mesh, "mesh");
-    gl.makeCurrent();
+    const CurrentContext current(gl); // the caller's context is current again on return
     BitGrid result = makeBitGrid(grid);
     const Buffer voxels = detail::zeroedBuffer(result.memoryBytes(), "the solid voxel grid");
     const detail::MeshBuffers buffers(mesh);

@@ -15,9 +15,9 @@ namespace vds::voxel {
 
 BitGrid voxelizeSurface(const GlContext& gl, MeshView mesh, const VoxelGrid& grid) {
     requireUsable(validateMesh(mesh), "mesh");
-    gl.makeCurrent();
+    const CurrentContext current(gl); // the caller's context is current again on return
     const Program& program = gl.program("voxel.surface", [] {
-        return detail::buildVoxelProgram({{GL_COMPUTE_SHADER, "voxel/surface.comp", ""}});
+        return buildProgram({{GL_COMPUTE_SHADER, "voxel/surface.comp", ""}});
     });
     BitGrid result = makeBitGrid(grid);
     const Buffer voxels = detail::zeroedBuffer(result.memoryBytes(), "the surface voxel grid");

@@ -195,8 +195,17 @@ TransmittanceImage transmittanceOnCpu(const ReceiverPlane& plane, const LightFra
     return image;
 }
 
+// The scope (a temporary of the delegating call) keeps `gl` current while
+// the delegated constructor runs, and restores the caller's context after.
+GpuTransmittanceCaster::GpuTransmittanceCaster(const GlContext& gl, const Slicemap& map)
+    : GpuTransmittanceCaster((CurrentContext(gl), map)) {}
+GpuTransmittanceCaster::GpuTransmittanceCaster(const GlContext& gl, const SlicedVoxels& voxels)
+    : GpuTransmittanceCaster((CurrentContext(gl), voxels)) {}
+GpuTransmittanceCaster::GpuTransmittanceCaster(const GlContext& gl, const Sprite& sprite)
+    : GpuTransmittanceCaster((CurrentContext(gl), sprite)) {}
+
 GpuTransmittanceCaster::GpuTransmittanceCaster(const Slicemap& map)
-    : source_(TransmittanceSource::SlicemapSurfaces), grid_(map.grid), local_(map.slicing == Slicing::Local) {
+    : source_(TransmittanceSource::SlicemapSurfaces), stamp_(vds::detail::ContextStamp::current("GpuTransmittanceCaster")), grid_(map.grid), local_(map.slicing == Slicing::Local) {
     detail::SlicemapTextures t = detail::uploadSlicemap(map);
     maps_ = std::move(t.maps);
     ranges_ = std::move(t.ranges);
@@ -205,7 +214,7 @@ GpuTransmittanceCaster::GpuTransmittanceCaster(const Slicemap& map)
 }
 
 GpuTransmittanceCaster::GpuTransmittanceCaster(const SlicedVoxels& voxels)
-    : source_(TransmittanceSource::VoxelAbsorption), grid_(voxels.grid) {
+    : source_(TransmittanceSource::VoxelAbsorption), stamp_(vds::detail::ContextStamp::current("GpuTransmittanceCaster")), grid_(voxels.grid) {
     const VoxelGrid& g = voxels.grid;
     std::vector<float> absorption(voxels.voxels.size());
     for (std::size_t k = 0; k < absorption.size(); ++k)
@@ -221,7 +230,7 @@ GpuTransmittanceCaster::GpuTransmittanceCaster(const SlicedVoxels& voxels)
 }
 
 GpuTransmittanceCaster::GpuTransmittanceCaster(const Sprite& sprite)
-    : source_(TransmittanceSource::SpriteThickness) {
+    : source_(TransmittanceSource::SpriteThickness), stamp_(vds::detail::ContextStamp::current("GpuTransmittanceCaster")) {
     if (sprite.grid.axis != Axis::Z)
         throw InvalidArgument("a transmittance sprite must be baked along z (the light, in light space)");
     sprite_ = GpuSprite(sprite, GpuSpriteParts::TextureOnly);
@@ -257,13 +266,16 @@ TransmittanceImage renderTransmittance(const GlContext& gl, const GpuTransmittan
                                        const LightFrame& frame, const ReceiverPlane& plane,
                                        const TransmittanceParameters& parameters) {
     requirePlane(plane);
-    gl.makeCurrent();
+    const CurrentContext current(gl);
+    caster.requireContext("renderTransmittance: the caster");
     const bool local = caster.source() == TransmittanceSource::SlicemapSurfaces && caster.isLocal();
     const std::string defines = "#define VDS_SOURCE " + std::to_string(int(caster.source())) +
                                 "\n#define VDS_SLICEMAP_LOCAL " + (local ? "1" : "0") + "\n";
-    const Program program = detail::buildVoxelProgram({{GL_VERTEX_SHADER, "voxel/transmittance_plane.vert", ""},
-                                                       {GL_FRAGMENT_SHADER, "voxel/transmittance_plane.frag", ""}},
-                                                      defines);
+    const Program& program = gl.program("voxel.transmittance." + std::to_string(int(caster.source())) + (local ? ".local" : ""), [&] {
+        return buildProgram({{GL_VERTEX_SHADER, "voxel/transmittance_plane.vert", ""},
+                             {GL_FRAGMENT_SHADER, "voxel/transmittance_plane.frag", ""}},
+                            defines);
+    });
     const GLsizei w = GLsizei(plane.width), h = GLsizei(plane.height);
     Texture target = Texture::create(GL_TEXTURE_2D);
     glTextureStorage2D(target.id(), 1, GL_RG32F, w, h);

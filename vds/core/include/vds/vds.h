@@ -195,7 +195,11 @@
 //
 // ---- 8. On the GPU (vds::gl) --------------------------------------------------
 //
-//   GlContext            a headless EGL context (NVIDIA's EGL device,
+//   GlContext            the context the library works in: the
+//                        application's own, wrapped by
+//                        `GlContext::adoptCurrent()` (EGL, GLX, a GLFW or SDL
+//                        window; not owned), or a headless EGL context of the
+//                        library's own, `GlContext()` (NVIDIA's EGL device,
 //                        Mesa's llvmpipe without a GPU); GlUnavailable with
 //                        the reasons when none can be had. `glAvailable()`
 //                        is the cheap probe, `glUsable()` says whether a
@@ -229,6 +233,14 @@
 //                        buffer or host memory.          <vds/gl/occupancy.h>
 //   GpuBake bakeToGpu(gl, mesh, options, parts)  a GpuSprite straight from
 //                        the fragment-list bake, nothing read back. <vds/gl/bake.h>
+//   setStyleUniforms(program, solids, StyleOptions)  the uniforms of
+//                        shaders/vds/styles.glsl (clip, lens and styles bound
+//                        to solids): StyleSolid {sprite, StyleRole, style,
+//                        rule}, StyleCombine; sprites on texture units from a
+//                        base unit the caller chooses.   <vds/gl/styles.h>
+//   GpuBitGrid, GpuSlicemap  voxel grids uploaded for the application's own
+//                        shaders (voxel/solid.glsl, voxel/slicemap.glsl).
+//                                                      <vds/voxel/gpu_grid.h>
 //
 // ---- 9. The representations the VDS competes with (vds::voxel) ----------------
 //

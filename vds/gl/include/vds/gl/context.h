@@ -1,20 +1,44 @@
-// vds: a headless OpenGL 4.3+ core context through EGL, with no display server.
+// vds: the GL context the library works in, and the one GL rule.
 //
-// Platforms tried (unless VDS_EGL_PLATFORM=surfaceless|device forces one):
-// a hardware EGL device (NVIDIA's EGL, or Mesa on a GPU), then Mesa's
-// surfaceless platform (llvmpipe on machines without a GPU), then any
+// THE GL RULE (every entry point of vds::gl and vds::voxel keeps it):
+//  1. A context is passed as `const GlContext&`: first argument of a free
+//     function; the constructor's first argument of an object, which keeps
+//     it (and must not outlive it). The low-level helpers that act on GL
+//     names the caller holds in its current context — `buildProgram`,
+//     `setUniforms`, `setStyleUniforms`, `checkGl`, the RAII wrappers of
+//     <vds/gl/objects.h> — work on the current context, as GL itself does;
+//     objects that upload (`GpuSprite`, the voxel uploads and casters) take
+//     a context or, without one, the current context of any origin.
+//  2. Any application's context is a valid one: `GlContext::adoptCurrent()`
+//     wraps the context current on the calling thread (EGL, GLX, a GLFW or
+//     SDL window), without owning it; `GlContext()` makes a headless one of
+//     the library's own, a convenience, never a requirement.
+//  3. Every call leaves the caller's current context current (saved and
+//     restored: EGL display, surfaces and context, or GLX's), also when it
+//     throws. Only `GlContext()` and `makeCurrent()` change it, on purpose.
+//  4. Programs come from the context's cache (`GlContext::program`): built
+//     once per context, never per call or per object.
+//  5. GL objects belong to the context and the thread they were made on;
+//     using one under another context, or on another thread without first
+//     handing its context over (made current there), throws a one-line
+//     `GlError` naming the mistake, as does calling with no context
+//     current. Nothing GL runs from static destructors (see below).
+//
+// The headless context: platforms tried (unless VDS_EGL_PLATFORM=surfaceless|device
+// forces one): a hardware EGL device (NVIDIA's EGL, or Mesa on a GPU), then
+// Mesa's surfaceless platform (llvmpipe on machines without a GPU), then any
 // software EGL device. The first that gives desktop GL 4.5 (or at least 4.3)
-// core wins.
+// core wins. EGL displays are per process and shared with whoever else uses
+// them (the application's own EGL context may sit on the same one), so the
+// library never calls eglTerminate: a display stays initialized until exit.
 //
 // Lifetime rules, kept by the types rather than by callers:
-//  - a context is made current on the thread that creates it;
+//  - an owned context is made current on the thread that creates it;
 //  - destroying or moving a context never changes which *other* context is
 //    current: the destructor makes its own context current only for as long
 //    as it takes to free its programs, then restores the caller's (or, if it
-//    was the current one, leaves none current);
-//  - every library call that is given no context makes a private one inside
-//    a `CurrentContext` scope, so the caller's current context (or none) is
-//    current again when the call returns;
+//    was the current one, leaves none current); an adopted context is never
+//    destroyed, only its programs and buffers;
 //  - GL and EGL are never called once the process has begun to exit: the
 //    first context registers an `atexit` handler (which runs before the
 //    driver's own teardown) that releases the thread's context and turns
@@ -42,12 +66,20 @@ struct GlInfo {
     std::string glslVersionLine() const;
 };
 
-/// A move-only EGL display + context, current on the creating thread.
+/// A GL context: the library's own headless EGL context, or the
+/// application's, adopted. Move-only.
 class GlContext {
 public:
-    /// Creates and makes current a context. Throws `GlUnavailable` with the
-    /// reasons each platform failed, in one line.
+    /// Creates and makes current a headless context of the library's own.
+    /// Throws `GlUnavailable` with the reasons each platform failed, in one line.
     GlContext();
+    /// The context current on the calling thread, whatever made it (EGL, GLX,
+    /// a GLFW/SDL/Qt window), wrapped without owning it: the library never
+    /// destroys it and, when the handle goes, frees only the programs and
+    /// buffers it cached (with the context current, else left to it).
+    /// Must not outlive the application's context. Throws `GlError` ("no GL
+    /// context current") when none is, and `GlUnavailable` below GL 4.3.
+    static GlContext adoptCurrent();
     ~GlContext();
     GlContext(GlContext&&) noexcept;
     GlContext& operator=(GlContext&&) noexcept;
@@ -59,6 +91,12 @@ public:
     void makeCurrent() const;
     /// True if this context is the one current on the calling thread.
     bool isCurrent() const;
+    /// False for a context made by `adoptCurrent()`.
+    bool owned() const;
+    /// Throws a one-line `GlError` naming `what` unless this context is
+    /// current on the calling thread: "no GL context current" or "another GL
+    /// context is current".
+    void requireCurrent(const char* what) const;
     const GlInfo& info() const;
 
     /// A program built once per context and kept: `make` runs on first use.
@@ -79,12 +117,51 @@ public:
 
 private:
     struct Impl;
+    explicit GlContext(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };
 
+namespace detail {
+/// Which context is current on the calling thread, as its API names it.
+struct NativeContext {
+    enum class Api : unsigned char { None, Egl, Glx } api = Api::None;
+    void* display = nullptr;
+    void* context = nullptr;
+    unsigned long glxDraw = 0, glxRead = 0; ///< GLX drawables (XIDs)
+    void* eglDraw = nullptr;
+    void* eglRead = nullptr;
+    static NativeContext current() noexcept;
+    /// Makes this context current again (or, for None, releases the current one).
+    bool makeCurrent() const noexcept;
+    bool same(const NativeContext& o) const noexcept { return api == o.api && context == o.context; }
+};
+
+/// What a GL object remembers of where it was made: the context and the
+/// thread. `check` throws a one-line `GlError` naming `what` when no
+/// context is current, another context is, or the calling thread is
+/// another one where the object's context is not current.
+class ContextStamp {
+public:
+    ContextStamp() noexcept = default;
+    /// The context current now (throws "no GL context current" if none).
+    static ContextStamp current(const char* what);
+    void check(const char* what) const;
+    /// Only the thread half of `check`.
+    void checkThread(const char* what) const;
+    /// True when its context is current on the calling thread (false for an empty stamp).
+    bool isCurrent() const noexcept;
+    explicit operator bool() const noexcept { return native_.api != NativeContext::Api::None; }
+
+private:
+    NativeContext native_;
+    std::size_t thread_ = 0;
+};
+} // namespace detail
+
 /// A scope that restores, when it ends, whichever context was current on the
-/// calling thread when it began (or none). Given a context, it also makes
-/// that one current for the scope. Not copyable or movable; thread-bound.
+/// calling thread when it began (or none), of any API. Given a context, it
+/// also makes that one current for the scope. Not copyable or movable;
+/// thread-bound.
 class CurrentContext {
 public:
     CurrentContext() noexcept;
@@ -94,10 +171,7 @@ public:
     CurrentContext& operator=(const CurrentContext&) = delete;
 
 private:
-    void* display_;
-    void* draw_;
-    void* read_;
-    void* context_;
+    detail::NativeContext saved_;
 };
 
 /// Cheap, non-throwing probe (the answer is computed once per process): can a

@@ -2,8 +2,8 @@
 // in a compute shader (shaders/vds/occupancy.comp), one invocation per grid
 // column, the labels left in a GL buffer.
 //
-// Belongs to the GL context current at construction, which must be current
-// for every call and at destruction.
+// Belongs to the GL context given at construction (which must outlive it),
+// made current for every call, the caller's restored (<vds/gl/context.h>).
 #pragma once
 
 #include <cstddef>
@@ -31,7 +31,7 @@ namespace vds {
 /// boundary edges the rule is Winding.
 class GpuOccupancy {
 public:
-    /// Builds the compute program on `gl` (made current for the call).
+    /// Takes the compute program from `gl`'s cache (built on first use).
     /// Throws `GlError`.
     explicit GpuOccupancy(const GlContext& gl);
     GpuOccupancy(GpuOccupancy&&) noexcept = default;
@@ -42,7 +42,7 @@ public:
     /// Bytes the label buffer needs for `grid`: 4 * ceil(cellCount / 4).
     static std::size_t labelBytes(const Grid& grid) { return (grid.cellCount() + 3) / 4 * 4; }
 
-    /// GL buffer to GL buffer: byte `grid.index(i, j, k)` of `cells` (at
+    /// GL buffer to GL buffer (a name of the occupancy's context): byte `grid.index(i, j, k)` of `cells` (at
     /// least `labelBytes(grid)` bytes from offset 0) becomes 1 inside, 0
     /// outside, written as 32-bit words (low byte first); the buffer is
     /// cleared first. Only queues GL commands: a glMemoryBarrier after it
@@ -60,7 +60,10 @@ public:
     void occupancy(const GpuSprite& sprite, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options = {});
 
 private:
-    Program program_;
+    void sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells, const ClassifyOptions& options);
+    const GlContext* gl_ = nullptr;
+    detail::ContextStamp stamp_;
+    const Program* program_ = nullptr;
     std::uint64_t maxBlock_ = 0;
 };
 

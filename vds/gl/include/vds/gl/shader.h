@@ -1,14 +1,24 @@
-// vds: GLSL sources embedded in the libraries, `#include` resolution, programs.
+// vds: GLSL sources embedded in the library, `#include` resolution, programs.
 //
-// The files under shaders/ are compiled into the layer that uses them
-// (vds::gl holds shaders/vds, vds::voxel shaders/voxel; a program may embed
-// its own with the CMake function vds_embed_shaders) and installed under
-// share/vds/shaders. vds::gl's files are always known; other tables are added
-// with `registerShaders` before the first program that needs them. A shader is assembled as: the context's `#version` line,
-// the caller's defines, then the file, with every `#include "path"` replaced
-// by that file (once per program: repeated includes are skipped) between
-// `#line` directives. Each file gets its own source-string number, and the
-// driver's log is rewritten so errors name the real file and line.
+// Every GLSL file under shaders/ (shaders/vds and shaders/voxel) is compiled
+// into vds::gl and installed under share/vds/shaders (the CMake variable
+// `vds_SHADER_DIR` of the package names that folder): any `#include
+// "vds/..."` or `"voxel/..."` resolves from the first call, with nothing to
+// register. A program may add its own files with `registerShaders` (or the
+// CMake function vds_embed_shaders).
+//
+// A stage is assembled as: the stage's own `#version` line if its source
+// starts with one (comments and blank lines may come first), else the
+// context's; the caller's defines; then the file, with every `#include
+// "path"` replaced by that file (once per program: repeated includes and
+// `#pragma once` are skipped) between `#line` directives. Includes inside
+// comments, and inside conditional branches the resolver can tell are
+// skipped (`#if 0`/`#if 1`, `#if [!]defined(NAME)`, `#ifdef`, `#ifndef`,
+// `#elif`, `#else`, with the macros of the defines and of the text read so
+// far), are not pulled in; under any other condition the include is kept
+// and the driver's preprocessor decides. Each file gets its own
+// source-string number, and the driver's log is rewritten so errors name
+// the real file and line.
 #pragma once
 
 #include <cstddef>

@@ -15,8 +15,13 @@
 // `GpuClassifier` runs the test over many points in a compute shader, from
 // host arrays or from GL buffers that stay on the GPU.
 //
-// Every object here belongs to the GL context current when it was made; that
-// context must be current whenever it is used or destroyed.
+// The GL rule of <vds/gl/context.h> holds: a `GpuSprite` belongs to the
+// context (and thread) it was made in, and refuses, with a one-line
+// `GlError`, to be bound under another context, with none current, or on
+// another thread that its context was not handed over to; destroyed while its context is not current, it leaves its
+// GL names to that context instead of deleting another context's objects.
+// `GpuClassifier` keeps the context it is given and makes it current for
+// every call, restoring the caller's.
 #pragma once
 
 #include <array>
@@ -49,10 +54,23 @@ enum class GpuSpriteParts : std::uint8_t {
 class GpuSprite {
 public:
     GpuSprite() = default;
-    /// Uploads `sprite` to the current context. Throws `InvalidArgument` if
+    /// Uploads `sprite` to `gl` (made current for the call; the caller's
+    /// context is current again on return). Throws `InvalidArgument` if
     /// the texture is asked for and exceeds GL_MAX_3D_TEXTURE_SIZE (bake at a
     /// lower resolution) and `OutOfMemory` if GL cannot hold it.
+    GpuSprite(const GlContext& gl, const Sprite& sprite, GpuSpriteParts parts = GpuSpriteParts::Both);
+    /// Uploads `sprite` to the context current on the calling thread, of any
+    /// origin. Throws `GlError` "no GL context current" when there is none.
     explicit GpuSprite(const Sprite& sprite, GpuSpriteParts parts = GpuSpriteParts::Both);
+    ~GpuSprite();
+    GpuSprite(GpuSprite&&) noexcept = default;
+    GpuSprite& operator=(GpuSprite&&) noexcept;
+    GpuSprite(const GpuSprite&) = delete;
+    GpuSprite& operator=(const GpuSprite&) = delete;
+
+    /// Throws a one-line `GlError` naming `what` unless the context this
+    /// sprite was made in is current on the thread it was made on.
+    void requireContext(const char* what) const;
 
     bool hasTexture() const { return bool(texture_); }
     bool hasColumns() const { return bool(offsets_); }
@@ -83,20 +101,24 @@ public:
     /// its boundary is unknown, and Rule::GeneralizedWinding refuses it.
     bool boundaryKnown() const { return boundaryKnown_; }
     /// Binds the boundary edges to shader storage binding `binding` (the
-    /// shader's VDS_BOUNDARY_BINDING) and sets, in `program` (in use), the
+    /// shader's VDS_BOUNDARY_BINDING) and sets, in `program` (in use or not), the
     /// VdsBoundary uniform `boundary` (e.g. "u_boundary"). Throws
     /// `InvalidArgument` when `boundaryKnown()` is false.
     void setBoundaryUniforms(GLuint program, const std::string& boundary, GLuint binding) const;
 
     /// Binds the texture to texture unit `unit`.
     void bind(GLuint unit) const;
-    /// Binds to `unit` and sets, in `program` (which must be in use), the
-    /// sampler uniform `sampler` and the VdsPlacement uniform `placement`
-    /// (e.g. "u_ldi[2]" and "u_placement[2]"). Unknown names are ignored, as GL does.
+    /// Binds to `unit` and sets, in `program` (in use or not: the uniforms
+    /// are set with glProgramUniform), the sampler uniform `sampler` and the
+    /// VdsPlacement uniform `placement` (e.g. "u_ldi[2]" and "u_placement[2]").
+    /// Unknown names are ignored, as GL does; leaves no GL error behind.
     void setUniforms(GLuint program, const std::string& sampler, const std::string& placement, GLuint unit) const;
 
 private:
     friend struct detail::GpuSpriteAccess;
+    void upload(const Sprite& sprite, GpuSpriteParts parts);
+    void releaseIfForeign() noexcept;
+    detail::ContextStamp context_;
     Texture texture_;
     Buffer offsets_;
     Buffer crossings_;
@@ -120,13 +142,14 @@ private:
 /// Reads the sprite's columns when it has them (and they fit one shader
 /// storage block), else its 3D texture. Owns its programs and, for the host
 /// array call, persistently mapped staging buffers that grow to the largest
-/// batch and are kept between calls. Belongs to the context current at
-/// construction, which must be current for every call and at destruction.
-/// Not thread safe.
+/// batch and are kept between calls. Belongs to `gl`, given at
+/// construction, which it makes current for every call (restoring the
+/// caller's) and at destruction. Refuses other threads and sprites of
+/// other contexts with a one-line `GlError`. Not thread safe.
 class GpuClassifier {
 public:
-    /// Builds the compute programs on `gl` (made current for the call).
-    /// Host batches go to the GPU `batchPoints` at a time (rounded down to a
+    /// Takes the compute programs from `gl`'s cache (built there on first
+    /// use); `gl` must outlive the classifier. Host batches go to the GPU `batchPoints` at a time (rounded down to a
     /// multiple of 4, at least 1024). Throws `GlError`.
     explicit GpuClassifier(const GlContext& gl, std::size_t batchPoints = std::size_t(1) << 22);
     ~GpuClassifier();
@@ -152,7 +175,8 @@ public:
                   const ClassifyOptions& options = {});
 
     /// GL buffers to GL buffers, with no host transfer: for renderers, and
-    /// for CUDA or other APIs that share buffers with GL.
+    /// for CUDA or other APIs that share buffers with GL. The buffers are
+    /// names of the classifier's context.
     ///  - `points`: a buffer of at least 12 * count bytes from offset 0,
     ///    point k's x, y, z as floats at bytes 12k, 12k+4, 12k+8 (tightly
     ///    packed vec3, the layout of glm::vec3 and CUDA's float3 arrays);
@@ -181,10 +205,14 @@ private:
     void dispatch(const GpuSprite& sprite, GLuint points, GLintptr pointsOffset, GLuint labels,
                   GLintptr labelsOffset, std::size_t count, Rule rule);
     void reserve(std::size_t points);
-    std::size_t batch_ = std::size_t(1) << 22;
     void finish(Slot& slot, std::uint8_t* labels);
+    void enter(const char* what) const;
 
-    Program columns_, texture_;
+    const GlContext* gl_ = nullptr;
+    detail::ContextStamp stamp_;
+    std::size_t batch_ = std::size_t(1) << 22;
+    const Program* columns_ = nullptr;
+    const Program* texture_ = nullptr;
     std::uint64_t maxBlock_ = 0;
     std::size_t maxDispatch_ = 0;
     std::array<Slot, 2> slots_;

@@ -107,12 +107,20 @@ RefractionImage refractExactly(MeshView viewSpaceMesh, const RefractionView& vie
                                const RefractionParameters& parameters);
 
 /// A representation on the GPU for `renderRefraction`. Move-only; belongs to
-/// the context current when it was made.
+/// the context (and thread) it was made in: the constructors taking a
+/// `GlContext` make it current for the call, the others use the current
+/// one (of any origin). `render*` refuses a caster of another context.
 class GpuRefractionCaster {
 public:
     explicit GpuRefractionCaster(const Slicemap& map); ///< local slicing only (`InvalidArgument`)
     explicit GpuRefractionCaster(const Sprite& sprite); ///< Axis::Z only (`InvalidArgument`)
     explicit GpuRefractionCaster(const SlicedVoxels& voxels);
+    /// The same, on `gl` (made current for the call, the caller's restored).
+    GpuRefractionCaster(const GlContext& gl, const Slicemap& map);
+    GpuRefractionCaster(const GlContext& gl, const Sprite& sprite);
+    GpuRefractionCaster(const GlContext& gl, const SlicedVoxels& voxels);
+    /// Throws a one-line `GlError` naming `what` unless the caster's context is current on its thread.
+    void requireContext(const char* what) const { stamp_.check(what); }
 
     RefractionMethod method() const { return method_; }
     std::size_t gpuBytes() const { return gpuBytes_; }
@@ -122,6 +130,7 @@ public:
 
 private:
     RefractionMethod method_;
+    vds::detail::ContextStamp stamp_;
     Texture maps_, ranges_;
     GpuSprite sprite_;
     VoxelGrid grid_;

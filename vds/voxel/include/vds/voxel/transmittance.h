@@ -138,7 +138,9 @@ TransmittanceImage transmittanceOnCpu(const ReceiverPlane& plane, const LightFra
 
 /// One caster representation on the GPU, for `renderTransmittance` and for
 /// the samplers of shaders/voxel/transmittance.glsl. Move-only; belongs to
-/// the context current when it was made.
+/// the context (and thread) it was made in: the constructors taking a
+/// `GlContext` make it current for the call, the others use the current
+/// one (of any origin). `render*` refuses a caster of another context.
 class GpuTransmittanceCaster {
 public:
     /// Uploads a slicemap pair (uniform or local): RGBA32UI array texture,
@@ -149,6 +151,12 @@ public:
     /// Uploads a sprite baked along Axis::Z (throws `InvalidArgument` for
     /// another axis): its LDI texture, as `GpuSprite` does.
     explicit GpuTransmittanceCaster(const Sprite& sprite);
+    /// The same, on `gl` (made current for the call, the caller's restored).
+    GpuTransmittanceCaster(const GlContext& gl, const Slicemap& map);
+    GpuTransmittanceCaster(const GlContext& gl, const SlicedVoxels& voxels);
+    GpuTransmittanceCaster(const GlContext& gl, const Sprite& sprite);
+    /// Throws a one-line `GlError` naming `what` unless the caster's context is current on its thread.
+    void requireContext(const char* what) const { stamp_.check(what); }
 
     TransmittanceSource source() const { return source_; }
     /// A slicemap with local slicing (the shader then reads the ranges too).
@@ -162,6 +170,7 @@ public:
 
 private:
     TransmittanceSource source_;
+    vds::detail::ContextStamp stamp_;
     Texture maps_, ranges_;
     GpuSprite sprite_;
     VoxelGrid grid_;

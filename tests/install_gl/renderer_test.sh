@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Installs the build tree into a temporary prefix, builds tests/install_gl as
+# an outside renderer with its own EGL context, and runs it.
+#   renderer_test.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$1 source=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build" --prefix "$work/prefix" >/dev/null
+cmake -S "$source/tests/install_gl" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+cmake --build "$work/build" >/dev/null
+"$work/build/renderer"
