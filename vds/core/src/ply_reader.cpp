@@ -2,7 +2,8 @@
 // Format", 1994): ascii, binary_little_endian and binary_big_endian. The
 // `vertex` element's x, y, z (any scalar type) become positions; the `face`
 // element's `vertex_indices` (or `vertex_index`) lists, of any integer count
-// and index types, become polygons. Every other element and property is read
+// and index types, become polygons (lists of fewer than 3 are skipped and
+// counted). Other vertex properties, such as colours, may be NaN. Every other element and property is read
 // past, by its declared type. The header's counts must fit in the bytes after
 // it before anything is allocated, and the data must end where they say.
 #include "mesh_readers.h"
@@ -222,18 +223,17 @@ private:
         }
     }
 
-    /// The fewest bytes one instance of element `e` can take; a face's index
-    /// list holds at least 3 indices.
+    /// The fewest bytes one instance of element `e` can take; a list,
+    /// even a face's index list, may be empty.
     std::uint64_t minimumBytes(std::size_t e) const {
         std::uint64_t bytes = 0;
         const auto& properties = elements_[e].properties;
         for (std::size_t k = 0; k < properties.size(); ++k) {
             const Property& p = properties[k];
-            const bool indexList = e == face_ && k == indices_;
             if (encoding_ == Encoding::Ascii) // a digit and a separator per number
-                bytes += indexList ? 8 : 2;
+                bytes += 2;
             else
-                bytes += p.list ? bytesOf(p.countType) + (indexList ? 3 * bytesOf(p.type) : 0) : bytesOf(p.type);
+                bytes += p.list ? bytesOf(p.countType) : bytesOf(p.type);
         }
         return bytes;
     }
@@ -355,7 +355,6 @@ private:
                 continue;
             }
             const std::uint64_t n = listLength(p, e, i);
-            if (n < 3) failData("face " + std::to_string(i) + " has " + std::to_string(n) + " vertices, fewer than 3");
             corners_.clear();
             for (std::uint64_t c = 0; c < n; ++c) {
                 const double index = scalar(p.type, e, i);
@@ -364,7 +363,10 @@ private:
                              " is out of range (" + std::to_string(vertexCount_) + " vertices)");
                 corners_.push_back(std::uint32_t(index));
             }
-            appendFan(mesh_, corners_);
+            if (n < 3)
+                ++mesh_.skippedFaces;
+            else
+                appendFan(mesh_, corners_);
         }
     }
 

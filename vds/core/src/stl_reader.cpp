@@ -145,8 +145,9 @@ private:
             corners_.push_back(welder_.add({xyz[0], xyz[1], xyz[2]}));
         }
         if (corners_.size() < 3)
-            fail("a facet needs at least 3 vertices, this one has " + std::to_string(corners_.size()));
-        appendFan(mesh_, corners_);
+            ++mesh_.skippedFaces;
+        else
+            appendFan(mesh_, corners_);
         expect("endfacet");
     }
 
