@@ -630,6 +630,35 @@ TEST(LoadMesh, CrashesOfTheFormerReaderAreOneLineErrors) {
     EXPECT_EQ(parseError(obj, MeshFormat::Obj), "m:11: vertex reference '\\xc1' is not an integer");
 }
 
+TEST(LoadMesh, BinaryPlyOfTheCommonLayoutIsCheckedAsStrictly) {
+    // Float vertices and uchar/int face lists, little-endian: the layout
+    // read by the tight loops; their problems are named as in any layout.
+    const auto file = [](float y1, std::int32_t lastIndex) {
+        std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                        "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n";
+        const float xyz[9] = {0, 0, 0, 1, y1, 0, 0, 1, 0};
+        for (float v : xyz) put(s, v, false);
+        put(s, std::uint8_t(3), false);
+        for (std::int32_t i : {0, 1, 2}) put(s, i, false);
+        put(s, std::uint8_t(3), false);
+        for (std::int32_t i : {2, 1, lastIndex}) put(s, i, false);
+        return s;
+    };
+    const std::size_t header = file(0, 0).size() - 36 - 2 * 13;
+    const TriangleMesh m = parse(file(0.5f, 0), MeshFormat::Ply);
+    EXPECT_EQ(m.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0.5f, 0}, {0, 1, 0}}));
+    EXPECT_EQ(m.triangles, (std::vector<glm::uvec3>{{0, 1, 2}, {2, 1, 0}}));
+    EXPECT_EQ(parseError(file(0, 3), MeshFormat::Ply),
+              "m: byte " + std::to_string(header + 36 + 13 + 9) + ": face 1: vertex index 3 is out of range (3 vertices)");
+    EXPECT_EQ(parseError(file(0, -1), MeshFormat::Ply),
+              "m: byte " + std::to_string(header + 36 + 13 + 9) + ": face 1: vertex index -1 is out of range (3 vertices)");
+    EXPECT_EQ(parseError(file(INFINITY, 0), MeshFormat::Ply),
+              "m: byte " + std::to_string(header + 16) + ": vertex 1: coordinate y = inf is not finite");
+    std::string cut = file(0, 0);
+    cut.pop_back();
+    EXPECT_EQ(parseError(cut, MeshFormat::Ply).substr(0, 7), "m: byte");
+}
+
 TEST(LoadMesh, ObjLineContinuationsJoinAStatementWithTheNextLine) {
     // A `\` ending a line (LF or CRLF) continues the statement, or the
     // comment; errors name the physical line they are on.
