@@ -262,6 +262,7 @@ MeshReport referenceReport(const TriangleMesh& m) {
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<int, int>> uses; // (lo, hi) -> (uses, lo->hi)
     std::set<std::uint32_t> used;
     std::multiset<std::array<std::uint32_t, 3>> sets;
+    bool anyBounds = false;
     for (const glm::uvec3& t : m.triangles) {
         if (t.x >= m.positions.size() || t.y >= m.positions.size() || t.z >= m.positions.size()) {
             ++r.badIndices;
@@ -270,6 +271,11 @@ MeshReport referenceReport(const TriangleMesh& m) {
         const std::uint32_t w[3] = {id[t.x], id[t.y], id[t.z]};
         used.insert(w, w + 3);
         const glm::vec3 a = m.positions[t.x], b = m.positions[t.y], c = m.positions[t.z];
+        for (const glm::vec3& p : {a, b, c}) { // the test's positions are finite
+            r.bounds.lo = anyBounds ? glm::min(r.bounds.lo, p) : p;
+            r.bounds.hi = anyBounds ? glm::max(r.bounds.hi, p) : p;
+            anyBounds = true;
+        }
         const bool collapsed = w[0] == w[1] || w[1] == w[2] || w[0] == w[2];
         if (collapsed || glm::length(glm::cross(b - a, c - a)) == 0.0f) ++r.degenerateTriangles;
         if (collapsed) continue;
@@ -342,6 +348,8 @@ TEST(ValidateMesh, CountsAgreeWithAnObviousReferenceOnAnyNumberOfThreads) {
         EXPECT_EQ(got.degenerateTriangles, want.degenerateTriangles);
         EXPECT_EQ(got.isolatedVertices, want.isolatedVertices);
         EXPECT_EQ(got.badIndices, want.badIndices);
+        EXPECT_EQ(got.bounds.lo, want.bounds.lo);
+        EXPECT_EQ(got.bounds.hi, want.bounds.hi);
         const Box bounds = validateMesh(torus, threads).bounds, one = validateMesh(torus, 1).bounds;
         EXPECT_EQ(bounds.lo, one.lo);
         EXPECT_EQ(bounds.hi, one.hi);

@@ -141,7 +141,7 @@ template <class Index> Index edgeUse(std::uint32_t a, std::uint32_t b) {
 struct Found {
     std::size_t badIndices = 0, degenerate = 0;
     bool anyBounds = false;
-    Box bounds;
+    Box bounds; ///< of the positions `include`d
     std::size_t boundary = 0, nonManifold = 0, oddNonManifold = 0, inconsistent = 0, duplicates = 0;
 
     void include(const glm::vec3& lo, const glm::vec3& hi) {
@@ -182,12 +182,6 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
             const std::uint32_t w[3] = {weld[tri.x], weld[tri.y], weld[tri.z]};
             for (std::uint32_t v : w) used[v].store(1, std::memory_order_relaxed);
             const glm::vec3 &a = mesh.positions[tri.x], &b = mesh.positions[tri.y], &c = mesh.positions[tri.z];
-            if (finite(a) && finite(b) && finite(c)) {
-                f.include(glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c)));
-            } else {
-                for (const glm::vec3* p : {&a, &b, &c})
-                    if (finite(*p)) f.include(*p, *p);
-            }
             const glm::vec3 n = glm::cross(b - a, c - a);
             const bool collapsed = w[0] == w[1] || w[1] == w[2] || w[0] == w[2];
             if (collapsed || glm::dot(n, n) == 0.0f) ++f.degenerate;
@@ -198,8 +192,16 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
             ++cornerCount[std::min({w[0], w[1], w[2]})];
         }
     });
-    for (std::size_t i = 0; i < nv; ++i)
-        if (!used[weld[i]].load(std::memory_order_relaxed)) ++r.isolatedVertices;
+    // The bounds of the used vertices' positions: those of the vertices the
+    // triangles name, as a twin has its vertex's position.
+    Found all;
+    for (std::size_t i = 0; i < nv; ++i) {
+        if (!used[weld[i]].load(std::memory_order_relaxed))
+            ++r.isolatedVertices;
+        else if (finite(mesh.positions[i]))
+            all.include(mesh.positions[i], mesh.positions[i]);
+    }
+    r.bounds = all.bounds;
     used.reset();
 
     // Counts to where each thread starts in each group. Afterwards the last
@@ -275,10 +277,6 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
         r.inconsistentEdges += f.inconsistent;
         r.duplicateTriangles += f.duplicates;
     }
-    Found all;
-    for (const Found& f : found)
-        if (f.anyBounds) all.include(f.bounds.lo, f.bounds.hi);
-    r.bounds = all.bounds;
 }
 
 } // namespace
