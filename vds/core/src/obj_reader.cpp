@@ -100,9 +100,9 @@ private:
             if (isBlank(*at_)) {
                 ++at_;
             } else if (*at_ == '\\' && continuation(at_)) {
-                at_ += at_ + 1 < end_ && at_[1] == '\r' ? 3 : 2;
-                if (at_ > end_) at_ = end_;
-                ++line_;
+                const std::size_t length = end_ - at_ == 1 ? 1 : at_[1] == '\r' ? 3 : 2; // at the end, before LF, before CRLF
+                at_ += length;
+                line_ += length > 1;
             } else {
                 break;
             }
