@@ -215,8 +215,9 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
             edgeTotal += e;
             cornerTotal += c;
         }
-    std::vector<Index> edges(edgeTotal);
-    std::vector<std::uint64_t> others(cornerTotal); ///< a triangle's two higher corners: middle << 32 | highest
+    // Every item is written below, so the arrays start uninitialised.
+    const std::unique_ptr<Index[]> edges(new Index[std::size_t(edgeTotal)]);
+    const std::unique_ptr<std::uint64_t[]> others(new std::uint64_t[std::size_t(cornerTotal)]); ///< a triangle's two higher corners: middle << 32 | highest
     parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
         Index* edgeNext = edgeAt[k].data();
         Index* cornerNext = cornerAt[k].data();
@@ -246,7 +247,7 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
         const auto less = [](auto x, auto y) { return x < y; };
         for (std::size_t v = begin; v < end; ++v) {
             const std::size_t first = v == 0 ? 0 : std::size_t(edgeEnd[v - 1]);
-            Index* group = edges.data() + first;
+            Index* group = edges.get() + first;
             const std::size_t n = std::size_t(edgeEnd[v]) - first;
             sortGroup(group, n, less);
             for (std::size_t i = 0; i < n;) {
@@ -260,7 +261,7 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
                 i = j;
             }
             const std::size_t firstSet = v == 0 ? 0 : std::size_t(cornerEnd[v - 1]);
-            std::uint64_t* sets = others.data() + firstSet;
+            std::uint64_t* sets = others.get() + firstSet;
             const std::size_t m = std::size_t(cornerEnd[v]) - firstSet;
             sortGroup(sets, m, less);
             for (std::size_t i = 1; i < m; ++i) f.duplicates += sets[i] == sets[i - 1];
