@@ -659,6 +659,30 @@ TEST(LoadMesh, BinaryPlyOfTheCommonLayoutIsCheckedAsStrictly) {
     EXPECT_EQ(parseError(cut, MeshFormat::Ply).substr(0, 7), "m: byte");
 }
 
+TEST(LoadMesh, AsciiPlyLinesMayHoldMoreThanTheirElementDeclares) {
+    // As a common writer (VCG, behind MeshLab) lays out faces with texture
+    // coordinates: one element per line, and more numbers on a face's line
+    // than its header declares. Laid out one per line, the extra numbers up
+    // to the line's end are read past; they must still be numbers.
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                               "property float z\nproperty uchar red\nelement face 4\n"
+                               "property list uchar int vertex_indices\nproperty list uchar float texcoord\n"
+                               "property uchar red\nend_header\n";
+    const std::string vertices = "0 0 0 192 \n1 0 0 192\n0 1 0 192\n0 0 1 192\n";
+    const std::string faces = "3 0 2 1 6 0.5 0.5 0.5 0.5 0.5 0.5 9 1 1 1 1 1\n3 0 1 3 6 0 0 0 0 0 0 9 1 1\n"
+                              "3 0 3 2 2 0 0 9\n3 1 2 3 6 0 0 0 0 0 0 9 1 1 1 1 1 1 1 1 1 \n";
+    const TriangleMesh m = parse(header + vertices + faces, MeshFormat::Ply);
+    EXPECT_EQ(m.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+    EXPECT_EQ(m.triangles, (std::vector<glm::uvec3>{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}));
+    std::string bad = header + vertices + faces;
+    bad.replace(bad.find("9 1 1\n"), 6, "9 1 x\n");
+    EXPECT_EQ(parseError(bad, MeshFormat::Ply), "m:18: 'x' is not a number");
+    // Not laid out one per line (the first vertex does not fill its line):
+    // tokens are read in sequence, and the extra numbers leave data over.
+    EXPECT_EQ(parseError(header + "0 0 0 192 1 0 0 192\n0 1 0 192\n0 0 1 192\n" + faces, MeshFormat::Ply),
+              "m:18: data after the last element the header declares");
+}
+
 TEST(LoadMesh, ObjLineContinuationsJoinAStatementWithTheNextLine) {
     // A `\` ending a line (LF or CRLF) continues the statement, or the
     // comment; errors name the physical line they are on.

@@ -5,7 +5,9 @@
 // and index types, become polygons (lists of fewer than 3 are skipped and
 // counted). Other vertex properties, such as colours, may be NaN. Every other element and property is read
 // past, by its declared type. The header's counts must fit in the bytes after
-// it before anything is allocated, and the data must end where they say.
+// it before anything is allocated, and the data must end where they say. An
+// ascii file laid out one element per line may hold more numbers on a line
+// than its element declares (onePerLine).
 #include "mesh_readers.h"
 
 #include <cmath>
@@ -82,6 +84,7 @@ public:
         mesh_.positions.reserve(vertexCount_);
         if (face_ != kNone) mesh_.triangles.reserve(elements_[face_].count);
         position_ = text_.offset();
+        const bool lineByLine = encoding_ == Encoding::Ascii && onePerLine();
         for (std::size_t e = 0; e < elements_.size(); ++e) {
             const Element& element = elements_[e];
             if (element.properties.empty()) continue; // nothing to read, however many
@@ -93,6 +96,7 @@ public:
                     face(element, i);
                 else
                     for (const Property& p : element.properties) skip(p, element, i);
+                if (lineByLine) readPastRestOfLine();
             }
         }
         if (encoding_ == Encoding::Ascii) {
@@ -385,6 +389,36 @@ private:
                 ++mesh_.skippedFaces;
             else
                 appendFan(mesh_, corners_);
+        }
+    }
+
+    /// Whether an ascii file is laid out one element instance per line, as
+    /// exporters write it: its first instance (of an element without lists)
+    /// fills its line. Then numbers after an instance's declared properties,
+    /// up to its line's end, are read past: some writers (VCG, MeshLab's
+    /// library) put more on a face's line than its header declares.
+    bool onePerLine() const {
+        for (const Element& e : elements_) {
+            if (e.count == 0 || e.properties.empty()) continue;
+            for (const Property& p : e.properties)
+                if (p.list) return false;
+            TextScanner ahead = text_;
+            std::string_view line;
+            while (ahead.nextLine(line))
+                if (Tokens(line).count() > 0) return Tokens(line).count() == e.properties.size();
+            return false;
+        }
+        return false;
+    }
+
+    /// The rest of the line an instance ended on: numbers only, read past.
+    void readPastRestOfLine() {
+        const std::size_t line = text_.line();
+        Tokens rest(text_.restOfLine());
+        for (std::string_view token; rest.next(token);) {
+            double ignored = 0.0;
+            if (parseNumber(token, ignored) == NumberStatus::Malformed)
+                failAtLine(name_, line, numberProblem(NumberStatus::Malformed, token, "a number"));
         }
     }
 
