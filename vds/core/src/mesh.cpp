@@ -1,11 +1,9 @@
 #include <vds/mesh.h>
 
 #include <algorithm>
-#include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
-#include <atomic>
-#include <limits>
 #include <memory>
 #include <sstream>
 #include <thread>
@@ -18,8 +16,6 @@
 
 namespace vds {
 namespace {
-
-constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
 
 bool finite(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
@@ -101,34 +97,6 @@ template <class Item, class Less> void sortGroup(Item* items, std::size_t n, con
         items[j] = v;
     }
 }
-
-} // namespace
-
-std::string MeshReport::summary() const {
-    if (triangleCount == 0)
-        return "empty: no triangles" +
-               (skippedFaces ? " (" + counted(skippedFaces, "face") + " of fewer than 3 vertices skipped)" : "");
-    std::ostringstream s;
-    if (nonFiniteVertices) s << "non-finite: " << nonFiniteVertices << " vertices with NaN or infinite coordinates, ";
-    if (badIndices) s << "invalid: " << badIndices << " indices out of range, ";
-    s << (closed() ? "closed" : "open");
-    if (!closed()) {
-        s << " (";
-        if (boundaryEdges) s << counted(boundaryEdges, "boundary edge") << (oddNonManifoldEdges ? ", " : "");
-        if (oddNonManifoldEdges) s << counted(oddNonManifoldEdges, "edge") << " shared by an odd number of triangles";
-        s << ")";
-    }
-    if (nonManifoldEdges) s << ", " << counted(nonManifoldEdges, "non-manifold edge");
-    if (inconsistentEdges) s << ", " << counted(inconsistentEdges, "inconsistently oriented edge");
-    s << ", " << counted(triangleCount, "triangle") << ", " << counted(vertexCount, "vertex", "vertices");
-    if (degenerateTriangles) s << ", " << counted(degenerateTriangles, "degenerate triangle");
-    if (duplicateTriangles) s << ", " << counted(duplicateTriangles, "duplicate triangle");
-    if (isolatedVertices) s << ", " << counted(isolatedVertices, "isolated vertex", "isolated vertices");
-    if (skippedFaces) s << ", " << counted(skippedFaces, "face") << " of fewer than 3 vertices skipped";
-    return s.str();
-}
-
-namespace {
 
 /// One use of an undirected edge, kept in the group of its lower vertex: the
 /// higher vertex, shifted left by one, and whether the use runs lower ->
@@ -281,6 +249,30 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
 }
 
 } // namespace
+
+std::string MeshReport::summary() const {
+    if (triangleCount == 0)
+        return "empty: no triangles" +
+               (skippedFaces ? " (" + counted(skippedFaces, "face") + " of fewer than 3 vertices skipped)" : "");
+    std::ostringstream s;
+    if (nonFiniteVertices) s << "non-finite: " << nonFiniteVertices << " vertices with NaN or infinite coordinates, ";
+    if (badIndices) s << "invalid: " << badIndices << " indices out of range, ";
+    s << (closed() ? "closed" : "open");
+    if (!closed()) {
+        s << " (";
+        if (boundaryEdges) s << counted(boundaryEdges, "boundary edge") << (oddNonManifoldEdges ? ", " : "");
+        if (oddNonManifoldEdges) s << counted(oddNonManifoldEdges, "edge") << " shared by an odd number of triangles";
+        s << ")";
+    }
+    if (nonManifoldEdges) s << ", " << counted(nonManifoldEdges, "non-manifold edge");
+    if (inconsistentEdges) s << ", " << counted(inconsistentEdges, "inconsistently oriented edge");
+    s << ", " << counted(triangleCount, "triangle") << ", " << counted(vertexCount, "vertex", "vertices");
+    if (degenerateTriangles) s << ", " << counted(degenerateTriangles, "degenerate triangle");
+    if (duplicateTriangles) s << ", " << counted(duplicateTriangles, "duplicate triangle");
+    if (isolatedVertices) s << ", " << counted(isolatedVertices, "isolated vertex", "isolated vertices");
+    if (skippedFaces) s << ", " << counted(skippedFaces, "face") << " of fewer than 3 vertices skipped";
+    return s.str();
+}
 
 MeshReport validateMesh(MeshView mesh, unsigned threads) {
     MeshReport r;
