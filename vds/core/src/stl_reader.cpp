@@ -29,6 +29,14 @@ class Welder {
 public:
     Welder(TriangleMesh& mesh, std::size_t expected) : mesh_(mesh) { resize(2 * expected); }
 
+    /// Asks for the cache line of `p`'s slot, for an `add(p)` a little later.
+    void prefetch(glm::vec3 p) const {
+        p += glm::vec3(0.0f);
+        std::uint32_t bits[3];
+        std::memcpy(bits, &p, sizeof bits);
+        __builtin_prefetch(&table_[std::size_t(hash(bits) >> shift_)]);
+    }
+
     std::uint32_t add(glm::vec3 p) {
         p += glm::vec3(0.0f); // -0 becomes +0, so both weld to one vertex
         std::uint32_t bits[3];
@@ -100,12 +108,18 @@ TriangleMesh readBinary(const char* data, std::uint64_t count, const std::string
     TriangleMesh mesh;
     mesh.triangles.reserve(count);
     Welder welder(mesh, count / 2); // a closed mesh has about half as many vertices as triangles
+    const auto cornerAt = [&](std::uint64_t t, int k) {
+        const char* p = data + kBinaryHeader + t * kBinaryTriangle + 12 + 12 * k;
+        return glm::vec3(loadLittleFloat(p), loadLittleFloat(p + 4), loadLittleFloat(p + 8));
+    };
+    constexpr std::uint64_t kAhead = 4; // triangles whose slots are fetched while this one is welded
     for (std::uint64_t t = 0; t < count; ++t) {
+        if (t + kAhead < count)
+            for (int k = 0; k < 3; ++k) welder.prefetch(cornerAt(t + kAhead, k));
         const std::uint64_t at = kBinaryHeader + t * kBinaryTriangle + 12; // after the normal
         std::uint32_t corner[3];
         for (int k = 0; k < 3; ++k) {
-            const char* p = data + at + 12 * k;
-            const glm::vec3 v(loadLittleFloat(p), loadLittleFloat(p + 4), loadLittleFloat(p + 8));
+            const glm::vec3 v = cornerAt(t, k);
             if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)))
                 failAtByte(name, at + 12 * k,
                            "triangle " + std::to_string(t) + ", corner " + std::to_string(k) + " is not finite");
