@@ -172,17 +172,37 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
     r.bounds = all.bounds;
     used.reset();
 
-    // Counts to where each thread starts in each group. Afterwards the last
-    // thread's entries are where the groups end.
-    Index edgeTotal = 0, cornerTotal = 0;
-    for (std::size_t v = 0; v < nv; ++v)
-        for (unsigned k = 0; k < threads; ++k) {
-            const Index e = edgeAt[k][v], c = cornerAt[k][v];
-            edgeAt[k][v] = edgeTotal;
-            cornerAt[k][v] = cornerTotal;
-            edgeTotal += e;
-            cornerTotal += c;
-        }
+    // Counts to where each thread starts in each group (afterwards the last
+    // thread's entries are where the groups end): the totals of chunks of
+    // vertices, their running sums, then each chunk's own, chunks in parallel.
+    constexpr std::size_t kVerticesPerChunk = 1 << 14;
+    const std::size_t chunks = (nv + kVerticesPerChunk - 1) / kVerticesPerChunk;
+    std::vector<std::pair<Index, Index>> chunkStart(chunks + 1); // edges, corners
+    parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
+        Index e = 0, t = 0;
+        for (std::size_t v = c * kVerticesPerChunk, end = std::min(nv, v + kVerticesPerChunk); v < end; ++v)
+            for (unsigned k = 0; k < threads; ++k) {
+                e += edgeAt[k][v];
+                t += cornerAt[k][v];
+            }
+        chunkStart[c + 1] = {e, t};
+    });
+    for (std::size_t c = 0; c < chunks; ++c) {
+        chunkStart[c + 1].first += chunkStart[c].first;
+        chunkStart[c + 1].second += chunkStart[c].second;
+    }
+    parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
+        auto [e, t] = chunkStart[c];
+        for (std::size_t v = c * kVerticesPerChunk, end = std::min(nv, v + kVerticesPerChunk); v < end; ++v)
+            for (unsigned k = 0; k < threads; ++k) {
+                const Index edgeCount = edgeAt[k][v], cornerCount = cornerAt[k][v];
+                edgeAt[k][v] = e;
+                cornerAt[k][v] = t;
+                e += edgeCount;
+                t += cornerCount;
+            }
+    });
+    const Index edgeTotal = chunkStart[chunks].first, cornerTotal = chunkStart[chunks].second;
     // Every item is written below, so the arrays start uninitialised.
     const std::unique_ptr<Index[]> edges(new Index[std::size_t(edgeTotal)]);
     const std::unique_ptr<std::uint64_t[]> others(new std::uint64_t[std::size_t(cornerTotal)]); ///< a triangle's two higher corners: middle << 32 | highest
@@ -208,7 +228,6 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
     edgeAt = {};
     cornerAt = {};
 
-    constexpr std::size_t kVerticesPerChunk = 1 << 14;
     std::vector<Found> groups((nv + kVerticesPerChunk - 1) / kVerticesPerChunk);
     parallelFor(threads, nv, kVerticesPerChunk, [&](std::size_t begin, std::size_t end) {
         Found& f = groups[begin / kVerticesPerChunk];
@@ -281,7 +300,9 @@ MeshReport validateMesh(MeshView mesh, unsigned threads) {
     r.triangleCount = nt;
     r.skippedFaces = mesh.skippedFaces;
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-    threads = unsigned(std::min<std::size_t>({threads, nt / 65536 + 1, 16})); // small meshes: one thread pays best
+    // Small meshes: one thread pays best. Each thread keeps two counts per
+    // vertex, so at most 8.
+    threads = unsigned(std::min<std::size_t>({threads, nt / 65536 + 1, 8}));
 
     for (std::size_t i = 0; i < nv; ++i)
         if (!finite(mesh.positions[i])) ++r.nonFiniteVertices;
