@@ -95,10 +95,10 @@ struct MeshReport {
 };
 
 /// Validates a mesh. Time linear in the vertex and triangle counts (but for
-/// vertices of very high valence), about 20 and 50 bytes of memory per vertex and
-/// per triangle; `threads` threads (0: one per hardware thread; meshes under
-/// 64k triangles use one). Never throws for bad geometry (it counts it),
-/// only for allocation failure.
+/// vertices of very high valence); memory about 50 bytes per triangle and
+/// 20 + 8 per thread per vertex. Runs on up to `threads` threads (0: one per
+/// hardware thread), at most 8, one more per 64k triangles. Thread-safe;
+/// never throws for bad geometry (it counts it), only for allocation failure.
 MeshReport validateMesh(MeshView mesh, unsigned threads = 0);
 
 /// Throws `InvalidMesh` with a one-line reason if `report` is not `usable()`.
