@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <tuple>
 
 #include <unistd.h>
 
@@ -416,7 +417,8 @@ TEST(LoadMesh, TruncatedFilesAreRefusedAtEveryLength) {
     }
     // OBJ declares nothing, so a cut at a line end is a smaller mesh; a cut
     // inside a face or a vertex is an error on that line.
-    EXPECT_EQ(parseError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2", MeshFormat::Obj), "m:4: a face needs at least 3 vertices, this one has 2");
+    // A face cut to fewer than 3 vertices is skipped and counted, as such faces are in whole files.
+    EXPECT_EQ(parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2", MeshFormat::Obj).skippedFaces, 1u);
     EXPECT_EQ(parseError("v 0 0 0\nv 1 0", MeshFormat::Obj), "m:2: a vertex needs 3 coordinates, this one has 2");
     EXPECT_EQ(parseError("solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0", MeshFormat::Stl),
               "m:5: file ends inside a vertex (truncated?)");
@@ -511,11 +513,20 @@ TEST(LoadMesh, MalformedFilesNameTheLineOrByte) {
          "m:6: the face has 5 numbers after its 3 vertices (a colour has at most 4)"},
         {MeshFormat::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
          "m:6: vertex index 3 is out of range (the file has 3 vertices, numbered from 0)"},
-        {MeshFormat::Off, "OFF\n3 1 0\n0.0 0 0\n1 0 0\n0 1 0\n2 0 1\n", "m:6: a face needs at least 3 vertices, this one declares 2"},
         {MeshFormat::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n", "m:6: the face declares 4 vertices, the line holds 3 more numbers"},
         {MeshFormat::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n",
          "m:7: more data after the 3 vertices and 1 faces the header declares"},
         {MeshFormat::Off, "4OFF\n1 0 0\n0 0 0 1\n", "m:1: '4OFF': only 3-dimensional OFF is supported"},
+        {MeshFormat::Off, "nOFF8 6 12\n", "m:1: 'nOFF': only 3-dimensional OFF is supported"},
+        {MeshFormat::Off, "XOFF\n", "m:1: 'XOFF' is not an OFF header ([ST][C][N]OFF)"},
+        {MeshFormat::Off, "OFFICE 1 2\n", "m:1: not an OFF file (the first line is not 'OFF' or a variant such as 'COFF')"},
+        {MeshFormat::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-1 0\n", "m:6: face size -1 is negative"},
+        {MeshFormat::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 3\n",
+         "m:6: vertex index 3 is out of range (the file has 3 vertices, numbered from 0)"},
+        {MeshFormat::Obj, "v 0 0 0\nv 1 0 0\nf 1 3\n", "m:3: vertex 3 does not exist (the file has 2 vertices)"},
+        {MeshFormat::Obj, "v 0 0 0\\x\n", "m:1: coordinate '0\\x' is not a 32-bit float"},
+        {MeshFormat::Obj, "v 0 0 0 red 1 1\n", "m:1: vertex attribute 'red' is not a number"},
+        {MeshFormat::Obj, "v 0 \\\n nan 0 1 1 1\n", "m:2: coordinate 'nan' is not finite"},
         {MeshFormat::Off, "OFF BINARY\n", "m:1: binary OFF is not supported"},
         {MeshFormat::Off, "PLY\n", "m:1: not an OFF file (the first line is not 'OFF' or a variant such as 'COFF')"},
         {MeshFormat::Ply, "solid x\n", "m:1: not a PLY file (no 'ply' line first)"},
@@ -536,8 +547,8 @@ TEST(LoadMesh, MalformedFilesNameTheLineOrByte) {
                           "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
          "m:13: face 0: vertex index 3 is out of range (3 vertices)"},
         {MeshFormat::Ply, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                          "element face 1\nproperty list uchar int vertex_indices\nend_header\n0.0 0 0\n1 0 0\n0 1 0\n2 0 1\n",
-         "m:13: face 0 has 2 vertices, fewer than 3"},
+                          "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n2 0 5\n",
+         "m:13: face 0: vertex index 5 is out of range (3 vertices)"},
         {MeshFormat::Ply, "ply\nformat ascii 1.0\nelement vertex 1\nproperty uchar x\nproperty float y\nproperty float z\n"
                           "end_header\n256 0 0\n",
          "m:8: '256' is out of range for uchar"},
@@ -549,8 +560,6 @@ TEST(LoadMesh, MalformedFilesNameTheLineOrByte) {
          "m: byte 118: 1 byte after the last element the header declares"},
         {MeshFormat::Ply, "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n", "m:4: the header has no end_header line (truncated, or not a PLY file)"},
         {MeshFormat::Stl, "solid s\nfacet 0 0 1\n", "m:2: expected 'normal', found '0'"},
-        {MeshFormat::Stl, "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid\n",
-         "m:6: a facet needs at least 3 vertices, this one has 2"},
         {MeshFormat::Stl, "solid s\nendsolid s\nfacet\n", "m:3: expected 'solid' or the end of the file, found 'facet'"},
         {MeshFormat::Stl, "not an stl", "m: not an STL file: not ASCII (no 'solid' first) and shorter than the 84 bytes of a binary header"},
     };
@@ -619,6 +628,160 @@ TEST(LoadMesh, CrashesOfTheFormerReaderAreOneLineErrors) {
     std::string obj = abortObj;
     obj.replace(obj.find("v 100 0"), 7, "v 1 0 0");
     EXPECT_EQ(parseError(obj, MeshFormat::Obj), "m:11: vertex reference '\\xc1' is not an integer");
+}
+
+TEST(LoadMesh, BinaryPlyOfTheCommonLayoutIsCheckedAsStrictly) {
+    // Float vertices and uchar/int face lists, little-endian: the layout
+    // read by the tight loops; their problems are named as in any layout.
+    const auto file = [](float y1, std::int32_t lastIndex) {
+        std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                        "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n";
+        const float xyz[9] = {0, 0, 0, 1, y1, 0, 0, 1, 0};
+        for (float v : xyz) put(s, v, false);
+        put(s, std::uint8_t(3), false);
+        for (std::int32_t i : {0, 1, 2}) put(s, i, false);
+        put(s, std::uint8_t(3), false);
+        for (std::int32_t i : {2, 1, lastIndex}) put(s, i, false);
+        return s;
+    };
+    const std::size_t header = file(0, 0).size() - 36 - 2 * 13;
+    const TriangleMesh m = parse(file(0.5f, 0), MeshFormat::Ply);
+    EXPECT_EQ(m.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0.5f, 0}, {0, 1, 0}}));
+    EXPECT_EQ(m.triangles, (std::vector<glm::uvec3>{{0, 1, 2}, {2, 1, 0}}));
+    EXPECT_EQ(parseError(file(0, 3), MeshFormat::Ply),
+              "m: byte " + std::to_string(header + 36 + 13 + 9) + ": face 1: vertex index 3 is out of range (3 vertices)");
+    EXPECT_EQ(parseError(file(0, -1), MeshFormat::Ply),
+              "m: byte " + std::to_string(header + 36 + 13 + 9) + ": face 1: vertex index -1 is out of range (3 vertices)");
+    EXPECT_EQ(parseError(file(INFINITY, 0), MeshFormat::Ply),
+              "m: byte " + std::to_string(header + 16) + ": vertex 1: coordinate y = inf is not finite");
+    std::string cut = file(0, 0);
+    cut.pop_back();
+    EXPECT_EQ(parseError(cut, MeshFormat::Ply).substr(0, 7), "m: byte");
+}
+
+TEST(LoadMesh, AsciiPlyLinesMayHoldMoreThanTheirElementDeclares) {
+    // As a common writer (VCG, behind MeshLab) lays out faces with texture
+    // coordinates: one element per line, and more numbers on a face's line
+    // than its header declares. Laid out one per line, the extra numbers up
+    // to the line's end are read past; they must still be numbers.
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                               "property float z\nproperty uchar red\nelement face 4\n"
+                               "property list uchar int vertex_indices\nproperty list uchar float texcoord\n"
+                               "property uchar red\nend_header\n";
+    const std::string vertices = "0 0 0 192 \n1 0 0 192\n0 1 0 192\n0 0 1 192\n";
+    const std::string faces = "3 0 2 1 6 0.5 0.5 0.5 0.5 0.5 0.5 9 1 1 1 1 1\n3 0 1 3 6 0 0 0 0 0 0 9 1 1\n"
+                              "3 0 3 2 2 0 0 9\n3 1 2 3 6 0 0 0 0 0 0 9 1 1 1 1 1 1 1 1 1 \n";
+    const TriangleMesh m = parse(header + vertices + faces, MeshFormat::Ply);
+    EXPECT_EQ(m.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+    EXPECT_EQ(m.triangles, (std::vector<glm::uvec3>{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}));
+    std::string bad = header + vertices + faces;
+    bad.replace(bad.find("9 1 1\n"), 6, "9 1 x\n");
+    EXPECT_EQ(parseError(bad, MeshFormat::Ply), "m:18: 'x' is not a number");
+    // Not laid out one per line (the first vertex does not fill its line):
+    // tokens are read in sequence, and the extra numbers leave data over.
+    EXPECT_EQ(parseError(header + "0 0 0 192 1 0 0 192\n0 1 0 192\n0 0 1 192\n" + faces, MeshFormat::Ply),
+              "m:18: data after the last element the header declares");
+}
+
+TEST(LoadMesh, ObjLineContinuationsJoinAStatementWithTheNextLine) {
+    // A `\` ending a line (LF or CRLF) continues the statement, or the
+    // comment; errors name the physical line they are on.
+    const TriangleMesh m = parse("v 0 0 \\\n0\nv 1 \\\r\n 0 0\r\nv 0 1 0 \\\n\nf 1 \\\n 2 \\\n 3\n# done \\\nv 9 9 9\n# \\x\n",
+                                 MeshFormat::Obj);
+    EXPECT_EQ(m.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
+    EXPECT_EQ(m.triangles, (std::vector<glm::uvec3>{{0, 1, 2}}));
+    EXPECT_EQ(parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 \\", MeshFormat::Obj).triangles.size(), 1u);
+    EXPECT_EQ(parseError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 \\\n2 \\\n 0\n", MeshFormat::Obj),
+              "m:6: vertex reference 0: OBJ counts vertices from 1");
+    EXPECT_EQ(parseError("v 0 0 \\\n\\\n", MeshFormat::Obj), "m:3: a vertex needs 3 coordinates, this one has 2");
+}
+
+TEST(LoadMesh, NumbersBesidePositionsMayBeNonFiniteOrMany) {
+    // Vertex colours (some exporters write NaN for "none"), w, texture
+    // coordinates and normals carry no position: read past, whatever their
+    // value. Positions stay strict (MalformedFilesNameTheLineOrByte).
+    const TriangleMesh obj = parse("v 0 0 0 nan nan nan\nv 1 0 0 1 0.5 0 1\nv 0 1 0 -inf 0 inf\nvt nan nan\n"
+                                   "vn nan 0 inf\nvt 0.5 0.5 0.5\nf 1/1/1 2/2/1 3//1\n",
+                                   MeshFormat::Obj);
+    EXPECT_EQ(obj.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
+    EXPECT_EQ(obj.triangles, (std::vector<glm::uvec3>{{0, 1, 2}}));
+    const TriangleMesh off = parse("COFF\n3 1 0\n0 0 0 nan nan nan 1\n1 0 0 1 1 1 1\n0 1 0 1 inf 1 1\n3 0 1 2 nan 0 0 1\n",
+                                   MeshFormat::Off);
+    EXPECT_EQ(off.positions, obj.positions);
+    EXPECT_EQ(off.triangles, obj.triangles);
+    const TriangleMesh ply = parse("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                   "property float z\nproperty float red\nend_header\n0 0 0 nan\n1 0 0 inf\n0 1 0 1\n",
+                                   MeshFormat::Ply);
+    EXPECT_EQ(ply.positions, obj.positions);
+}
+
+TEST(LoadMesh, FacesOfFewerThanThreeVerticesAreSkippedAndCounted) {
+    // The tetrahedron, with faces of 2, 1 and 0 vertices among its triangles
+    // (exporters write such faces for lines and points): the triangles load,
+    // the others are counted, and validation names them.
+    const TriangleMesh tet = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}, ""};
+    const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+    const std::string obj = "v " + std::string("0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n") +
+                            "f 1 3 2\nf 1 2\nf 1 2 4\nf 4\nf 1 4 3\nf\nf 2 3 4\n";
+    const std::string off = "OFF\n4 7 0\n" + vertices + "3 0 2 1\n2 0 1\n3 0 1 3\n1 3\n3 0 3 2\n0\n3 1 2 3\n";
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 7\nproperty list uchar int vertex_indices\nend_header\n" +
+                            vertices + "3 0 2 1\n2 0 1\n3 0 1 3\n1 3\n3 0 3 2\n0\n3 1 2 3\n";
+    std::string plyBinary = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 5\nproperty list uchar int vertex_indices\nend_header\n";
+    for (const glm::vec3& p : tet.positions)
+        for (int k = 0; k < 3; ++k) put(plyBinary, p[k], false);
+    const std::vector<std::vector<int>> faces = {{0, 2, 1}, {0, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    for (const auto& f : faces) {
+        put(plyBinary, std::uint8_t(f.size()), false);
+        for (int i : f) put(plyBinary, std::int32_t(i), false);
+    }
+    std::string stl = stlAscii(tet);
+    stl.insert(stl.find("facet"), "facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n");
+    const std::tuple<MeshFormat, std::string, std::size_t> files[] = {
+        {MeshFormat::Obj, obj, 3}, {MeshFormat::Off, off, 3}, {MeshFormat::Ply, ply, 3},
+        {MeshFormat::Ply, plyBinary, 1}, {MeshFormat::Stl, stl, 1}};
+    for (const auto& [format, text, skipped] : files) {
+        const TriangleMesh m = parse(text, format);
+        if (format != MeshFormat::Stl) expectSameMesh(m, tet, text.c_str());
+        EXPECT_EQ(m.triangles.size(), 4u) << text;
+        EXPECT_EQ(m.skippedFaces, skipped) << text;
+        const MeshReport r = validateMesh(m);
+        EXPECT_TRUE(r.oriented()) << r.summary();
+        EXPECT_EQ(r.skippedFaces, skipped);
+        EXPECT_NE(r.summary().find(", " + std::to_string(skipped) + (skipped == 1 ? " face" : " faces") +
+                                   " of fewer than 3 vertices skipped"),
+                  std::string::npos)
+            << r.summary();
+    }
+}
+
+TEST(LoadMesh, OffHeadersAsExportersWriteThem) {
+    // The tetrahedron's vertices and faces after each header.
+    const std::string body = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    const std::string withColours = "0 0 0 1 0 0 1\n1 0 0 0 1 0 1\n0 1 0 0 0 1 1\n0 0 1 1 1 1 1\n"
+                                    "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    const std::string withNormals = "0 0 0 -1 -1 -1\n1 0 0 1 0 0\n0 1 0 0 1 0\n0 0 1 0 0 1\n"
+                                    "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    const std::string withTexture = "0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n0 0 1 1 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    const std::string headers[] = {
+        "OFF\n4 4 6\n" + body,
+        "OFF 4 4 6\n" + body,
+        "\t      OFF4 4 6 # counts right after the keyword, blanks in front\n" + body,
+        "# a comment first\n\nOFF\n# and after the header\n\n4 4 6\n" + body,
+        "OFF\r\n4 4\r\n" + body,
+        "COFF\n4 4 6\n" + withColours,
+        "NOFF\n4 4 6\n" + withNormals,
+        "STOFF\n4 4 6\n" + withTexture,
+        "CNOFF 4 4 6\n0 0 0 -1 -1 -1 1 0 0 1\n1 0 0 1 0 0 0 1 0 1\n0 1 0 0 1 0 0 0 1 1\n0 0 1 0 0 1 1 1 1 1\n"
+        "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n",
+    };
+    for (const std::string& text : headers) {
+        const TriangleMesh m = parse(text, MeshFormat::Off);
+        EXPECT_EQ(m.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}})) << text;
+        EXPECT_EQ(m.triangles.size(), 4u) << text;
+        EXPECT_TRUE(validateMesh(m).oriented()) << text;
+    }
 }
 
 TEST(LoadMesh, EmptyFilesAndDirectoriesAreRefused) {

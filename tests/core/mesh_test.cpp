@@ -1,5 +1,8 @@
 // Mesh validation, on meshes built in code.
 #include <cmath>
+#include <map>
+#include <random>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -202,6 +205,156 @@ TEST(ValidateMesh, UnusableMeshesAreRefused) {
     bad.triangles[2].x = 1000;
     EXPECT_EQ(validateMesh(bad).badIndices, 1u);
     EXPECT_THROW(requireUsable(validateMesh(bad), "bad.obj"), InvalidMesh);
+}
+
+/// The tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1), faces facing out.
+TriangleMesh tetrahedron() {
+    TriangleMesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    return m;
+}
+
+TEST(ValidateMesh, MinusZeroIsTheSameVertexAsZeroForEveryCount) {
+    // One face reaches the origin through a second vertex written "-0 0 0",
+    // as some exporters write it: the same point, so the mesh is closed, by
+    // validation as by the winding code's boundary edges.
+    TriangleMesh m = tetrahedron();
+    m.positions.push_back({-0.0f, 0.0f, -0.0f});
+    m.triangles[1].x = 4;
+    ASSERT_TRUE(std::signbit(m.positions[4].x));
+    const MeshReport r = validateMesh(m);
+    EXPECT_EQ(r.boundaryEdges, 0u);
+    EXPECT_TRUE(r.oriented()) << r.summary();
+    EXPECT_EQ(r.isolatedVertices, 0u);
+    EXPECT_EQ(r.summary(), "closed, 4 triangles, 5 vertices");
+    EXPECT_TRUE(meshBoundaryEdges(m).empty());
+
+    // Removing one face opens three edges, counted alike both ways.
+    m.triangles.pop_back();
+    EXPECT_EQ(validateMesh(m).boundaryEdges, 3u);
+    EXPECT_EQ(meshBoundaryEdges(m).size(), 2u * 3u);
+}
+
+TEST(ValidateMesh, SkippedFacesAreNamedInTheSummary) {
+    TriangleMesh m = tetrahedron();
+    m.skippedFaces = 2;
+    const MeshReport r = validateMesh(m);
+    EXPECT_EQ(r.skippedFaces, 2u);
+    EXPECT_TRUE(r.usable());
+    EXPECT_EQ(r.summary(), "closed, 4 triangles, 4 vertices, 2 faces of fewer than 3 vertices skipped");
+    TriangleMesh none;
+    none.skippedFaces = 1;
+    EXPECT_EQ(validateMesh(none).summary(), "empty: no triangles (1 face of fewer than 3 vertices skipped)");
+}
+
+/// validateMesh's counts the slow, obvious way: std::map and std::set.
+MeshReport referenceReport(const TriangleMesh& m) {
+    MeshReport r;
+    r.vertexCount = m.positions.size();
+    r.triangleCount = m.triangles.size();
+    std::map<std::tuple<float, float, float>, std::uint32_t> at; // compares as floats: -0 == +0
+    std::vector<std::uint32_t> id(m.positions.size());
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+        const glm::vec3 p = m.positions[i];
+        id[i] = at.emplace(std::make_tuple(p.x, p.y, p.z), std::uint32_t(i)).first->second;
+    }
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<int, int>> uses; // (lo, hi) -> (uses, lo->hi)
+    std::set<std::uint32_t> used;
+    std::multiset<std::array<std::uint32_t, 3>> sets;
+    bool anyBounds = false;
+    for (const glm::uvec3& t : m.triangles) {
+        if (t.x >= m.positions.size() || t.y >= m.positions.size() || t.z >= m.positions.size()) {
+            ++r.badIndices;
+            continue;
+        }
+        const std::uint32_t w[3] = {id[t.x], id[t.y], id[t.z]};
+        used.insert(w, w + 3);
+        const glm::vec3 a = m.positions[t.x], b = m.positions[t.y], c = m.positions[t.z];
+        for (const glm::vec3& p : {a, b, c}) { // the test's positions are finite
+            r.bounds.lo = anyBounds ? glm::min(r.bounds.lo, p) : p;
+            r.bounds.hi = anyBounds ? glm::max(r.bounds.hi, p) : p;
+            anyBounds = true;
+        }
+        const bool collapsed = w[0] == w[1] || w[1] == w[2] || w[0] == w[2];
+        if (collapsed || glm::length(glm::cross(b - a, c - a)) == 0.0f) ++r.degenerateTriangles;
+        if (collapsed) continue;
+        for (int e = 0; e < 3; ++e) {
+            const std::uint32_t p = w[e], q = w[(e + 1) % 3];
+            auto& u = uses[{std::min(p, q), std::max(p, q)}];
+            ++u.first;
+            u.second += p < q;
+        }
+        std::array<std::uint32_t, 3> s = {w[0], w[1], w[2]};
+        std::sort(s.begin(), s.end());
+        r.duplicateTriangles += sets.count(s) > 0;
+        sets.insert(s);
+    }
+    for (const auto& [edge, u] : uses) {
+        r.boundaryEdges += u.first == 1;
+        r.nonManifoldEdges += u.first > 2;
+        r.oddNonManifoldEdges += u.first > 2 && u.first % 2 == 1;
+        r.inconsistentEdges += u.first % 2 == 0 && 2 * u.second != u.first;
+    }
+    for (std::size_t i = 0; i < m.positions.size(); ++i) r.isolatedVertices += used.count(id[i]) == 0;
+    return r;
+}
+
+TEST(ValidateMesh, CountsAgreeWithAnObviousReferenceOnAnyNumberOfThreads) {
+    // An untidy mesh large enough to be split over threads: a closed torus
+    // grid, then duplicated vertices (some as -0), flipped, repeated,
+    // collapsed, dangling and out-of-range triangles, and unused vertices.
+    const TriangleMesh torus = solids::torus({0, 0, 0}, 1.0f, 0.4f, 400).mesh;
+    ASSERT_GT(torus.triangles.size(), 100000u);
+    TriangleMesh m = torus;
+    std::mt19937 random(7);
+    const auto any = [&](std::size_t n) { return std::uint32_t(std::uniform_int_distribution<std::size_t>(0, n - 1)(random)); };
+    m.positions.push_back({-0.0f, 0.0f, 0.0f});
+    m.positions.push_back({0.0f, -0.0f, 0.0f});
+    for (int k = 0; k < 2000; ++k) { // a triangle's corner moved to a twin of its vertex
+        glm::uvec3& t = m.triangles[any(torus.triangles.size())];
+        m.positions.push_back(m.positions[t.x]);
+        t.x = std::uint32_t(m.positions.size() - 1);
+    }
+    for (int k = 0; k < 3000; ++k) {
+        glm::uvec3& t = m.triangles[any(torus.triangles.size())];
+        switch (k % 6) {
+        case 0: std::swap(t.y, t.z); break;                                                  // flipped
+        case 1: m.triangles.push_back(t); break;                                             // repeated
+        case 2: m.triangles.push_back({t.x, t.x, t.y}); break;                               // collapsed
+        case 3: m.triangles.push_back({t.x, t.y, any(m.positions.size())}); break;           // dangling
+        case 4: m.triangles.push_back({t.x, std::uint32_t(m.positions.size() + k), t.y}); break; // out of range
+        case 5: m.positions.push_back({float(k), 5.0f, 5.0f}); break;                         // unused
+        }
+    }
+    m.triangles.push_back({std::uint32_t(torus.positions.size()), std::uint32_t(torus.positions.size() + 1), 0});
+    const MeshReport want = referenceReport(m);
+    EXPECT_GT(want.boundaryEdges, 0u);
+    EXPECT_GT(want.nonManifoldEdges, 0u);
+    EXPECT_GT(want.oddNonManifoldEdges, 0u);
+    EXPECT_GT(want.inconsistentEdges, 0u);
+    EXPECT_GT(want.duplicateTriangles, 0u);
+    EXPECT_GT(want.degenerateTriangles, 0u);
+    EXPECT_GT(want.isolatedVertices, 0u);
+    EXPECT_GT(want.badIndices, 0u);
+    for (unsigned threads : {1u, 2u, 3u, 0u}) {
+        const MeshReport got = validateMesh(m, threads);
+        EXPECT_EQ(got.summary(), want.summary()) << threads << " threads";
+        EXPECT_EQ(got.boundaryEdges, want.boundaryEdges);
+        EXPECT_EQ(got.nonManifoldEdges, want.nonManifoldEdges);
+        EXPECT_EQ(got.oddNonManifoldEdges, want.oddNonManifoldEdges);
+        EXPECT_EQ(got.inconsistentEdges, want.inconsistentEdges);
+        EXPECT_EQ(got.duplicateTriangles, want.duplicateTriangles);
+        EXPECT_EQ(got.degenerateTriangles, want.degenerateTriangles);
+        EXPECT_EQ(got.isolatedVertices, want.isolatedVertices);
+        EXPECT_EQ(got.badIndices, want.badIndices);
+        EXPECT_EQ(got.bounds.lo, want.bounds.lo);
+        EXPECT_EQ(got.bounds.hi, want.bounds.hi);
+        const Box bounds = validateMesh(torus, threads).bounds, one = validateMesh(torus, 1).bounds;
+        EXPECT_EQ(bounds.lo, one.lo);
+        EXPECT_EQ(bounds.hi, one.hi);
+    }
+    EXPECT_TRUE(validateMesh(torus, 2).oriented());
 }
 
 } // namespace

@@ -1,32 +1,21 @@
 #include <vds/mesh.h>
 
 #include <algorithm>
-#include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <sstream>
-#include <unordered_map>
+#include <thread>
 
 #include <glm/geometric.hpp>
 
+#include <vds/detail/parallel.h>
 #include <vds/error.h>
 #include <vds/sprite.h>
 
 namespace vds {
 namespace {
-
-struct PositionHash {
-    std::size_t operator()(const glm::vec3& p) const {
-        std::uint32_t b[3];
-        std::memcpy(b, &p, sizeof b);
-        std::uint64_t h = 1469598103934665603ull;
-        for (std::uint32_t v : b) h = (h ^ v) * 1099511628211ull;
-        return static_cast<std::size_t>(h);
-    }
-};
-struct PositionEqual {
-    bool operator()(const glm::vec3& a, const glm::vec3& b) const { return std::memcmp(&a, &b, sizeof a) == 0; }
-};
 
 bool finite(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
@@ -35,10 +24,255 @@ std::string counted(std::size_t n, const char* one, const char* many = nullptr) 
     return std::to_string(n) + " " + (n == 1 ? one : many ? many : std::string(one) + "s");
 }
 
+/// A finite position's bits with -0 made +0, so that positions equal as
+/// floats have equal keys.
+struct PositionKey {
+    std::uint32_t bits[3];
+    explicit PositionKey(glm::vec3 p) {
+        p += glm::vec3(0.0f); // -0 + 0 = +0
+        std::memcpy(bits, &p, sizeof bits);
+    }
+    bool operator==(const PositionKey& o) const {
+        return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
+    }
+    std::uint64_t hash() const {
+        const std::uint64_t h = ((std::uint64_t(bits[0]) << 32) | bits[1]) * 0x9E3779B97F4A7C15ull ^
+                                std::uint64_t(bits[2]) * 0xC2B2AE3D27D4EB4Full;
+        return (h ^ (h >> 31)) * 0xBF58476D1CE4E5B9ull;
+    }
+};
+
+/// For each vertex, the first vertex at the same position (equal as floats,
+/// so -0 = +0); a vertex with a NaN or infinite coordinate is its own. An
+/// open-addressing table, linear probing, at most half full; a slot holds
+/// the upper half of the key's hash beside the vertex index, so a probe
+/// reads a position only when the hashes agree, and the slots of vertices a
+/// little ahead are prefetched: the table's cache misses overlap.
+std::vector<std::uint32_t> weldByPosition(const glm::vec3* positions, std::size_t n) {
+    std::vector<std::uint32_t> first(n);
+    int bits = 1;
+    while ((std::size_t(1) << bits) < 2 * n) ++bits;
+    const std::size_t mask = (std::size_t(1) << bits) - 1;
+    constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+    std::vector<std::uint64_t> table(mask + 1, kEmpty);
+    const auto hashOf = [&](std::size_t i) { return PositionKey(positions[i]).hash(); };
+    constexpr std::size_t kAhead = 16;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i + kAhead < n) __builtin_prefetch(&table[std::size_t(hashOf(i + kAhead) >> (64 - bits))]);
+        const glm::vec3 p = positions[i];
+        if (!finite(p)) {
+            first[i] = std::uint32_t(i);
+            continue;
+        }
+        const PositionKey key(p);
+        const std::uint64_t h = key.hash();
+        const std::uint64_t tag = h & 0xFFFFFFFF00000000ull;
+        for (std::size_t slot = std::size_t(h >> (64 - bits));; slot = (slot + 1) & mask) {
+            const std::uint64_t entry = table[slot];
+            if (entry == kEmpty) {
+                table[slot] = tag | i;
+                first[i] = std::uint32_t(i);
+                break;
+            }
+            const auto j = std::uint32_t(entry);
+            if ((entry & 0xFFFFFFFF00000000ull) == tag && PositionKey(positions[j]) == key) {
+                first[i] = j;
+                break;
+            }
+        }
+    }
+    return first;
+}
+
+/// Sorts a short run in place (most groups hold a handful of items).
+template <class Item, class Less> void sortGroup(Item* items, std::size_t n, const Less& less) {
+    if (n > 24) {
+        std::sort(items, items + n, less);
+        return;
+    }
+    for (std::size_t i = 1; i < n; ++i) {
+        const Item v = items[i];
+        std::size_t j = i;
+        for (; j > 0 && less(v, items[j - 1]); --j) items[j] = items[j - 1];
+        items[j] = v;
+    }
+}
+
+/// One use of an undirected edge, kept in the group of its lower vertex: the
+/// higher vertex, shifted left by one, and whether the use runs lower ->
+/// higher in the low bit.
+template <class Index> Index edgeUse(std::uint32_t a, std::uint32_t b) {
+    return a < b ? (Index(b) << 1) | 1 : Index(a) << 1;
+}
+
+/// What one thread finds in its share of the triangles, or of the vertices.
+struct Found {
+    std::size_t badIndices = 0, degenerate = 0;
+    bool anyBounds = false;
+    Box bounds; ///< of the positions `include`d
+    std::size_t boundary = 0, nonManifold = 0, oddNonManifold = 0, inconsistent = 0, duplicates = 0;
+
+    void include(const glm::vec3& lo, const glm::vec3& hi) {
+        bounds.lo = anyBounds ? glm::min(bounds.lo, lo) : lo;
+        bounds.hi = anyBounds ? glm::max(bounds.hi, hi) : hi;
+        anyBounds = true;
+    }
+};
+
+/// The counts of `validateMesh` but for the vertices, `weld` given. Each
+/// thread takes a share of the triangles: it checks them and counts, per
+/// vertex, the edge uses and corner sets it will put in the vertex's group
+/// (the group of an edge's, or a triangle's, lowest welded vertex). Running
+/// sums of those counts say where each thread puts each item, and a second
+/// pass puts them there: a counting sort by lowest vertex. Then every group,
+/// a handful of items, is sorted in place and read in runs. `Index` holds a
+/// vertex index shifted left by one and any position in the arrays of items.
+template <class Index>
+void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>& weld, unsigned threads) {
+    const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
+    std::unique_ptr<std::atomic<std::uint8_t>[]> used(new std::atomic<std::uint8_t>[nv]());
+    // Per thread and vertex: how many edge uses (corner sets) the thread
+    // has for the vertex's group; then where it puts the next one.
+    std::vector<std::vector<Index>> edgeAt(threads, std::vector<Index>(nv, 0));
+    std::vector<std::vector<Index>> cornerAt(threads, std::vector<Index>(nv, 0));
+    std::vector<Found> found(threads);
+    const auto share = [&](std::size_t k) { return std::make_pair(nt * k / threads, nt * (k + 1) / threads); };
+    parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
+        Found& f = found[k];
+        Index* edgeCount = edgeAt[k].data();
+        Index* cornerCount = cornerAt[k].data();
+        for (auto [t, end] = share(k); t < end; ++t) {
+            const glm::uvec3 tri = mesh.triangles[t];
+            if (tri.x >= nv || tri.y >= nv || tri.z >= nv) {
+                ++f.badIndices;
+                continue;
+            }
+            const std::uint32_t w[3] = {weld[tri.x], weld[tri.y], weld[tri.z]};
+            for (std::uint32_t v : w) used[v].store(1, std::memory_order_relaxed);
+            const glm::vec3 &a = mesh.positions[tri.x], &b = mesh.positions[tri.y], &c = mesh.positions[tri.z];
+            const glm::vec3 n = glm::cross(b - a, c - a);
+            const bool collapsed = w[0] == w[1] || w[1] == w[2] || w[0] == w[2];
+            if (collapsed || glm::dot(n, n) == 0.0f) ++f.degenerate;
+            if (collapsed) continue; // the edges of a collapsed triangle mean nothing
+            ++edgeCount[std::min(w[0], w[1])];
+            ++edgeCount[std::min(w[1], w[2])];
+            ++edgeCount[std::min(w[2], w[0])];
+            ++cornerCount[std::min({w[0], w[1], w[2]})];
+        }
+    });
+    // The bounds of the used vertices' positions: those of the vertices the
+    // triangles name, as a twin has its vertex's position.
+    Found all;
+    for (std::size_t i = 0; i < nv; ++i) {
+        if (!used[weld[i]].load(std::memory_order_relaxed))
+            ++r.isolatedVertices;
+        else if (finite(mesh.positions[i]))
+            all.include(mesh.positions[i], mesh.positions[i]);
+    }
+    r.bounds = all.bounds;
+    used.reset();
+
+    // Counts to where each thread starts in each group (afterwards the last
+    // thread's entries are where the groups end): the totals of chunks of
+    // vertices, their running sums, then each chunk's own, chunks in parallel.
+    constexpr std::size_t kVerticesPerChunk = 1 << 14;
+    const std::size_t chunks = (nv + kVerticesPerChunk - 1) / kVerticesPerChunk;
+    std::vector<std::pair<Index, Index>> chunkStart(chunks + 1); // edges, corners
+    parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
+        Index e = 0, t = 0;
+        for (std::size_t v = c * kVerticesPerChunk, end = std::min(nv, v + kVerticesPerChunk); v < end; ++v)
+            for (unsigned k = 0; k < threads; ++k) {
+                e += edgeAt[k][v];
+                t += cornerAt[k][v];
+            }
+        chunkStart[c + 1] = {e, t};
+    });
+    for (std::size_t c = 0; c < chunks; ++c) {
+        chunkStart[c + 1].first += chunkStart[c].first;
+        chunkStart[c + 1].second += chunkStart[c].second;
+    }
+    parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
+        auto [e, t] = chunkStart[c];
+        for (std::size_t v = c * kVerticesPerChunk, end = std::min(nv, v + kVerticesPerChunk); v < end; ++v)
+            for (unsigned k = 0; k < threads; ++k) {
+                const Index edgeCount = edgeAt[k][v], cornerCount = cornerAt[k][v];
+                edgeAt[k][v] = e;
+                cornerAt[k][v] = t;
+                e += edgeCount;
+                t += cornerCount;
+            }
+    });
+    const Index edgeTotal = chunkStart[chunks].first, cornerTotal = chunkStart[chunks].second;
+    // Every item is written below, so the arrays start uninitialised.
+    const std::unique_ptr<Index[]> edges(new Index[std::size_t(edgeTotal)]);
+    const std::unique_ptr<std::uint64_t[]> others(new std::uint64_t[std::size_t(cornerTotal)]); ///< a triangle's two higher corners: middle << 32 | highest
+    parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
+        Index* edgeNext = edgeAt[k].data();
+        Index* cornerNext = cornerAt[k].data();
+        for (auto [t, end] = share(k); t < end; ++t) {
+            const glm::uvec3 tri = mesh.triangles[t];
+            if (tri.x >= nv || tri.y >= nv || tri.z >= nv) continue;
+            std::uint32_t w[3] = {weld[tri.x], weld[tri.y], weld[tri.z]};
+            if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) continue;
+            for (int e = 0; e < 3; ++e) {
+                const std::uint32_t a = w[e], b = w[(e + 1) % 3];
+                edges[edgeNext[std::min(a, b)]++] = edgeUse<Index>(a, b);
+            }
+            if (w[0] > w[1]) std::swap(w[0], w[1]);
+            if (w[1] > w[2]) std::swap(w[1], w[2]);
+            if (w[0] > w[1]) std::swap(w[0], w[1]);
+            others[cornerNext[w[0]]++] = (std::uint64_t(w[1]) << 32) | w[2];
+        }
+    });
+    const std::vector<Index> edgeEnd = std::move(edgeAt.back()), cornerEnd = std::move(cornerAt.back());
+    edgeAt = {};
+    cornerAt = {};
+
+    std::vector<Found> groups((nv + kVerticesPerChunk - 1) / kVerticesPerChunk);
+    parallelFor(threads, nv, kVerticesPerChunk, [&](std::size_t begin, std::size_t end) {
+        Found& f = groups[begin / kVerticesPerChunk];
+        const auto less = [](auto x, auto y) { return x < y; };
+        for (std::size_t v = begin; v < end; ++v) {
+            const std::size_t first = v == 0 ? 0 : std::size_t(edgeEnd[v - 1]);
+            Index* group = edges.get() + first;
+            const std::size_t n = std::size_t(edgeEnd[v]) - first;
+            sortGroup(group, n, less);
+            for (std::size_t i = 0; i < n;) {
+                std::size_t j = i, forward = 0;
+                for (; j < n && (group[j] >> 1) == (group[i] >> 1); ++j) forward += std::size_t(group[j] & 1);
+                const std::size_t uses = j - i;
+                if (uses == 1) ++f.boundary;
+                if (uses > 2) ++f.nonManifold;
+                if (uses > 2 && uses % 2 == 1) ++f.oddNonManifold;
+                if (uses % 2 == 0 && 2 * forward != uses) ++f.inconsistent;
+                i = j;
+            }
+            const std::size_t firstSet = v == 0 ? 0 : std::size_t(cornerEnd[v - 1]);
+            std::uint64_t* sets = others.get() + firstSet;
+            const std::size_t m = std::size_t(cornerEnd[v]) - firstSet;
+            sortGroup(sets, m, less);
+            for (std::size_t i = 1; i < m; ++i) f.duplicates += sets[i] == sets[i - 1];
+        }
+    });
+
+    found.insert(found.end(), groups.begin(), groups.end());
+    for (const Found& f : found) {
+        r.badIndices += f.badIndices;
+        r.degenerateTriangles += f.degenerate;
+        r.boundaryEdges += f.boundary;
+        r.nonManifoldEdges += f.nonManifold;
+        r.oddNonManifoldEdges += f.oddNonManifold;
+        r.inconsistentEdges += f.inconsistent;
+        r.duplicateTriangles += f.duplicates;
+    }
+}
+
 } // namespace
 
 std::string MeshReport::summary() const {
-    if (triangleCount == 0) return "empty: no triangles";
+    if (triangleCount == 0)
+        return "empty: no triangles" +
+               (skippedFaces ? " (" + counted(skippedFaces, "face") + " of fewer than 3 vertices skipped)" : "");
     std::ostringstream s;
     if (nonFiniteVertices) s << "non-finite: " << nonFiniteVertices << " vertices with NaN or infinite coordinates, ";
     if (badIndices) s << "invalid: " << badIndices << " indices out of range, ";
@@ -55,82 +289,29 @@ std::string MeshReport::summary() const {
     if (degenerateTriangles) s << ", " << counted(degenerateTriangles, "degenerate triangle");
     if (duplicateTriangles) s << ", " << counted(duplicateTriangles, "duplicate triangle");
     if (isolatedVertices) s << ", " << counted(isolatedVertices, "isolated vertex", "isolated vertices");
+    if (skippedFaces) s << ", " << counted(skippedFaces, "face") << " of fewer than 3 vertices skipped";
     return s.str();
 }
 
-MeshReport validateMesh(MeshView mesh) {
+MeshReport validateMesh(MeshView mesh, unsigned threads) {
     MeshReport r;
-    r.vertexCount = mesh.positionCount;
-    r.triangleCount = mesh.triangleCount;
-    for (std::size_t i = 0; i < mesh.positionCount; ++i)
+    const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
+    r.vertexCount = nv;
+    r.triangleCount = nt;
+    r.skippedFaces = mesh.skippedFaces;
+    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+    // Small meshes: one thread pays best. Each thread keeps two counts per
+    // vertex, so at most 8.
+    threads = unsigned(std::min<std::size_t>({threads, nt / 65536 + 1, 8}));
+
+    for (std::size_t i = 0; i < nv; ++i)
         if (!finite(mesh.positions[i])) ++r.nonFiniteVertices;
-
-    // Weld by exact position so duplicated vertices still share edges.
-    std::vector<std::uint32_t> weld(mesh.positionCount);
-    {
-        std::unordered_map<glm::vec3, std::uint32_t, PositionHash, PositionEqual> first;
-        first.reserve(mesh.positionCount);
-        for (std::size_t i = 0; i < mesh.positionCount; ++i)
-            weld[i] = first.emplace(mesh.positions[i], static_cast<std::uint32_t>(i)).first->second;
-    }
-
-    // Directed edges (a, b) packed in 64 bits; sorted, then counted per
-    // undirected edge. Welded vertex triples, sorted, find duplicate triangles.
-    std::vector<std::uint64_t> directed;
-    directed.reserve(mesh.triangleCount * 3);
-    std::vector<std::array<std::uint32_t, 3>> corners;
-    corners.reserve(mesh.triangleCount);
-    std::vector<bool> used(mesh.positionCount, false);
-    bool anyBounds = false;
-    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        const glm::uvec3 tri = mesh.triangles[t];
-        if (tri.x >= mesh.positionCount || tri.y >= mesh.positionCount || tri.z >= mesh.positionCount) {
-            ++r.badIndices;
-            continue;
-        }
-        const std::uint32_t w[3] = {weld[tri.x], weld[tri.y], weld[tri.z]};
-        for (std::uint32_t v : w) used[v] = true;
-        const glm::vec3 &a = mesh.positions[tri.x], &b = mesh.positions[tri.y], &c = mesh.positions[tri.z];
-        for (const glm::vec3* p : {&a, &b, &c})
-            if (finite(*p)) {
-                if (!anyBounds) { r.bounds.lo = r.bounds.hi = *p; anyBounds = true; }
-                r.bounds.lo = glm::min(r.bounds.lo, *p);
-                r.bounds.hi = glm::max(r.bounds.hi, *p);
-            }
-        if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2] || glm::length(glm::cross(b - a, c - a)) == 0.0f) {
-            ++r.degenerateTriangles;
-            if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) continue; // edges of a collapsed triangle mean nothing
-        }
-        std::array<std::uint32_t, 3> sorted = {w[0], w[1], w[2]};
-        std::sort(sorted.begin(), sorted.end());
-        corners.push_back(sorted);
-        for (int k = 0; k < 3; ++k)
-            directed.push_back((std::uint64_t(w[k]) << 32) | w[(k + 1) % 3]);
-    }
-    for (std::size_t i = 0; i < mesh.positionCount; ++i)
-        if (!used[weld[i]]) ++r.isolatedVertices;
-    std::sort(corners.begin(), corners.end());
-    for (std::size_t i = 1; i < corners.size(); ++i)
-        if (corners[i] == corners[i - 1]) ++r.duplicateTriangles;
-
-    // Undirected key (lower index first) and whether this use runs lower -> higher.
-    std::vector<std::pair<std::uint64_t, bool>> edges;
-    edges.reserve(directed.size());
-    for (std::uint64_t e : directed) {
-        const std::uint32_t a = std::uint32_t(e >> 32), b = std::uint32_t(e);
-        edges.emplace_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), a < b);
-    }
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t i = 0; i < edges.size();) {
-        std::size_t j = i, forward = 0;
-        while (j < edges.size() && edges[j].first == edges[i].first) forward += edges[j++].second;
-        const std::size_t uses = j - i;
-        if (uses == 1) ++r.boundaryEdges;
-        if (uses > 2) ++r.nonManifoldEdges;
-        if (uses > 2 && uses % 2 == 1) ++r.oddNonManifoldEdges;
-        if (uses % 2 == 0 && 2 * forward != uses) ++r.inconsistentEdges;
-        i = j;
-    }
+    const std::vector<std::uint32_t> weld = weldByPosition(mesh.positions, nv);
+    // 32-bit items while vertex indices fit in 31 bits and the edge uses in 32.
+    if (nv < (std::size_t(1) << 31) && 3 * nt < (std::size_t(1) << 32))
+        countByEdges<std::uint32_t>(r, mesh, weld, threads);
+    else
+        countByEdges<std::uint64_t>(r, mesh, weld, threads);
     return r;
 }
 

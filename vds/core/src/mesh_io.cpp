@@ -33,10 +33,11 @@ glm::vec3 readVertexLine(Tokens tokens, std::size_t maxNumbers, const std::strin
         tokens.next(token);
         c = parseCoordinate(token, name, line);
     }
-    while (tokens.next(token)) {
+    while (tokens.next(token)) { // not a position: any number, finite or not
         double extra = 0.0;
         const NumberStatus status = parseNumber(token, extra);
-        if (status != NumberStatus::Ok) failAtLine(name, line, "vertex attribute " + numberProblem(status, token, "a number"));
+        if (status == NumberStatus::Malformed)
+            failAtLine(name, line, "vertex attribute " + numberProblem(status, token, "a number"));
     }
     return {xyz[0], xyz[1], xyz[2]};
 }

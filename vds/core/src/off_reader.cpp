@@ -1,9 +1,12 @@
 // OFF, Geomview's Object File Format (Geomview manual, "OFF Files"): a
-// header "[ST][C][N]OFF", the counts "vertices faces edges", one vertex per
-// line (x y z, then the normal, colour or texture coordinates the prefixes
-// announce), one face per line ("n i0 ... i(n-1)", then an optional colour of
-// up to 4 numbers). '#' starts a comment. 4OFF, nOFF and binary OFF are
-// refused. Exactly the declared vertices and faces must follow.
+// header "[ST][C][N]OFF", the counts "vertices faces edges" (on the header
+// line, even right after the keyword as in "OFF8 6 12", or on the next), one
+// vertex per line (x y z, then the normal, colour or texture coordinates the
+// prefixes announce, which may be NaN), one face per line ("n i0 ... i(n-1)",
+// then an optional colour of up to 4 numbers; a face of fewer than 3
+// vertices is skipped and counted). '#' starts a comment. 4OFF, nOFF and
+// binary OFF are refused. Exactly the declared vertices and faces must
+// follow.
 #include "mesh_readers.h"
 
 #include <limits>
@@ -13,9 +16,9 @@
 namespace vds::detail {
 namespace {
 
-// The fewest bytes a vertex line ("0 0 0\n") and a face line ("3 0 0 0\n") take.
+// The fewest bytes a vertex line ("0 0 0\n") and a face line ("0\n") take.
 constexpr std::uint64_t kMinVertexBytes = 6;
-constexpr std::uint64_t kMinFaceBytes = 8;
+constexpr std::uint64_t kMinFaceBytes = 2;
 constexpr std::size_t kMaxFaceColour = 4;
 
 class OffReader {
@@ -26,13 +29,20 @@ public:
     TriangleMesh read() {
         std::string_view line;
         if (!nextContentLine(line)) failAtLine(name_, 1, "no OFF header");
-        Tokens tokens(line);
-        std::string_view keyword;
-        tokens.next(keyword);
-        checkKeyword(keyword);
-        if (tokens.count() > 0)
-            line = restAfterKeyword(line); // "OFF 8 6 0" on one line
-        else if (!nextContentLine(line))
+        // The keyword ends with "OFF"; what follows it on the line, if
+        // anything, is the counts.
+        std::size_t start = 0;
+        while (start < line.size() && isBlank(line[start])) ++start;
+        std::size_t stop = start;
+        while (stop < line.size() && !isBlank(line[stop])) ++stop;
+        const std::size_t off = line.substr(start, stop - start).find("OFF");
+        const std::size_t keywordEnd =
+            off != std::string_view::npos && stop > start + off + 3 && isDigit(line[start + off + 3])
+                ? start + off + 3 // "OFF8 6 12"
+                : stop;
+        checkKeyword(line.substr(start, keywordEnd - start));
+        line.remove_prefix(keywordEnd);
+        if (Tokens(line).count() == 0 && !nextContentLine(line))
             fail("file ends before the vertex and face counts");
         readCounts(line);
 
@@ -73,12 +83,7 @@ private:
         return false;
     }
 
-    static std::string_view restAfterKeyword(std::string_view line) {
-        std::size_t i = 0;
-        while (i < line.size() && isBlank(line[i])) ++i;
-        while (i < line.size() && !isBlank(line[i])) ++i;
-        return line.substr(i);
-    }
+    static bool isDigit(char c) { return c >= '0' && c <= '9'; }
 
     void checkKeyword(std::string_view keyword) {
         const std::size_t at = keyword.rfind("OFF");
@@ -126,7 +131,7 @@ private:
         std::int64_t n = 0;
         const NumberStatus status = parseNumber(token, n);
         if (status != NumberStatus::Ok) fail("face size " + numberProblem(status, token, "an integer"));
-        if (n < 3) fail("a face needs at least 3 vertices, this one declares " + std::to_string(n));
+        if (n < 0) fail("face size " + std::to_string(n) + " is negative");
         const std::size_t left = tokens.count();
         if (std::uint64_t(n) > left)
             fail("the face declares " + std::to_string(n) + " vertices, the line holds " + std::to_string(left) +
@@ -148,9 +153,12 @@ private:
         while (tokens.next(token)) {
             double colour = 0.0;
             const NumberStatus s = parseNumber(token, colour);
-            if (s != NumberStatus::Ok) fail("face colour " + numberProblem(s, token, "a number"));
+            if (s == NumberStatus::Malformed) fail("face colour " + numberProblem(s, token, "a number"));
         }
-        appendFan(mesh_, corners_);
+        if (corners_.size() < 3)
+            ++mesh_.skippedFaces;
+        else
+            appendFan(mesh_, corners_);
     }
 
     TextScanner text_;

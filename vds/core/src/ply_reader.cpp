@@ -2,9 +2,12 @@
 // Format", 1994): ascii, binary_little_endian and binary_big_endian. The
 // `vertex` element's x, y, z (any scalar type) become positions; the `face`
 // element's `vertex_indices` (or `vertex_index`) lists, of any integer count
-// and index types, become polygons. Every other element and property is read
+// and index types, become polygons (lists of fewer than 3 are skipped and
+// counted). Other vertex properties, such as colours, may be NaN. Every other element and property is read
 // past, by its declared type. The header's counts must fit in the bytes after
-// it before anything is allocated, and the data must end where they say.
+// it before anything is allocated, and the data must end where they say. An
+// ascii file laid out one element per line may hold more numbers on a line
+// than its element declares (onePerLine).
 #include "mesh_readers.h"
 
 #include <cmath>
@@ -81,16 +84,19 @@ public:
         mesh_.positions.reserve(vertexCount_);
         if (face_ != kNone) mesh_.triangles.reserve(elements_[face_].count);
         position_ = text_.offset();
+        const bool lineByLine = encoding_ == Encoding::Ascii && onePerLine();
         for (std::size_t e = 0; e < elements_.size(); ++e) {
             const Element& element = elements_[e];
             if (element.properties.empty()) continue; // nothing to read, however many
-            for (std::uint64_t i = 0; i < element.count; ++i) {
+            const std::uint64_t fast = e == vertex_ ? fastVertices(element) : e == face_ ? fastFaces(element) : 0;
+            for (std::uint64_t i = fast; i < element.count; ++i) {
                 if (e == vertex_)
                     vertex(element);
                 else if (e == face_)
                     face(element, i);
                 else
                     for (const Property& p : element.properties) skip(p, element, i);
+                if (lineByLine) readPastRestOfLine();
             }
         }
         if (encoding_ == Encoding::Ascii) {
@@ -222,18 +228,17 @@ private:
         }
     }
 
-    /// The fewest bytes one instance of element `e` can take; a face's index
-    /// list holds at least 3 indices.
+    /// The fewest bytes one instance of element `e` can take; a list,
+    /// even a face's index list, may be empty.
     std::uint64_t minimumBytes(std::size_t e) const {
         std::uint64_t bytes = 0;
         const auto& properties = elements_[e].properties;
         for (std::size_t k = 0; k < properties.size(); ++k) {
             const Property& p = properties[k];
-            const bool indexList = e == face_ && k == indices_;
             if (encoding_ == Encoding::Ascii) // a digit and a separator per number
-                bytes += indexList ? 8 : 2;
+                bytes += 2;
             else
-                bytes += p.list ? bytesOf(p.countType) + (indexList ? 3 * bytesOf(p.type) : 0) : bytesOf(p.type);
+                bytes += p.list ? bytesOf(p.countType) : bytesOf(p.type);
         }
         return bytes;
     }
@@ -264,10 +269,16 @@ private:
         if (size_ - position_ < n)
             failAtByte(name_, position_,
                        "file ends inside " + e.name + " " + std::to_string(i) + " of " + std::to_string(e.count));
-        unsigned char b[8];
         valueAt_ = position_;
-        std::memcpy(b, data_ + position_, n);
         position_ += n;
+        return decode(s, data_ + valueAt_);
+    }
+
+    /// The binary scalar of type `s` at `at`, in the file's byte order.
+    double decode(Scalar s, const char* at) const {
+        unsigned char b[8];
+        const std::size_t n = bytesOf(s);
+        std::memcpy(b, at, n);
         if (encoding_ == Encoding::BigEndian)
             for (std::size_t k = 0; k < n / 2; ++k) std::swap(b[k], b[n - 1 - k]);
         switch (s) {
@@ -355,17 +366,118 @@ private:
                 continue;
             }
             const std::uint64_t n = listLength(p, e, i);
-            if (n < 3) failData("face " + std::to_string(i) + " has " + std::to_string(n) + " vertices, fewer than 3");
             corners_.clear();
+            const bool binary = encoding_ != Encoding::Ascii; // listLength checked that the n indices are there
+            const std::size_t size = bytesOf(p.type);
             for (std::uint64_t c = 0; c < n; ++c) {
-                const double index = scalar(p.type, e, i);
+                double index;
+                if (binary) {
+                    valueAt_ = position_;
+                    index = decode(p.type, data_ + position_);
+                    position_ += size;
+                } else {
+                    index = scalar(p.type, e, i);
+                }
                 if (!(index >= 0.0 && index < double(vertexCount_)))
                     failData("face " + std::to_string(i) + ": vertex index " + std::to_string(std::int64_t(index)) +
                              " is out of range (" + std::to_string(vertexCount_) + " vertices)");
                 corners_.push_back(std::uint32_t(index));
             }
-            appendFan(mesh_, corners_);
+            if (n == 3)
+                mesh_.triangles.emplace_back(corners_[0], corners_[1], corners_[2]);
+            else if (n < 3)
+                ++mesh_.skippedFaces;
+            else
+                appendFan(mesh_, corners_);
         }
+    }
+
+    /// Whether an ascii file is laid out one element instance per line, as
+    /// exporters write it: its first instance (of an element without lists)
+    /// fills its line. Then numbers after an instance's declared properties,
+    /// up to its line's end, are read past: some writers (VCG, MeshLab's
+    /// library) put more on a face's line than its header declares.
+    bool onePerLine() const {
+        for (const Element& e : elements_) {
+            if (e.count == 0 || e.properties.empty()) continue;
+            for (const Property& p : e.properties)
+                if (p.list) return false;
+            TextScanner ahead = text_;
+            std::string_view line;
+            while (ahead.nextLine(line))
+                if (Tokens(line).count() > 0) return Tokens(line).count() == e.properties.size();
+            return false;
+        }
+        return false;
+    }
+
+    /// The rest of the line an instance ended on: numbers only, read past.
+    void readPastRestOfLine() {
+        const std::size_t line = text_.line();
+        Tokens rest(text_.restOfLine());
+        for (std::string_view token; rest.next(token);) {
+            double ignored = 0.0;
+            if (parseNumber(token, ignored) == NumberStatus::Malformed)
+                failAtLine(name_, line, numberProblem(NumberStatus::Malformed, token, "a number"));
+        }
+    }
+
+    // The layouts most binary files have, read in tight loops: vertices of
+    // float properties only, faces of nothing but a uchar-counted list of int
+    // or uint indices, in the host's byte order (little-endian). Each stops
+    // before anything unusual (a coordinate that is not finite, an index out
+    // of range, the end of the data) and says how many it read; the general
+    // code reads on from there, and names the problem.
+
+    static bool littleEndianHost() {
+        const std::uint16_t one = 1;
+        unsigned char first;
+        std::memcpy(&first, &one, 1);
+        return first == 1;
+    }
+
+    std::uint64_t fastVertices(const Element& e) {
+        if (encoding_ != Encoding::LittleEndian || !littleEndianHost()) return 0;
+        for (const Property& p : e.properties)
+            if (p.list || p.type != Scalar::Float32) return 0;
+        const std::size_t stride = 4 * e.properties.size();
+        const std::size_t at[3] = {4 * xyz_[0], 4 * xyz_[1], 4 * xyz_[2]};
+        std::uint64_t i = 0;
+        for (; i < e.count && size_ - position_ >= stride; ++i) {
+            float xyz[3];
+            for (int k = 0; k < 3; ++k) std::memcpy(&xyz[k], data_ + position_ + at[k], 4);
+            if (!(std::isfinite(xyz[0]) && std::isfinite(xyz[1]) && std::isfinite(xyz[2]))) break;
+            mesh_.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
+            position_ += stride;
+        }
+        return i;
+    }
+
+    std::uint64_t fastFaces(const Element& e) {
+        if (encoding_ != Encoding::LittleEndian || !littleEndianHost() || e.properties.size() != 1) return 0;
+        const Property& p = e.properties[0];
+        if (p.countType != Scalar::UInt8 || (p.type != Scalar::Int32 && p.type != Scalar::UInt32)) return 0;
+        std::uint64_t i = 0;
+        for (; i < e.count && size_ - position_ >= 1; ++i) {
+            const auto n = std::size_t(static_cast<unsigned char>(data_[position_]));
+            if (size_ - position_ - 1 < 4 * n) break;
+            const char* at = data_ + position_ + 1;
+            corners_.resize(n);
+            bool inRange = true;
+            for (std::size_t c = 0; c < n; ++c) {
+                std::memcpy(&corners_[c], at + 4 * c, 4); // int or uint: negative ones are out of range as uint
+                inRange &= corners_[c] < vertexCount_;
+            }
+            if (!inRange) break;
+            position_ += 1 + 4 * n;
+            if (n == 3)
+                mesh_.triangles.emplace_back(corners_[0], corners_[1], corners_[2]);
+            else if (n < 3)
+                ++mesh_.skippedFaces;
+            else
+                appendFan(mesh_, corners_);
+        }
+        return i;
     }
 
     /// A list's length, checked against the bytes left in binary files (ascii

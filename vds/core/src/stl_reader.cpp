@@ -10,7 +10,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <unordered_map>
 
 #include "text_scanner.h"
 
@@ -22,33 +21,75 @@ namespace {
 constexpr std::uint64_t kBinaryHeader = 84;
 constexpr std::uint64_t kBinaryTriangle = 50;
 
-/// Corners to indices by exact position.
+/// Corners to indices by exact position: an open-addressing table of vertex
+/// indices, linear probing, kept at most half full; a slot holds the upper
+/// half of the position's hash beside the index, so a probe compares
+/// positions only when the hashes agree.
 class Welder {
 public:
-    explicit Welder(TriangleMesh& mesh) : mesh_(mesh) {}
+    Welder(TriangleMesh& mesh, std::size_t expected) : mesh_(mesh) { resize(2 * expected); }
+
+    /// Asks for the cache line of `p`'s slot, for an `add(p)` a little later.
+    void prefetch(glm::vec3 p) const {
+        p += glm::vec3(0.0f);
+        std::uint32_t bits[3];
+        std::memcpy(bits, &p, sizeof bits);
+        __builtin_prefetch(&table_[std::size_t(hash(bits) >> shift_)]);
+    }
+
     std::uint32_t add(glm::vec3 p) {
         p += glm::vec3(0.0f); // -0 becomes +0, so both weld to one vertex
-        Key key;
-        std::memcpy(key.bits, &p, sizeof key.bits);
-        const auto [it, inserted] = index_.emplace(key, std::uint32_t(mesh_.positions.size()));
-        if (inserted) mesh_.positions.push_back(p);
-        return it->second;
+        std::uint32_t bits[3];
+        std::memcpy(bits, &p, sizeof bits);
+        const std::uint64_t h = hash(bits);
+        for (std::size_t slot = std::size_t(h >> shift_);; slot = (slot + 1) & mask_) {
+            const std::uint64_t entry = table_[slot];
+            if (entry == kEmpty) {
+                if (2 * (mesh_.positions.size() + 1) > table_.size()) {
+                    resize(2 * table_.size());
+                    return add(p);
+                }
+                const auto index = std::uint32_t(mesh_.positions.size());
+                table_[slot] = (h & kTag) | index;
+                mesh_.positions.push_back(p);
+                return index;
+            }
+            if ((entry & kTag) == (h & kTag) && std::memcmp(&mesh_.positions[std::uint32_t(entry)], bits, 12) == 0)
+                return std::uint32_t(entry);
+        }
     }
 
 private:
-    struct Key {
-        std::uint32_t bits[3];
-        bool operator==(const Key& o) const { return std::memcmp(bits, o.bits, sizeof bits) == 0; }
-    };
-    struct KeyHash {
-        std::size_t operator()(const Key& k) const {
-            std::uint64_t h = 1469598103934665603ull;
-            for (std::uint32_t v : k.bits) h = (h ^ v) * 1099511628211ull;
-            return std::size_t(h);
+    static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+    static constexpr std::uint64_t kTag = 0xFFFFFFFF00000000ull;
+
+    static std::uint64_t hash(const std::uint32_t bits[3]) {
+        const std::uint64_t h = ((std::uint64_t(bits[0]) << 32) | bits[1]) * 0x9E3779B97F4A7C15ull ^
+                                std::uint64_t(bits[2]) * 0xC2B2AE3D27D4EB4Full;
+        return (h ^ (h >> 31)) * 0xBF58476D1CE4E5B9ull;
+    }
+
+    /// A table of at least `slots` slots (a power of two) holding the vertices so far.
+    void resize(std::size_t slots) {
+        int bits = 4;
+        while ((std::size_t(1) << bits) < slots) ++bits;
+        shift_ = 64 - bits;
+        mask_ = (std::size_t(1) << bits) - 1;
+        table_.assign(mask_ + 1, kEmpty);
+        for (std::size_t i = 0; i < mesh_.positions.size(); ++i) {
+            std::uint32_t key[3];
+            std::memcpy(key, &mesh_.positions[i], sizeof key);
+            const std::uint64_t h = hash(key);
+            std::size_t slot = std::size_t(h >> shift_);
+            while (table_[slot] != kEmpty) slot = (slot + 1) & mask_;
+            table_[slot] = (h & kTag) | i;
         }
-    };
+    }
+
     TriangleMesh& mesh_;
-    std::unordered_map<Key, std::uint32_t, KeyHash> index_;
+    std::vector<std::uint64_t> table_;
+    int shift_ = 60;
+    std::size_t mask_ = 15;
 };
 
 std::uint32_t loadLittle32(const char* p) {
@@ -66,13 +107,19 @@ float loadLittleFloat(const char* p) {
 TriangleMesh readBinary(const char* data, std::uint64_t count, const std::string& name) {
     TriangleMesh mesh;
     mesh.triangles.reserve(count);
-    Welder welder(mesh);
+    Welder welder(mesh, count / 2); // a closed mesh has about half as many vertices as triangles
+    const auto cornerAt = [&](std::uint64_t t, int k) {
+        const char* p = data + kBinaryHeader + t * kBinaryTriangle + 12 + 12 * k;
+        return glm::vec3(loadLittleFloat(p), loadLittleFloat(p + 4), loadLittleFloat(p + 8));
+    };
+    constexpr std::uint64_t kAhead = 4; // triangles whose slots are fetched while this one is welded
     for (std::uint64_t t = 0; t < count; ++t) {
+        if (t + kAhead < count)
+            for (int k = 0; k < 3; ++k) welder.prefetch(cornerAt(t + kAhead, k));
         const std::uint64_t at = kBinaryHeader + t * kBinaryTriangle + 12; // after the normal
         std::uint32_t corner[3];
         for (int k = 0; k < 3; ++k) {
-            const char* p = data + at + 12 * k;
-            const glm::vec3 v(loadLittleFloat(p), loadLittleFloat(p + 4), loadLittleFloat(p + 8));
+            const glm::vec3 v = cornerAt(t, k);
             if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)))
                 failAtByte(name, at + 12 * k,
                            "triangle " + std::to_string(t) + ", corner " + std::to_string(k) + " is not finite");
@@ -145,15 +192,16 @@ private:
             corners_.push_back(welder_.add({xyz[0], xyz[1], xyz[2]}));
         }
         if (corners_.size() < 3)
-            fail("a facet needs at least 3 vertices, this one has " + std::to_string(corners_.size()));
-        appendFan(mesh_, corners_);
+            ++mesh_.skippedFaces;
+        else
+            appendFan(mesh_, corners_);
         expect("endfacet");
     }
 
     TextScanner text_;
     const std::string& name_;
     TriangleMesh mesh_;
-    Welder welder_{mesh_};
+    Welder welder_{mesh_, 64};
     std::vector<std::uint32_t> corners_;
 };
 

@@ -22,6 +22,7 @@ struct TriangleMesh {
     std::vector<glm::vec3> positions;  ///< vertex positions, mesh coordinates
     std::vector<glm::uvec3> triangles; ///< three vertex indices per triangle
     std::string name;                  ///< where it came from (file name), may be empty
+    std::size_t skippedFaces = 0;      ///< faces of fewer than 3 vertices the file held, left out of `triangles`
 };
 
 /// A non-owning view of an indexed triangle mesh. The arrays must outlive every
@@ -31,13 +32,14 @@ struct MeshView {
     std::size_t positionCount = 0;
     const glm::uvec3* triangles = nullptr; ///< `triangleCount` index triples
     std::size_t triangleCount = 0;
+    std::size_t skippedFaces = 0;          ///< as `TriangleMesh::skippedFaces`, passed on to `MeshReport`
 
     MeshView() = default;
     MeshView(const glm::vec3* p, std::size_t np, const glm::uvec3* t, std::size_t nt)
         : positions(p), positionCount(np), triangles(t), triangleCount(nt) {}
     MeshView(const TriangleMesh& m) // NOLINT: implicit on purpose, a mesh is a view of itself
         : positions(m.positions.data()), positionCount(m.positions.size()),
-          triangles(m.triangles.data()), triangleCount(m.triangles.size()) {}
+          triangles(m.triangles.data()), triangleCount(m.triangles.size()), skippedFaces(m.skippedFaces) {}
 };
 
 /// Axis-aligned box, `lo <= hi` componentwise when not empty.
@@ -47,8 +49,11 @@ struct Box {
 };
 
 /// What validation found. Counts are of undirected edges after welding
-/// vertices with bitwise-equal positions, so a mesh whose loader duplicated
-/// vertices is judged by its geometry, not by its index buffer.
+/// vertices at equal positions: exact duplicates are one vertex, and so are
+/// `-0` and `+0` (positions compared as floats, as the winding code and the
+/// STL reader compare them), so a mesh whose loader duplicated vertices is
+/// judged by its geometry, not by its index buffer, and every count of one
+/// mesh agrees. A vertex with a NaN or infinite coordinate is welded to none.
 ///
 /// Which rule defines inside: a ray from a point crosses the surface; across
 /// an edge used by an even number of triangles the count of crossings changes
@@ -68,7 +73,8 @@ struct MeshReport {
     std::size_t duplicateTriangles = 0;  ///< triangles on the same three vertices as an earlier one, either orientation
     std::size_t isolatedVertices = 0;    ///< vertices no triangle uses (nor any vertex at the same position)
     std::size_t nonFiniteVertices = 0;   ///< NaN or infinite coordinates
-    std::size_t badIndices = 0;          ///< triangle indices >= vertex count
+    std::size_t badIndices = 0;          ///< triangles with an index >= vertex count
+    std::size_t skippedFaces = 0;        ///< faces of fewer than 3 vertices the file held (`TriangleMesh::skippedFaces`)
     Box bounds;                          ///< of the vertices used by triangles (finite ones)
 
     /// True when every edge is used by an even number of triangles: the parity
@@ -83,14 +89,17 @@ struct MeshReport {
     /// True when nothing at all would stop a bake (finite, non-empty, valid indices).
     bool usable() const { return triangleCount > 0 && nonFiniteVertices == 0 && badIndices == 0; }
     /// One line, e.g. "closed, 5856 triangles, 2930 vertices" or "open (12
-    /// boundary edges), ..., 3 duplicate triangles, 1 isolated vertex"; every
-    /// count that is not zero is named.
+    /// boundary edges), ..., 3 duplicate triangles, 1 isolated vertex, 2 faces
+    /// of fewer than 3 vertices skipped"; every count that is not zero is named.
     std::string summary() const;
 };
 
-/// Validates a mesh. Cost O(n log n) in the triangle count; never throws for
-/// bad geometry (it counts it), only for allocation failure.
-MeshReport validateMesh(MeshView mesh);
+/// Validates a mesh. Time linear in the vertex and triangle counts (but for
+/// vertices of very high valence); memory about 50 bytes per triangle and
+/// 20 + 8 per thread per vertex. Runs on up to `threads` threads (0: one per
+/// hardware thread), at most 8, one more per 64k triangles. Thread-safe;
+/// never throws for bad geometry (it counts it), only for allocation failure.
+MeshReport validateMesh(MeshView mesh, unsigned threads = 0);
 
 /// Throws `InvalidMesh` with a one-line reason if `report` is not `usable()`.
 void requireUsable(const MeshReport& report, const std::string& meshName);

@@ -19,10 +19,10 @@ namespace vds {
 
 /// The mesh file formats `loadMesh` and `parseMesh` read.
 enum class MeshFormat : std::uint8_t {
-    Obj, ///< Wavefront OBJ: `v` and `f` (v, v/vt, v//vn, v/vt/vn; negative = relative); other statements skipped
+    Obj, ///< Wavefront OBJ: `v` and `f` (v, v/vt, v//vn, v/vt/vn; negative = relative); `\` continues a line; other statements skipped
     Ply, ///< PLY, ascii or binary of either byte order: vertex x, y, z of any type, face vertex_indices lists
     Stl, ///< STL, ASCII or binary (binary is exactly 84 + 50 n bytes); corners welded by exact position
-    Off, ///< OFF and its [ST][C][N]OFF variants, one vertex or face per line
+    Off, ///< OFF and its [ST][C][N]OFF variants, counts on the header line or the next, one vertex or face per line
 };
 
 /// The format of a file name's extension, in any case: .obj, .ply, .stl, .off.
@@ -33,8 +33,12 @@ MeshFormat meshFormatOf(const std::string& path);
 /// extension, `meshFormatOf`). The result holds the file's vertices in file
 /// order (STL: each distinct corner position once, in order of first
 /// appearance) and its faces in file order, each polygon fanned into
-/// triangles (v0, vk, vk+1); nothing is dropped, merged or added, and counts
-/// a header declares must match what follows. `name` is the file name
+/// triangles (v0, vk, vk+1); nothing is merged or added, and counts a header
+/// declares must match what follows. Faces of fewer than 3 vertices (which
+/// some exporters write for lines or points) are left out and counted in
+/// `skippedFaces`, their indices checked all the same. Numbers after a
+/// vertex's x y z (colours, normals, texture coordinates) may be NaN or
+/// infinite; x y z may not. `name` is the file name
 /// without its directory. Throws `IoError` for a file that cannot be opened
 /// or read (missing, a directory), `FormatError` ("<path>:<line>: <what>" or
 /// "<path>: byte <n>: <what>") for one that is empty, malformed, truncated,
