@@ -65,18 +65,49 @@ double solidAngle(const glm::dvec3& u, const glm::dvec3& v, const glm::dvec3& w)
 
 double edgeSolidAngle(int axis, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& q) {
     const glm::ivec3 p = axisPermutation(Axis(axis));
+    // Float ends and point: these differences are exact in double, so the
+    // tests for zero below are exact.
     const glm::dvec3 u = a - q, v = b - q;
+    // An end exactly on q's ray (straight in front of q along -axis): the
+    // spherical triangle has a vertex at the antipode of the apex, where it
+    // is not defined. Take the limit at q moved by (eps, -eps^2) in (s, t),
+    // the integer term's tie rule: with u = (0, 0, -h), to first order in
+    // eps det = -eps v_t and den = -eps v_s (u', v' the moved vectors; the
+    // (|u'| + u'_r) factor is O(eps^2)), so the angle is 2 atan2(-v_t, -v_s);
+    // with v on the ray, det = eps u_t and den = -eps u_s. Where the leading
+    // det vanishes the eps^2 term (-eps^2 v_s, eps^2 u_s) has the sign of the
+    // +0.0 or -0.0 passed to atan2. An edge along q's line adds 0.
+    const bool uOnRay = u[p.x] == 0.0 && u[p.y] == 0.0 && u[axis] < 0.0;
+    const bool vOnRay = v[p.x] == 0.0 && v[p.y] == 0.0 && v[axis] < 0.0;
+    if (uOnRay || vOnRay) {
+        const glm::dvec3& other = uOnRay ? v : u;
+        if (other[p.x] == 0.0 && other[p.y] == 0.0) return 0.0; // the edge lies along q's line
+        return uOnRay ? 2.0 * std::atan2(-v[p.y], -v[p.x]) : 2.0 * std::atan2(u[p.y], -u[p.x]);
+    }
     const double lu = glm::length(u), lv = glm::length(v);
     // With w = +axis: det = (u x v) . axis, the cross product across the axis.
-    double det = u[p.x] * v[p.y] - u[p.y] * v[p.x];
-    const double den = lu * lv + glm::dot(u, v) + u[axis] * lv + v[axis] * lu;
+    const double det = u[p.x] * v[p.y] - u[p.y] * v[p.x];
+    // Van Oosterom & Strackee's denominator |u||v| + u.v + u_r |v| + v_r |u|
+    // is (|u| + u_r)(|v| + v_r) + u_s v_s + u_t v_t. Near q's ray (u_r close
+    // to -|u|) the factor |u| + u_r cancels; there it is taken as the equal
+    // rho^2 / (|u| - u_r), rho^2 = u_s^2 + u_t^2, which does not: so that an
+    // edge seen almost straight along the ray still gets its angle to
+    // rounding, not to the square root of it.
+    const auto towardsApex = [&](const glm::dvec3& w, double length) {
+        return w[axis] >= 0.0 ? length + w[axis] : (w[p.x] * w[p.x] + w[p.y] * w[p.y]) / (length - w[axis]);
+    };
+    const double den = towardsApex(u, lu) * towardsApex(v, lv) + u[p.x] * v[p.x] + u[p.y] * v[p.y];
     if (det == 0.0 && den < 0.0) {
-        // q exactly on the edge's sweep, where the term jumps by 4 pi: take
-        // the side of the point moved by (eps, -eps^2) in (s, t), as the
-        // integer term's tie rule does, so the two jumps still cancel.
+        // q exactly on the edge's sweep (its ray passes over the edge), where
+        // the term jumps by 4 pi: take the side of q moved by (eps, -eps^2)
+        // in (s, t), as the integer term's tie rule does, so that the two
+        // jumps still cancel. There det = eps (u - v)_t + eps^2 (u - v)_s +
+        // O(eps^3) -> 0 with that sign while den stays negative: the angle
+        // is +-2 pi.
         const glm::dvec3 d = a - b;
-        det = d[p.y] != 0.0 ? d[p.y] : d[p.x];
-        if (det == 0.0) return 0.0; // an edge along the axis
+        const double side = d[p.y] != 0.0 ? d[p.y] : d[p.x];
+        if (side == 0.0) return 0.0; // an edge along the axis
+        return side > 0.0 ? 2.0 * kPi : -2.0 * kPi;
     }
     return 2.0 * std::atan2(det, den);
 }
@@ -126,7 +157,8 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
             const int winding = columnWinding(crossings + offsets[column], crossings + offsets[column + 1], t.z);
             const glm::vec3 q = columnPoint(sg, column, t.z);
             labels[k] = (caps ? caps->inside(winding, q)
-                              : double(winding) + boundaryTermExact(edges, edgeCount, axis, glm::dvec3(q)) > 0.5)
+                              : generalizedWindingInside(double(winding) +
+                                                         boundaryTermExact(edges, edgeCount, axis, glm::dvec3(q))))
                             ? 1
                             : 0;
         }

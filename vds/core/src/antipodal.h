@@ -48,6 +48,16 @@ double edgeSolidAngle(int axis, const glm::dvec3& a, const glm::dvec3& b, const 
 double boundaryTermExact(const glm::vec3* edges, std::size_t edgeCount, int axis, const glm::dvec3& q);
 
 
+/// Values within this of 1/2 are ties, and ties are outside. The per-edge
+/// sum errs by some 1e-15 per edge, so a value this close to 1/2 cannot be
+/// told from 1/2; and 1/2 is what a flat sheet's points have (seen from its
+/// plane a flat sheet subtends a half sphere on one side and nothing on the
+/// other; the tie rule takes one side): they lie on the surface, not inside.
+constexpr double kGeneralizedWindingTie = 1e-9;
+
+/// The label of a generalized winding number computed by the per-edge sum.
+inline bool generalizedWindingInside(double value) { return value > 0.5 + kGeneralizedWindingTie; }
+
 /// Signed count of a column's crossings strictly in front of depth r.
 inline int columnWinding(const float* begin, const float* end, float r) {
     int winding = 0;
