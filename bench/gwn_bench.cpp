@@ -3,7 +3,7 @@
 // points split by how close their value lies to 1/2; all rates in one run.
 //
 //   vds_gwn_bench [MESH.obj ...] [--points 200000] [--resolution 1024]
-//                 [--dims 64] [--threads 1] [--no-generated]
+//                 [--dims 64] [--threads 1] [--no-generated] [--only NAME]
 //
 // Meshes: the ones named (default: the bunny, teapot and suzanne beside the
 // project, if present), then four hard cases built in code: a shell with one
@@ -174,12 +174,14 @@ int main(int argc, char** argv) {
     std::uint32_t resolution = 1024, dims = 64;
     unsigned threads = 1;
     bool noGenerated = false;
+    std::string only;
     app.add_option("meshes", meshes, "meshes (default: the bunny, teapot and suzanne of ../shared/meshes)");
     app.add_option("--points", pointCount, "uniform points in the padded box");
     app.add_option("--resolution", resolution, "sprite resolution");
     app.add_option("--dims", dims, "occupancy grid cells along each side");
     app.add_option("--threads", threads, "threads (0: all)");
     app.add_flag("--no-generated", noGenerated, "leave out the hard cases built in code");
+    app.add_option("--only", only, "measure only the meshes whose name contains this");
     CLI11_PARSE(app, argc, argv);
     if (meshes.empty())
         for (const char* name : {"stanford-bunny", "teapot", "suzanne"})
@@ -202,6 +204,7 @@ int main(int argc, char** argv) {
         std::printf("| mesh | boundary edges | method | wrong | all | < 0.001 | < 0.02 | < 0.1 | >= 0.1 |\n"
                     "|---|---:|---|---:|---:|---:|---:|---:|---:|\n");
         for (const auto& [name, mesh] : inputs) {
+            if (name.find(only) == std::string::npos) continue;
             const vds::ExactClassifier exact(mesh, vds::Axis::Z);
             const std::vector<glm::vec3> edges = vds::meshBoundaryEdges(mesh);
             std::mt19937 rng(1);

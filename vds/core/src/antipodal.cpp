@@ -64,7 +64,8 @@ double solidAngle(const glm::dvec3& u, const glm::dvec3& v, const glm::dvec3& w)
 }
 
 double edgeSolidAngle(int axis, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& q) {
-    const glm::ivec3 p = axisPermutation(Axis(axis));
+    // axisPermutation(Axis(axis)), inline: this runs once per edge and point.
+    const glm::ivec3 p((axis + 1) % 3, (axis + 2) % 3, axis);
     // Float ends and point: these differences are exact in double, so the
     // tests for zero below are exact.
     const glm::dvec3 u = a - q, v = b - q;
