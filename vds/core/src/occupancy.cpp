@@ -65,7 +65,8 @@ bool axisAligned(const SpriteGrid& g) {
 //
 // Edges with det = 0 whose projection the column meets (u_x v_x + u_y v_y
 // <= 0: over the edge, or through an end) step at one depth by the tie
-// rule; columns with such an edge are labelled cell by cell instead.
+// rule; columns with such an edge are labelled cell by cell instead, and so
+// are runs whose ends the column passes almost over an edge (see `at`).
 class ColumnBoundary {
 public:
     /// False when the column meets an edge's projection (no bracket).
@@ -89,19 +90,59 @@ public:
         }
         return true;
     }
-    /// (B+, B-) at depth z, each over 4 pi.
-    std::pair<double, double> at(double z) const {
-        double up = 0.0, down = 0.0;
-        for (const Term& t : terms_) {
+    /// (B+, B-) at depth z, each over 4 pi; false where some edge's angle
+    /// is ill-conditioned there (its denominator cancelling to within 1e-6
+    /// of its parts: the column passes almost over the edge).
+    ///
+    /// Without an atan2 per edge: the angles of one sign are summed as the
+    /// argument of the product of the complex numbers den + i |det|, each
+    /// in (0, pi), counting the turns where the running product crosses
+    /// the negative real axis (from Im >= 0 to Im < 0, Re < 0: a step of
+    /// less than pi can cross the real axis from above only there). The
+    /// products err by some 1e-16 an edge relative, so the sums stay well
+    /// within kBracketSlack.
+    bool at(double z, std::pair<double, double>& split) const {
+        // Two products a sign, alternating, so that consecutive multiplies
+        // do not wait on each other.
+        Turning sums[4];
+        for (std::size_t k = 0; k < terms_.size(); ++k) {
+            const Term& t = terms_[k];
             const double gu = apex(t.ux, t.uy, t.az - z), gv = apex(t.vx, t.vy, t.bz - z);
-            const double angle = 2.0 * std::atan2(t.det, gu * gv + t.across);
-            (t.det > 0.0 ? up : down) += angle;
+            const double product = gu * gv, den = product + t.across, size = std::fabs(den) + std::fabs(t.det);
+            if (t.across < 0.0 && size < 1e-6 * (product - t.across)) return false;
+            // Scaled to |x| + |y| = 1 (the angle is unchanged), so that the
+            // products stay within (1/sqrt 2)^n of 1.
+            sums[(t.det > 0.0 ? 0 : 2) + (k & 1)].add(den / size, std::fabs(t.det) / size);
         }
-        return {up / kFourPi, down / kFourPi};
+        // Each edge adds 2 atan2(det, den); over 4 pi.
+        split = {(sums[0].angle() + sums[1].angle()) / (2.0 * kPi), -(sums[2].angle() + sums[3].angle()) / (2.0 * kPi)};
+        return true;
     }
 
 private:
-    static constexpr double kFourPi = 4.0 * 3.14159265358979323846;
+    static constexpr double kPi = 3.14159265358979323846;
+    /// A sum of angles in (0, pi) as the argument of a product plus turns.
+    struct Turning {
+        double re = 1.0, im = 0.0;
+        int turns = 0;
+        unsigned count = 0;
+        void add(double x, double y) {
+            const double r = re * x - im * y, i = re * y + im * x;
+            // From Im >= 0 to Im < 0 a step in (0, pi) passes the negative
+            // real axis, never the positive one (that would take more than
+            // pi); one side of it lies left of the imaginary axis. Both
+            // right of it: the rounding of a tiny step at angle +0.
+            if (im >= 0.0 && i < 0.0 && (re < 0.0 || r < 0.0)) ++turns;
+            re = r;
+            im = i;
+            if (++count % 64 == 0) { // back to size 1 (the angle is unchanged) before (1/sqrt 2)^n underflows
+                const double scale = std::fabs(re) + std::fabs(im);
+                re /= scale;
+                im /= scale;
+            }
+        }
+        double angle() const { return std::atan2(im, re) + 2.0 * kPi * turns; }
+    };
     struct Term {
         double ux, uy, vx, vy, az, bz, det, across;
     };
@@ -323,33 +364,50 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                     continue;
                 }
                 std::fill(known.begin(), known.end(), 0);
+                // The split at cell k; false where it is ill-conditioned.
                 const auto split = [&](std::uint32_t k) {
-                    if (!known[k]) {
-                        terms[k] = bracket.at(double(zs[k]));
-                        known[k] = 1;
-                    }
-                    return terms[k];
+                    if (!known[k]) known[k] = bracket.at(double(zs[k]), terms[k]) ? 1 : 2;
+                    return known[k] == 1;
                 };
                 const double threshold = 0.5 + detail::kGeneralizedWindingTie;
                 // Labels cells [k0, k1] (one integer term).
                 const auto decide = [&](auto&& self, std::uint32_t k0, std::uint32_t k1) -> void {
-                    if (k0 == k1) { // the split's value, or the capped loops where it is too close to call
-                        const auto [up, down] = split(k0);
-                        const double value = double(integer[k0]) + up + down;
-                        if (std::fabs(value - threshold) > kBracketSlack) out[k0] = value > threshold ? 1 : 0;
-                        else cell(k0);
+                    if (!split(k0) || !split(k1)) {
+                        for (std::uint32_t k = k0; k <= k1; ++k) cell(k);
                         return;
                     }
-                    const auto [up0, down0] = split(k0);
-                    const auto [up1, down1] = split(k1);
+                    // One or two cells: the split's value, or the capped
+                    // loops where it is too close to call.
+                    if (k1 - k0 <= 1) {
+                        for (const std::uint32_t k : {k0, k1}) {
+                            const double value = double(integer[k]) + terms[k].first + terms[k].second;
+                            if (std::fabs(value - threshold) > kBracketSlack) out[k] = value > threshold ? 1 : 0;
+                            else cell(k);
+                        }
+                        return;
+                    }
+                    const auto [up0, down0] = terms[k0];
+                    const auto [up1, down1] = terms[k1];
                     const double lo = double(integer[k0]) + up0 + down1, hi = double(integer[k0]) + up1 + down0;
                     if (lo > threshold + kBracketSlack || hi < threshold - kBracketSlack) {
                         std::memset(out + k0, lo > threshold ? 1 : 0, k1 - k0 + 1);
                         return;
                     }
+                    // Where the ends lie on either side of the threshold, cut
+                    // beside the crossing their line predicts (the halves
+                    // then mostly decide at once); else halve, the halves
+                    // sharing the middle cell (one new split a cut).
+                    const double v0 = double(integer[k0]) + up0 + down0, v1 = double(integer[k0]) + up1 + down1;
+                    if ((v0 - threshold) * (v1 - threshold) < 0.0) {
+                        const double at = (threshold - v0) / (v1 - v0) * double(k1 - k0);
+                        const std::uint32_t m = k0 + std::min(k1 - k0 - 1, std::uint32_t(std::max(0.0, at)));
+                        self(self, k0, m);
+                        self(self, m + 1, k1);
+                        return;
+                    }
                     const std::uint32_t mid = k0 + (k1 - k0) / 2;
                     self(self, k0, mid);
-                    self(self, mid + 1, k1);
+                    self(self, mid, k1);
                 };
                 for (std::uint32_t k0 = 0; k0 < n;) {
                     std::uint32_t k1 = k0;
