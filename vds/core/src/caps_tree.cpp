@@ -324,11 +324,12 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
     heap.clear();
     const glm::dvec3 p(q);
     double integral = 0.0, bound = 0.0;
-    // Work spent, in units of one solid angle (a leaf triangle's or a
-    // boundary edge's; an expansion counts a quarter): once it exceeds the
-    // per-edge sum's, that sum decides, so that no point costs more than
-    // about twice the per-edge sum.
-    const double budget = double(edges_.size() / 2);
+    // Work spent, in nodes taken and leaf triangles summed (each some
+    // times an edge of the per-edge sum, which needs no atan2 an edge):
+    // past a quarter of the edge count the per-edge sum decides, so that
+    // points the tree cannot settle (near 1/2, or close to a large cap)
+    // cost about 1.5 per-edge sums, not the whole tree.
+    const double budget = 0.25 * double(edges_.size() / 2);
     double work = 0.0;
     // Opens the subtree at `index`: nodes far enough by expansion, the rest
     // down to leaves summed exactly. False where q lies on a cap, or once
@@ -348,7 +349,7 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
             if (e > 0.0 && !(expand && i == index)) {
                 const double b = n.errorScale * remainderFactor(d, e);
                 if (b <= kMaxTakenBound) {
-                    work += 0.25;
+                    work += 1.0;
                     const double inv2 = 1.0 / d2, inv3 = inv2 / d;
                     const std::array<double, 9>& M = n.moment;
                     const double yMy = y.x * (M[0] * y.x + M[1] * y.y + M[2] * y.z) +

@@ -48,8 +48,6 @@ std::vector<BoundaryEdge> toDouble(const std::vector<glm::vec3>& ends) {
     return edges;
 }
 
-constexpr double kFourPi = 4.0 * 3.14159265358979323846;
-
 } // namespace
 
 struct ExactClassifier::Impl : detail::ProjectedMesh {
@@ -65,10 +63,7 @@ struct ExactClassifier::Impl : detail::ProjectedMesh {
     std::optional<detail::BoundaryCaps> caps;
 
     double boundaryTerm(const glm::vec3& p) const {
-        const glm::dvec3 q(p);
-        double sum = 0.0;
-        for (const BoundaryEdge& e : boundary) sum += detail::edgeSolidAngle(axisIndex, e.a, e.b, q);
-        return sum / kFourPi;
+        return detail::boundaryTermExact(boundaryEnds.data(), boundaryEnds.size() / 2, axisIndex, glm::dvec3(p));
     }
     double generalizedWinding(const glm::vec3& p) const { return double(winding(p)) + boundaryTerm(p); }
     bool contains(const glm::vec3& p, Rule rule) const {

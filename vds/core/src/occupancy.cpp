@@ -104,7 +104,7 @@ public:
     bool at(double z, std::pair<double, double>& split) const {
         // Two products a sign, alternating, so that consecutive multiplies
         // do not wait on each other.
-        Turning sums[4];
+        detail::AngleSum sums[4];
         for (std::size_t k = 0; k < terms_.size(); ++k) {
             const Term& t = terms_[k];
             const double gu = apex(t.ux, t.uy, t.az - z), gv = apex(t.vx, t.vy, t.bz - z);
@@ -121,28 +121,6 @@ public:
 
 private:
     static constexpr double kPi = 3.14159265358979323846;
-    /// A sum of angles in (0, pi) as the argument of a product plus turns.
-    struct Turning {
-        double re = 1.0, im = 0.0;
-        int turns = 0;
-        unsigned count = 0;
-        void add(double x, double y) {
-            const double r = re * x - im * y, i = re * y + im * x;
-            // From Im >= 0 to Im < 0 a step in (0, pi) passes the negative
-            // real axis, never the positive one (that would take more than
-            // pi); one side of it lies left of the imaginary axis. Both
-            // right of it: the rounding of a tiny step at angle +0.
-            if (im >= 0.0 && i < 0.0 && (re < 0.0 || r < 0.0)) ++turns;
-            re = r;
-            im = i;
-            if (++count % 64 == 0) { // back to size 1 (the angle is unchanged) before (1/sqrt 2)^n underflows
-                const double scale = std::fabs(re) + std::fabs(im);
-                re /= scale;
-                im /= scale;
-            }
-        }
-        double angle() const { return std::atan2(im, re) + 2.0 * kPi * turns; }
-    };
     struct Term {
         double ux, uy, vx, vy, az, bz, det, across;
     };
