@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -301,7 +302,15 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
         std::vector<std::pair<double, double>> terms(integer.size());
         std::vector<std::uint8_t> known(integer.size());
         ColumnBoundary bracket;
-        for (std::size_t column = begin; column < end; ++column) {
+        // Which way labels a column faster depends on the boundary: brackets
+        // cost O(edges) a split, the capped loops a tree query a cell (cheap
+        // for small holes, dear beside a large cap). Both give the same
+        // labels, so each range of columns times both (the first two
+        // columns, then every 16th the other way) and takes the cheaper.
+        double secondsSpent[2] = {0.0, 0.0}; // on the columns timed, [0]: cell by cell, [1]: brackets
+        std::size_t columnsTimed[2] = {0, 0};
+        std::size_t local = 0;
+        for (std::size_t column = begin; column < end; ++column, ++local) {
             float q[3] = {xs[column / grid.dims.y], ys[column % grid.dims.y], 0.0f};
             events.clear();
             const detail::CellGrid::Found found = projected.grid.find(q);
@@ -337,8 +346,16 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                 const auto cell = [&](std::uint32_t k) {
                     out[k] = caps->inside(integer[k], glm::vec3(q[0], q[1], zs[k])) ? 1 : 0;
                 };
-                if (!bracket.reset(edges, double(q[0]), double(q[1]))) {
+                const bool cheaper = secondsSpent[1] * double(columnsTimed[0]) <= secondsSpent[0] * double(columnsTimed[1]);
+                const bool useBrackets = local < 2 ? local == 0 : (local % 16 == 0) != cheaper;
+                const auto started = std::chrono::steady_clock::now();
+                const auto record = [&](int way) {
+                    secondsSpent[way] += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+                    ++columnsTimed[way];
+                };
+                if (!useBrackets || !bracket.reset(edges, double(q[0]), double(q[1]))) {
                     for (std::uint32_t k = 0; k < n; ++k) cell(k);
+                    if (!useBrackets) record(0);
                     continue;
                 }
                 std::fill(known.begin(), known.end(), 0);
@@ -397,6 +414,7 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                     }
                     k0 = k1 + 1;
                 }
+                record(1);
                 continue;
             }
             int winding = 0;
