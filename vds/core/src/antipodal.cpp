@@ -167,22 +167,39 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
     const std::uint32_t* offsets = sprite.offsets.data();
     const float* crossings = sprite.crossings.data();
     parallelFor(options.threads, count, 1024, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) {
-            glm::vec3 p;
-            std::memcpy(&p, base + k * strideBytes, sizeof p);
-            const glm::vec3 t = sg.toTexture(p);
-            const std::ptrdiff_t column = columnOf(sg, t);
-            if (column < 0) {
-                labels[k] = 0;
-                continue;
+        // In batches, so that the cache misses of many points overlap: find
+        // a batch's columns and prefetch their offsets, then prefetch their
+        // crossings, then label.
+        constexpr std::size_t kBatch = 16;
+        glm::vec3 texture[kBatch];
+        std::ptrdiff_t columns[kBatch];
+        for (std::size_t b0 = begin; b0 < end; b0 += kBatch) {
+            const std::size_t n = std::min(kBatch, end - b0);
+            for (std::size_t i = 0; i < n; ++i) {
+                glm::vec3 p;
+                std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
+                texture[i] = sg.toTexture(p);
+                columns[i] = columnOf(sg, texture[i]);
+                if (columns[i] >= 0) __builtin_prefetch(offsets + columns[i]);
             }
-            const int winding = columnWinding(crossings + offsets[column], crossings + offsets[column + 1], t.z);
-            const glm::vec3 q = columnPoint(sg, column, t.z);
-            labels[k] = (caps ? caps->inside(winding, q)
-                              : generalizedWindingInside(double(winding) +
-                                                         boundaryTermExact(edges, edgeCount, axis, glm::dvec3(q))))
-                            ? 1
-                            : 0;
+            for (std::size_t i = 0; i < n; ++i)
+                if (columns[i] >= 0) __builtin_prefetch(crossings + offsets[columns[i]]);
+            for (std::size_t i = 0; i < n; ++i) {
+                const std::size_t k = b0 + i;
+                const std::ptrdiff_t column = columns[i];
+                const glm::vec3 t = texture[i];
+                if (column < 0) {
+                    labels[k] = 0;
+                    continue;
+                }
+                const int winding = columnWinding(crossings + offsets[column], crossings + offsets[column + 1], t.z);
+                const glm::vec3 q = columnPoint(sg, column, t.z);
+                labels[k] = (caps ? caps->inside(winding, q)
+                                  : generalizedWindingInside(double(winding) +
+                                                             boundaryTermExact(edges, edgeCount, axis, glm::dvec3(q))))
+                                ? 1
+                                : 0;
+            }
         }
     });
 }
