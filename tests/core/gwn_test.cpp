@@ -562,6 +562,43 @@ TEST(VoxelizeGeneralizedWinding, CellsOnATriangleAreOutsideAsInClassify) {
     }
 }
 
+// Beyond a large opening the generalized winding number can exceed 1/2
+// outside the mesh's box: a bowl (rim at y = 0, the box's top) with a disk
+// inside it seen from just above the rim plane. A sprite answers there as
+// the exact classifier does, beside its box (view axis z) and in front of
+// or behind it (view axis y).
+TEST(SpriteGeneralizedWinding, AnswersOutsideTheBoxBeyondAnOpening) {
+    TriangleMesh mesh = flatRimBowl(16, 64);
+    const std::uint32_t centre = std::uint32_t(mesh.positions.size());
+    mesh.positions.emplace_back(0.0f, -0.2f, 0.0f);
+    for (int j = 0; j < 32; ++j) {
+        const double phi = 2.0 * 3.14159265358979323846 * j / 32;
+        mesh.positions.emplace_back(float(0.6 * std::cos(phi)), -0.2f, float(0.6 * std::sin(phi)));
+    }
+    for (std::uint32_t j = 0; j < 32; ++j)
+        mesh.triangles.push_back({centre, centre + 1 + j, centre + 1 + (j + 1) % 32});
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(-0.4f, 0.4f), above(0.02f, 0.1f);
+    std::vector<glm::vec3> points(500);
+    for (glm::vec3& p : points) p = {u(rng), above(rng), u(rng)};
+    const ExactClassifier exact(mesh, Axis::Z);
+    std::size_t inside = 0;
+    for (const glm::vec3& p : points) inside += exact.contains(p, Rule::GeneralizedWinding);
+    EXPECT_GT(inside, points.size() / 2);
+    for (Axis axis : {Axis::Z, Axis::Y}) {
+        const Sprite sprite = bakeAt(mesh, axis, 64);
+        ASSERT_GT(sprite.grid.toTexture(points[0])[axis == Axis::Z ? 1 : 2], 1.0f); // outside the box
+        std::vector<std::uint8_t> labels(points.size());
+        classify(sprite, points, labels.data(), {Rule::GeneralizedWinding, 1});
+        for (std::size_t k = 0; k < points.size(); ++k) {
+            const bool expected = exact.contains(points[k], Rule::GeneralizedWinding);
+            EXPECT_EQ(labels[k] != 0, expected) << toString(axis) << " " << k;
+            EXPECT_EQ(sprite.contains(points[k], Rule::GeneralizedWinding), expected) << toString(axis) << " " << k;
+            EXPECT_NEAR(sprite.generalizedWinding(points[k]), exact.generalizedWinding(points[k]), 0.02);
+        }
+    }
+}
+
 // ---- voxelizers -------------------------------------------------------------
 
 TEST(VoxelizeGeneralizedWinding, EqualsTheExactClassifierAtCellCentres) {

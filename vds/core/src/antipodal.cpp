@@ -148,6 +148,43 @@ glm::vec3 columnPoint(const SpriteGrid& grid, std::ptrdiff_t column, float r) {
                             std::uint32_t(std::size_t(column) / grid.width), r);
 }
 
+namespace {
+
+/// The texel column of texture point `t` whatever its depth; -1 outside the
+/// texture across the axis (or not finite).
+std::ptrdiff_t columnAcross(const SpriteGrid& grid, const glm::vec3& t) {
+    const float fs = std::floor(t.x * float(grid.width));
+    const float ft = std::floor(t.y * float(grid.height));
+    if (!(fs >= 0.0f && fs < float(grid.width) && ft >= 0.0f && ft < float(grid.height))) return -1;
+    return std::ptrdiff_t(ft) * std::ptrdiff_t(grid.width) + std::ptrdiff_t(fs);
+}
+
+/// The generalized winding number of an open mesh need not vanish outside
+/// the sprite's box (just beyond a large opening it exceeds 1/2), so GWN
+/// queries are answered everywhere: `winding` and `point` get the integer
+/// term and the point (mesh coordinates) the boundary term is taken at. In
+/// front of or behind the box, the texel's column with none or all of its
+/// crossings in front, at its centre as inside the box; beside the box, no
+/// crossing (no ray there meets the mesh) at the point itself. False for a
+/// point that is not finite.
+bool gwnSample(const SpriteGrid& grid, const std::uint32_t* offsets, const float* crossings, const glm::vec3& t,
+               std::ptrdiff_t column, int& winding, glm::vec3& point) {
+    if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z))) return false;
+    if (column >= 0) {
+        winding = columnWinding(crossings + offsets[column], crossings + offsets[column + 1], t.z);
+        point = columnPoint(grid, column, t.z);
+        return true;
+    }
+    const glm::ivec3 p = axisPermutation(grid.axis);
+    winding = 0;
+    point[p.x] = grid.box.lo[p.x] + t.x * float(grid.width) * grid.texelSize;
+    point[p.y] = grid.box.lo[p.y] + t.y * float(grid.height) * grid.texelSize;
+    point[p.z] = grid.box.lo[p.z] + t.z * (grid.box.hi[p.z] - grid.box.lo[p.z]);
+    return true;
+}
+
+} // namespace
+
 void requireBoundaryKnown(const Sprite& sprite, Rule rule) {
     if (rule == Rule::GeneralizedWinding && sprite.status == SolidStatus::Open && !sprite.boundaryKnown)
         throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
@@ -179,21 +216,19 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
                 glm::vec3 p;
                 std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
                 texture[i] = sg.toTexture(p);
-                columns[i] = columnOf(sg, texture[i]);
+                columns[i] = columnAcross(sg, texture[i]);
                 if (columns[i] >= 0) __builtin_prefetch(offsets + columns[i]);
             }
             for (std::size_t i = 0; i < n; ++i)
                 if (columns[i] >= 0) __builtin_prefetch(crossings + offsets[columns[i]]);
             for (std::size_t i = 0; i < n; ++i) {
                 const std::size_t k = b0 + i;
-                const std::ptrdiff_t column = columns[i];
-                const glm::vec3 t = texture[i];
-                if (column < 0) {
+                int winding = 0;
+                glm::vec3 q;
+                if (!gwnSample(sg, offsets, crossings, texture[i], columns[i], winding, q)) {
                     labels[k] = 0;
                     continue;
                 }
-                const int winding = columnWinding(crossings + offsets[column], crossings + offsets[column + 1], t.z);
-                const glm::vec3 q = columnPoint(sg, column, t.z);
                 labels[k] = (caps ? caps->inside(winding, q)
                                   : generalizedWindingInside(double(winding) +
                                                              boundaryTermExact(edges, edgeCount, axis, glm::dvec3(q))))
@@ -208,12 +243,10 @@ bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world) {
     requireBoundaryKnown(sprite, Rule::GeneralizedWinding);
     const SpriteGrid& sg = sprite.grid;
     const glm::vec3 t = sg.toTexture(world);
-    const std::ptrdiff_t column = columnOf(sg, t);
-    if (column < 0) return false;
-    const std::size_t c = std::size_t(column);
-    const int winding = columnWinding(sprite.crossings.data() + sprite.offsets[c],
-                                      sprite.crossings.data() + sprite.offsets[c + 1], t.z);
-    return sprite.boundaryCaps.get(sprite.boundaryEdges, sg.axis).inside(winding, columnPoint(sg, column, t.z));
+    int winding = 0;
+    glm::vec3 q;
+    if (!gwnSample(sg, sprite.offsets.data(), sprite.crossings.data(), t, columnAcross(sg, t), winding, q)) return false;
+    return sprite.boundaryCaps.get(sprite.boundaryEdges, sg.axis).inside(winding, q);
 }
 
 } // namespace vds::detail
@@ -225,13 +258,17 @@ std::vector<glm::vec3> meshBoundaryEdges(MeshView mesh) { return detail::boundar
 double Sprite::generalizedWinding(const glm::vec3& world) const {
     detail::requireBoundaryKnown(*this, Rule::GeneralizedWinding);
     const glm::vec3 t = grid.toTexture(world);
-    const std::ptrdiff_t column = detail::columnOf(grid, t);
-    if (column < 0) return 0.0;
-    const int winding = detail::columnWinding(crossings.data() + offsets[std::size_t(column)],
-                                              crossings.data() + offsets[std::size_t(column) + 1], t.z);
-    if (boundaryEdges.empty()) return double(winding);
-    return boundaryCaps.get(boundaryEdges, grid.axis)
-        .generalizedWinding(winding, detail::columnPoint(grid, column, t.z), detail::kGeneralizedWindingTolerance);
+    if (boundaryEdges.empty()) {
+        const std::ptrdiff_t column = detail::columnOf(grid, t);
+        if (column < 0) return 0.0;
+        return double(detail::columnWinding(crossings.data() + offsets[std::size_t(column)],
+                                            crossings.data() + offsets[std::size_t(column) + 1], t.z));
+    }
+    int winding = 0;
+    glm::vec3 q;
+    if (!detail::gwnSample(grid, offsets.data(), crossings.data(), t, detail::columnAcross(grid, t), winding, q))
+        return 0.0;
+    return boundaryCaps.get(boundaryEdges, grid.axis).generalizedWinding(winding, q, detail::kGeneralizedWindingTolerance);
 }
 
 } // namespace vds
