@@ -55,7 +55,7 @@ float planeDepth(const Triangle& tri, const float* q, const std::array<float, 3>
 /// Exact crossings of texel columns: the mesh indexed once, then any column
 /// cast on its own (thread safe).
 struct ColumnCaster {
-    ColumnCaster(MeshView mesh, const SpriteGrid& grid) : grid(grid), projected(mesh, grid.axis) {
+    ColumnCaster(MeshView mesh, const SpriteGrid& spriteGrid) : grid(spriteGrid), projected(mesh, spriteGrid.axis) {
         // Texture-space depth of every vertex, as the GL bakers' vertex stage computes it.
         vertexDepth.resize(projected.crossable);
         for (std::size_t k = 0; k < projected.crossable; ++k)
