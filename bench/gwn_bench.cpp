@@ -1,16 +1,25 @@
-// vds_gwn_bench: parity, winding and the generalized winding number (exact,
-// and in sprites) on open meshes, against a brute-force double-precision
-// solid-angle sum; and their throughput side by side in one run.
+// vds_gwn_bench: the generalized winding number of open meshes, exact, in
+// sprites and over grids, against the brute-force per-edge sum, with the
+// points split by how close their value lies to 1/2; all rates in one run.
 //
-//   vds_gwn_bench [MESH.obj ...] [--points 20000] [--resolutions 512,1024,2048]
-//                 [--throughput 200000] [--threads 0] [--slices DIR]
+//   vds_gwn_bench [MESH.obj ...] [--points 200000] [--resolution 1024]
+//                 [--dims 64] [--threads 1] [--no-generated] [--only NAME]
 //
-// Accuracy: `--points` uniform points in the mesh's box padded by 10% on
-// every side; the yardstick is inside where the brute-force GWN w > 1/2,
-// points with |w - 1/2| <= 0.02 left out. Throughput: `--throughput` other
-// uniform points in the same box, each method classifying all of them in
-// one batch on `--threads` threads (wall clock, the sprite's bake not
-// counted, the capped loops' build counted).
+// Meshes: the ones named (default: the bunny, teapot and suzanne beside the
+// project, if present), then four hard cases built in code: a shell with one
+// large opening, a sphere with 100 punched holes, a soup of 400 loose
+// triangles (1,200 boundary edges) and a non-manifold shell (open underside,
+// a fin inside sharing a ring of edges).
+//
+// Yardstick: for each of `--points` uniform points in the mesh's box padded
+// by 10%, w = ExactClassifier::generalizedWinding, the exact crossing count
+// plus the boundary term summed over every boundary edge in double (the
+// Antipodal split); inside where w > 1/2 + 1e-9 (closer to 1/2 is a tie). Each method labels every
+// point once (wrong labels counted against the yardstick) and then each
+// |w - 1/2| band on its own, timed (wall clock, `--threads` threads; the
+// sprite's bake not counted, the caps' build counted in the first call).
+// Occupancy: `--dims` cubed cells of the padded box by the mesh sweep, its
+// labels checked against the exact classifier at the cell centres.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,40 +31,20 @@
 #include <CLI/CLI.hpp>
 #include <glm/geometric.hpp>
 
-#include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
-#include <vds/eval/image.h>
 #include <vds/exact.h>
 #include <vds/mesh_io.h>
-#include <vds/detail/parallel.h>
+#include <vds/occupancy.h>
 #include <vds/sprite.h>
+#include <vds/detail/parallel.h>
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr double kPi = 3.14159265358979323846; // for the generated spheres
 
 double seconds(Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); }
-
-std::vector<double> bruteForceGwn(const vds::TriangleMesh& mesh, const std::vector<glm::vec3>& points,
-                                  unsigned threads) {
-    std::vector<double> w(points.size());
-    vds::parallelFor(threads, points.size(), 64, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) {
-            const glm::dvec3 p(points[k]);
-            double sum = 0.0;
-            for (const glm::uvec3& t : mesh.triangles) {
-                const glm::dvec3 a = glm::dvec3(mesh.positions[t[0]]) - p, b = glm::dvec3(mesh.positions[t[1]]) - p,
-                                 c = glm::dvec3(mesh.positions[t[2]]) - p;
-                const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-                sum += 2.0 * std::atan2(glm::dot(a, glm::cross(b, c)),
-                                        la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la);
-            }
-            w[k] = sum / (4.0 * 3.14159265358979323846);
-        }
-    });
-    return w;
-}
 
 std::vector<glm::vec3> uniformPoints(const vds::Box& box, std::size_t n, std::mt19937& rng) {
     const glm::vec3 pad = 0.1f * (box.hi - box.lo);
@@ -66,55 +55,114 @@ std::vector<glm::vec3> uniformPoints(const vds::Box& box, std::size_t n, std::mt
     return points;
 }
 
-struct Tally {
-    std::size_t compared = 0, wrong = 0;
+// ---- generated hard cases --------------------------------------------------
+
+// A UV sphere of radius 1 (`rings` x `segments` quads), keeping the quads
+// `keep` accepts (by their centre).
+template <class Keep>
+vds::TriangleMesh sphere(int rings, int segments, Keep keep) {
+    vds::TriangleMesh m;
+    const auto at = [&](int i, int j) {
+        const double theta = kPi * i / rings, phi = 2.0 * kPi * j / segments;
+        return glm::vec3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)),
+                         float(std::cos(theta)));
+    };
+    for (int i = 0; i <= rings; ++i)
+        for (int j = 0; j < segments; ++j) m.positions.push_back(at(i, j));
+    const auto id = [&](int i, int j) { return std::uint32_t(i * segments + (j % segments)); };
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const glm::vec3 c = glm::normalize(at(i, j) + at(i + 1, j + 1));
+            if (!keep(c)) continue;
+            if (i > 0) m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+            if (i + 1 < rings) m.triangles.push_back({id(i, j + 1), id(i + 1, j), id(i + 1, j + 1)});
+        }
+    return m;
+}
+
+vds::TriangleMesh shellWithOpening() {
+    return sphere(96, 192, [](const glm::vec3& c) { return c.z < 0.6f; });
+}
+
+vds::TriangleMesh punchedSphere() {
+    std::mt19937 rng(7);
+    std::normal_distribution<float> g(0.0f, 1.0f);
+    std::vector<glm::vec3> holes(100);
+    for (glm::vec3& h : holes) h = glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
+    return sphere(96, 192, [&](const glm::vec3& c) {
+        for (const glm::vec3& h : holes)
+            if (glm::dot(c, h) > 0.9985f) return false;
+        return true;
+    });
+}
+
+vds::TriangleMesh soup() {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    vds::TriangleMesh m;
+    for (std::uint32_t k = 0; k < 400; ++k) {
+        const glm::vec3 c(u(rng), u(rng), u(rng));
+        for (int v = 0; v < 3; ++v) m.positions.push_back(c + 0.15f * glm::vec3(u(rng), u(rng), u(rng)));
+        m.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    return m;
+}
+
+// An open-bottomed sphere with a fin inside: triangles on the ring of edges
+// at the equator, pointing inward, so that ring's edges have three faces.
+vds::TriangleMesh nonManifoldShell() {
+    const int rings = 64, segments = 128;
+    vds::TriangleMesh m = sphere(rings, segments, [](const glm::vec3& c) { return c.z > -0.7f; });
+    const int i = rings / 2;
+    for (int j = 0; j < segments; ++j) {
+        const glm::vec3 a = m.positions[std::size_t(i * segments + j)],
+                        b = m.positions[std::size_t(i * segments + (j + 1) % segments)];
+        m.positions.push_back(0.5f * (a + b) * 0.6f + glm::vec3(0.0f, 0.0f, 0.3f));
+        m.triangles.push_back({std::uint32_t(i * segments + j), std::uint32_t(i * segments + (j + 1) % segments),
+                               std::uint32_t(m.positions.size() - 1)});
+    }
+    return m;
+}
+
+// ---- the table -------------------------------------------------------------
+
+// The label of a per-edge sum: values within 1e-9 of 1/2 are ties, outside.
+bool inside(double w) { return w > 0.5 + 1e-9; }
+
+const double kBands[] = {0.001, 0.02, 0.1};
+constexpr int kBandCount = 4; // |w - 1/2| < 0.001, < 0.02, < 0.1, the rest
+
+int bandOf(double w) {
+    const double d = std::fabs(w - 0.5);
+    for (int b = 0; b < 3; ++b)
+        if (d < kBands[b]) return b;
+    return 3;
+}
+
+struct Row {
+    std::string mesh, method;
+    std::size_t wrong = 0;
+    double all = 0.0;
+    double band[kBandCount] = {};
 };
 
-Tally tally(const std::vector<double>& w, const std::vector<std::uint8_t>& labels) {
-    Tally t;
-    for (std::size_t k = 0; k < w.size(); ++k) {
-        if (std::fabs(w[k] - 0.5) <= 0.02) continue;
-        ++t.compared;
-        t.wrong += (labels[k] != 0) != (w[k] > 0.5);
+template <class Classify>
+Row measure(const std::string& mesh, const std::string& method, const std::vector<glm::vec3>& points,
+            const std::vector<double>& w, const std::vector<std::vector<glm::vec3>>& bands, Classify&& classify) {
+    Row row{mesh, method};
+    std::vector<std::uint8_t> labels(points.size());
+    auto t0 = Clock::now();
+    classify(points, labels);
+    row.all = double(points.size()) / seconds(t0) / 1e6;
+    for (std::size_t k = 0; k < points.size(); ++k) row.wrong += (labels[k] != 0) != inside(w[k]);
+    for (int b = 0; b < kBandCount; ++b) {
+        if (bands[std::size_t(b)].empty()) continue;
+        std::vector<std::uint8_t> l(bands[std::size_t(b)].size());
+        t0 = Clock::now();
+        classify(bands[std::size_t(b)], l);
+        row.band[b] = double(l.size()) / seconds(t0) / 1e6;
     }
-    return t;
-}
-
-void printRow(const std::string& mesh, const std::string& method, const Tally& t) {
-    std::printf("| %s | %s | %zu | %.3f%% |\n", mesh.c_str(), method.c_str(), t.wrong,
-                100.0 * double(t.wrong) / double(std::max<std::size_t>(1, t.compared)));
-}
-
-// A slice through the mesh's box at depth z, x across and y up: `exact`'s
-// parity on the left, the sprite's GWN on the right; inside is dark.
-void writeSlices(const vds::TriangleMesh& mesh, const vds::ExactClassifier& exact, const vds::Sprite& sprite,
-                 const std::string& path, unsigned threads, float z) {
-    const vds::Box box = vds::meshBounds(mesh);
-    const glm::vec3 pad = 0.05f * (box.hi - box.lo);
-    const std::uint32_t w = 360, h = std::uint32_t(std::lround(360.0 * double(box.hi.y - box.lo.y + 2 * pad.y) /
-                                                               double(box.hi.x - box.lo.x + 2 * pad.x)));
-    std::vector<glm::vec3> points(std::size_t(w) * h);
-    for (std::uint32_t y = 0; y < h; ++y)
-        for (std::uint32_t x = 0; x < w; ++x)
-            points[std::size_t(y) * w + x] = {box.lo.x - pad.x + (float(x) + 0.5f) / float(w) * (box.hi.x - box.lo.x + 2 * pad.x),
-                                              box.hi.y + pad.y - (float(y) + 0.5f) / float(h) * (box.hi.y - box.lo.y + 2 * pad.y), z};
-    std::vector<std::uint8_t> parity(points.size()), gwn(points.size());
-    exact.classify({points.data(), points.size()}, parity.data(), {vds::Rule::Parity, threads});
-    vds::classify(sprite, {points.data(), points.size()}, gwn.data(), {vds::Rule::GeneralizedWinding, threads});
-    vds::eval::Image image(2 * w + 8, h);
-    for (std::size_t k = 0; k < image.rgba.size(); ++k) image.rgba[k] = 255;
-    for (std::uint32_t y = 0; y < h; ++y)
-        for (std::uint32_t x = 0; x < w; ++x) {
-            const std::size_t k = std::size_t(y) * w + x;
-            for (int panel = 0; panel < 2; ++panel) {
-                std::uint8_t* px = image.at(x + std::uint32_t(panel) * (w + 8), y);
-                const bool inside = (panel == 0 ? parity[k] : gwn[k]) != 0;
-                px[0] = inside ? 40 : 235;
-                px[1] = inside ? 60 : 235;
-                px[2] = inside ? 110 : 230;
-            }
-        }
-    vds::eval::writePng(image, path);
+    return row;
 }
 
 } // namespace
@@ -122,111 +170,100 @@ void writeSlices(const vds::TriangleMesh& mesh, const vds::ExactClassifier& exac
 int main(int argc, char** argv) {
     CLI::App app("vds_gwn_bench: generalized winding numbers on open meshes");
     std::vector<std::string> meshes;
-    std::vector<std::uint32_t> resolutions = {512, 1024, 2048};
-    std::size_t pointCount = 20000, throughput = 200000;
-    unsigned threads = 0;
-    std::string slices;
+    std::size_t pointCount = 200000;
+    std::uint32_t resolution = 1024, dims = 64;
+    unsigned threads = 1;
+    bool noGenerated = false;
+    std::string only;
     app.add_option("meshes", meshes, "meshes (default: the bunny, teapot and suzanne of ../shared/meshes)");
-    app.add_option("--points", pointCount, "uniform points for accuracy");
-    app.add_option("--resolutions", resolutions, "sprite resolutions")->delimiter(',');
-    app.add_option("--throughput", throughput, "uniform points for throughput");
+    app.add_option("--points", pointCount, "uniform points in the padded box");
+    app.add_option("--resolution", resolution, "sprite resolution");
+    app.add_option("--dims", dims, "occupancy grid cells along each side");
     app.add_option("--threads", threads, "threads (0: all)");
-    app.add_option("--slices", slices, "write parity-vs-GWN slice PNGs of each mesh into this directory: at mid z, and through the boundary's median z with parity along y");
+    app.add_flag("--no-generated", noGenerated, "leave out the hard cases built in code");
+    app.add_option("--only", only, "measure only the meshes whose name contains this");
     CLI11_PARSE(app, argc, argv);
     if (meshes.empty())
         for (const char* name : {"stanford-bunny", "teapot", "suzanne"})
             meshes.push_back(std::string(VDS_SHARED_MESHES) + "/" + name + ".obj");
     try {
-        std::printf("| mesh | method | wrong | wrong share |\n|---|---|---|---|\n");
-        std::vector<std::string> speed;
+        std::vector<std::pair<std::string, vds::TriangleMesh>> inputs;
         for (const std::string& path : meshes) {
-            const vds::TriangleMesh mesh = vds::loadMesh(path);
             std::string name = path.substr(path.find_last_of('/') + 1);
-            name = name.substr(0, name.find_last_of('.'));
-            const vds::Box box = vds::meshBounds(mesh);
-            std::mt19937 rng(1);
-            const std::vector<glm::vec3> points = uniformPoints(box, pointCount, rng);
-            const std::vector<double> w = bruteForceGwn(mesh, points, threads);
+            inputs.emplace_back(name.substr(0, name.find_last_of('.')), vds::loadMesh(path));
+        }
+        if (!noGenerated) {
+            inputs.emplace_back("shell, one large opening", shellWithOpening());
+            inputs.emplace_back("sphere, 100 punched holes", punchedSphere());
+            inputs.emplace_back("soup, 400 loose triangles", soup());
+            inputs.emplace_back("non-manifold shell", nonManifoldShell());
+        }
+        std::printf("%zu uniform points in the padded box, %u thread(s); rates in million points (cells) per "
+                    "second; bands by the yardstick's |w - 1/2|\n\n",
+                    pointCount, threads);
+        std::printf("| mesh | boundary edges | method | wrong | all | < 0.001 | < 0.02 | < 0.1 | >= 0.1 |\n"
+                    "|---|---:|---|---:|---:|---:|---:|---:|---:|\n");
+        for (const auto& [name, mesh] : inputs) {
+            if (name.find(only) == std::string::npos) continue;
             const vds::ExactClassifier exact(mesh, vds::Axis::Z);
-            std::vector<std::uint8_t> labels(points.size());
-            for (vds::Rule rule : {vds::Rule::Parity, vds::Rule::Winding, vds::Rule::GeneralizedWinding}) {
-                exact.classify({points.data(), points.size()}, labels.data(), {rule, threads});
-                printRow(name, std::string("exact ") + vds::toString(rule), tally(w, labels));
-            }
-            // Throughput points, and the exact classifier's rates.
-            const std::vector<glm::vec3> many = uniformPoints(box, throughput, rng);
-            std::vector<std::uint8_t> manyLabels(many.size());
-            const auto rate = [&](auto&& run) {
-                const auto t0 = Clock::now();
-                run();
-                return double(many.size()) / seconds(t0) / 1e6;
-            };
-            const double exactParity = rate([&] {
-                exact.classify({many.data(), many.size()}, manyLabels.data(), {vds::Rule::Parity, threads});
+            const std::vector<glm::vec3> edges = vds::meshBoundaryEdges(mesh);
+            std::mt19937 rng(1);
+            const std::vector<glm::vec3> points = uniformPoints(vds::meshBounds(mesh), pointCount, rng);
+            std::vector<double> w(points.size());
+            vds::parallelFor(0, points.size(), 256, [&](std::size_t begin, std::size_t end) {
+                for (std::size_t k = begin; k < end; ++k) w[k] = exact.generalizedWinding(points[k]);
             });
-            const double exactGwn = rate([&] {
-                exact.classify({many.data(), many.size()}, manyLabels.data(), {vds::Rule::GeneralizedWinding, threads});
-            });
-            for (std::uint32_t resolution : resolutions) {
-                vds::BakeOptions o;
-                o.resolution = resolution;
-                o.method = vds::BakeMethod::Cpu;
-                const vds::Sprite sprite = vds::bake(mesh, o);
-                const std::string tag = "sprite " + std::to_string(resolution) + " ";
-                for (vds::Rule rule : {vds::Rule::Parity, vds::Rule::Winding}) {
-                    vds::classify(sprite, {points.data(), points.size()}, labels.data(), {rule, threads});
-                    printRow(name, tag + vds::toString(rule), tally(w, labels));
-                }
-                vds::ClassifyOptions gwn{vds::Rule::GeneralizedWinding, threads, vds::QueryLayout::Auto,
-                                         vds::BoundaryEvaluation::Exact};
-                vds::classify(sprite, {points.data(), points.size()}, labels.data(), gwn);
-                printRow(name, tag + "GWN (exact boundary term)", tally(w, labels));
-                gwn.boundary = vds::BoundaryEvaluation::Caps;
-                vds::classify(sprite, {points.data(), points.size()}, labels.data(), gwn);
-                printRow(name, tag + "GWN (capped loops)", tally(w, labels));
-
-                const double spriteParity = rate([&] {
-                    vds::classify(sprite, {many.data(), many.size()}, manyLabels.data(), {vds::Rule::Parity, threads});
-                });
-                gwn.boundary = vds::BoundaryEvaluation::Exact;
-                const double spriteExact = rate([&] { vds::classify(sprite, {many.data(), many.size()}, manyLabels.data(), gwn); });
-                // A copy starts without the caps: their build is counted.
-                const vds::Sprite fresh = sprite;
-                gwn.boundary = vds::BoundaryEvaluation::Caps;
-                const double spriteCaps = rate([&] { vds::classify(fresh, vds::PointsView(many.data(), many.size()), manyLabels.data(), gwn); });
-                const double spriteWinding = rate([&] {
-                    vds::classify(sprite, {many.data(), many.size()}, manyLabels.data(), {vds::Rule::Winding, threads});
-                });
-                char line[256];
-                std::snprintf(line, sizeof line, "| %s | %zu | %zu | %u | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |",
-                              name.c_str(), mesh.triangles.size(), sprite.boundaryEdges.size() / 2, resolution,
-                              exactParity, exactGwn, spriteParity, spriteWinding, spriteExact, spriteCaps);
-                speed.push_back(line);
-                if (!slices.empty() && resolution == 1024) {
-                    writeSlices(mesh, exact, sprite, slices + "/gwn-slice-" + name + ".png", threads,
-                                0.5f * (box.lo.z + box.hi.z));
-                    // Through the holes: at the median depth of the boundary's
-                    // vertices, parity by rays along -y (the bunny's base holes
-                    // face -y, so columns over them miss a crossing).
-                    const std::vector<glm::vec3> edges = vds::meshBoundaryEdges(mesh);
-                    if (!edges.empty()) {
-                        std::vector<float> zs;
-                        for (const glm::vec3& e : edges) zs.push_back(e.z);
-                        std::nth_element(zs.begin(), zs.begin() + std::ptrdiff_t(zs.size() / 2), zs.end());
-                        const vds::ExactClassifier alongY(mesh, vds::Axis::Y);
-                        writeSlices(mesh, alongY, sprite, slices + "/gwn-holes-slice-" + name + ".png", threads,
-                                    zs[zs.size() / 2]);
-                        std::printf("(slice through the holes at z = %.5f)\n", double(zs[zs.size() / 2]));
-                    }
-                }
+            std::vector<std::vector<glm::vec3>> bands(kBandCount);
+            std::size_t counts[kBandCount] = {};
+            for (std::size_t k = 0; k < points.size(); ++k) {
+                bands[std::size_t(bandOf(w[k]))].push_back(points[k]);
+                ++counts[bandOf(w[k])];
             }
+            const vds::ClassifyOptions gwn{vds::Rule::GeneralizedWinding, threads};
+            std::vector<Row> rows;
+            rows.push_back(measure(name, "brute-force per-edge sum", points, w, bands, [&](const auto& p, auto& l) {
+                for (std::size_t k = 0; k < p.size(); ++k) l[k] = inside(exact.generalizedWinding(p[k])) ? 1 : 0;
+            }));
+            rows.push_back(measure(name, "exact GWN", points, w, bands, [&](const auto& p, auto& l) {
+                exact.classify({p.data(), p.size()}, l.data(), gwn);
+            }));
+            vds::BakeOptions o;
+            o.resolution = resolution;
+            const vds::Sprite sprite = vds::bakeCpu(mesh, o);
+            rows.push_back(measure(name, "sprite GWN @" + std::to_string(resolution), points, w, bands,
+                                   [&](const auto& p, auto& l) {
+                                       vds::classify(sprite, vds::PointsView(p.data(), p.size()), l.data(), gwn);
+                                   }));
+            // (A sprite's labels may differ from the yardstick's within a
+            // texel of the surface: its points sit at texel centres.)
+            for (const Row& r : rows)
+                std::printf("| %s | %zu | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.3f |\n", r.mesh.c_str(),
+                            edges.size() / 2, r.method.c_str(), r.wrong, r.all, r.band[0], r.band[1], r.band[2],
+                            r.band[3]);
+            // Occupancy by the mesh sweep, checked against the exact
+            // classifier at the cell centres.
+            const vds::Grid grid = vds::cubicGrid(
+                {vds::meshBounds(mesh).lo - 0.1f * (vds::meshBounds(mesh).hi - vds::meshBounds(mesh).lo),
+                 vds::meshBounds(mesh).hi + 0.1f * (vds::meshBounds(mesh).hi - vds::meshBounds(mesh).lo)},
+                dims);
+            std::vector<std::uint8_t> cells(grid.cellCount()), expected(grid.cellCount());
+            auto t0 = Clock::now();
+            vds::occupancy(vds::MeshView(mesh), grid, cells.data(), gwn);
+            const double occupancyRate = double(cells.size()) / seconds(t0) / 1e6;
+            std::vector<glm::vec3> centres;
+            centres.reserve(cells.size());
+            for (std::uint32_t i = 0; i < grid.dims.x; ++i)
+                for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+                    for (std::uint32_t k = 0; k < grid.dims.z; ++k) centres.push_back(grid.cellCentre(i, j, k));
+            exact.classify({centres.data(), centres.size()}, expected.data(), {vds::Rule::GeneralizedWinding, 0});
+            std::size_t differ = 0;
+            for (std::size_t k = 0; k < cells.size(); ++k) differ += cells[k] != expected[k];
+            std::printf("| %s | %zu | occupancy GWN %ux%ux%u | %zu (vs exact) | %.3f | | | | |\n", name.c_str(),
+                        edges.size() / 2, grid.dims.x, grid.dims.y, grid.dims.z, differ, occupancyRate);
+            std::printf("| %s | | points per band | | %zu | %zu | %zu | %zu | %zu |\n", name.c_str(), points.size(),
+                        counts[0], counts[1], counts[2], counts[3]);
             std::fflush(stdout);
         }
-        std::printf("\nThroughput, million points/s (%zu uniform points in the padded box):\n\n", throughput);
-        std::printf("| mesh | triangles | boundary edges | sprite resolution | exact parity | exact GWN | sprite parity | "
-                    "sprite winding | sprite GWN, exact term | sprite GWN, capped loops |\n"
-                    "|---|---|---|---|---|---|---|---|---|---|\n");
-        for (const std::string& line : speed) std::printf("%s\n", line.c_str());
     } catch (const vds::Error& e) {
         std::fprintf(stderr, "vds_gwn_bench: %s\n", e.what());
         return 1;

@@ -42,11 +42,48 @@ double solidAngle(const glm::dvec3& u, const glm::dvec3& v, const glm::dvec3& w)
 /// boundary still gets a consistent sum; an edge along the axis adds 0.
 double edgeSolidAngle(int axis, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& q);
 
+/// A sum of angles each in (0, pi), given as the arguments of complex
+/// numbers x + i y (y > 0, |x| + |y| about 1), without an atan2 each: the argument of their
+/// product plus the turns it makes. From Im >= 0 to Im < 0 a step in (0, pi)
+/// passes the negative real axis, never the positive one (that would take
+/// more than pi), so one side of the step lies left of the imaginary axis;
+/// both right of it is the rounding of a tiny step at angle +0. Each
+/// multiply errs by some 1e-16 relative, so n angles sum to within some
+/// n * 1e-16 of their atan2s' sum.
+struct AngleSum {
+    double re = 1.0, im = 0.0;
+    int turns = 0;
+    unsigned count = 0;
+    void add(double x, double y) {
+        const double r = re * x - im * y, i = re * y + im * x;
+        if (im >= 0.0 && i < 0.0 && (re < 0.0 || r < 0.0)) ++turns;
+        re = r;
+        im = i;
+        if (++count % 64 == 0) { // back to size 1 (the angle is unchanged) before the product underflows
+            const double size = std::fabs(re) + std::fabs(im);
+            re /= size;
+            im /= size;
+        }
+    }
+    double angle() const { return std::atan2(im, re) + 2.0 * 3.14159265358979323846 * turns; }
+};
+
 /// The boundary term at `q` by the per-edge sum: `edges` holds 2 *
 /// `edgeCount` points (mesh coordinates), `axis` the index (0..2) of the
-/// view axis. O(edgeCount).
+/// view axis. O(edgeCount): each edge's angle as `edgeSolidAngle` gives
+/// it, summed by `AngleSum` where its det is not 0 (to some 1e-16 an edge).
 double boundaryTermExact(const glm::vec3* edges, std::size_t edgeCount, int axis, const glm::dvec3& q);
 
+
+/// Values within this of 1/2 are ties, and ties are outside. The per-edge
+/// sum errs by some 1e-15 per edge, so a value this close to 1/2 cannot be
+/// told from 1/2; and 1/2 is what a flat sheet's points have (seen from its
+/// plane a flat sheet subtends a half sphere on one side and nothing on the
+/// other; the tie rule takes one side): they lie on the surface, not inside.
+constexpr double kGeneralizedWindingTie = 1e-9;
+
+/// The label of a generalized winding number computed by the per-edge sum.
+inline bool generalizedWindingInside(double value) { return value > 0.5 + kGeneralizedWindingTie; }
 
 /// Signed count of a column's crossings strictly in front of depth r.
 inline int columnWinding(const float* begin, const float* end, float r) {

@@ -28,6 +28,8 @@ BakeSetup prepareBake(MeshView mesh, const BakeOptions& options) {
 Sprite assembleSprite(const BakeSetup& setup, const BakeOptions& options, MeshView mesh,
                       std::vector<std::uint32_t> offsets, std::vector<float> crossings) {
     const HostPhase phase(options.timings, BakePhase::Assembly);
+    std::vector<glm::vec3> edges = setup.report.oriented() ? std::vector<glm::vec3>() : boundaryEdges(mesh);
+    if (options.method != BakeMethod::Cpu) recastBoundaryColumns(mesh, setup.grid, edges, offsets, crossings);
     Sprite s;
     s.grid = setup.grid;
     s.offsets = std::move(offsets);
@@ -39,7 +41,7 @@ Sprite assembleSprite(const BakeSetup& setup, const BakeOptions& options, MeshVi
     s.sourceTriangles = mesh.triangleCount;
     s.status = setup.report.oriented() ? SolidStatus::Closed : SolidStatus::Open;
     s.validation = setup.report.summary();
-    if (!setup.report.oriented()) s.boundaryEdges = boundaryEdges(mesh);
+    s.boundaryEdges = std::move(edges);
     s.checkConsistent();
     if (options.timings) options.timings->crossings = s.crossings.size();
     return s;

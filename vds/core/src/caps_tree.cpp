@@ -307,8 +307,8 @@ double BoundaryCaps::generalizedWinding(int winding, const glm::vec3& q, double 
 }
 
 bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
-    if (!closed_) return exact(winding, q) > 0.5;
-    if (nodes_.empty()) return winding > 0;
+    if (!closed_) return generalizedWindingInside(exact(winding, q));
+    if (nodes_.empty()) return generalizedWindingInside(double(winding));
     // Greedy decide-or-refine: start from the coarsest cut whose nodes each
     // err by at most kMaxTakenBound, then open the node with the largest
     // bound until the value lies farther from 1/2 than the summed bounds.
@@ -324,13 +324,22 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
     heap.clear();
     const glm::dvec3 p(q);
     double integral = 0.0, bound = 0.0;
+    // Work spent, in nodes taken and leaf triangles summed (each some
+    // times an edge of the per-edge sum, which needs no atan2 an edge):
+    // past a quarter of the edge count the per-edge sum decides, so that
+    // points the tree cannot settle (near 1/2, or close to a large cap)
+    // cost about 1.5 per-edge sums, not the whole tree.
+    const double budget = 0.25 * double(edges_.size() / 2);
+    double work = 0.0;
     // Opens the subtree at `index`: nodes far enough by expansion, the rest
-    // down to leaves summed exactly. False where q lies on a cap.
+    // down to leaves summed exactly. False where q lies on a cap, or once
+    // the work exceeds the budget (the per-edge sum decides either way).
     // `expand`: not by its own expansion (a leaf taken before).
     const auto open = [&](std::uint32_t index, bool expand) {
         stack.clear();
         stack.push_back(index);
         while (!stack.empty()) {
+            if (work > budget) return false;
             const std::uint32_t i = stack.back();
             stack.pop_back();
             const Node& n = nodes_[i];
@@ -340,6 +349,7 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
             if (e > 0.0 && !(expand && i == index)) {
                 const double b = n.errorScale * remainderFactor(d, e);
                 if (b <= kMaxTakenBound) {
+                    work += 1.0;
                     const double inv2 = 1.0 / d2, inv3 = inv2 / d;
                     const std::array<double, 9>& M = n.moment;
                     const double yMy = y.x * (M[0] * y.x + M[1] * y.y + M[2] * y.z) +
@@ -358,20 +368,23 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
                 stack.push_back(n.right);
                 continue;
             }
+            work += double(n.count);
             for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
                 if (!addCapTriangle(leafTris_[k], p, integral)) return false; // on a cap
         }
         return true;
     };
-    // value - 1/2 = offset - integral / 4 pi
-    const double offset = double(winding) + double(projected_->winding(q)) - 0.5;
+    // value - (1/2 + tie) = offset - integral / 4 pi; the estimate lies
+    // within bound + kRoundingSlack of the per-edge sum, so a value farther
+    // than that from the threshold has the per-edge sum's label.
+    const double offset = double(winding) + double(projected_->winding(q)) - 0.5 - kGeneralizedWindingTie;
     if (open(0, false)) {
         while (true) {
             const double value = offset - integral / kFourPi;
             // The running sums drift by some 1e-13 at most (each taken
             // bound is at most kMaxTakenBound), within the slack.
             if (std::fabs(value) > bound + kRoundingSlack) return value > 0.0;
-            if (heap.empty()) break;
+            if (heap.empty() || work > budget) break;
             std::pop_heap(heap.begin(), heap.end());
             const Taken t = heap.back();
             heap.pop_back();
@@ -386,7 +399,7 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
             }
         }
     }
-    return exact(winding, q) > 0.5;
+    return generalizedWindingInside(exact(winding, q));
 }
 
 const BoundaryCaps& BoundaryCapsCache::get(const std::vector<glm::vec3>& edges, Axis axis) const {

@@ -45,9 +45,10 @@
 // (antipodal.h) where it exceeds their tolerance. Labels refine
 // greedily: from the coarsest cut whose nodes each err by at most 1/4, the
 // node with the largest bound is opened (its children, or a leaf's
-// triangles summed exactly) until the value lies farther from 1/2 than the
-// summed bounds, and the per-edge sum decides where it never does; so labels
-// equal the exact sum's.
+// triangles summed exactly) until the value lies farther from the label's
+// threshold (1/2 plus the tie, antipodal.h) than the summed bounds, and the
+// per-edge sum decides where it never does or once the tree's work passes a
+// quarter of that sum's; so labels equal the per-edge sum's.
 #pragma once
 
 #include <array>

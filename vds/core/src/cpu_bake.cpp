@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -51,7 +52,92 @@ float planeDepth(const Triangle& tri, const float* q, const std::array<float, 3>
     return std::clamp(float(depth), 0.0f, 1.0f);
 }
 
+/// Exact crossings of texel columns: the mesh indexed once, then any column
+/// cast on its own (thread safe).
+struct ColumnCaster {
+    ColumnCaster(MeshView mesh, const SpriteGrid& spriteGrid) : grid(spriteGrid), projected(mesh, spriteGrid.axis) {
+        // Texture-space depth of every vertex, as the GL bakers' vertex stage computes it.
+        vertexDepth.resize(projected.crossable);
+        for (std::size_t k = 0; k < projected.crossable; ++k)
+            for (int c = 0; c < 3; ++c) {
+                glm::vec3 world;
+                for (int a = 0; a < 3; ++a) world[projected.perm[a]] = projected.tris[k].v[c][a];
+                vertexDepth[k][std::size_t(c)] = grid.toTexture(world).z;
+            }
+    }
+    /// Appends column (i, j)'s encoded crossings to `out`, sorted by depth
+    /// (ties by triangle index); returns how many. `column` is scratch.
+    std::uint32_t cast(std::uint32_t i, std::uint32_t j, std::vector<Crossing>& column, std::vector<float>& out) const {
+        float q[3];
+        projected.toViewSpace(grid.texelCentre(i, j, 0.0f), q);
+        column.clear();
+        const CellGrid::Found found = projected.grid.find(q);
+        for (const CellEntry* e = found.begin; e != found.end; ++e) {
+            if (!CellGrid::mayHold(*e, found.sub)) continue;
+            const Triangle& t = projected.tris[e->triangle];
+            if (detail::claims(t, q))
+                column.push_back({planeDepth(t, q, vertexDepth[e->triangle]), t.index, (t.flags & detail::kEntering) != 0});
+        }
+        std::sort(column.begin(), column.end(), [](const Crossing& a, const Crossing& b) {
+            return a.depth < b.depth || (a.depth == b.depth && a.triangle < b.triangle);
+        });
+        for (const Crossing& c : column) out.push_back(encodeCrossing(c.depth, c.entering));
+        return std::uint32_t(column.size());
+    }
+
+    const SpriteGrid& grid;
+    ProjectedMesh projected;
+    std::vector<std::array<float, 3>> vertexDepth;
+};
+
 } // namespace
+
+void detail::recastBoundaryColumns(MeshView mesh, const SpriteGrid& grid, const std::vector<glm::vec3>& edges,
+                                   std::vector<std::uint32_t>& offsets, std::vector<float>& crossings) {
+    if (edges.empty()) return;
+    const std::uint32_t width = grid.width, height = grid.height;
+    // Texels whose centre lies within about a texel of a boundary edge's
+    // projection: walk each edge in half-texel steps, marking the 3 x 3
+    // texels around each step's nearest centre.
+    std::vector<std::uint8_t> near(std::size_t(width) * height, 0);
+    for (std::size_t k = 0; k + 1 < edges.size(); k += 2) {
+        const glm::vec3 a = grid.toTexture(edges[k]), b = grid.toTexture(edges[k + 1]);
+        const glm::dvec2 ta(double(a.x) * width - 0.5, double(a.y) * height - 0.5),
+            tb(double(b.x) * width - 0.5, double(b.y) * height - 0.5);
+        const double length = std::max(std::fabs(tb.x - ta.x), std::fabs(tb.y - ta.y));
+        const auto steps = std::size_t(std::ceil(2.0 * length)) + 1;
+        for (std::size_t n = 0; n <= steps; ++n) {
+            const glm::dvec2 at = ta + (tb - ta) * (double(n) / double(steps));
+            const double ci = std::round(at.x), cj = std::round(at.y);
+            for (double dj = -1; dj <= 1; ++dj)
+                for (double di = -1; di <= 1; ++di) {
+                    const double i = ci + di, j = cj + dj;
+                    if (i < 0 || j < 0 || i >= double(width) || j >= double(height)) continue;
+                    near[std::size_t(j) * width + std::size_t(i)] = 1;
+                }
+        }
+    }
+    const ColumnCaster caster(mesh, grid);
+    std::vector<std::uint32_t> newOffsets(offsets.size(), 0);
+    std::vector<float> out;
+    out.reserve(crossings.size());
+    std::vector<Crossing> scratch;
+    for (std::uint32_t j = 0; j < height; ++j)
+        for (std::uint32_t i = 0; i < width; ++i) {
+            const std::size_t c = std::size_t(j) * width + i;
+            if (near[c]) {
+                caster.cast(i, j, scratch, out);
+            } else {
+                out.insert(out.end(), crossings.begin() + std::ptrdiff_t(offsets[c]),
+                           crossings.begin() + std::ptrdiff_t(offsets[c + 1]));
+            }
+            if (out.size() > std::numeric_limits<std::uint32_t>::max())
+                throw OutOfMemory("bake: more crossings than the sprite's 2^32 - 1 limit");
+            newOffsets[c + 1] = std::uint32_t(out.size());
+        }
+    offsets = std::move(newOffsets);
+    crossings = std::move(out);
+}
 
 Sprite bakeCpu(MeshView mesh, const BakeOptions& options) {
     const detail::BakeClock clock(options.timings);
@@ -62,16 +148,7 @@ Sprite bakeCpu(MeshView mesh, const BakeOptions& options) {
     };
     report("cpu bake: indexing " + std::to_string(mesh.triangleCount) + " triangles");
     std::optional<detail::HostPhase> phase(std::in_place, options.timings, BakePhase::Upload);
-    const ProjectedMesh projected(mesh, grid.axis);
-
-    // Texture-space depth of every vertex, as the GL bakers' vertex stage computes it.
-    std::vector<std::array<float, 3>> vertexDepth(projected.crossable);
-    for (std::size_t k = 0; k < projected.crossable; ++k)
-        for (int c = 0; c < 3; ++c) {
-            glm::vec3 world;
-            for (int a = 0; a < 3; ++a) world[projected.perm[a]] = projected.tris[k].v[c][a];
-            vertexDepth[k][std::size_t(c)] = grid.toTexture(world).z;
-        }
+    const ColumnCaster caster(mesh, grid);
     phase.emplace(options.timings, BakePhase::Raster);
 
     const std::uint32_t width = grid.width, height = grid.height;
@@ -82,24 +159,8 @@ Sprite bakeCpu(MeshView mesh, const BakeOptions& options) {
     std::vector<std::vector<float>> rows(height);
     parallelFor(threads, height, 1, [&](std::size_t row, std::size_t) {
         std::vector<Crossing> column;
-        std::vector<float>& out = rows[row];
-        for (std::uint32_t i = 0; i < width; ++i) {
-            float q[3];
-            projected.toViewSpace(grid.texelCentre(i, std::uint32_t(row), 0.0f), q);
-            column.clear();
-            const CellGrid::Found found = projected.grid.find(q);
-            for (const CellEntry* e = found.begin; e != found.end; ++e) {
-                if (!CellGrid::mayHold(*e, found.sub)) continue;
-                const Triangle& t = projected.tris[e->triangle];
-                if (detail::claims(t, q))
-                    column.push_back({planeDepth(t, q, vertexDepth[e->triangle]), t.index, (t.flags & detail::kEntering) != 0});
-            }
-            std::sort(column.begin(), column.end(), [](const Crossing& a, const Crossing& b) {
-                return a.depth < b.depth || (a.depth == b.depth && a.triangle < b.triangle);
-            });
-            for (const Crossing& c : column) out.push_back(encodeCrossing(c.depth, c.entering));
-            offsets[row * width + i + 1] = std::uint32_t(column.size());
-        }
+        for (std::uint32_t i = 0; i < width; ++i)
+            offsets[row * width + i + 1] = caster.cast(i, std::uint32_t(row), column, rows[row]);
     });
 
     phase.emplace(options.timings, BakePhase::Scan); // the column offsets and the rows joined

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <tuple>
 #include <vector>
 
@@ -30,6 +31,7 @@
 #include <vds/detail/parallel.h>
 
 #include "antipodal.h"
+#include "caps_tree.h"
 #include "projected_mesh.h"
 
 namespace vds {
@@ -46,26 +48,26 @@ std::vector<BoundaryEdge> toDouble(const std::vector<glm::vec3>& ends) {
     return edges;
 }
 
-constexpr double kFourPi = 4.0 * 3.14159265358979323846;
-
 } // namespace
 
 struct ExactClassifier::Impl : detail::ProjectedMesh {
     Impl(MeshView mesh, Axis viewAxis)
-        : detail::ProjectedMesh(mesh, viewAxis), boundaryEnds(detail::boundaryEdges(mesh)), boundary(toDouble(boundaryEnds)) {}
+        : detail::ProjectedMesh(mesh, viewAxis), boundaryEnds(detail::boundaryEdges(mesh)), boundary(toDouble(boundaryEnds)) {
+        if (!boundaryEnds.empty()) caps.emplace(boundaryEnds.data(), boundaryEnds.size() / 2, viewAxis);
+    }
     std::vector<glm::vec3> boundaryEnds; ///< as `Sprite::boundaryEdges`: 2 points an edge
     int axisIndex = axisPermutation(axis).z; ///< +axis: the apex of every boundary term's spherical triangle
     std::vector<BoundaryEdge> boundary;
+    /// The boundary's capped loops: labels equal to the per-edge sum's,
+    /// without summing every edge for most points (caps_tree.h).
+    std::optional<detail::BoundaryCaps> caps;
 
     double boundaryTerm(const glm::vec3& p) const {
-        const glm::dvec3 q(p);
-        double sum = 0.0;
-        for (const BoundaryEdge& e : boundary) sum += detail::edgeSolidAngle(axisIndex, e.a, e.b, q);
-        return sum / kFourPi;
+        return detail::boundaryTermExact(boundaryEnds.data(), boundaryEnds.size() / 2, axisIndex, glm::dvec3(p));
     }
     double generalizedWinding(const glm::vec3& p) const { return double(winding(p)) + boundaryTerm(p); }
     bool contains(const glm::vec3& p, Rule rule) const {
-        if (rule == Rule::GeneralizedWinding && !boundary.empty()) return generalizedWinding(p) > 0.5;
+        if (rule == Rule::GeneralizedWinding && caps) return caps->inside(winding(p), p);
         return insideByRule(winding(p), rule);
     }
 };
@@ -108,7 +110,8 @@ bool detail::ExactAccess::containsBruteForce(const ExactClassifier& exact, const
     assert(exact.impl_ && "use of a moved-from ExactClassifier");
     const ExactClassifier::Impl& impl = *exact.impl_;
     const int w = impl.windingBruteForce(p);
-    if (rule == Rule::GeneralizedWinding && !impl.boundary.empty()) return double(w) + impl.boundaryTerm(p) > 0.5;
+    if (rule == Rule::GeneralizedWinding && !impl.boundary.empty())
+        return detail::generalizedWindingInside(double(w) + impl.boundaryTerm(p));
     return insideByRule(w, rule);
 }
 

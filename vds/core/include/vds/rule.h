@@ -18,7 +18,9 @@ enum class Rule : std::uint8_t {
     /// holes it stays meaningful. The exact classifier, sprites (which store
     /// the mesh's boundary edges), the GPU classifier and the GPU sweep
     /// answer it for any mesh; see `Sprite::generalizedWinding` for a
-    /// sprite's error bound. The voxel representations do not.
+    /// sprite's error bound. The voxel representations do not. Values
+    /// within 1e-9 of 1/2 (rounding) are ties and outside: a flat sheet's
+    /// own points, whose value is exactly 1/2, lie on the surface, not inside.
     GeneralizedWinding,
 };
 constexpr std::size_t kRuleCount = 3;

@@ -62,4 +62,15 @@ BakeSetup prepareBake(MeshView mesh, const BakeOptions& options);
 Sprite assembleSprite(const BakeSetup& setup, const BakeOptions& options, MeshView mesh,
                       std::vector<std::uint32_t> offsets, std::vector<float> crossings);
 
+/// Replaces the crossings of every column whose texel centre lies within
+/// about a texel of a boundary edge's projection (`edges`: 2 points an edge,
+/// as `Sprite::boundaryEdges`) by the CPU baker's exact ones. The GL
+/// rasterizer snaps vertices to its subpixel grid, so next to the boundary
+/// its crossing count jumps where the snapped edge lies, not where the
+/// exact boundary term jumps; there the generalized winding number would be
+/// off by one. Away from the boundary the snapped surface still closes up,
+/// and counts differ only within the snap of the surface.
+void recastBoundaryColumns(MeshView mesh, const SpriteGrid& grid, const std::vector<glm::vec3>& edges,
+                           std::vector<std::uint32_t>& offsets, std::vector<float>& crossings);
+
 } // namespace vds::detail
