@@ -166,23 +166,43 @@ MeshArrays meshArrays(const py::object& vertices, const py::object& faces) {
 
 // ---- other arguments -------------------------------------------------------
 
-unsigned threadCount(const py::object& threads, const char* what) {
-    const std::string given = py::repr(threads).cast<std::string>();
-    const auto refuse = [&] {
-        throw InvalidArgument(std::string(what) + " must be 0 (one per hardware thread) or a positive count, not " +
-                              given);
-    };
-    if (py::isinstance<py::bool_>(threads)) refuse();
-    PyObject* index = PyNumber_Index(threads.ptr());
+namespace {
+
+/// `value` as an integer in [lo, hi] (Python int or numpy integer, not bool), else `refuse()`.
+template <class Refuse> long long integerIn(const py::handle& value, long long lo, long long hi, Refuse&& refuse) {
+    if (py::isinstance<py::bool_>(value)) refuse();
+    PyObject* index = PyNumber_Index(value.ptr());
     if (!index) {
         PyErr_Clear();
         refuse();
     }
-    const long long value = PyLong_AsLongLong(index);
+    int overflow = 0;
+    const long long v = PyLong_AsLongLongAndOverflow(index, &overflow);
     Py_DECREF(index);
-    if (value == -1 && PyErr_Occurred()) PyErr_Clear();
-    if (value < 0 || value > 65536) refuse();
-    return unsigned(value);
+    if (PyErr_Occurred()) PyErr_Clear();
+    if (overflow || v < lo || v > hi) refuse();
+    return v;
+}
+
+std::string reprText(const py::handle& value) {
+    std::string text = py::repr(value).cast<std::string>();
+    if (text.size() > 40) text = text.substr(0, 37) + "...";
+    return text;
+}
+
+} // namespace
+
+unsigned threadCount(const py::object& threads, const char* what) {
+    return unsigned(integerIn(threads, 0, 65536, [&] {
+        throw InvalidArgument(std::string(what) + " must be 0 (one per hardware thread) or a positive count, not " +
+                              reprText(threads));
+    }));
+}
+
+std::uint32_t countOption(const py::object& value, const char* what) {
+    return std::uint32_t(integerIn(value, 0, 0xffffffffLL, [&] {
+        throw InvalidArgument(std::string(what) + " must be a non-negative integer, not " + reprText(value));
+    }));
 }
 
 std::string fsPath(const py::object& path) {
@@ -206,28 +226,18 @@ glm::vec3 vec3From(const py::object& object, const char* what) {
 }
 
 glm::uvec3 dimsFrom(const py::object& object) {
-    const auto count = [](const py::handle& h) -> std::uint32_t {
-        const std::string given = py::repr(h).cast<std::string>();
-        PyObject* index = py::isinstance<py::bool_>(h) ? nullptr : PyNumber_Index(h.ptr());
-        if (!index) {
-            PyErr_Clear();
-            throw InvalidArgument("dims must be a positive integer or three of them, not " + given);
-        }
-        const long long value = PyLong_AsLongLong(index);
-        Py_DECREF(index);
-        if (value == -1 && PyErr_Occurred()) PyErr_Clear();
-        if (value < 1 || value > 0xffffffffLL)
-            throw InvalidArgument("grid dims must be positive cell counts, not " + given);
-        return std::uint32_t(value);
+    const auto count = [](const py::handle& h) {
+        return std::uint32_t(integerIn(h, 1, 0xffffffffLL, [&] {
+            throw InvalidArgument("grid dims must be positive cell counts, not " + reprText(h));
+        }));
     };
+    if (py::isinstance<py::array>(object)) return dimsFrom(object.attr("tolist")());
     if (py::isinstance<py::sequence>(object) && !py::isinstance<py::str>(object)) {
         const py::sequence s = py::reinterpret_borrow<py::sequence>(object);
-        if (s.size() != 3) throw InvalidArgument("dims must be one integer or three (nx, ny, nz)");
+        if (s.size() != 3) throw InvalidArgument("grid dims must be one integer or three (nx, ny, nz)");
         return glm::uvec3(count(s[0]), count(s[1]), count(s[2]));
     }
-    if (py::isinstance<py::array>(object)) return dimsFrom(object.attr("tolist")());
-    const std::uint32_t n = count(object);
-    return glm::uvec3(n);
+    return glm::uvec3(count(object));
 }
 
 py::array_t<bool> gridArray(const Grid& grid) {

@@ -3,7 +3,9 @@
 // allows), grids, thread counts and paths — with one rule for refusals:
 // a wrong dtype raises `DTypeError` (vds.DTypeError, a TypeError and a
 // vds.InvalidArgument), a wrong shape or value `vds::InvalidArgument`, bad
-// faces `vds::InvalidMesh`; never a pybind11 conversion error.
+// faces `vds::InvalidMesh`; numbers are taken as Python objects and judged
+// here, so a wrong one never meets pybind11's conversion error (which
+// prints every argument, arrays included).
 #pragma once
 
 #include <cstddef>
@@ -81,6 +83,9 @@ MeshArrays meshArrays(const py::object& vertices, const py::object& faces);
 /// A thread count: a non-negative integer (0: one per hardware thread), else
 /// `InvalidArgument` naming what was given.
 unsigned threadCount(const py::object& threads, const char* what = "threads");
+/// A count option (resolution, slices, cells): an integer in [0, 2^32), else
+/// `InvalidArgument` naming `what` and what was given. The library judges its range.
+std::uint32_t countOption(const py::object& value, const char* what);
 
 /// A path as the bytes the file system sees: str, bytes or os.PathLike.
 std::string fsPath(const py::object& path);

@@ -302,11 +302,11 @@ py::array_t<double> spriteWinding(const PySprite& sprite, const py::object& poin
 }
 
 /// vds.bake: the mesh's warning (as `vds bake` prints it), then the bake.
-std::shared_ptr<PySprite> bakeMesh(const py::object& vertices, const py::object& faces, std::uint32_t resolution,
+std::shared_ptr<PySprite> bakeMesh(const py::object& vertices, const py::object& faces, const py::object& resolution,
                                    const std::string& axis, const std::string& method, const std::string& name) {
     const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
     vds::BakeOptions options;
-    options.resolution = resolution;
+    options.resolution = vds::python::countOption(resolution, "resolution");
     options.method = vds::parseBakeMethod(method);
     options.sourceName = name;
     const bool autoAxis = axis == "auto";
@@ -433,14 +433,14 @@ class PyClassifier {
 public:
     /// From a mesh.
     PyClassifier(const py::object& vertices, const py::object& faces, const std::string& methodName,
-                 std::uint32_t resolution, const std::string& axis, const std::string& bakeMethod, std::uint32_t slices,
-                 const py::object& threads, const std::string& name)
+                 const py::object& resolution, const std::string& axis, const std::string& bakeMethod,
+                 const py::object& slices, const py::object& threads, const std::string& name)
         : method_(vds::parseEnum<vds::Method>(methodName)) {
         const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
         vds::MethodOptions options;
-        options.resolution = resolution;
+        options.resolution = vds::python::countOption(resolution, "resolution");
         options.bakeMethod = vds::parseBakeMethod(bakeMethod);
-        options.slices = slices;
+        options.slices = vds::python::countOption(slices, "slices");
         options.threads = vds::python::threadCount(threads);
         options.sourceName = name;
         const bool autoAxis = axis == "auto";
@@ -729,9 +729,11 @@ arrays have the shape (nx, ny, nz), C order, indexed [i, j, k] (x slowest,
 z fastest), as the C++ `Grid::index`. Raises vds.InvalidArgument for a zero
 dimension, more than 2^34 cells, or a box that is empty or not finite.)doc")
         .def(py::init(&makeGrid), py::arg("lo"), py::arg("hi"), py::arg("dims"))
-        .def_static("cubic", [](const py::object& lo, const py::object& hi, std::uint32_t n) {
+        .def_static("cubic", [](const py::object& lo, const py::object& hi, const py::object& n) {
                  vds::Box box{vds::python::vec3From(lo, "lo"), vds::python::vec3From(hi, "hi")};
-                 vds::Grid grid = vds::cubicGrid(box, n);
+                 const std::uint32_t cells = vds::python::countOption(n, "n");
+                 if (cells == 0) throw vds::InvalidArgument("n must be a positive cell count, not 0");
+                 vds::Grid grid = vds::cubicGrid(box, cells);
                  vds::checkGrid(grid);
                  return grid;
              }, py::arg("lo"), py::arg("hi"), py::arg("n"),
@@ -869,8 +871,8 @@ vds.InvalidMesh for an unusable mesh (or an open one for the voxel
 methods), vds.InvalidArgument for an unknown method or option, and
 vds.GlUnavailable where a GL method finds no GL.)doc")
         .def(py::init<const PySprite&, const std::string&>(), py::arg("sprite"), py::arg("method") = "sprite")
-        .def(py::init<const py::object&, const py::object&, const std::string&, std::uint32_t, const std::string&,
-                      const std::string&, std::uint32_t, const py::object&, const std::string&>(),
+        .def(py::init<const py::object&, const py::object&, const std::string&, const py::object&, const std::string&,
+                      const std::string&, const py::object&, const py::object&, const std::string&>(),
              py::arg("V"), py::arg("F"), py::arg("method") = "sprite", py::kw_only(), py::arg("resolution") = 0,
              py::arg("axis") = "auto", py::arg("bake_method") = "cpu", py::arg("slices") = 0, py::arg("threads") = 0,
              py::arg("name") = "")

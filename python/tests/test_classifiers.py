@@ -315,6 +315,15 @@ def test_bad_threads_raise_value_error_naming_the_value():
         assert "array" not in str(error.value) and len(str(error.value)) < 120
     with pytest.raises(ValueError, match="threads"):
         vds.Classifier(V, F, "exact", threads=-3)
+    # Other integer options alike: a one-line message, no pybind11 dump of the arrays.
+    for call, what in [(lambda: vds.bake(V, F, resolution=-1, method="cpu"), "resolution"),
+                       (lambda: vds.Classifier(V, F, "sprite", resolution=2.5), "resolution"),
+                       (lambda: vds.Classifier(V, F, "slicemap", slices=-1), "slices"),
+                       (lambda: vds.Grid((0, 0, 0), (1, 1, 1), 2.5), "dims"),
+                       (lambda: vds.Grid.cubic((0, 0, 0), (1, 1, 1), -2), "n")]:
+        with pytest.raises(vds.InvalidArgument, match=what) as error:
+            call()
+        assert "array" not in str(error.value) and "\n" not in str(error.value)
     assert np.array_equal(sprite.contains(points, threads=np.int64(2)), sprite.contains(points))
 
 
