@@ -402,3 +402,60 @@ def test_meshes_are_read_in_place_when_their_layout_allows():
     for v, f in [(V, F.astype(np.int64)), (np.asfortranarray(V32), F.astype(np.uint32)), (V32, wide[:, :3]),
                  (V32, F.astype(np.uint64)), (V32, F.astype(">i4"))]:
         assert vds.bake(v, f, resolution=32, axis="z", method="cpu").to_bytes() == expected
+
+
+# ---- GPU classifiers: threads and exit ------------------------------------------------------
+
+
+def test_gpu_classifiers_from_several_threads_take_turns_and_free_safely():
+    gl_or_skip()
+    import gc
+    import threading
+
+    sprite = vds.bake(V, F, resolution=RESOLUTION, method="cpu")
+    points = around(20_000, dtype=np.float32)
+    expected = sprite.contains(points)
+    shared = vds.Classifier(sprite, "sprite-gpu")
+    failures = []
+
+    def work():
+        try:
+            for _ in range(3):
+                mine = vds.Classifier(sprite, "sprite-gpu")
+                for c in (mine, shared):
+                    if not np.array_equal(c.classify(points), expected):
+                        failures.append("labels")
+                del mine  # freed on this thread, maybe while another holds GL
+        except Exception as error:  # noqa: BLE001 (reported below)
+            failures.append(repr(error))
+
+    threads = [threading.Thread(target=work) for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    gc.collect()
+    assert not failures
+    assert np.array_equal(shared.classify(points), expected)  # frees what was left to the GL holder
+
+
+def test_interpreter_exits_cleanly_with_gpu_classifiers_alive():
+    gl_or_skip()
+    import subprocess
+    import sys
+
+    script = (
+        "import numpy as np, vds, sys\n"
+        "sys.path.insert(0, %r)\n"
+        "from conftest import icosphere\n"
+        "V, F = icosphere(1)\n"
+        "p = np.zeros((5, 3))\n"
+        "keep = [vds.Classifier(V, F, m, resolution=16) for m in ('sprite-gpu', 'solid-gpu', 'slicemap')]\n"
+        "print(*[int(c.classify(p).sum()) for c in keep])\n"
+        "class Cycle: pass\n"
+        "cycle = Cycle(); cycle.me = cycle; cycle.c = vds.Classifier(V, F, 'slicemap-gpu', resolution=16)\n"
+    ) % str(pathlib.Path(__file__).resolve().parent)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["5", "5", "5"], done.stdout
+    assert "rror" not in done.stderr, done.stderr
