@@ -9,25 +9,33 @@
 // and building.
 //
 // GL (bake methods "lists" and "peel", gpu=True, the GPU and voxel methods)
-// runs on one headless context owned by the module, made lazily and used
-// under a mutex by whichever thread calls. A sprite's GPU copy is made on its
-// first gpu=True call and kept in that state, keyed by the sprite, until the
-// sprite is freed; GPU classifiers live there too. All of it is released by
-// `_release_gl`, which vds/__init__.py registers with Python's atexit:
+// runs on one headless context owned by the module, made lazily on one
+// thread of the module's (`GlThread`) that runs every GL call in turn, for
+// whichever Python thread asks: GL objects belong to the thread and context
+// they were made on. A sprite's GPU copy is made on its first gpu=True call
+// and kept there, keyed by the sprite, until the sprite is freed; GPU
+// classifiers live there too. All of it is released, and the thread stopped,
+// by `_release_gl`, which vds/__init__.py registers with Python's atexit:
 // Python runs that while the interpreter finalizes, before the C library's
-// exit handlers (EGL's among them). The state itself is never destroyed by a
-// static destructor.
+// exit handlers (EGL's among them). Nothing is destroyed by a static
+// destructor.
 //
 // Errors: every vds::Error becomes the vds exception of the same name, each a
 // subclass of vds.Error (and of the builtin class its kind fits: OSError,
 // ValueError, MemoryError, RuntimeError); see registerExceptions.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
 #include <cstring>
+#include <deque>
+#include <functional>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -99,14 +107,13 @@ py::dict statsDict(const vds::ClassifyStats& stats) {
     return d;
 }
 
-// ---- GL ------------------------------------------------------------------
+// ---- GL ----------------------------------------------------------------------
 
-/// The module's GL context, its GPU classifier and sweep, made on first use,
-/// the sprites resident on it and the GPU classifiers made on it. Allocated
-/// once and never destroyed (no static destructor may touch GL).
+/// The module's GL objects: its context, GPU classifier and sweep, made on
+/// first use, the sprites resident on it and the GPU classifiers made on it.
+/// Touched only on the GL thread (`GlThread`), where the context stays
+/// current: GL objects belong to the thread and context they were made on.
 struct GlState {
-    /// Guards every GL call, the context, `resident` and `classifiers`.
-    std::mutex mutex;
     std::unique_ptr<vds::GlContext> gl;
     std::unique_ptr<vds::GpuClassifier> classifier;
     std::unique_ptr<vds::GpuOccupancy> occupancy;
@@ -115,110 +122,171 @@ struct GlState {
     std::unordered_map<std::uint64_t, std::unique_ptr<vds::GpuSprite>> resident;
     /// Classifiers of GPU methods (`PyClassifier::glId`); released with the context.
     std::unordered_map<std::uint64_t, std::unique_ptr<vds::Classifier>> classifiers;
-    std::uint64_t nextId = 1; // under `mutex`
 
-    /// Ids of sprites and classifiers freed while `mutex` was held by another
-    /// thread: their GL objects are freed by the next holder of `mutex`.
-    std::mutex orphansMutex;
-    std::vector<std::uint64_t> orphans;
-
-    /// The context, made if need be; the caller holds `mutex`. Current on no
-    /// thread between calls.
+    /// The context, made if need be (and current on the GL thread from then on).
     const vds::GlContext& context() {
-        if (!gl) {
-            const vds::CurrentContext restore; // GlContext() makes itself current: undo that on return
-            gl = std::make_unique<vds::GlContext>();
-        }
+        if (!gl) gl = std::make_unique<vds::GlContext>();
         return *gl;
     }
 
-    /// Frees the GL objects of sprites and classifiers freed meanwhile. The
-    /// caller holds `mutex` and has the context current (or there is none:
-    /// then nothing is resident).
-    void freeOrphans() {
-        std::vector<std::uint64_t> ids;
-        {
-            const std::lock_guard<std::mutex> lock(orphansMutex);
-            ids.swap(orphans);
-        }
-        for (const std::uint64_t id : ids) {
-            resident.erase(id);
-            classifiers.erase(id);
-        }
-    }
-
-    /// Frees the GL objects of `id` (a sprite's copy or a classifier), under
-    /// the mutex. Never blocks (Python may free an object on any thread,
-    /// holding the GIL, while another thread classifies under the mutex): if
-    /// the mutex is taken, the id is left to its holder (`orphans`).
-    void release(std::uint64_t id) noexcept {
-        try {
-            std::unique_lock<std::mutex> lock(mutex, std::try_to_lock);
-            if (!lock) {
-                const std::lock_guard<std::mutex> orphansLock(orphansMutex);
-                orphans.push_back(id);
-                return;
-            }
-            if (!gl) return; // released with the context
-            const vds::CurrentContext scope(*gl);
-            resident.erase(id);
-            classifiers.erase(id);
-            freeOrphans();
-        } catch (...) {
-            // A context that cannot be made current: leave it to _release_gl.
-        }
+    /// Frees everything, the context last.
+    void clear() {
+        if (gl) gl->makeCurrent();
+        resident.clear();
+        classifiers.clear();
+        classifier.reset();
+        occupancy.reset();
+        gl.reset();
     }
 };
 
-GlState& glState() {
-    static GlState* state = new GlState; // leaked on purpose, see above
-    return *state;
+/// One thread that runs every GL call of the module, one task at a time, in
+/// the order given: Python threads hand it their GL work and wait (without
+/// the GIL), and frees are queued without waiting, so a Python object may be
+/// freed on any thread at any time. Started by the first GL task, stopped by
+/// `_release_gl` (atexit), which frees the GL objects and the context on
+/// this thread; a later GL task starts it again with a new context. Made
+/// once and never destroyed (no static destructor may touch GL or threads).
+class GlThread {
+public:
+    /// Runs `task` on the GL thread and waits for it; rethrows its exception.
+    /// The caller must not hold the GIL.
+    void run(const std::function<void(GlState&)>& task) {
+        std::promise<void> done;
+        std::future<void> result = done.get_future();
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            start(lock);
+            queue_.emplace_back([&task, &done](GlState& state) {
+                try {
+                    task(state);
+                    done.set_value();
+                } catch (...) {
+                    done.set_exception(std::current_exception());
+                }
+            });
+        }
+        wake_.notify_one();
+        result.get();
+    }
+
+    /// Queues `task` without waiting, if the thread runs (a stopped thread
+    /// took every GL object with it: nothing is left to free).
+    void post(std::function<void(GlState&)> task) noexcept {
+        try {
+            {
+                const std::lock_guard<std::mutex> lock(mutex_);
+                if (!worker_.joinable() || stopping_) return;
+                queue_.emplace_back(std::move(task));
+            }
+            wake_.notify_one();
+        } catch (...) {
+            // Out of memory queueing a free: the object is freed with the context.
+        }
+    }
+
+    /// Frees every GL object and the context on the GL thread and stops it.
+    void stop() {
+        std::thread worker;
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            if (!worker_.joinable()) return;
+            stopping_ = true;
+            worker.swap(worker_);
+        }
+        wake_.notify_one();
+        worker.join();
+        const std::lock_guard<std::mutex> lock(mutex_);
+        stopping_ = false;
+    }
+
+    bool running() {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        return worker_.joinable() && !stopping_;
+    }
+
+    /// A key for a resident sprite or a GPU classifier, never reused (across restarts too).
+    std::uint64_t newId() { return nextId_.fetch_add(1); }
+
+private:
+    void start(std::unique_lock<std::mutex>& lock) {
+        // A stop under way: let it finish, then start afresh.
+        while (stopping_) {
+            lock.unlock();
+            std::this_thread::yield();
+            lock.lock();
+        }
+        if (!worker_.joinable()) worker_ = std::thread([this] { loop(); });
+    }
+
+    void loop() {
+        GlState state;
+        for (;;) {
+            std::function<void(GlState&)> task;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+                if (queue_.empty()) break; // stopping, and every task done
+                task = std::move(queue_.front());
+                queue_.pop_front();
+            }
+            task(state); // run()'s tasks catch their own exceptions; frees do not throw
+        }
+        try {
+            state.clear();
+        } catch (...) {
+            // A context that cannot be made current at exit: its objects go with the process.
+        }
+    }
+
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    std::deque<std::function<void(GlState&)>> queue_;
+    std::thread worker_;
+    bool stopping_ = false;
+    std::atomic<std::uint64_t> nextId_{1};
+};
+
+GlThread& glThread() {
+    static GlThread* thread = new GlThread; // leaked on purpose, see above
+    return *thread;
 }
 
 void releaseGl() {
     py::gil_scoped_release released;
-    GlState& s = glState();
-    const std::lock_guard<std::mutex> lock(s.mutex);
-    if (!s.gl) return;
-    {
-        const vds::CurrentContext scope(*s.gl);
-        s.freeOrphans();
-        s.resident.clear();
-        s.classifiers.clear();
-        s.classifier.reset();
-        s.occupancy.reset();
-    }
-    s.gl.reset();
+    glThread().stop();
 }
 
 // ---- sprites ---------------------------------------------------------------
 
 /// The Python Sprite: a vds::Sprite and the key of its GPU copy in
-/// GlState::resident (0: none yet). The copy is owned by the module's GL
+/// GlState::resident (0: none yet). The copy is owned by the GL thread's
 /// state, so `_release_gl` frees it with the context; a sprite freed later
-/// finds nothing resident and calls no GL.
+/// finds the thread stopped and calls no GL.
 struct PySprite : vds::Sprite {
     explicit PySprite(vds::Sprite&& sprite) : vds::Sprite(std::move(sprite)) {}
     PySprite(const PySprite&) = delete;
     PySprite& operator=(const PySprite&) = delete;
     ~PySprite() {
-        if (gpuId) glState().release(std::exchange(gpuId, 0));
+        if (const std::uint64_t id = gpuId.load())
+            glThread().post([id](GlState& s) { s.resident.erase(id); });
     }
 
-    std::uint64_t gpuId = 0;
+    /// Set on the GL thread while the caller waits; read when the sprite is freed.
+    std::atomic<std::uint64_t> gpuId{0};
 };
 
 std::shared_ptr<PySprite> wrap(vds::Sprite&& sprite) { return std::make_shared<PySprite>(std::move(sprite)); }
 
 /// The sprite's resident copy, uploaded on its first GPU call (or the first
 /// after _release_gl), placed as the sprite is now (transform() changes only
-/// the placement). The caller holds the mutex with the context current.
+/// the placement). On the GL thread.
 const vds::GpuSprite& residentCopy(GlState& s, PySprite& sprite) {
-    s.freeOrphans();
+    s.context();
     auto it = sprite.gpuId ? s.resident.find(sprite.gpuId) : s.resident.end();
     if (it == s.resident.end()) {
         auto copy = std::make_unique<vds::GpuSprite>(sprite);
-        if (!sprite.gpuId) sprite.gpuId = s.nextId++;
+        if (!sprite.gpuId) sprite.gpuId = glThread().newId();
         it = s.resident.emplace(sprite.gpuId, std::move(copy)).first;
     }
     it->second->setPlacement(sprite.grid);
@@ -250,11 +318,11 @@ BoolArray spriteContains(PySprite& sprite, const py::object& points, const std::
         vds::classify(sprite, p.points, out, options);
         return labels;
     }
-    GlState& s = glState();
-    const std::lock_guard<std::mutex> lock(s.mutex);
-    const vds::CurrentContext scope(s.context());
-    if (!s.classifier) s.classifier = std::make_unique<vds::GpuClassifier>(*s.gl);
-    s.classifier->classify(residentCopy(s, sprite), vds::PointsView(p.vec3(), p.count), out, options);
+    glThread().run([&](GlState& s) {
+        const vds::GpuSprite& copy = residentCopy(s, sprite);
+        if (!s.classifier) s.classifier = std::make_unique<vds::GpuClassifier>(*s.gl);
+        s.classifier->classify(copy, vds::PointsView(p.vec3(), p.count), out, options);
+    });
     return labels;
 }
 
@@ -270,13 +338,12 @@ BoolArray spriteOccupancy(PySprite& sprite, const vds::Grid& grid, const std::st
         return cells;
     }
     vds::checkGrid(grid);
-    GlState& s = glState();
-    const std::lock_guard<std::mutex> lock(s.mutex);
-    const vds::CurrentContext scope(s.context());
-    const vds::GpuSprite& copy = residentCopy(s, sprite);
     if (axisAligned(sprite.grid)) {
-        if (!s.occupancy) s.occupancy = std::make_unique<vds::GpuOccupancy>(*s.gl);
-        s.occupancy->occupancy(copy, grid, out, options);
+        glThread().run([&](GlState& s) {
+            const vds::GpuSprite& copy = residentCopy(s, sprite);
+            if (!s.occupancy) s.occupancy = std::make_unique<vds::GpuOccupancy>(*s.gl);
+            s.occupancy->occupancy(copy, grid, out, options);
+        });
         return cells;
     }
     // Rotated since the bake: the cell centres, one by one.
@@ -284,8 +351,11 @@ BoolArray spriteOccupancy(PySprite& sprite, const vds::Grid& grid, const std::st
     for (std::uint32_t i = 0; i < grid.dims.x; ++i)
         for (std::uint32_t j = 0; j < grid.dims.y; ++j)
             for (std::uint32_t k = 0; k < grid.dims.z; ++k) centres[grid.index(i, j, k)] = grid.cellCentre(i, j, k);
-    if (!s.classifier) s.classifier = std::make_unique<vds::GpuClassifier>(*s.gl);
-    s.classifier->classify(copy, vds::PointsView(centres), out, options);
+    glThread().run([&](GlState& s) {
+        const vds::GpuSprite& copy = residentCopy(s, sprite);
+        if (!s.classifier) s.classifier = std::make_unique<vds::GpuClassifier>(*s.gl);
+        s.classifier->classify(copy, vds::PointsView(centres), out, options);
+    });
     return cells;
 }
 
@@ -321,9 +391,9 @@ std::shared_ptr<PySprite> bakeMesh(const py::object& vertices, const py::object&
     py::gil_scoped_release released;
     if (autoAxis) options.axis = vds::chooseViewAxis(mesh.view);
     if (options.method == vds::BakeMethod::Cpu) return wrap(vds::bakeCpu(mesh.view, options));
-    GlState& s = glState();
-    const std::lock_guard<std::mutex> lock(s.mutex);
-    return wrap(vds::bake(s.context(), mesh.view, options));
+    vds::Sprite sprite;
+    glThread().run([&](GlState& s) { sprite = vds::bake(s.context(), mesh.view, options); });
+    return wrap(std::move(sprite));
 }
 
 std::shared_ptr<PySprite> spriteFromBytes(const py::bytes& data, const std::string& name) {
@@ -465,9 +535,7 @@ public:
             adopt(vds::makeClassifier(mesh.view, method_, options));
             return;
         }
-        GlState& s = glState();
-        const std::lock_guard<std::mutex> lock(s.mutex);
-        adopt(vds::makeClassifier(s.context(), mesh.view, method_, options));
+        glThread().run([&](GlState& s) { adopt(s, vds::makeClassifier(s.context(), mesh.view, method_, options)); });
     }
 
     /// From a sprite (copied: later transforms of `sprite` do not move it).
@@ -481,13 +549,11 @@ public:
             adopt(vds::makeClassifier(std::move(copy), method_));
             return;
         }
-        GlState& s = glState();
-        const std::lock_guard<std::mutex> lock(s.mutex);
-        adopt(vds::makeClassifier(s.context(), std::move(copy), method_));
+        glThread().run([&](GlState& s) { adopt(s, vds::makeClassifier(s.context(), std::move(copy), method_)); });
     }
 
     ~PyClassifier() {
-        if (glId) glState().release(std::exchange(glId, 0));
+        if (const std::uint64_t id = glId) glThread().post([id](GlState& s) { s.classifiers.erase(id); });
     }
     PyClassifier(const PyClassifier&) = delete;
     PyClassifier& operator=(const PyClassifier&) = delete;
@@ -527,36 +593,39 @@ public:
     const std::string& summary() const { return summary_; }
 
 private:
+    /// Keeps a CPU method's classifier.
     void adopt(std::unique_ptr<vds::Classifier> classifier) {
         memoryBytes_ = classifier->memoryBytes();
         summary_ = classifier->summary();
+        cpu_ = std::move(classifier);
+    }
+    /// On the GL thread: keeps a CPU method's classifier (built on GL), or
+    /// files a GPU method's in the GL state.
+    void adopt(GlState& s, std::unique_ptr<vds::Classifier> classifier) {
         if (!vds::methodInfo(method_).gpu) {
-            cpu_ = std::move(classifier);
+            adopt(std::move(classifier));
             return;
         }
-        // The caller holds the GL mutex.
-        GlState& s = glState();
-        glId = s.nextId++;
+        memoryBytes_ = classifier->memoryBytes();
+        summary_ = classifier->summary();
+        glId = glThread().newId();
         s.classifiers.emplace(glId, std::move(classifier));
     }
 
-    /// Calls `f` with the classifier: a CPU one directly, a GPU one under the
-    /// GL mutex. Runs without the GIL.
+    /// Calls `f` with the classifier: a CPU one here, a GPU one on the GL
+    /// thread. Runs without the GIL.
     template <class F> void run(F&& f) const {
         if (cpu_) {
             f(*cpu_);
             return;
         }
-        GlState& s = glState();
-        const std::lock_guard<std::mutex> lock(s.mutex);
-        const auto it = s.classifiers.find(glId);
-        if (!s.gl || it == s.classifiers.end())
-            throw vds::GlUnavailable("this GPU classifier's GL context was released (vds._release_gl); make it again");
-        {
-            const vds::CurrentContext scope(*s.gl);
-            s.freeOrphans();
-        }
-        f(*it->second);
+        glThread().run([&](GlState& s) {
+            const auto it = s.classifiers.find(glId);
+            if (it == s.classifiers.end())
+                throw vds::GlUnavailable(
+                    "this GPU classifier's GL context was released (vds._release_gl); make it again");
+            f(*it->second);
+        });
     }
 
     /// The CLI's warning for a mesh (or sprite) that bounds no solid by `rule`.
@@ -980,14 +1049,9 @@ included), vds.FormatError (a ValueError) for a malformed one.)doc");
           }, "(bool, reason): whether a headless GL context can be had here, and why not.");
     m.def("_gpu_resident", [] {
               py::gil_scoped_release released;
-              GlState& s = glState();
-              const std::lock_guard<std::mutex> lock(s.mutex);
-              std::size_t orphans = 0;
-              {
-                  const std::lock_guard<std::mutex> orphansLock(s.orphansMutex);
-                  for (const std::uint64_t id : s.orphans) orphans += s.resident.count(id);
-              }
-              return s.resident.size() - orphans;
+              std::size_t count = 0;
+              if (glThread().running()) glThread().run([&](GlState& s) { count = s.resident.size(); });
+              return count;
           }, "How many sprites have a GPU copy resident on the module's context (for tests).");
     m.def("_release_gl", &releaseGl, "Frees the module's GL context (registered with atexit by vds/__init__.py).");
 }
