@@ -1012,6 +1012,39 @@ by one sweep per column along z on the triangles: a bool array of shape
 grid.shape, [i, j, k] True inside, equal to the exact classifier's labels of
 grid.cell_centres(). (Sprite.occupancy and Classifier.occupancy sweep the
 other representations.))doc");
+    m.def("validate_mesh", [](const py::object& vertices, const py::object& faces) {
+              const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
+              vds::MeshReport r;
+              {
+                  py::gil_scoped_release released;
+                  r = vds::validateMesh(mesh.view);
+              }
+              py::dict d;
+              d["vertices"] = r.vertexCount;
+              d["triangles"] = r.triangleCount;
+              d["boundary_edges"] = r.boundaryEdges;
+              d["non_manifold_edges"] = r.nonManifoldEdges;
+              d["odd_non_manifold_edges"] = r.oddNonManifoldEdges;
+              d["inconsistent_edges"] = r.inconsistentEdges;
+              d["degenerate_triangles"] = r.degenerateTriangles;
+              d["duplicate_triangles"] = r.duplicateTriangles;
+              d["isolated_vertices"] = r.isolatedVertices;
+              d["non_finite_vertices"] = r.nonFiniteVertices;
+              d["bad_indices"] = r.badIndices;
+              d["closed"] = r.closed();
+              d["oriented"] = r.oriented();
+              d["manifold"] = r.manifold();
+              d["usable"] = r.usable();
+              d["bounds"] = py::make_tuple(tuple3(r.bounds.lo), tuple3(r.bounds.hi));
+              d["summary"] = r.summary();
+              return d;
+          }, py::arg("V"), py::arg("F"), R"doc(
+What the library's validation finds in the mesh (V, F), as `vds info` prints
+it: a dict of counts ("boundary_edges", "non_manifold_edges",
+"inconsistent_edges", "degenerate_triangles", ...), "closed" (the parity rule
+defines inside), "oriented" (the winding rule too), "manifold", "usable",
+"bounds" ((lo, hi) of the used vertices) and the one-line "summary". Indices
+out of range raise vds.InvalidMesh, as everywhere.)doc");
     m.def("load_mesh", [](const py::object& path) {
               const std::string p = vds::python::fsPath(path);
               vds::python::requireNotDirectory(p);

@@ -459,3 +459,16 @@ def test_interpreter_exits_cleanly_with_gpu_classifiers_alive():
     assert done.returncode == 0, done.stderr
     assert done.stdout.split() == ["5", "5", "5"], done.stdout
     assert "rror" not in done.stderr, done.stderr
+
+
+def test_validate_mesh_counts_what_the_mesh_holds():
+    report = vds.validate_mesh(V, F)
+    assert (report["vertices"], report["triangles"]) == (len(V), len(F))
+    assert report["closed"] and report["oriented"] and report["manifold"] and report["usable"]
+    assert report["summary"].startswith("closed")
+    np.testing.assert_allclose(report["bounds"], [V32.min(0), V32.max(0)])
+    opened = vds.validate_mesh(*open_icosphere())
+    assert opened["boundary_edges"] == 3 and not opened["closed"] and "3 boundary edges" in opened["summary"]
+    flipped = F.copy()
+    flipped[0] = flipped[0, ::-1]
+    assert vds.validate_mesh(V, flipped)["inconsistent_edges"] == 3

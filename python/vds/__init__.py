@@ -56,12 +56,14 @@ from ._vds import (  # noqa: F401  (the public API)
     load_mesh,
     occupancy,
     read,
+    validate_mesh,
 )
 
 __all__ = [
     "Classifier", "DTypeError", "Error", "ExactClassifier", "FormatError", "GlError", "GlUnavailable", "Grid",
     "InvalidArgument", "InvalidMesh", "IoError", "MeshWarning", "MethodInfo", "OutOfMemory", "Sprite", "bake",
-    "exact_contains", "from_bytes", "gl_available", "load_mesh", "methods", "occupancy", "read", "winding_numbers",
+    "exact_contains", "from_bytes", "gl_available", "load_mesh", "methods", "occupancy", "read", "validate_mesh",
+    "winding_numbers",
 ]
 
 # The module's GL context is freed while the interpreter finalizes, before the
