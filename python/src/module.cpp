@@ -40,6 +40,8 @@
 #include <utility>
 #include <vector>
 
+#include <pthread.h>
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -147,11 +149,20 @@ struct GlState {
 /// `_release_gl` (atexit), which frees the GL objects and the context on
 /// this thread; a later GL task starts it again with a new context. Made
 /// once and never destroyed (no static destructor may touch GL or threads).
+/// Set in a child made by fork() while the parent's GL thread ran: the
+/// driver's own threads (llvmpipe's rasterizer pool, say) did not come along,
+/// and GL in the child would wait for them forever.
+std::atomic<bool> glLostInFork{false};
+constexpr const char* kLostInFork =
+    "GL was in use when this process was forked from its parent, and a forked child cannot use the driver "
+    "the parent started: use multiprocessing's \"spawn\" start method, or call vds._release_gl() before forking";
+
 class GlThread {
 public:
     /// Runs `task` on the GL thread and waits for it; rethrows its exception.
     /// The caller must not hold the GIL.
     void run(const std::function<void(GlState&)>& task) {
+        if (glLostInFork) throw vds::GlUnavailable(kLostInFork);
         std::promise<void> done;
         std::future<void> result = done.get_future();
         {
@@ -198,7 +209,12 @@ public:
         worker.join();
         const std::lock_guard<std::mutex> lock(mutex_);
         stopping_ = false;
+        live_ = false;
     }
+
+    /// True from the thread's start to the end of `stop`; read without the
+    /// mutex (in a child process after fork, another thread may have held it).
+    bool live() const noexcept { return live_; }
 
     bool running() {
         const std::lock_guard<std::mutex> lock(mutex_);
@@ -216,7 +232,10 @@ private:
             std::this_thread::yield();
             lock.lock();
         }
-        if (!worker_.joinable()) worker_ = std::thread([this] { loop(); });
+        if (!worker_.joinable()) {
+            worker_ = std::thread([this] { loop(); });
+            live_ = true;
+        }
     }
 
     void loop() {
@@ -245,11 +264,23 @@ private:
     std::thread worker_;
     bool stopping_ = false;
     std::atomic<std::uint64_t> nextId_{1};
+    std::atomic<bool> live_{false};
 };
 
-GlThread& glThread() {
+GlThread*& glThreadSlot() {
     static GlThread* thread = new GlThread; // leaked on purpose, see above
-    return *thread;
+    return thread;
+}
+
+GlThread& glThread() { return *glThreadSlot(); }
+
+/// In a child made by fork() the GL thread does not exist (only the forking
+/// thread is copied): the child leaves the parent's objects alone (leaked)
+/// and gets a GL thread of its own, which refuses GL where the parent's was
+/// live (`glLostInFork`) and otherwise starts on the child's first GL call.
+void forgetGlThreadInChild() {
+    if (glThreadSlot()->live()) glLostInFork = true;
+    glThreadSlot() = new GlThread;
 }
 
 void releaseGl() {
@@ -786,6 +817,7 @@ rule: "parity" (odd crossings in front), "winding" (non-zero winding) or
 PYBIND11_MODULE(_vds, m) {
     m.doc() = "vds: point-in-solid tests with volumetric depth sprites (the compiled part; use `import vds`)";
     registerExceptions(m);
+    pthread_atfork(nullptr, nullptr, &forgetGlThreadInChild);
 
     py::class_<vds::Grid>(m, "Grid", R"doc(
 A regular grid of cells over a box, the one grid of every occupancy call:
@@ -1076,6 +1108,7 @@ included), vds.FormatError (a ValueError) for a malformed one.)doc");
               return py::make_tuple(mesh.verticesCopied, mesh.facesCopied);
           }, "(V copied, F copied): whether (V, F) would be copied or read in place (for tests).");
     m.def("gl_available", [] {
+              if (glLostInFork) return py::make_tuple(false, kLostInFork);
               std::string reason;
               const bool ok = vds::glAvailable(&reason);
               return py::make_tuple(ok, reason);

@@ -472,3 +472,36 @@ def test_validate_mesh_counts_what_the_mesh_holds():
     flipped = F.copy()
     flipped[0] = flipped[0, ::-1]
     assert vds.validate_mesh(V, flipped)["inconsistent_edges"] == 3
+
+
+def test_a_forked_child_refuses_gl_its_parent_was_using_instead_of_hanging():
+    gl_or_skip()
+    import subprocess
+    import sys
+
+    script = (
+        "import os, numpy as np, vds, sys\n"
+        "sys.path.insert(0, %r)\n"
+        "from conftest import icosphere\n"
+        "V, F = icosphere(1)\n"
+        "s = vds.bake(V, F, resolution=32, method='cpu')\n"
+        "p = np.zeros((5, 3))\n"
+        "def child():\n"
+        "    try:\n"
+        "        print('child', int(s.contains(p, gpu=True).sum()), vds.gl_available()[0], flush=True)\n"
+        "    except vds.GlUnavailable as e:\n"
+        "        print('child refused', 'spawn' in str(e), vds.gl_available()[0], flush=True)\n"
+        "    os._exit(0)\n"
+        "print('parent', int(s.contains(p, gpu=True).sum()), flush=True)\n"
+        "pid = os.fork()\n"
+        "if pid == 0: child()\n"
+        "os.waitpid(pid, 0)\n"
+        "vds._release_gl()\n"  # nothing live: a child may start GL of its own
+        "pid = os.fork()\n"
+        "if pid == 0: child()\n"
+        "os.waitpid(pid, 0)\n"
+        "print('parent', int(s.contains(p, gpu=True).sum()), flush=True)\n"
+    ) % str(pathlib.Path(__file__).resolve().parent)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == ["parent 5", "child refused True False", "child 5 True", "parent 5"], done.stdout
