@@ -26,6 +26,9 @@ float32/float64, faces not integers; an InvalidArgument and a TypeError),
 ValueError), ``GlUnavailable`` and ``GlError`` (RuntimeErrors),
 ``OutOfMemory`` (a MemoryError). A mesh that bounds no solid by the rule
 asked gets a ``vds.MeshWarning`` with the command-line tool's text.
+GL work runs on one thread of the module's, for every Python thread in turn;
+a process forked while it runs cannot use GL (``GlUnavailable`` says so): use
+multiprocessing's "spawn" start method.
 Scale-out over Dask: ``vds.dask``.
 """
 import atexit as _atexit
