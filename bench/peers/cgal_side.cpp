@@ -37,18 +37,24 @@ SurfaceMesh toSurfaceMesh(MeshView mesh) {
     return out;
 }
 
-class CgalSide final : public PointClassifier {
+class CgalSide final : public Classifier {
 public:
     explicit CgalSide(MeshView mesh) : mesh_(toSurfaceMesh(mesh)), side_(mesh_) {
         side_(Point(0.0, 0.0, 0.0)); // builds the AABB tree now, not in the first timed query
     }
 
-    unsigned threads() const override { return 1; }
+    Method method() const override { return Method::Custom; }
+    std::uint8_t rules() const override { return 1u << unsigned(Rule::Parity); }
+    std::string summary() const override { return cgalVersion() + " Side_of_triangle_mesh on 1 thread"; }
+    std::size_t memoryBytes() const override { return 0; } // CGAL does not say
 
-    void classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels) const override {
+protected:
+    // One thread, as users get it: `options.threads` is not used.
+    void classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                        const ClassifyOptions&) const override {
         for (std::size_t k = 0; k < count; ++k) {
-            const glm::vec3& p = points[k];
-            labels[k] = side_(Point(p.x, p.y, p.z)) != CGAL::ON_UNBOUNDED_SIDE ? 1 : 0;
+            const float* p = reinterpret_cast<const float*>(reinterpret_cast<const char*>(xyz) + k * strideBytes);
+            labels[k] = side_(Point(p[0], p[1], p[2])) != CGAL::ON_UNBOUNDED_SIDE ? 1 : 0;
         }
     }
 
@@ -59,7 +65,7 @@ private:
 
 } // namespace
 
-std::unique_ptr<PointClassifier> makeCgalSide(MeshView mesh) { return std::make_unique<CgalSide>(mesh); }
+std::unique_ptr<Classifier> makeCgalSide(MeshView mesh) { return std::make_unique<CgalSide>(mesh); }
 
 std::string cgalVersion() { return "CGAL " CGAL_VERSION_STR; }
 

@@ -7,18 +7,18 @@
 #include <memory>
 #include <string>
 
+#include <vds/classify.h>
 #include <vds/mesh.h>
 
-#include "point_classifier.h"
 
 namespace vds::peers {
 
-/// Copies the mesh into a CGAL::Surface_mesh and builds the AABB tree of
+/// A `Classifier` of Method::Custom, parity only. Copies the mesh into a CGAL::Surface_mesh and builds the AABB tree of
 /// Side_of_triangle_mesh (CGAL builds it at the first query; the factory
 /// makes that query, so the tree is part of the build). A point on the
 /// surface (CGAL::ON_BOUNDARY) counts as inside. Throws `std::runtime_error`
 /// if CGAL rejects a face (non-manifold input).
-std::unique_ptr<PointClassifier> makeCgalSide(MeshView mesh);
+std::unique_ptr<Classifier> makeCgalSide(MeshView mesh);
 
 /// "CGAL 5.5.1", the version compiled against.
 std::string cgalVersion();

@@ -47,7 +47,7 @@ struct SceneRelease {
     void operator()(RTCScene s) const { rtcReleaseScene(s); }
 };
 
-class EmbreeParity final : public PointClassifier {
+class EmbreeParity final : public Classifier {
 public:
     EmbreeParity(MeshView mesh, unsigned threads) : threads_(threads), arena_(int(threads)) {
         const std::string config = "threads=" + std::to_string(threads);
@@ -80,16 +80,26 @@ public:
         skip_ = kSkipFraction * glm::length(box.hi - box.lo);
     }
 
-    unsigned threads() const override { return threads_; }
+    Method method() const override { return Method::Custom; }
+    std::uint8_t rules() const override { return 1u << unsigned(Rule::Parity); }
+    std::string summary() const override { return embreeVersion() + " ray parity on " + std::to_string(threads_) + " threads"; }
+    std::size_t memoryBytes() const override { return 0; } // Embree does not say
 
-    void classify(const glm::vec3* points, std::size_t count, std::uint8_t* labels) const override {
+protected:
+    // Embree's own threads (TBB, `threads` of them at construction): `options.threads` is not used.
+    void classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                        const ClassifyOptions&) const override {
+        const auto point = [&](std::size_t k) {
+            const float* p = reinterpret_cast<const float*>(reinterpret_cast<const char*>(xyz) + k * strideBytes);
+            return glm::vec3(p[0], p[1], p[2]);
+        };
         arena_.execute([&] {
             tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 4096),
                               [&](const tbb::blocked_range<std::size_t>& range) {
                                   RTCIntersectContext context;
                                   rtcInitIntersectContext(&context);
                                   for (std::size_t k = range.begin(); k < range.end(); ++k)
-                                      labels[k] = inside(points[k], context) ? 1 : 0;
+                                      labels[k] = inside(point(k), context) ? 1 : 0;
                               });
         });
     }
@@ -131,7 +141,7 @@ private:
 
 } // namespace
 
-std::unique_ptr<PointClassifier> makeEmbreeParity(MeshView mesh, unsigned threads) {
+std::unique_ptr<Classifier> makeEmbreeParity(MeshView mesh, unsigned threads) {
     return std::make_unique<EmbreeParity>(mesh, threads);
 }
 

@@ -6,17 +6,17 @@
 #include <memory>
 #include <string>
 
+#include <vds/classify.h>
 #include <vds/mesh.h>
 
-#include "point_classifier.h"
 
 namespace vds::peers {
 
-/// Builds an Embree scene (BVH) over the mesh on `threads` threads (0: one
+/// A `Classifier` of Method::Custom, parity only. Builds an Embree scene (BVH) over the mesh on `threads` threads (0: one
 /// per hardware thread); queries run on as many, in a TBB arena. Throws
 /// `std::runtime_error` with Embree's error code if the device or scene
 /// cannot be made.
-std::unique_ptr<PointClassifier> makeEmbreeParity(MeshView mesh, unsigned threads);
+std::unique_ptr<Classifier> makeEmbreeParity(MeshView mesh, unsigned threads);
 
 /// "Embree 3.13.5", the version compiled against.
 std::string embreeVersion();

@@ -67,14 +67,14 @@ int main(int argc, char** argv) {
         const auto embree = vds::peers::makeEmbreeParity(c.mesh, threads);
         std::vector<std::uint8_t> a(points.size()), b(points.size());
         exact.classify({points.data(), points.size()}, a.data(), {vds::Rule::Parity, threads});
-        embree->classify(points.data(), points.size(), b.data());
+        embree->classify(vds::PointsView(points), b.data());
         double te = 1e300, tb = 1e300;
         for (int r = 0; r < rounds; ++r) {
             t0 = Clock::now();
             exact.classify({points.data(), points.size()}, a.data(), {vds::Rule::Parity, threads});
             te = std::min(te, since(t0));
             t0 = Clock::now();
-            embree->classify(points.data(), points.size(), b.data());
+            embree->classify(vds::PointsView(points), b.data());
             tb = std::min(tb, since(t0));
         }
         std::size_t differ = 0;

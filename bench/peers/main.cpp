@@ -5,20 +5,24 @@
 //   vds_peers_bench [--points N] [--grids 128,256,512] [--full] [--threads T]
 //                   [--resolution R] [--cgal-limit N] [--no-generated] [MESH ...]
 //
-// Methods (a peer is compiled in only when CMake found it):
-//  - vds exact:     ExactClassifier (<vds/exact.h>), the reference for "wrong";
-//  - vds certified: CertifiedClassifier (<vds/certified.h>): sprite-like
-//                   bands at R, the exact classifier where they cannot decide;
+// Methods, every one a vds::Classifier driven through the library's one
+// contract (<vds/classify.h>); a peer is compiled in only when CMake found it:
+//  - vds exact:     Method::Exact (<vds/exact.h>), the reference for "wrong";
+//  - vds certified: Method::Certified (<vds/certified.h>): sprite-like bands
+//                   at R, the exact classifier where they cannot decide;
 //                   exact answers (its "wrong" is counted like the others');
-//  - vds sprite:    a sprite baked on the CPU at R (default 1024), queried with
-//                   vds::classify (QueryLayout::Auto), on 1 and on T threads;
-//  - vds sweep:     grids only, vds::occupancy on the same sprite: one walk
-//                   per column, the same answers as vds sprite on every cell;
-//  - vds voxelize:  grids only, vds::voxelize on the mesh: the exact column
-//                   sweep, no sprite (its build is part of its query time);
+//  - vds sprite:    Method::Sprite, baked on the CPU at R (default 1024),
+//                   QueryLayout::Auto, on 1 and on T threads;
+//  - vds sprite sweep: grids only, `Classifier::occupancy` of the same
+//                   sprite: one walk per column, the same answers as vds
+//                   sprite on every cell;
+//  - vds exact sweep: grids only, vds::occupancy of the mesh: the exact
+//                   column sweep, no sprite (its build is part of its query time);
 //  - Embree:        ray parity as in trimesh (embree_parity.h), TBB threads;
 //  - CGAL:          Side_of_triangle_mesh on a Surface_mesh<Epick> (cgal_side.h),
 //                   one thread, as users get it.
+// vds's methods are made by `vds::makeClassifier` and named by their
+// `MethodInfo`; the peers are Method::Custom classifiers.
 // Point sets, per mesh: N uniform random points in the mesh box grown by 10 %
 // on each side, then the cell centres of n^3 grids over the mesh box
 // (vds::Grid: centre lo + (i+1/2, j+1/2, k+1/2) (hi - lo) / n).
@@ -167,63 +171,73 @@ std::vector<std::string> defaultMeshPaths(const std::string& dir) {
 // kSprite, its sweep kSweep; the peers compiled in follow.
 constexpr std::size_t kExact = 0;
 
+// A classifier as a benchmark row: per-point methods classify a slab; the
+// sweeps (`grid` true) label a whole grid through `Classifier::occupancy`.
+Method row(std::string name, std::shared_ptr<const vds::Classifier> c, unsigned threads, double build,
+           bool grid = false) {
+    Method m{std::move(name), threads, build, {}, {}};
+    if (grid)
+        m.runGrid = [c, threads](const vds::Grid& g, std::uint8_t* out) {
+            c->occupancy(g, out, {vds::Rule::Parity, threads});
+        };
+    else
+        m.run = [c, threads](const Slab& s, std::uint8_t* out) {
+            c->classify(vds::PointsView(s.points, s.count), out, {vds::Rule::Parity, threads});
+        };
+    return m;
+}
+
+// Every method through the library's one contract: vds's own by
+// `vds::makeClassifier` and their `MethodInfo` names, the peers as Custom
+// classifiers.
 std::vector<Method> buildMethods(const vds::TriangleMesh& mesh, unsigned threads, std::uint32_t resolution,
                                  std::string& spriteShape, std::size_t& kSprite, std::size_t& kSweep) {
     std::vector<Method> methods;
-
-    auto t0 = Clock::now();
-    auto exact = std::make_shared<const vds::ExactClassifier>(mesh, vds::Axis::Z);
-    methods.push_back({"vds exact", threads, since(t0), [exact, threads](const Slab& s, std::uint8_t* out) {
-                           exact->classify(vds::PointsView(s.points, s.count), out, {vds::Rule::Parity, threads});
-                       }, {}});
-
-    t0 = Clock::now();
-    auto certified = std::make_shared<const vds::CertifiedClassifier>(
-        mesh, vds::CertifiedOptions{resolution, vds::Axis::Z, threads});
-    methods.push_back({"vds certified @" + std::to_string(resolution), threads, since(t0),
-                       [certified, threads](const Slab& s, std::uint8_t* out) {
-                           certified->classify(vds::PointsView(s.points, s.count), out, {vds::Rule::Parity, threads});
-                       }, {}});
-
-    vds::BakeOptions bake;
-    bake.resolution = resolution;
-    bake.axis = vds::Axis::Z;
-    bake.method = vds::BakeMethod::Cpu;
-    t0 = Clock::now();
-    auto sprite = std::make_shared<const vds::Sprite>(vds::bake(mesh, bake));
-    const double bakeSeconds = since(t0);
-    spriteShape = std::to_string(sprite->width()) + "x" + std::to_string(sprite->height()) + "x" +
-                  std::to_string(sprite->depthComplexity);
     const std::string at = " @" + std::to_string(resolution);
+    vds::MethodOptions options;
+    options.resolution = resolution;
+    options.axis = vds::Axis::Z;
+    options.bakeMethod = vds::BakeMethod::Cpu;
+    options.threads = threads;
+    const auto make = [&](vds::Method method, double& seconds) {
+        const auto t0 = Clock::now();
+        std::shared_ptr<const vds::Classifier> c = vds::makeClassifier(mesh, method, options);
+        seconds = since(t0);
+        return c;
+    };
+    const auto name = [](vds::Method method) { return std::string("vds ") + vds::methodInfo(method).name; };
+
+    double build = 0.0;
+    const auto exact = make(vds::Method::Exact, build);
+    methods.push_back(row(name(vds::Method::Exact), exact, threads, build));
+    const auto certified = make(vds::Method::Certified, build);
+    methods.push_back(row(name(vds::Method::Certified) + at, certified, threads, build));
+    const auto sprite = make(vds::Method::Sprite, build);
+    spriteShape = sprite->summary();
     for (unsigned t : {1u, threads}) {
         if (t == 1 && threads == 1) continue;
-        methods.push_back({"vds sprite" + at, t, bakeSeconds, [sprite, t](const Slab& s, std::uint8_t* out) {
-                               vds::classify(*sprite, vds::PointsView(s.points, s.count), out, {vds::Rule::Parity, t});
-                           }, {}});
+        methods.push_back(row(name(vds::Method::Sprite) + at, sprite, t, build));
     }
     kSprite = methods.size() - 1;
-    methods.push_back({"vds sweep" + at, threads, bakeSeconds, {},
-                       [sprite, threads](const vds::Grid& g, std::uint8_t* out) {
-                           vds::occupancy(*sprite, g, out, {vds::Rule::Parity, threads});
-                       }});
+    methods.push_back(row(name(vds::Method::Sprite) + " sweep" + at, sprite, threads, build, true));
     kSweep = methods.size() - 1;
+    // The exact column sweep from the mesh: its build is part of its query time.
     const vds::TriangleMesh* meshPtr = &mesh;
-    methods.push_back({"vds voxelize (exact sweep)", threads, 0.0, {},
-                       [meshPtr, threads](const vds::Grid& g, std::uint8_t* out) {
-                           vds::occupancy(*meshPtr, g, out, {vds::Rule::Parity, threads});
-                       }});
+    Method voxelize{"vds exact sweep (occupancy of the mesh)", threads, 0.0, {}, {}};
+    voxelize.runGrid = [meshPtr, threads](const vds::Grid& g, std::uint8_t* out) {
+        vds::occupancy(*meshPtr, g, out, {vds::Rule::Parity, threads});
+    };
+    methods.push_back(voxelize);
 
 #if VDS_PEERS_EMBREE
-    t0 = Clock::now();
-    std::shared_ptr<const vds::peers::PointClassifier> embree = vds::peers::makeEmbreeParity(mesh, threads);
-    methods.push_back({"Embree parity", embree->threads(), since(t0),
-                       [embree](const Slab& s, std::uint8_t* out) { embree->classify(s.points, s.count, out); }, {}});
+    const auto embreeStart = Clock::now();
+    std::shared_ptr<const vds::Classifier> embree = vds::peers::makeEmbreeParity(mesh, threads);
+    methods.push_back(row("Embree parity", embree, threads, since(embreeStart)));
 #endif
 #if VDS_PEERS_CGAL
-    t0 = Clock::now();
-    std::shared_ptr<const vds::peers::PointClassifier> cgal = vds::peers::makeCgalSide(mesh);
-    methods.push_back({"CGAL Side_of_triangle_mesh", cgal->threads(), since(t0),
-                       [cgal](const Slab& s, std::uint8_t* out) { cgal->classify(s.points, s.count, out); }, {}});
+    const auto cgalStart = Clock::now();
+    std::shared_ptr<const vds::Classifier> cgal = vds::peers::makeCgalSide(mesh);
+    methods.push_back(row("CGAL Side_of_triangle_mesh", cgal, 1, since(cgalStart)));
 #endif
     return methods;
 }
@@ -415,7 +429,7 @@ int main(int argc, char** argv) {
                             n,
                             {}});
 
-        std::printf("\n| mesh | triangles | sprite w x h x d_S |\n|---|---:|---|\n");
+        std::printf("\n| mesh | triangles | sprite |\n|---|---:|---|\n");
         for (const Case& c : cases) {
             const vds::MeshReport report = vds::validateMesh(c.mesh);
             if (!report.closed()) {

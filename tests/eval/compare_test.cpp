@@ -61,21 +61,21 @@ TEST_F(CompareTest, TableHoldsEveryMethodAtEqualResolutionAndEqualMemory) {
     EXPECT_GT(result.uniformInside, 2000u);
     EXPECT_GT(result.exactPointsPerSecond, 0.0);
 
-    const std::set<std::string> methods = {"vds-parity",     "vds-winding", "slicemap",
-                                           "slicemap-local", "solid",       "solid-compute"};
+    const std::set<std::string> methods = {"sprite",         "sprite/winding", "slicemap",
+                                           "slicemap-local", "solid",          "solid-compute"};
     std::set<std::string> atResolution, atMemory;
     for (const CompareRow& r : result.rows) {
-        ASSERT_TRUE(methods.count(r.method)) << r.method;
-        (r.series == "resolution" ? atResolution : atMemory).insert(r.method);
-        EXPECT_GT(r.memoryBytes, 0u) << r.method;
-        EXPECT_GT(r.pointsPerSecond, 0.0) << r.method;
-        EXPECT_GE(r.buildSeconds, 0.0) << r.method;
-        EXPECT_LT(r.errorRate, 0.2) << r.method << " " << r.series << " " << r.target;
-        EXPECT_EQ(r.uniformWrong + r.surfaceWrong == 0, r.worstErrorDistance == 0.0) << r.method;
-        EXPECT_NEAR(r.worstErrorCells, r.worstErrorDistance / r.cellSize, 1e-9) << r.method;
+        ASSERT_TRUE(methods.count(r.name())) << r.name();
+        (r.series == "resolution" ? atResolution : atMemory).insert(r.name());
+        EXPECT_GT(r.memoryBytes, 0u) << r.name();
+        EXPECT_GT(r.pointsPerSecond, 0.0) << r.name();
+        EXPECT_GE(r.buildSeconds, 0.0) << r.name();
+        EXPECT_LT(r.errorRate, 0.2) << r.name() << " " << r.series << " " << r.target;
+        EXPECT_EQ(r.uniformWrong + r.surfaceWrong == 0, r.worstErrorDistance == 0.0) << r.name();
+        EXPECT_NEAR(r.worstErrorCells, r.worstErrorDistance / r.cellSize, 1e-9) << r.name();
         if (r.series == "memory") {
-            EXPECT_LE(r.memoryBytes, r.target) << r.method;
-        } else if (r.method != "vds-parity" && r.method != "vds-winding") {
+            EXPECT_LE(r.memoryBytes, r.target) << r.name();
+        } else if (r.method != Method::Sprite) {
             EXPECT_EQ(r.resolution, r.target);
         }
     }
@@ -85,15 +85,15 @@ TEST_F(CompareTest, TableHoldsEveryMethodAtEqualResolutionAndEqualMemory) {
     // Finer grids are better; raster and compute solids answer alike.
     const auto find = [&](const std::string& method, std::uint64_t target) -> const CompareRow& {
         for (const CompareRow& r : result.rows)
-            if (r.method == method && r.series == "resolution" && r.target == target) return r;
+            if (r.name() == method && r.series == "resolution" && r.target == target) return r;
         throw std::runtime_error("no row " + method);
     };
-    for (const char* m : {"solid", "slicemap", "vds-parity"})
+    for (const char* m : {"solid", "slicemap", "sprite"})
         EXPECT_LT(find(m, 48).errorRate, find(m, 16).errorRate) << m;
     EXPECT_EQ(find("solid", 48).uniformWrong, find("solid-compute", 48).uniformWrong);
     EXPECT_EQ(find("solid", 48).surfaceWrong, find("solid-compute", 48).surfaceWrong);
     // Errors stay near the surface: within a couple of cells.
-    for (const CompareRow& r : result.rows) EXPECT_LT(r.worstErrorCells, 3.0) << r.method << " " << r.series;
+    for (const CompareRow& r : result.rows) EXPECT_LT(r.worstErrorCells, 3.0) << r.name() << " " << r.series;
 
     const std::string json = result.json();
     EXPECT_NE(json.find("\"mesh\": \"torus\""), std::string::npos);
@@ -118,10 +118,10 @@ TEST_F(CompareTest, TableHoldsEveryMethodAtEqualResolutionAndEqualMemory) {
         memoryRows += r.series == "memory";
         char figures[64];
         std::snprintf(figures, sizeof figures, ", resolution %u: ", r.resolution);
-        EXPECT_NE(svg.find("<title>" + r.method + (r.series == "memory" ? ", budget " : figures)), std::string::npos)
-            << r.method << " " << r.series;
+        EXPECT_NE(svg.find("<title>" + r.name() + (r.series == "memory" ? ", budget " : figures)), std::string::npos)
+            << r.name() << " " << r.series;
         std::snprintf(figures, sizeof figures, "%.3f %% wrong</title>", 100.0 * r.errorRate);
-        EXPECT_NE(svg.find(figures), std::string::npos) << r.method << " " << r.series << ": " << figures;
+        EXPECT_NE(svg.find(figures), std::string::npos) << r.name() << " " << r.series << ": " << figures;
     }
     EXPECT_EQ(count(svg, "<circle "), result.rows.size() + methods.size() + 2);
     EXPECT_EQ(count(svg, "fill=\"none\" stroke-width=\"2\""), memoryRows + 1);
@@ -146,8 +146,8 @@ TEST_F(CompareTest, ClosedNonManifoldMeshesAreCompared) {
 
 // With the generalized winding number as truth a closed mesh keeps every
 // row (the voxel rows answer parity, the note says so), and on a closed,
-// consistently oriented mesh the GWN is the winding rule: vds-gwn scores as
-// vds-winding does, point for point.
+// consistently oriented mesh the GWN is the winding rule: the sprite's GWN
+// scores as its winding rule does, point for point.
 TEST_F(CompareTest, GeneralizedWindingTruthKeepsVoxelRowsOnClosedMeshes) {
     const auto two = solids::overlappingBoxes({-1, -1, -1}, {0.3f, 0.3f, 0.3f}, {-0.3f, -0.3f, -0.3f}, {1, 1, 1});
     CompareOptions options;
@@ -162,11 +162,11 @@ TEST_F(CompareTest, GeneralizedWindingTruthKeepsVoxelRowsOnClosedMeshes) {
     std::set<std::string> methods;
     const CompareRow *gwn = nullptr, *winding = nullptr, *parity = nullptr;
     for (const CompareRow& r : result.rows) {
-        methods.insert(r.method);
-        if (r.series != "resolution") continue;
-        if (r.method == "vds-gwn") gwn = &r;
-        if (r.method == "vds-winding") winding = &r;
-        if (r.method == "vds-parity") parity = &r;
+        methods.insert(r.name());
+        if (r.series != "resolution" || r.method != Method::Sprite) continue;
+        if (r.rule == Rule::GeneralizedWinding) gwn = &r;
+        if (r.rule == Rule::Winding) winding = &r;
+        if (r.rule == Rule::Parity) parity = &r;
     }
     EXPECT_EQ(methods.size(), 7u);
     ASSERT_TRUE(gwn && winding && parity);

@@ -153,7 +153,7 @@ TEST_F(Cli, CompareWritesTableJsonAndChart) {
     const std::string svg = readFile(dir / "c.svg");
     EXPECT_EQ(svg.rfind("<svg ", 0), 0u) << svg.substr(0, 100);
     EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
-    for (const char* method : {"vds-parity", "vds-winding", "slicemap", "slicemap-local", "solid", "solid-compute"}) {
+    for (const char* method : {"sprite", "sprite/winding", "slicemap", "slicemap-local", "solid", "solid-compute"}) {
         EXPECT_NE(r.output.find(method), std::string::npos) << method;
         EXPECT_NE(svg.find(std::string(">") + method + "</text>"), std::string::npos) << method;
     }
@@ -174,7 +174,7 @@ TEST_F(Cli, CompareOnAnOpenMeshByTheGeneralizedWindingNumber) {
     EXPECT_NE(r.output.find("generalized-winding"), std::string::npos) << r.output;
     r = vds("compare " + p("cup.obj") + args + " --rule generalized-winding --json " + p("cup.json"));
     ASSERT_EQ(r.code, 0) << r.output;
-    for (const char* method : {"vds-parity", "vds-winding", "vds-gwn"})
+    for (const char* method : {"sprite ", "sprite/winding", "sprite/generalized-winding"})
         EXPECT_NE(r.output.find(method), std::string::npos) << method << " in\n" << r.output;
     EXPECT_EQ(r.output.find("\nslicemap"), std::string::npos) << r.output; // they need a closed mesh
     EXPECT_EQ(r.output.find("\nsolid"), std::string::npos) << r.output;
@@ -189,8 +189,8 @@ TEST_F(Cli, CompareOnAnOpenMeshByTheGeneralizedWindingNumber) {
         std::istringstream in(line);
         std::vector<std::string> t{std::istream_iterator<std::string>(in), std::istream_iterator<std::string>()};
         if (t.size() < 13 || t[1] != "resolution") continue;
-        if (t[0] == "vds-gwn") gwnError = std::stod(t[12]);
-        if (t[0] == "vds-parity") parityError = std::stod(t[12]);
+        if (t[0] == "sprite/generalized-winding") gwnError = std::stod(t[12]);
+        if (t[0] == "sprite") parityError = std::stod(t[12]);
     }
     EXPECT_GE(gwnError, 0.0);
     EXPECT_LT(gwnError, 4.0) << r.output; // per cent: the 16-texel sprite errs within a texel of the surface

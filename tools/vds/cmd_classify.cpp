@@ -101,6 +101,7 @@ void resolveMethod(ClassifyArgs& a) {
         a.method = gpu;
     }
     const vds::MethodInfo& info = vds::methodInfo(a.method);
+    if (!info.builtIn()) throw CLI::ValidationError("method 'custom' is for classifiers defined in C++, not the CLI");
     const bool fromMesh = !a.mesh.empty();
     if (a.files.size() != (fromMesh ? 1u : 2u))
         throw CLI::ValidationError(fromMesh ? "expected one points file (with --mesh)"
@@ -186,7 +187,8 @@ void classify(ClassifyArgs& a) {
 void addClassify(CLI::App& app) {
     std::string methods;
     for (const vds::MethodInfo* m = vds::methodTable(); m != vds::methodTable() + vds::kMethodCount; ++m)
-        methods += std::string("  ") + m->name + std::string(20 - std::min<std::size_t>(19, std::strlen(m->name)), ' ') +
+        if (m->builtIn())
+            methods += std::string("  ") + m->name + std::string(20 - std::min<std::size_t>(19, std::strlen(m->name)), ' ') +
                    m->summary + (m->fromSprite ? "" : " (--mesh)") + "\n";
     const auto [c, a] = addCommand<ClassifyArgs>(
         app, "classify", "label points 1 inside / 0 outside",
@@ -212,7 +214,11 @@ void addClassify(CLI::App& app) {
         ->type_name("FILE");
     addChoice(*c, "--output-format", a->outputFormat, {"auto", "text", "npy"},
               "labels as text lines or a boolean .npy array; auto: .npy when LABELS ends in .npy");
-    a->methodGiven = addEnum(*c, "--method", a->method, "how to answer (see below); default sprite");
+    std::vector<std::string> builtIn;
+    for (const vds::MethodInfo* m = vds::methodTable(); m != vds::methodTable() + vds::kMethodCount; ++m)
+        if (m->builtIn()) builtIn.push_back(m->name);
+    a->methodGiven = addEnum(*c, "--method", a->method, "how to answer (see below); default sprite")
+                         ->type_name(joinChoices(builtIn));
     addEnum(*c, "--rule", a->options.rule,
             "the paper's parity, non-zero winding, or the generalized winding number (open meshes)");
     c->add_flag("--gpu", a->gpu, "the method's GPU form (sprite -> sprite-gpu, slicemap -> slicemap-gpu, ...)");

@@ -38,7 +38,7 @@ void addCompare(CLI::App& app) {
         "misclassification rate against the exact classifier, worst error distance in cells, build\n"
         "time, query throughput, memory. Prints a table; writes JSON and an SVG chart of error\n"
         "against memory. --rule generalized-winding holds every row to the exact generalized winding\n"
-        "number, adds a vds-gwn row and accepts open meshes (the VDS only: slicemaps and solid voxels\n"
+        "number, adds a sprite/generalized-winding row and accepts open meshes (the VDS only: slicemaps and solid voxels\n"
         "need a closed mesh).",
         compare);
     addMesh(*c, a->mesh);

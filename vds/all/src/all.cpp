@@ -66,10 +66,17 @@ std::unique_ptr<Classifier> makeCore(MeshView mesh, Method method, const MethodO
     }
 }
 
+void refuseCustom(Method method) {
+    if (!methodInfo(method).builtIn())
+        throw InvalidArgument("method 'custom' is a classifier defined outside the library; makeClassifier builds "
+                              "the library's own methods only");
+}
+
 } // namespace
 
 std::unique_ptr<Classifier> makeClassifier(const GlContext& gl, MeshView mesh, Method method,
                                            const MethodOptions& options) {
+    refuseCustom(method);
     if (method == Method::Sprite) return std::make_unique<SpriteClassifier>(bakeFor(&gl, mesh, method, options));
     if (auto core = makeCore(mesh, method, options)) return core;
     if (method == Method::SpriteGpu)
@@ -83,6 +90,7 @@ std::unique_ptr<Classifier> makeClassifier(const GlContext& gl, MeshView mesh, M
 }
 
 std::unique_ptr<Classifier> makeClassifier(MeshView mesh, Method method, const MethodOptions& options) {
+    refuseCustom(method);
     const bool needsGl = methodInfo(method).layer != Layer::Core ||
                          (method == Method::Sprite && options.bakeMethod != BakeMethod::Cpu);
     if (!needsGl) return makeCore(mesh, method, options);

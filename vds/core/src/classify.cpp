@@ -45,6 +45,8 @@ constexpr MethodInfo kMethods[kMethodCount] = {
      "rasterized solid voxels, looked up in a GL compute shader"},
     {Method::SolidComputeGpu, "solid-compute-gpu", Layer::Voxel, true, false, true, false, kParity, 256,
      "compute-shader solid voxels, looked up in a GL compute shader"},
+    {Method::Custom, "custom", Layer::Core, false, false, false, false, kAllRules, 0,
+     "a classifier defined outside the library (derive from vds::Classifier)"},
 };
 
 constexpr bool tableInOrder() {
@@ -136,8 +138,20 @@ Classifier::~Classifier() = default;
 
 std::string Classifier::summary() const { return enumName(method()); }
 
+std::uint8_t Classifier::rules() const { return methodInfo(method()).rules; }
+
+namespace {
+
+void requireRule(const Classifier& classifier, Rule rule) {
+    if (classifier.answers(rule)) return;
+    requireRule(classifier.method(), rule); // the table's wording where the table says no
+    throw InvalidArgument(classifier.summary() + " cannot answer the " + enumName(rule) + " rule");
+}
+
+} // namespace
+
 void Classifier::classify(const PointsView& points, std::uint8_t* labels, const ClassifyOptions& options) const {
-    requireRule(method(), options.rule);
+    requireRule(*this, options.rule);
     assert((points.data && labels) || points.count == 0);
     assert(points.strideBytes >= 3 * points.scalarBytes());
     // Methods without an exact fallback leave the stats as preset: every
@@ -176,7 +190,7 @@ bool Classifier::contains(const glm::vec3& p, Rule rule) const {
 
 void Classifier::occupancy(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
     checkGrid(grid);
-    requireRule(method(), options.rule);
+    requireRule(*this, options.rule);
     assert(cells);
     if (options.stats) *options.stats = {grid.cellCount(), 0};
     sweep(grid, cells, options);

@@ -19,9 +19,9 @@ namespace {
 
 const char* methodColour(const std::string& method) {
     static const std::pair<const char*, const char*> colours[] = {
-        {"vds-parity", "#1f77b4"},     {"vds-winding", "#17becf"}, {"slicemap", "#ff7f0e"},
+        {"sprite", "#1f77b4"},     {"sprite/winding", "#17becf"}, {"slicemap", "#ff7f0e"},
         {"slicemap-local", "#d62728"}, {"solid", "#2ca02c"},       {"solid-compute", "#9467bd"},
-        {"vds-gwn", "#8c564b"}};
+        {"sprite/generalized-winding", "#8c564b"}};
     for (const auto& [name, colour] : colours)
         if (method == name) return colour;
     return "#5a5a5a";
@@ -108,7 +108,7 @@ private:
 };
 
 std::string tooltip(const CompareRow& r) {
-    return r.method + (r.series == "memory" ? ", budget " + byteLabel(double(r.target)) : std::string()) +
+    return r.name() + (r.series == "memory" ? ", budget " + byteLabel(double(r.target)) : std::string()) +
            ", resolution " + std::to_string(r.resolution) + ": " + byteLabel(double(r.memoryBytes)) + ", " +
            format("%.3f", 100.0 * r.errorRate) + " % wrong";
 }
@@ -125,7 +125,7 @@ std::string errorChart(const CompareResult& result, std::uint32_t width, std::ui
     double lo = 1e300, hi = 0.0, errMax = 0.0;
     std::vector<std::string> methods; // in the order of the rows
     for (const CompareRow& r : result.rows) {
-        if (std::find(methods.begin(), methods.end(), r.method) == methods.end()) methods.push_back(r.method);
+        if (std::find(methods.begin(), methods.end(), r.name()) == methods.end()) methods.push_back(r.name());
         if (r.memoryBytes == 0) continue;
         lo = std::min(lo, double(r.memoryBytes));
         hi = std::max(hi, double(r.memoryBytes));
@@ -163,12 +163,12 @@ std::string errorChart(const CompareResult& result, std::uint32_t width, std::ui
     // Series: resolution rows as lines with dots, memory rows as rings. The
     // twins that often coincide (parity/winding, raster/compute) are drawn
     // thick first and thin on top, so both stay visible.
-    const auto thick = [](const std::string& method) { return method == "vds-parity" || method == "solid"; };
+    const auto thick = [](const std::string& method) { return method == "sprite" || method == "solid"; };
     for (const std::string& method : methods) {
         const char* colour = methodColour(method);
         std::vector<const CompareRow*> series;
         for (const CompareRow& r : result.rows)
-            if (r.method == method && r.series == "resolution" && r.memoryBytes > 0) series.push_back(&r);
+            if (r.name() == method && r.series == "resolution" && r.memoryBytes > 0) series.push_back(&r);
         std::sort(series.begin(), series.end(),
                   [](const CompareRow* a, const CompareRow* b) { return a->memoryBytes < b->memoryBytes; });
         std::vector<std::pair<double, double>> points;
@@ -177,7 +177,7 @@ std::string errorChart(const CompareResult& result, std::uint32_t width, std::ui
         for (std::size_t k = 0; k < series.size(); ++k)
             svg.circle(points[k].first, points[k].second, thick(method) ? 6 : 4, colour, false, tooltip(*series[k]));
         for (const CompareRow& r : result.rows)
-            if (r.method == method && r.series == "memory" && r.memoryBytes > 0)
+            if (r.name() == method && r.series == "memory" && r.memoryBytes > 0)
                 svg.circle(px(double(r.memoryBytes)), py(100.0 * r.errorRate), thick(method) ? 9 : 7, colour, true,
                            tooltip(r));
     }

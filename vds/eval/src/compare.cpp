@@ -33,8 +33,14 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-const char* const kMethods[] = {"vds-parity", "vds-winding", "slicemap", "slicemap-local", "solid", "solid-compute"};
-const char* const kVoxelMethods[] = {"slicemap", "slicemap-local", "solid", "solid-compute"};
+// The rows' methods, from the method table: the VDS on the CPU, then every
+// voxel representation's CPU lookup (their GPU forms give the same labels).
+std::vector<Method> comparedMethods(bool voxels) {
+    std::vector<Method> methods = {Method::Sprite};
+    for (const MethodInfo* m = methodTable(); voxels && m != methodTable() + kMethodCount; ++m)
+        if (m->layer == Layer::Voxel && !m->gpu) methods.push_back(m->method);
+    return methods;
+}
 
 struct Samples {
     std::vector<glm::vec3> points; // uniform first, then near the surface
@@ -98,13 +104,15 @@ private:
 };
 
 struct Built {
-    std::unique_ptr<Model> model;   // voxel representations
-    std::unique_ptr<Sprite> sprite; // the VDS
+    std::unique_ptr<Classifier> classifier; // by makeClassifier
     double seconds = 0.0;
-    std::size_t memoryBytes() const { return model ? model->memoryBytes() : sprite->memoryBytes(); }
+    const Sprite* sprite() const {
+        const auto* c = dynamic_cast<const SpriteClassifier*>(classifier.get());
+        return c ? &c->sprite() : nullptr;
+    }
+    const Model* model() const { return dynamic_cast<const Model*>(classifier.get()); }
+    std::size_t memoryBytes() const { return sprite() ? sprite()->memoryBytes() : model()->memoryBytes(); }
 };
-
-bool isVds(const std::string& method) { return method.rfind("vds", 0) == 0; }
 
 // The VDS bake resolution giving texels of the voxel grid's cell size.
 std::uint32_t vdsResolution(const Box& box, std::uint32_t resolution) {
@@ -113,31 +121,24 @@ std::uint32_t vdsResolution(const Box& box, std::uint32_t resolution) {
     return std::max<std::uint32_t>(1, std::uint32_t(std::lround(ratio * resolution)));
 }
 
-Built buildOnce(MeshView mesh, const std::string& method, std::uint32_t resolution, GlContext& gl,
-                const std::string& name) {
+// Sprites are baked by fragment lists along z; a voxel model's time is its
+// own build (`Model::buildSeconds`), a sprite's the whole bake.
+Built buildOnce(MeshView mesh, Method method, std::uint32_t resolution, GlContext& gl, const std::string& name) {
+    MethodOptions o;
+    o.resolution = resolution;
+    o.axis = Axis::Z;
+    o.bakeMethod = BakeMethod::Lists;
+    o.sourceName = name;
     Built b;
-    if (isVds(method)) {
-        BakeOptions o;
-        o.method = BakeMethod::Lists;
-        o.axis = Axis::Z;
-        o.resolution = resolution;
-        o.sourceName = name;
-        const auto start = std::chrono::steady_clock::now();
-        b.sprite = std::make_unique<Sprite>(bake(gl, mesh, o));
-        b.seconds = secondsSince(start);
-    } else {
-        ModelOptions o;
-        o.resolution = resolution;
-        b.model = std::make_unique<Model>(buildModel(gl, mesh, parseRepresentation(method), o));
-        b.seconds = b.model->buildSeconds();
-    }
+    const auto start = std::chrono::steady_clock::now();
+    b.classifier = makeClassifier(gl, mesh, method, o);
+    b.seconds = b.model() ? b.model()->buildSeconds() : secondsSince(start);
     return b;
 }
 
 // Builds up to three times while the builds are quick (under 0.3 s in all),
 // keeping the fastest time: single builds of a few milliseconds are noise.
-Built build(MeshView mesh, const std::string& method, std::uint32_t resolution, GlContext& gl,
-            const std::string& name) {
+Built build(MeshView mesh, Method method, std::uint32_t resolution, GlContext& gl, const std::string& name) {
     Built best = buildOnce(mesh, method, resolution, gl, name);
     double total = best.seconds;
     for (int k = 1; k < 3 && total < 0.3; ++k) {
@@ -149,13 +150,10 @@ Built build(MeshView mesh, const std::string& method, std::uint32_t resolution, 
 }
 
 // Memory of a voxel representation at a resolution, without building it.
-std::size_t voxelMemory(const Box& box, const std::string& method, std::uint32_t resolution) {
-    if (method == "solid" || method == "solid-compute")
-        return makeVoxelGrid(box, resolution, ~std::uint64_t(0)).wordCount() * 4;
-    const VoxelGrid columns = makeVoxelGrid(box, resolution, ~std::uint64_t(0));
-    const std::size_t n = std::size_t(columns.size.x) * columns.size.y;
-    const std::size_t words = defaultSlices(box, resolution) / 32;
-    return n * 2 * words * 4 + (method == "slicemap-local" ? n * 12 : 0);
+std::size_t voxelMemory(const Box& box, Method method, std::uint32_t resolution) {
+    ModelOptions o;
+    o.resolution = resolution;
+    return modelMemoryBytes(box, representationOf(method), o);
 }
 
 // Largest resolution in [1, kMaxCompareResolution] whose estimate fits `budget`; 0 if none.
@@ -249,53 +247,49 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
     DistanceCache distances(mesh, count);
 
     report(options, "warming up (shader compilation)");
-    for (const char* method : kMethods)
-        if (std::string(method) != "vds-winding" && (voxels || isVds(method)))
-            buildOnce(mesh, method, 8, *gl, options.meshName);
+    const std::vector<Method> methods = comparedMethods(voxels);
+    for (Method method : methods) buildOnce(mesh, method, 8, *gl, options.meshName);
 
     std::vector<std::uint8_t> labels(count);
-    // Builds `method` at `resolution` (a VDS: at its bake resolution) and scores it.
-    const auto measure = [&](const std::string& method, const std::string& series, std::uint64_t target,
+    // Builds `method` at `resolution` (a VDS: at its bake resolution) and
+    // scores it by `rule` (a sprite answers every rule; the others parity).
+    const auto measure = [&](Method method, Rule rule, const std::string& series, std::uint64_t target,
                              std::uint32_t resolution, Built* prebuilt) {
         Built built = prebuilt ? std::move(*prebuilt) : build(mesh, method, resolution, *gl, options.meshName);
         CompareRow row;
         row.method = method;
+        row.rule = rule;
         row.series = series;
         row.target = target;
         row.resolution = resolution;
         row.buildSeconds = built.seconds;
         // Throughput: whole passes over the points for at least 0.1 s.
+        ClassifyOptions o;
+        o.threads = options.threads;
+        o.rule = rule;
         const auto queryStart = std::chrono::steady_clock::now();
         std::size_t passes = 0;
         do {
-            if (built.sprite) {
-                ClassifyOptions o;
-                o.threads = options.threads;
-                o.rule = method == "vds-winding" ? Rule::Winding
-                         : method == "vds-gwn"   ? Rule::GeneralizedWinding
-                                                 : Rule::Parity;
-                vds::classify(*built.sprite, PointsView(samples.points.data(), count), labels.data(), o);
-            } else {
-                built.model->classify(PointsView(samples.points.data(), count), labels.data(), {Rule::Parity, options.threads});
-            }
+            built.classifier->classify(PointsView(samples.points.data(), count), labels.data(), o);
             ++passes;
         } while (secondsSince(queryStart) < 0.1);
         row.pointsPerSecond = double(passes * count) / std::max(secondsSince(queryStart), 1e-9);
-        if (built.sprite) {
-            row.cells = glm::uvec3(built.sprite->width(), built.sprite->height(), built.sprite->depthComplexity);
-            row.cellSize = built.sprite->grid.texelSize;
-            row.memoryBytes = built.sprite->memoryBytes();
-            if (method == "vds-gwn") row.memoryBytes += built.sprite->boundaryEdges.size() * sizeof(glm::vec3);
-            row.gpuBytes = built.sprite->denseBytes();
+        if (const Sprite* sprite = built.sprite()) {
+            row.cells = glm::uvec3(sprite->width(), sprite->height(), sprite->depthComplexity);
+            row.cellSize = sprite->grid.texelSize;
+            row.memoryBytes = sprite->memoryBytes();
+            if (rule == Rule::GeneralizedWinding) row.memoryBytes += sprite->boundaryEdges.size() * sizeof(glm::vec3);
+            row.gpuBytes = sprite->denseBytes();
         } else {
-            row.cells = built.model->cells();
-            row.cellSize = built.model->cellSize();
-            row.memoryBytes = built.model->memoryBytes();
-            row.gpuBytes = built.model->gpuBytes();
+            const Model& model = *built.model();
+            row.cells = model.cells();
+            row.cellSize = model.cellSize();
+            row.memoryBytes = model.memoryBytes();
+            row.gpuBytes = model.gpuBytes();
         }
-        const std::vector<std::uint8_t>& truth = gwn                       ? samples.gwn
-                                                 : method == "vds-winding" ? samples.winding
-                                                                           : samples.parity;
+        const std::vector<std::uint8_t>& truth = gwn                    ? samples.gwn
+                                                 : rule == Rule::Winding ? samples.winding
+                                                                         : samples.parity;
         for (std::size_t k = 0; k < count; ++k) {
             if (labels[k] == truth[k]) continue;
             (k < samples.uniform ? row.uniformWrong : row.surfaceWrong) += 1;
@@ -309,25 +303,30 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
         result.rows.push_back(row);
         return built;
     };
+    // The sprite by each rule the comparison scores it by, one build.
+    const auto measureSprite = [&](const std::string& series, std::uint64_t target, std::uint32_t resolution,
+                                   Built* prebuilt) {
+        Built sprite = measure(Method::Sprite, Rule::Parity, series, target, resolution, prebuilt);
+        sprite = measure(Method::Sprite, Rule::Winding, series, target, resolution, &sprite);
+        if (gwn) sprite = measure(Method::Sprite, Rule::GeneralizedWinding, series, target, resolution, &sprite);
+        return sprite;
+    };
 
     std::vector<std::size_t> budgets = options.memoryBudgets;
     for (std::uint32_t r : options.resolutions) {
         report(options, "resolution " + std::to_string(r));
-        if (options.memoryBudgets.empty()) budgets.push_back(voxelMemory(box, "solid", r));
-        const std::uint32_t vds = vdsResolution(box, r);
-        Built sprite = measure("vds-parity", "resolution", r, vds, nullptr);
-        sprite = measure("vds-winding", "resolution", r, vds, &sprite);
-        if (gwn) measure("vds-gwn", "resolution", r, vds, &sprite);
-        if (voxels)
-            for (const char* method : kVoxelMethods) measure(method, "resolution", r, r, nullptr);
+        if (options.memoryBudgets.empty()) budgets.push_back(voxelMemory(box, Method::Solid, r));
+        measureSprite("resolution", r, vdsResolution(box, r), nullptr);
+        for (Method method : methods)
+            if (method != Method::Sprite) measure(method, Rule::Parity, "resolution", r, r, nullptr);
     }
 
     // A VDS probe bake gives the crossings per column, to pick bake resolutions
     // for the budgets (then shrunk until the bake fits).
     const std::uint32_t probeResolution = vdsResolution(box, options.resolutions.front());
-    const Built probe = buildOnce(mesh, "vds-parity", probeResolution, *gl, options.meshName);
-    const double columns0 = double(probe.sprite->width()) * probe.sprite->height();
-    const double perColumn = 4.0 + 4.0 * double(probe.sprite->crossings.size()) / columns0;
+    const Built probe = buildOnce(mesh, Method::Sprite, probeResolution, *gl, options.meshName);
+    const double columns0 = double(probe.sprite()->width()) * probe.sprite()->height();
+    const double perColumn = 4.0 + 4.0 * double(probe.sprite()->crossings.size()) / columns0;
     for (std::size_t budget : budgets) {
         report(options, "memory budget " + formatBytes(budget));
         std::uint32_t vds = largestWithin(budget, [&](std::uint32_t n) {
@@ -335,31 +334,33 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
             return std::size_t(double(g.width) * g.height * perColumn + 4.0);
         });
         for (int attempt = 0; vds > 0 && attempt < 4; ++attempt) {
-            Built sprite = buildOnce(mesh, "vds-parity", vds, *gl, options.meshName);
+            Built sprite = buildOnce(mesh, Method::Sprite, vds, *gl, options.meshName);
             if (sprite.memoryBytes() > budget) {
                 vds = std::uint32_t(double(vds) * std::sqrt(double(budget) / double(sprite.memoryBytes())) * 0.98);
                 continue;
             }
-            sprite = build(mesh, "vds-parity", vds, *gl, options.meshName); // timed
-            Built used = measure("vds-parity", "memory", budget, vds, &sprite);
-            used = measure("vds-winding", "memory", budget, vds, &used);
-            if (gwn) measure("vds-gwn", "memory", budget, vds, &used);
+            sprite = build(mesh, Method::Sprite, vds, *gl, options.meshName); // timed
+            measureSprite("memory", budget, vds, &sprite);
             break;
         }
-        for (const char* method : kVoxelMethods) {
-            if (!voxels) break;
+        for (Method method : methods) {
+            if (method == Method::Sprite) continue;
             const std::uint32_t r = largestWithin(budget, [&](std::uint32_t n) { return voxelMemory(box, method, n); });
-            if (r > 0) measure(method, "memory", budget, r, nullptr);
+            if (r > 0) measure(method, Rule::Parity, "memory", budget, r, nullptr);
         }
     }
     report(options, "done");
     return result;
 }
 
+std::string CompareRow::name() const {
+    return std::string(methodInfo(method).name) + (rule == Rule::Parity ? "" : std::string("/") + enumName(rule));
+}
+
 std::string CompareResult::table() const {
     std::ostringstream out;
     char line[512];
-    std::snprintf(line, sizeof line, "%-15s %-10s %9s %5s %-16s %10s %10s %9s %10s %8s %8s %8s %9s\n", "method",
+    std::snprintf(line, sizeof line, "%-26s %-10s %9s %5s %-16s %10s %10s %9s %10s %8s %8s %8s %9s\n", "method",
                   "series", "target", "res", "cells", "memory", "gpu", "build ms", "Mpts/s", "err %", "unif %",
                   "surf %", "worst cl");
     out << line;
@@ -367,8 +368,8 @@ std::string CompareResult::table() const {
         const std::string target = r.series == "memory" ? formatBytes(std::size_t(r.target)) : std::to_string(r.target);
         const std::string cells =
             std::to_string(r.cells.x) + "x" + std::to_string(r.cells.y) + "x" + std::to_string(r.cells.z);
-        std::snprintf(line, sizeof line, "%-15s %-10s %9s %5u %-16s %10s %10s %9.1f %10.2f %8.3f %8.3f %8.3f %9.2f\n",
-                      r.method.c_str(), r.series.c_str(), target.c_str(), r.resolution, cells.c_str(),
+        std::snprintf(line, sizeof line, "%-26s %-10s %9s %5u %-16s %10s %10s %9.1f %10.2f %8.3f %8.3f %8.3f %9.2f\n",
+                      r.name().c_str(), r.series.c_str(), target.c_str(), r.resolution, cells.c_str(),
                       formatBytes(r.memoryBytes).c_str(), formatBytes(r.gpuBytes).c_str(), r.buildSeconds * 1e3,
                       r.pointsPerSecond * 1e-6, 100.0 * r.errorRate, 100.0 * r.uniformErrorRate,
                       100.0 * r.surfaceErrorRate, r.worstErrorCells);
@@ -381,7 +382,8 @@ std::string CompareResult::table() const {
 std::string CompareResult::json() const {
     nlohmann::json rowList = nlohmann::json::array();
     for (const CompareRow& r : rows)
-        rowList.push_back({{"method", r.method},
+        rowList.push_back({{"method", r.name()},
+                           {"rule", enumName(r.rule)},
                            {"series", r.series},
                            {"target", r.target},
                            {"resolution", r.resolution},

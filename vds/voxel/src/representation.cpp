@@ -62,6 +62,17 @@ void Model::classifyFloats(const float* xyz, std::size_t count, std::size_t stri
     });
 }
 
+std::size_t modelMemoryBytes(const Box& box, Representation representation, const ModelOptions& options) {
+    const VoxelGrid grid = makeVoxelGrid(box, options.resolution, ~std::uint64_t(0));
+    if (representation == Representation::Solid || representation == Representation::SolidCompute)
+        return grid.wordCount() * sizeof(std::uint32_t); // BitGrid::memoryBytes
+    // Slicemap::memoryBytes: front and back, a bit a slice; local slicing adds 3 floats a column.
+    const std::size_t columns = std::size_t(grid.size.x) * grid.size.y;
+    const std::size_t slices = options.slices ? options.slices : defaultSlices(box, options.resolution);
+    return columns * 2 * (slices / 32) * sizeof(std::uint32_t) +
+           (representation == Representation::SlicemapLocal ? columns * 3 * sizeof(float) : 0);
+}
+
 std::size_t Model::memoryBytes() const {
     if (const Slicemap* map = slicemap()) return map->memoryBytes();
     return std::get<BitGrid>(data_).memoryBytes();

@@ -114,8 +114,13 @@ enum class Method : std::uint8_t {
     SlicemapLocalGpu, ///< SlicemapLocal, looked up in a compute shader (vds::voxel)
     SolidGpu,         ///< Solid, looked up in a compute shader (vds::voxel)
     SolidComputeGpu,  ///< SolidCompute, looked up in a compute shader (vds::voxel)
+    /// A classifier defined outside the library: derive from `Classifier`,
+    /// return this from `method()` and name it in `summary()`; it then
+    /// works with `occupancy` and everything else that takes a Classifier
+    /// (the benchmarks' Embree and CGAL peers do). `makeClassifier` refuses it.
+    Custom,
 };
-constexpr std::size_t kMethodCount = 12;
+constexpr std::size_t kMethodCount = 13;
 
 template <> struct EnumNames<Method> {
     static constexpr const char* kind = "method";
@@ -132,6 +137,7 @@ template <> struct EnumNames<Method> {
         {"slicemap-local-gpu", Method::SlicemapLocalGpu},
         {"solid-gpu", Method::SolidGpu},
         {"solid-compute-gpu", Method::SolidComputeGpu},
+        {"custom", Method::Custom},
     };
 };
 
@@ -153,6 +159,8 @@ struct MethodInfo {
     /// box's longest side) when the caller gives none; 0: none (exact).
     std::uint32_t defaultResolution;
     const char* summary;     ///< one line for help texts
+    /// Made by `makeClassifier` (every method but Custom).
+    bool builtIn() const { return method != Method::Custom; }
 };
 
 /// The table entry of `method`.
@@ -181,6 +189,11 @@ public:
     virtual std::size_t memoryBytes() const = 0;
     /// One line about what was built, e.g. "sprite 1024 x 512 x 12 along z".
     virtual std::string summary() const;
+    /// Bit (1 << Rule) for each rule this classifier answers; by default its
+    /// method's `MethodInfo::rules` (a Custom classifier narrows it here).
+    virtual std::uint8_t rules() const;
+    /// True if this classifier answers `rule`.
+    bool answers(Rule rule) const { return (rules() >> unsigned(rule)) & 1u; }
 
     /// Labels `points`: `labels[k]` = 1 inside, 0 outside (`points.count`
     /// bytes, caller-owned). Throws `InvalidArgument` if the method cannot

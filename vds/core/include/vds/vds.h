@@ -7,82 +7,138 @@
 // front of the point. From C++ for millions of points, from any GLSL stage,
 // and exactly on the triangles themselves when an answer must be exact.
 //
-// This header includes everything in vds::core and says, in the order a
-// program uses them, what each entry point takes and gives. The other
-// headers hold the details; nothing here needs GL.
+// This header includes everything in vds::core and names, in the order a
+// program uses them, every public function and type of every layer (a test,
+// tests/manual/check_manual.py, fails when one is missing); each entry says
+// where it lives. The headers hold the details. Nothing in vds::core needs GL.
 //
 // ---- Layers and linking ---------------------------------------------------
 //
-//   vds::core   this header's world: meshes, sprites, the CPU VPT, the exact
-//               classifier, the CPU baker, the .vds file. Needs GLM in its
-//               headers; links no GL (a server or a Python process that only
-//               classifies never loads libEGL).
-//   vds::gl     headless EGL contexts, GL objects, shaders, GPU bakers and
-//               classifiers, sprites as 3D textures (<vds/gl/context.h>,
-//               <vds/gl/sprite.h>, <vds/gl/shader.h>). Linking it makes the GL
-//               bake methods available to `bake()` below.
-//   vds::voxel  slicemaps and solid voxelizations, the representations the
-//               VDS is compared with (<vds/voxel/...>).
-//   vds::eval   accuracy and comparison reports, images, charts (<vds/eval/...>).
-//   vds::vds    all of the above.
+//   target      include              what
+//   vds::core   <vds/...>            meshes, the one classify contract,
+//                                    sprites and the CPU VPT, the exact and
+//                                    certified classifiers, the CPU baker,
+//                                    occupancy grids, the .vds file. Needs
+//                                    GLM in its headers; links no GL.
+//   vds::gl     <vds/gl/...>         GL contexts, objects, shaders, the GL
+//                                    bakers, sprites as 3D textures, GPU
+//                                    classifiers and grids.
+//   vds::voxel  <vds/voxel/...>      slicemaps and solid voxelizations, the
+//                                    representations the VDS is compared with.
+//   vds::vds    <vds/all.h>          the umbrella: core, gl and voxel, and
+//                                    `makeClassifier` / `bake` for any method.
+//   vds::eval   <vds/eval/...>       accuracy and comparison reports, charts, PNG.
 //
-//   find_package(vds) then target_link_libraries(app PRIVATE vds::core).
+//   find_package(vds) then target_link_libraries(app PRIVATE vds::core) (or
+//   vds::gl, vds::vds, ...). No linker option, no registry: what a program
+//   calls is what it links.
 //
 // ---- Conventions ----------------------------------------------------------
 //
 //   Coordinates   mesh coordinates (the units of the file) unless a name says
 //                 otherwise; a sprite moved by `Sprite::transform` answers in
 //                 the coordinates it was moved to ("world").
-//   Arrays        the caller owns every array it passes; calls read or write
-//                 them only while they run. Arrays of points are given as
-//                 pointer + count (`glm::vec3*`, packed x y z floats), or as
-//                 pointer + count + stride in bytes (`const float*`), so
-//                 points may sit inside larger records.
-//   Labels        one byte per point: 1 inside, 0 outside.
+//   Points        a `PointsView`: pointer, count, byte stride, float or
+//                 double (`PointsView::floats`, `PointsView::doubles`; a
+//                 `std::vector<glm::vec3>` converts), so points may sit
+//                 inside larger records. Caller-owned, read while a call runs.
+//   Labels        one byte per point: 1 inside, 0 outside, caller-owned.
+//   Options       one `ClassifyOptions` {rule, threads, layout, boundary,
+//                 stats} for every classify and occupancy call.
 //   Errors        everything a user can cause is thrown as a subclass of
-//                 `vds::Error` (<vds/error.h>) whose what() is one line:
-//                 IoError (file system), FormatError (bad file content),
-//                 InvalidArgument (an option out of range), InvalidMesh,
-//                 GlUnavailable, GlError, OutOfMemory. Broken caller
-//                 contracts (null arrays with a count) are asserted. The
-//                 library never exits or prints.
-//   Threads       functions with `threads` options split work over that many
-//                 threads (0: one per hardware thread), the caller included.
-//                 Sprites, meshes and classifiers are read-only when
-//                 queried: any number of threads may query one at once.
+//                 `Error` (<vds/error.h>) whose what() is one line: IoError
+//                 (file system), FormatError (bad file content),
+//                 InvalidArgument (an option out of range, a rule a method
+//                 cannot answer), InvalidMesh, GlUnavailable, GlError,
+//                 OutOfMemory. Broken caller contracts (null arrays with a
+//                 count) are asserted. The library never exits or prints.
+//   Threads       `threads` options split work over that many threads (0: one
+//                 per hardware thread), the caller included. Meshes, sprites
+//                 and CPU classifiers are read-only when queried: any number
+//                 of threads may query one at once.
+//   Names         every enum has names (`EnumNames`, `EnumName`): `enumName`,
+//                 `enumNames`, `parseEnum` (unknown names throw through
+//                 `throwUnknownName`, listing the accepted ones); the CLI and
+//                 Python use the same names. Per enum: `toString`,
+//                 `parseAxis`, `parseRule`, `parseBakeMethod`.
 //
 // ---- 1. A mesh in -----------------------------------------------------------
 //
 //   TriangleMesh loadMesh(path)                          <vds/mesh_io.h>
-//     OBJ, PLY, STL or OFF; polygons fanned into triangles. IoError,
-//     FormatError (naming the line or byte).
+//     OBJ, PLY, STL or OFF (`MeshFormat`, `meshFormatOf(path)`); polygons
+//     fanned into triangles. IoError, FormatError (naming the line or byte).
+//     `parseMesh(data, size, format, name)` reads bytes in memory.
 //   TriangleMesh { positions: #V vec3, triangles: #F uvec3 (indices into
 //     positions, counter-clockwise seen from outside) }; MeshView is the
 //     same as a non-owning view over caller arrays.    <vds/mesh.h>
+//   AdaptedMesh fromEigen(V, F) / fromOpenMesh(mesh)   <vds/interop/eigen.h>,
+//     <vds/interop/openmesh.h>: a MeshView of libigl's (V, F) matrices or of
+//     an OpenMesh mesh, viewed in place where the layout is vds's own and
+//     copied otherwise (<vds/interop/adapted_mesh.h>); header-only, bring
+//     your own Eigen or OpenMesh. Python takes numpy arrays.
 //   MeshReport validateMesh(mesh)
 //     counts boundary, non-manifold and flipped edges, degenerate
 //     triangles, non-finite vertices, bad indices; `closed()` says whether
-//     the mesh bounds a solid, `summary()` says it in one line.
+//     the mesh bounds a solid by parity, `oriented()` by winding,
+//     `summary()` says it in one line. `requireUsable(report, name)` and
+//     `requireInsideDefined(report, name, rule)` throw InvalidMesh where a
+//     mesh cannot be used or its inside is not defined by a rule;
+//     `insideWarning(report, rule)` is the one-line warning otherwise.
+//   Box meshBounds(mesh)    the axis-aligned bounds.
+//   loadPoints(path) / parsePoints(data, size, PointFormat, name)
+//     points from text, PLY vertices or .npy.
 //
-// ---- 2. Bake a sprite -------------------------------------------------------
+// ---- 2. The one question: Classifier and Method -----------------------------
 //
-//   Sprite bake(mesh, BakeOptions, GlContext* gl = nullptr)   <vds/bake.h>
-//     BakeOptions: resolution (texels on the longer side of the view,
-//     1..16384, default 1024), axis (X, Y, Z; `chooseViewAxis(mesh)` picks
-//     the one with the fewest layers), method (Lists: GL fragment lists,
-//     default; Peel: GL depth peeling; Cpu: exact ray casting, no GL),
-//     progress callback. All three methods give the same layers (GL ones up
-//     to the rasterizer's sub-texel snapping). Unusable meshes throw
-//     InvalidMesh; open or non-manifold ones are baked and marked
-//     `SolidStatus::Open`. GL methods need vds::gl linked and a GL context
-//     (given, or made for the call); the caller's current context is the
-//     same afterwards.
-//   Sprite bakeCpu(mesh, options)      the Cpu method, on every core.
-//   BakeOptions::timings -> BakeTimings: wall and GPU time of each phase
+//   <vds/classify.h> is the contract every way of answering implements:
+//   class Classifier {                                   (abstract)
+//     method(), memoryBytes(), summary(), rules() / answers(rule),
+//     classify(PointsView, labels, ClassifyOptions)    labels every point,
+//     contains(p, rule)                                one point,
+//     occupancy(Grid, cells, ClassifyOptions)          every cell centre;
+//   }
+//   A method that cannot answer `options.rule` throws InvalidArgument before
+//   touching a point (`requireRule`), never answering another rule.
+//   `options.stats` (ClassifyStats {certain, exact}) says how points were
+//   answered. `Scalar` is the points' scalar type; `QueryLayout` and
+//   `BoundaryEvaluation` tune the sprite.
+//   enum class Method: sprite, exact, certified, sprite-gpu, slicemap,
+//     slicemap-local, solid, solid-compute, slicemap-gpu, slicemap-local-gpu,
+//     solid-gpu, solid-compute-gpu, and custom (a Classifier written outside
+//     the library). `methodInfo(method)` / `methodTable()` give each a
+//     `MethodInfo` {name, Layer, gpu, exact, needsClosedMesh, fromSprite,
+//     rules, defaultResolution, summary, builtIn()}: the one table the CLI,
+//     Python, evaluation and benchmarks read. `cpuForm` / `gpuForm` map a
+//     method to its CPU or GPU twin.
+//   std::unique_ptr<Classifier> makeClassifier(mesh, method, MethodOptions)
+//   makeClassifier(gl, mesh, method, options) / makeClassifier([gl,] sprite, method)
+//     builds any method (umbrella, <vds/all.h>); MethodOptions {resolution,
+//     axis, bakeMethod, slices, threads, sourceName}.
+//   Rules (<vds/rule.h>): Rule::Parity (odd crossings in front: the paper's
+//     test), Rule::Winding (entering +1, leaving -1, non-zero inside),
+//     Rule::GeneralizedWinding (the generalized winding number above 1/2:
+//     open and messy meshes). `insideByRule(winding, rule)`.
+//
+// ---- 3. Bake a sprite -------------------------------------------------------
+//
+//   Sprite bakeCpu(mesh, BakeOptions)                     <vds/bake.h>
+//     exact ray casting on every core, no GL. BakeOptions: resolution
+//     (texels on the longer side of the view, 1..16384, default 1024),
+//     axis (Axis X, Y, Z, <vds/axis.h>; `chooseViewAxis(mesh)` picks the one
+//     with the fewest layers), method (BakeMethod: Lists, Peel, Cpu),
+//     progress callback, timings. Unusable meshes throw InvalidMesh; open or
+//     non-manifold ones are baked and marked `SolidStatus::Open`.
+//   Sprite bakeOnGl(gl, mesh, options)                     <vds/gl/bake.h>
+//     the GL methods (Lists: fragment lists; Peel: depth peeling) on the
+//     caller's context; the same layers as the CPU baker up to the
+//     rasterizer's sub-texel snapping.
+//   Sprite bake([gl,] mesh, options)                       <vds/all.h>
+//     any BakeMethod; without a context the GL methods use a private one.
+//   BakeOptions::timings -> BakeTimings: wall and GPU time of each BakePhase
 //     (validation, compile, upload, raster, scan, sort, texture, read-back,
 //     assembly); `report()` prints them (`vds bake --verbose`).
 //
-// ---- 3. Keep it ---------------------------------------------------------------
+// ---- 4. Keep it ---------------------------------------------------------------
 //
 //   writeSprite(sprite, path) / Sprite readSprite(path)      <vds/vds_file.h>
 //     One OpenEXR deep image, lossless, checksummed; written atomically
@@ -91,71 +147,125 @@
 //   std::vector<char> encodeSprite(sprite) / Sprite decodeSprite(data, size)
 //     the same bytes in memory.
 //
-// ---- 4. Ask it ----------------------------------------------------------------
+// ---- 5. Ask it ----------------------------------------------------------------
 //
-//   bool Sprite::contains(p, Rule rule = Rule::Parity)        <vds/sprite.h>
-//     Rule::Parity: odd crossings in front of p (the paper's test);
-//     Rule::Winding: entering crossings +1, leaving -1, inside if non-zero
-//     (nested or overlapping shells); Rule::GeneralizedWinding: the
-//     generalized winding number above 1/2 (open meshes; the exact
-//     classifier and sprites answer it for any mesh, a sprite from the
-//     boundary edges it stores; the GPU classifier and vpt.glsl too, in
-//     float, from the edges GpuSprite uploads).
-//     Points outside
-//     the sprite's box are outside. Errors of a sprite lie within about half
-//     a texel diagonal of the surface (docs/accuracy.md).
-//   classify(sprite, points, count, labels, ClassifyOptions{rule, threads, layout})
-//   classify(sprite, xyz, count, strideBytes, labels, options)
+//   Sprite { grid (SpriteGrid: `makeGrid(box, axis, resolution)`, its axis
+//     permutation `axisPermutation(axis)`), offsets, crossings (each
+//     `encodeCrossing(depth, entering)`: `crossingDepth`, `crossingEnters`),
+//     boundaryEdges (`meshBoundaryEdges(mesh)`), status, transform }
+//                                                            <vds/sprite.h>
+//   bool Sprite::contains(p, rule)   one point; points outside the sprite's
+//     box are outside. Errors lie within about half a texel diagonal of the
+//     surface (docs/accuracy.md). Sprite::transform(mat4) moves it without
+//     baking again.
+//   classify(sprite, PointsView, labels, ClassifyOptions)
 //     batches on threads; the same answers as `contains`. QueryLayout::Auto
-//     builds a 16-byte-a-column table for large batches (one cache miss a
-//     point).
+//     builds a 16-byte-a-column table for large batches.
+//   SpriteClassifier(sprite)   the same as a Classifier (Method::Sprite).
 //
-// ---- 4b. Ask it for a whole grid ------------------------------------------------
+// ---- 6. Ask it for a whole grid ------------------------------------------------
 //
 //   Grid{box, dims}; cell (i, j, k) centre lo + (i+1/2, j+1/2, k+1/2)
-//     * (hi - lo) / dims, labels in C order [i][j][k]      <vds/occupancy.h>
-//   voxelize(mesh, grid, cells, ClassifyOptions{rule, threads})
-//     exact labels by one sweep per column: equal to the exact classifier
-//     on every cell centre.
+//     * (hi - lo) / dims, labels in C order [i][j][k]       <vds/grid.h>
+//     `cubicGrid(box, n)`, `checkGrid(grid)`, `packLabels(cells, count, bits)`
+//     (eight cells a byte, numpy's packbits order).
+//   occupancy(mesh, grid, cells, options)     exact labels by one sweep per
+//     column, equal to the exact classifier on every cell centre.
 //   occupancy(sprite, grid, cells, options)   the sprite's labels, one walk
-//     per column; equal to `contains` on every cell.
-//   packLabels(cells, count, bits)   eight cells a byte (numpy's packbits).
-//   readNpy / npyPoints / writeNpy   numpy .npy in and out    <vds/npy.h>
-//   Sprite::transform(mat4)  moves, rotates or scales the sprite (affine,
-//     invertible) without baking again.
+//     per column; equal to `contains` on every cell.      <vds/occupancy.h>
+//   occupancy(classifier, grid, cells, options)  any method.
+//   readNpy / parseNpy / npyPoints / npyHeader / writeNpy / NpyArray:
+//     numpy .npy in and out                                <vds/npy.h>
 //
-// ---- 5. Exact answers ---------------------------------------------------------
+// ---- 7. Exact answers ---------------------------------------------------------
 //
 //   ExactClassifier(mesh, axis)                               <vds/exact.h>
 //     the yardstick: exact orientation predicates with a top-left tie rule
 //     on the triangles themselves; `contains`, `winding`,
 //     `generalizedWinding` (the Antipodal split: integer ray count plus a
-//     boundary term over the boundary edges), `classify` (pointer + count,
-//     or + stride). Construction O(n log n); queries thread safe.
+//     boundary term over the boundary edges). Construction O(n log n).
 //   CertifiedClassifier(mesh, CertifiedOptions{resolution, axis, threads})
 //     the exact classifier's answers at close to a sprite's speed: per
 //     texel, bands where the surface may be; outside them the answer is
 //     proven, inside them the exact classifier decides. <vds/certified.h>
 //
-// ---- 6. On the GPU (vds::gl) --------------------------------------------------
+// ---- 8. On the GPU (vds::gl) --------------------------------------------------
 //
 //   GlContext            a headless EGL context (NVIDIA's EGL device,
 //                        Mesa's llvmpipe without a GPU); GlUnavailable with
 //                        the reasons when none can be had. `glAvailable()`
-//                        is the cheap probe.               <vds/gl/context.h>
+//                        is the cheap probe, `glUsable()` says whether a
+//                        context is current, GlInfo names the renderer,
+//                        `checkGl(what)` turns a GL error into GlError.
+//                        CurrentContext scopes restore the caller's context.
+//                        The rules (how a context is passed, what is
+//                        restored) head <vds/gl/context.h>.
+//   GlObject (Buffer, Texture, Framebuffer, VertexArray, Query, Shader,
+//                        Program; `BufferTraits`, `TextureTraits`,
+//                        `FramebufferTraits`, `VertexArrayTraits`,
+//                        `QueryTraits`, `ShaderTraits`, `ProgramTraits`) and
+//                        Fence: owning GL names.       <vds/gl/objects.h>
+//   buildProgram(stages, defines)  from ShaderStage sources, `#include`s
+//                        resolved against the embedded shaders
+//                        (`assembleShader`, `embeddedShader`,
+//                        `embeddedShaderPaths`, `registerShaders` with
+//                        ShaderFile entries).            <vds/gl/shader.h>
+//   GpuMesh              a mesh in GL buffers.            <vds/gl/mesh.h>
 //   GpuSprite(sprite)    the paper's R32F 3D texture and placement, for
 //                        shaders/vds/vpt.glsl (`vdsContains(...)` in any
 //                        stage; the same answers as the CPU), and the
-//                        boundary edges for `vdsContainsGeneralized(...)`
-//                        (setBoundaryUniforms).              <vds/gl/sprite.h>
+//                        boundary edges for `vdsContainsGeneralized(...)`;
+//                        GpuSpriteParts picks what is uploaded. <vds/gl/sprite.h>
 //   GpuClassifier        the VPT over many points in a compute shader: host
 //                        arrays in and out, or points and labels already in
 //                        GL buffers (no host round trip).
-//   bakeToGpu(mesh, options, gl)  a GpuSprite straight from the fragment-list
-//                        bake, nothing read back.            <vds/gl/bake.h>
+//   GpuSpriteClassifier  the same as a Classifier (Method::SpriteGpu).
+//                                                        <vds/gl/classifier.h>
+//   GpuOccupancy         occupancy grids in a compute shader, into a GL
+//                        buffer or host memory.          <vds/gl/occupancy.h>
+//   GpuBake bakeToGpu(gl, mesh, options, parts)  a GpuSprite straight from
+//                        the fragment-list bake, nothing read back. <vds/gl/bake.h>
+//
+// ---- 9. The representations the VDS competes with (vds::voxel) ----------------
+//
+//   Representation (slicemap, slicemap-local, solid, solid-compute),
+//     `parseRepresentation`, `methodOf`, `representationOf`;
+//     Model buildModel(gl, mesh, representation, ModelOptions) a Classifier
+//     (the CPU lookup); GpuModelClassifier(gl, model) its GLSL lookup;
+//     `modelMemoryBytes(box, representation, options)` without building.
+//                                                <vds/voxel/representation.h>
+//   VoxelGrid makeVoxelGrid(box, resolution), BitGrid makeBitGrid(grid),
+//     `snapToSubcells`, `requireClosed(mesh, what)`   <vds/voxel/grid.h>
+//   Slicemap buildSlicemap(gl, mesh, box, resolution, SlicemapOptions),
+//     Slicing (`parseSlicing`), `defaultSlices`, `slicemapInside`
+//                                                    <vds/voxel/slicemap.h>
+//   BitGrid voxelizeSolid(gl, mesh, grid, SolidMethod) (`parseSolidMethod`)
+//     <vds/voxel/solid.h>; voxelizeSurface(gl, mesh, grid) <vds/voxel/surface.h>;
+//     SlicedVoxels voxelizeSlices(gl, mesh, grid, SlicingOptions) <vds/voxel/slicing.h>
+//   Light and shadows: LightFrame makeLightFrame(direction), toLightSpace
+//     <vds/voxel/light_frame.h>; transmittance through a solid
+//     (TransmittanceSource, TransmittanceParameters, ReceiverPlane,
+//     TransmittanceImage, transmittanceOf, transmittanceOnCpu,
+//     GpuTransmittanceCaster, renderTransmittance, slicemapSurfacesInFront,
+//     absorptionInFront, spriteThicknessInFront, ExactCrossings,
+//     exactCrossingsInFront)                      <vds/voxel/transmittance.h>;
+//     refraction (RefractionMethod, RefractionView, RefractionParameters,
+//     RefractionImage, refractionColour, refractOnCpu, refractExactly,
+//     GpuRefractionCaster, renderRefraction)        <vds/voxel/refraction.h>
+//
+// ---- 10. Measuring (vds::eval) ------------------------------------------------
+//
+//   EvalReport evaluate(mesh, EvalOptions)  the sprite against the exact
+//     classifier by resolution (EvalRow; `toTable`, `toJson`) <vds/eval/accuracy.h>
+//   CompareResult compare(mesh, CompareOptions)  the VDS against slicemaps
+//     and solid voxels at equal resolution and memory (CompareRow: a Method
+//     and a Rule); `errorChart(result)` an SVG     <vds/eval/compare.h>
+//   SurfaceDistance(mesh), pointTriangleDistance   <vds/eval/distance.h>
+//   Image, readPng, writePng                       <vds/eval/image.h>
+//
 //   Lifetime: a context is current on the thread that made it; destroying
-//   or moving one never changes another current context; `CurrentContext`
-//   scopes restore the caller's; no GL call happens once the process exits.
+//   or moving one never changes another current context; no GL call happens
+//   once the process exits.
 #pragma once
 
 #include <vds/axis.h>

@@ -3,10 +3,10 @@
 // equal resolution and at equal memory budgets (the table of docs/voxel.md,
 // `vds compare MESH`).
 //
-// Ground truth is vds::ExactClassifier (Axis::Z) on the mesh itself: parity
-// for every row but "vds-winding", which is held to the exact winding rule;
-// with `rule` Rule::GeneralizedWinding, the exact generalized winding number
-// for every row (open meshes accepted).
+// Ground truth is the exact classifier (Method::Exact, Axis::Z) on the mesh
+// itself: each row is held to the rule it answers by (parity, or winding
+// for the sprite's winding row); with `rule` Rule::GeneralizedWinding, the
+// exact generalized winding number for every row (open meshes accepted).
 // Points: `uniformPoints` uniform in the mesh box grown by `padding` of its
 // size on each side, and `surfacePoints` near the surface (a uniformly random
 // point of the surface, by area, moved along its face normal by a uniform
@@ -15,15 +15,16 @@
 // the nearest triangle) is taken; the worst is reported in mesh units and in
 // cells of the row's representation.
 //
-// Rows ("method"):
-//  - vds-parity, vds-winding: a sprite baked with BakeMethod::Lists along z,
-//    its texels the size of the voxel grid's cells, classified by `vds::classify`;
-//  - vds-gwn (Rule::GeneralizedWinding only): the same sprite by its
-//    generalized winding number;
-//  - slicemap, slicemap-local, solid, solid-compute: `buildModel`. They answer
-//    parity and need a closed mesh: with Rule::GeneralizedWinding they are
-//    held to the exact generalized winding number as they are, and left out
-//    for an open mesh (`CompareResult::note` says so).
+// Rows: a method of the method table (<vds/classify.h>) and a rule, every
+// one made by `vds::makeClassifier` and queried through `Classifier::classify`:
+//  - sprite, sprite/winding (and sprite/generalized-winding with that rule):
+//    Method::Sprite baked with BakeMethod::Lists along z, its texels the size
+//    of the voxel grid's cells;
+//  - every voxel representation's CPU lookup (slicemap, slicemap-local,
+//    solid, solid-compute). They answer parity and need a closed mesh: with
+//    Rule::GeneralizedWinding they are held to the exact generalized winding
+//    number as they are, and left out for an open mesh (`CompareResult::note`
+//    says so).
 // Series "resolution": every method at each of `resolutions` (cells along the
 // box's longest side; the VDS at the same texel size). Series "memory": every
 // method at the largest resolution whose `memoryBytes` fits each budget.
@@ -41,6 +42,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <vds/classify.h>
 #include <vds/gl/context.h>
 #include <vds/mesh.h>
 #include <vds/sprite.h>
@@ -69,13 +71,17 @@ struct CompareOptions {
 };
 
 struct CompareRow {
-    std::string method;           ///< vds-parity, vds-winding, vds-gwn, slicemap, slicemap-local, solid, solid-compute
+    Method method = Method::Sprite; ///< the method that answered
+    Rule rule = Rule::Parity;       ///< the rule it answered by
+    /// The method's name, and "/" and the rule's for any rule but parity:
+    /// "sprite", "sprite/winding", "slicemap-local", ...
+    std::string name() const;
     std::string series;           ///< "resolution" or "memory"
     std::uint64_t target = 0;     ///< the series' value: resolution, or budget in bytes
     std::uint32_t resolution = 0; ///< the builder's resolution (the VDS: its bake resolution)
     glm::uvec3 cells{0u};         ///< columns x, y; and slices, voxels or d_S along z
     double cellSize = 0.0;        ///< column (texel) edge, mesh units
-    std::size_t memoryBytes = 0;  ///< what the CPU query reads (the VDS: its CSR layers; vds-gwn: and boundary edges)
+    std::size_t memoryBytes = 0;  ///< what the CPU query reads (the VDS: its CSR layers; by the GWN: and boundary edges)
     std::size_t gpuBytes = 0;     ///< what the GLSL lookup reads (the VDS: its dense 3D texture)
     double buildSeconds = 0.0;
     double pointsPerSecond = 0.0; ///< query throughput on the CPU
@@ -95,7 +101,7 @@ struct CompareResult {
     Box bounds;
     std::size_t uniformPoints = 0, surfacePoints = 0;
     std::size_t uniformInside = 0;     ///< the truth answers "inside" among the uniform points
-    /// "parity" (vds-winding: winding), or "generalized-winding" for every row.
+    /// "parity" (sprite/winding: winding), or "generalized-winding" for every row.
     std::string truth = "parity";
     /// One line for the reader when some rows are left out or answer
     /// another rule than the truth; empty otherwise. `table()` ends with it.

@@ -64,6 +64,11 @@ Method methodOf(Representation representation);
 /// `InvalidArgument` for a method that is not a voxel representation.
 Representation representationOf(Method method);
 
+/// `Model::memoryBytes` of `representation` built over `box` with
+/// `options`, without building it (for picking a resolution within a
+/// memory budget).
+std::size_t modelMemoryBytes(const Box& box, Representation representation, const ModelOptions& options);
+
 /// A built representation in host memory, the CPU lookup as a `Classifier`
 /// (parity only: `Classifier::classify` refuses the other rules); queries
 /// are thread safe.
