@@ -683,6 +683,8 @@ private:
 py::list methodTable() {
     py::list methods;
     for (const vds::MethodInfo* m = vds::methodTable(); m != vds::methodTable() + vds::kMethodCount; ++m) {
+        // Method::Custom names classifiers written outside the library: nothing Python can make.
+        if (!m->builtIn()) continue;
         py::list rules;
         for (const auto& rule : vds::EnumNames<vds::Rule>::table)
             if (vds::answers(m->method, rule.value)) rules.append(rule.name);

@@ -110,5 +110,6 @@ given (0: none); layer: "core", "gl" or "voxel"; summary: one line."""
 
 def methods():
     """Every way vds answers "inside?", as a list of ``MethodInfo`` in the
-    order of the C++ ``Method`` enum."""
+    order of the C++ ``Method`` enum (less ``custom``, which names
+    classifiers written in C++ outside the library)."""
     return [MethodInfo(**row) for row in _methods()]
