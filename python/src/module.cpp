@@ -142,13 +142,6 @@ struct GlState {
     }
 };
 
-/// One thread that runs every GL call of the module, one task at a time, in
-/// the order given: Python threads hand it their GL work and wait (without
-/// the GIL), and frees are queued without waiting, so a Python object may be
-/// freed on any thread at any time. Started by the first GL task, stopped by
-/// `_release_gl` (atexit), which frees the GL objects and the context on
-/// this thread; a later GL task starts it again with a new context. Made
-/// once and never destroyed (no static destructor may touch GL or threads).
 /// Set in a child made by fork() while the parent's GL thread ran: the
 /// driver's own threads (llvmpipe's rasterizer pool, say) did not come along,
 /// and GL in the child would wait for them forever.
@@ -157,6 +150,18 @@ constexpr const char* kLostInFork =
     "GL was in use when this process was forked from its parent, and a forked child cannot use the driver "
     "the parent started: use multiprocessing's \"spawn\" start method, or call vds._release_gl() before forking";
 
+/// Keys of resident sprites and GPU classifiers, never reused: not across
+/// restarts of the GL thread, nor in a forked child (whose sprites may hold
+/// their parent's keys).
+std::atomic<std::uint64_t> nextGlId{1};
+
+/// One thread that runs every GL call of the module, one task at a time, in
+/// the order given: Python threads hand it their GL work and wait (without
+/// the GIL), and frees are queued without waiting, so a Python object may be
+/// freed on any thread at any time. Started by the first GL task, stopped by
+/// `_release_gl` (atexit), which frees the GL objects and the context on
+/// this thread; a later GL task starts it again with a new context. Made
+/// once and never destroyed (no static destructor may touch GL or threads).
 class GlThread {
 public:
     /// Runs `task` on the GL thread and waits for it; rethrows its exception.
@@ -221,9 +226,6 @@ public:
         return worker_.joinable() && !stopping_;
     }
 
-    /// A key for a resident sprite or a GPU classifier, never reused (across restarts too).
-    std::uint64_t newId() { return nextId_.fetch_add(1); }
-
 private:
     void start(std::unique_lock<std::mutex>& lock) {
         // A stop under way: let it finish, then start afresh.
@@ -249,7 +251,11 @@ private:
                 task = std::move(queue_.front());
                 queue_.pop_front();
             }
-            task(state); // run()'s tasks catch their own exceptions; frees do not throw
+            try {
+                task(state); // run()'s tasks hand their exceptions to the caller
+            } catch (...) {
+                // A free that failed (a context lost): its objects go with the context.
+            }
         }
         try {
             state.clear();
@@ -263,7 +269,6 @@ private:
     std::deque<std::function<void(GlState&)>> queue_;
     std::thread worker_;
     bool stopping_ = false;
-    std::atomic<std::uint64_t> nextId_{1};
     std::atomic<bool> live_{false};
 };
 
@@ -317,7 +322,7 @@ const vds::GpuSprite& residentCopy(GlState& s, PySprite& sprite) {
     auto it = sprite.gpuId ? s.resident.find(sprite.gpuId) : s.resident.end();
     if (it == s.resident.end()) {
         auto copy = std::make_unique<vds::GpuSprite>(sprite);
-        if (!sprite.gpuId) sprite.gpuId = glThread().newId();
+        if (!sprite.gpuId) sprite.gpuId = nextGlId.fetch_add(1);
         it = s.resident.emplace(sprite.gpuId, std::move(copy)).first;
     }
     it->second->setPlacement(sprite.grid);
@@ -639,7 +644,7 @@ private:
         }
         memoryBytes_ = classifier->memoryBytes();
         summary_ = classifier->summary();
-        glId = glThread().newId();
+        glId = nextGlId.fetch_add(1);
         s.classifiers.emplace(glId, std::move(classifier));
     }
 
