@@ -90,7 +90,10 @@ void Points::prepare(bool packedNeeded, const char* what) {
 
 namespace {
 
-bool cContiguous(const py::array& a) { return (a.flags() & py::array::c_style) != 0; }
+/// C-contiguous and aligned for 4-byte elements: what a glm::vec3 / glm::uvec3 view needs.
+bool viewable(const py::array& a) {
+    return (a.flags() & py::array::c_style) != 0 && reinterpret_cast<std::uintptr_t>(a.data()) % 4 == 0;
+}
 
 [[noreturn]] void badIndex(py::ssize_t t, int c, long long i, std::size_t n) {
     throw InvalidMesh("F[" + std::to_string(t) + ", " + std::to_string(c) + "] = " + std::to_string(i) +
@@ -116,7 +119,7 @@ MeshArrays meshArrays(const py::object& vertices, const py::object& faces) {
     Points v = viewPoints(vertices, "V");
     m.vertices = v.source;
     const std::size_t n = v.count;
-    if (!v.isDouble && cContiguous(v.source)) {
+    if (!v.isDouble && viewable(v.source)) {
         m.view.positions = reinterpret_cast<const glm::vec3*>(v.data);
     } else {
         m.verticesCopied = true;
@@ -137,7 +140,7 @@ MeshArrays meshArrays(const py::object& vertices, const py::object& faces) {
                                              : ""));
     requireRowsOfThree(m.faces, "F");
     const py::ssize_t count = m.faces.shape(0);
-    if (type.itemsize() == 4 && nativeOrder(type) && cContiguous(m.faces)) {
+    if (type.itemsize() == 4 && nativeOrder(type) && viewable(m.faces)) {
         if (type.kind() == 'i')
             checkIndices(static_cast<const std::int32_t*>(m.faces.data()), count, n);
         else

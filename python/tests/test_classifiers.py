@@ -401,10 +401,14 @@ def test_meshes_are_read_in_place_when_their_layout_allows():
     wide = np.zeros((len(F), 4), np.int32)
     wide[:, :3] = F
     assert vds._mesh_copies(V32, wide[:, :3]) == (False, True)           # strided
+    raw = np.zeros(V32.nbytes + 1, np.uint8)
+    unaligned = raw[1:].view(np.float32).reshape(V32.shape)
+    unaligned[:] = V32
+    assert vds._mesh_copies(unaligned, F) == (True, False)               # not 4-byte aligned
     # In place or copied, the same sprite.
     expected = vds.bake(V32, F, resolution=32, axis="z", method="cpu").to_bytes()
     for v, f in [(V, F.astype(np.int64)), (np.asfortranarray(V32), F.astype(np.uint32)), (V32, wide[:, :3]),
-                 (V32, F.astype(np.uint64)), (V32, F.astype(">i4"))]:
+                 (V32, F.astype(np.uint64)), (V32, F.astype(">i4")), (unaligned, F)]:
         assert vds.bake(v, f, resolution=32, axis="z", method="cpu").to_bytes() == expected
 
 
