@@ -61,3 +61,44 @@ def gl_or_skip():
 def spot():
     V, F = vds.load_mesh(DATA / "spot.obj")
     return V, F, vds.bake(V, F, resolution=256, method="cpu")
+
+
+def icosphere(subdivisions=2, radius=1.0, centre=(0.0, 0.0, 0.0)):
+    """A convex polyhedron inscribed in a sphere: the icosahedron with each
+    triangle split into four `subdivisions` times, vertices pushed onto the
+    sphere, faces counter-clockwise seen from outside. V float64, F int32."""
+    t = (1 + 5 ** 0.5) / 2
+    V = [[-1, t, 0], [1, t, 0], [-1, -t, 0], [1, -t, 0], [0, -1, t], [0, 1, t],
+         [0, -1, -t], [0, 1, -t], [t, 0, -1], [t, 0, 1], [-t, 0, -1], [-t, 0, 1]]
+    F = [[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2],
+         [10, 7, 6], [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5],
+         [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1]]
+    V = [np.asarray(v, float) / np.linalg.norm(v) for v in V]
+    for _ in range(subdivisions):
+        middle = {}
+
+        def mid(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in middle:
+                m = V[a] + V[b]
+                V.append(m / np.linalg.norm(m))
+                middle[key] = len(V) - 1
+            return middle[key]
+
+        F = [f for a, b, c in F for f in ([a, mid(a, b), mid(c, a)], [b, mid(b, c), mid(a, b)],
+                                          [c, mid(c, a), mid(b, c)], [mid(a, b), mid(b, c), mid(c, a)])]
+    V = np.array(V) * radius + np.asarray(centre, float)
+    F = np.array(F, dtype=np.int32)
+    return V, F
+
+
+def convex_signed_distance(V, F, points):
+    """For a closed convex polyhedron with outward faces: the largest signed
+    distance of each point to the faces' planes, in float64. Negative inside
+    (then minus the exact distance to the surface), positive outside (then at
+    most the distance to the surface)."""
+    a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+    n = np.cross(b - a, c - a)
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    offsets = np.einsum("ij,ij->i", n, a)
+    return (points @ n.T - offsets).max(axis=1)

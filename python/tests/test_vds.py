@@ -112,8 +112,6 @@ def test_strided_and_converted_inputs_answer_as_contiguous(spot):
     assert np.array_equal(sprite.contains(base[:, ::-1][:, ::-1]), expected)
     assert np.array_equal(sprite.contains(base.astype(np.float64)), expected)
     assert np.array_equal(sprite.contains(base.tolist()), expected)
-    corners = np.array([[0, 0, 0], [5, 5, 5]], dtype=np.int64)
-    assert np.array_equal(sprite.contains(corners), sprite.contains(corners.astype(np.float32)))
     assert np.array_equal(sprite.contains(base.astype(">f4")), expected)  # big-endian: converted
     assert np.array_equal(sprite.contains(pickle.loads(pickle.dumps(base))), expected)  # an equal, not identical, dtype
     assert sprite.contains(np.zeros((0, 3))).shape == (0,)
@@ -312,7 +310,8 @@ def test_gpu_answers_follow_transform_of_a_resident_sprite():
 def test_gpu_generalized_winding_of_an_open_mesh_agrees_with_cpu():
     gl_or_skip()
     V, F = open_sphere()
-    sprite = vds.bake(V, F, resolution=128, method="cpu")
+    with pytest.warns(vds.MeshWarning, match="open"):
+        sprite = vds.bake(V, F, resolution=128, method="cpu")
     assert sprite.status == "open"
     points = uniform((-1.2, -1.2, -1.2), (1.2, 1.2, 1.2), 100_000)
     cpu = sprite.contains(points, rule="generalized-winding")

@@ -2,45 +2,71 @@
 
 A closed triangle mesh is baked once into a Sprite (layered depth columns);
 the sprite then answers inside/outside for millions of points a second, on
-the CPU or, with ``gpu=True``, on a headless GL context.
+the CPU or, with ``gpu=True``, on a headless GL context. Every other way the
+library answers (the exact and certified classifiers, the GPU sprite, the
+voxel representations) is a ``Classifier`` of the same method names as the
+command line's ``--method`` (``vds.methods()`` lists them), and every
+occupancy grid is a ``Grid``.
 
     import numpy as np, vds
     V, F = vds.load_mesh("spot.obj")            # (n, 3) float64, (m, 3) int32
     sprite = vds.bake(V, F, resolution=1024)    # axis "auto", GL fragment lists
     inside = sprite.contains(points)            # (N, 3) float32/float64 -> (N,) bool
     sprite.save("spot.vds"); sprite = vds.read("spot.vds")
-    exact = vds.exact_contains(V, F, points)    # the exact answers, on the triangles
+    exact = vds.Classifier(V, F, "exact").classify(points)
+    labels, stats = vds.Classifier(V, F, "certified").classify(points, stats=True)
+    grid = vds.Grid(V.min(0), V.max(0), 128)    # occupancy arrays are grid.shape, [i, j, k]
+    cells = vds.occupancy(V, F, grid)           # exact; sprite.occupancy(grid, gpu=True) too
 
-Coordinates are the mesh's own units. Errors: ValueError for bad arrays
-(shape, dtype, non-finite values) and bad options; vds.IoError (an OSError)
-for files that cannot be read or written; vds.FormatError and
-vds.InvalidMesh (ValueErrors) for bad files and meshes; vds.GlUnavailable
-and vds.GlError (RuntimeErrors) for GL. Every vds error is a vds.Error or
-one of the builtin classes named. Scale-out over Dask: ``vds.dask``.
+Coordinates are the mesh's own units. Errors: every exception vds raises is a
+``vds.Error``, and also the builtin class its kind fits: ``InvalidArgument``
+(bad shapes, values, option names; a ValueError), ``DTypeError`` (points not
+float32/float64, faces not integers; an InvalidArgument and a TypeError),
+``InvalidMesh`` (a ValueError), ``IoError`` (an OSError), ``FormatError`` (a
+ValueError), ``GlUnavailable`` and ``GlError`` (RuntimeErrors),
+``OutOfMemory`` (a MemoryError). A mesh that bounds no solid by the rule
+asked gets a ``vds.MeshWarning`` with the command-line tool's text.
+GL work runs on one thread of the module's, for every Python thread in turn;
+a process forked while it runs cannot use GL (``GlUnavailable`` says so): use
+multiprocessing's "spawn" start method.
+Scale-out over Dask: ``vds.dask``.
 """
 import atexit as _atexit
+import collections as _collections
 
 from ._vds import (  # noqa: F401  (the public API)
+    Classifier,
+    DTypeError,
     Error,
     ExactClassifier,
     FormatError,
     GlError,
     GlUnavailable,
+    Grid,
+    InvalidArgument,
     InvalidMesh,
     IoError,
+    MeshWarning,
+    OutOfMemory,
     Sprite,
     _gpu_resident,
+    _mesh_copies,
+    _methods,
     _release_gl,
     bake,
     from_bytes,
     gl_available,
     load_mesh,
+    occupancy,
     read,
+    validate_mesh,
 )
 
 __all__ = [
-    "Error", "ExactClassifier", "FormatError", "GlError", "GlUnavailable", "InvalidMesh", "IoError",
-    "Sprite", "bake", "exact_contains", "from_bytes", "gl_available", "load_mesh", "read", "winding_numbers",
+    "Classifier", "DTypeError", "Error", "ExactClassifier", "FormatError", "GlError", "GlUnavailable", "Grid",
+    "InvalidArgument", "InvalidMesh", "IoError", "MeshWarning", "MethodInfo", "OutOfMemory", "Sprite", "bake",
+    "exact_contains", "from_bytes", "gl_available", "load_mesh", "methods", "occupancy", "read", "validate_mesh",
+    "winding_numbers",
 ]
 
 # The module's GL context is freed while the interpreter finalizes, before the
@@ -68,3 +94,22 @@ def winding_numbers(V, F, points):
     fractional near holes of an open one (exact integer part, Antipodal
     boundary term in double)."""
     return ExactClassifier(V, F).winding_numbers(points)
+
+
+MethodInfo = _collections.namedtuple(
+    "MethodInfo", "name exact gpu needs_closed_mesh from_sprite rules default_resolution layer summary")
+MethodInfo.__doc__ = """One row of the library's method table (C++ ``vds::MethodInfo``).
+
+name: the method's name, for ``Classifier(..., method=name)`` and the CLI's
+``--method``; exact: its labels equal the exact classifier's on every point;
+gpu: its queries run on the GPU; needs_closed_mesh: it refuses open meshes;
+from_sprite: it can be made from a Sprite; rules: the rules it answers;
+default_resolution: texels or cells on the box's longest side when none is
+given (0: none); layer: "core", "gl" or "voxel"; summary: one line."""
+
+
+def methods():
+    """Every way vds answers "inside?", as a list of ``MethodInfo`` in the
+    order of the C++ ``Method`` enum (less ``custom``, which names
+    classifiers written in C++ outside the library)."""
+    return [MethodInfo(**row) for row in _methods()]

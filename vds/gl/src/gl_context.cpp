@@ -9,6 +9,7 @@
 #include <mutex>
 #include <sstream>
 #include <unordered_map>
+#include <unordered_set>
 #include <thread>
 #include <vector>
 
@@ -34,6 +35,41 @@ void onExit() {
     if (eglGetCurrentContext() != EGL_NO_CONTEXT)
         eglMakeCurrent(eglGetCurrentDisplay(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglReleaseThread();
+}
+
+// The EGL displays the library opened alone (not initialized when it
+// called eglInitialize, never seen under an adopted context), with the
+// count of its own contexts on each. When the last one goes, the display is
+// terminated, so that a process that no longer uses GL holds none of the
+// driver's threads (a child forked afterwards can start GL of its own); a
+// display that was already open, or that the application's context uses, is
+// never terminated: other contexts of the process may share it.
+std::mutex gDisplayMutex;
+std::unordered_map<EGLDisplay, int> gOwnDisplays;
+std::unordered_set<EGLDisplay> gSharedDisplays;
+
+void retainOwnDisplay(EGLDisplay d) {
+    const std::lock_guard<std::mutex> lock(gDisplayMutex);
+    if (!gSharedDisplays.count(d)) ++gOwnDisplays[d];
+}
+
+void markShared(EGLDisplay d) {
+    const std::lock_guard<std::mutex> lock(gDisplayMutex);
+    gSharedDisplays.insert(d);
+    gOwnDisplays.erase(d);
+}
+
+void releaseOwnDisplay(EGLDisplay d) {
+    const std::lock_guard<std::mutex> lock(gDisplayMutex);
+    const auto it = gOwnDisplays.find(d);
+    if (it == gOwnDisplays.end() || --it->second > 0) return;
+    gOwnDisplays.erase(it);
+    // Someone else's context current on it: it is shared after all.
+    if (eglGetCurrentDisplay() == d && eglGetCurrentContext() != EGL_NO_CONTEXT) {
+        gSharedDisplays.insert(d);
+        return;
+    }
+    eglTerminate(d);
 }
 
 // Registered after the first eglInitialize, so that it runs before the
@@ -189,6 +225,7 @@ struct GlContext::Impl {
             eglDestroyContext(display, context); // deferred by EGL while still current elsewhere
         }
         if (surface != EGL_NO_SURFACE) eglDestroySurface(display, surface);
+        releaseOwnDisplay(display);
     }
 
     detail::NativeContext native() const {
@@ -223,12 +260,20 @@ struct GlContext::Impl {
         }
         EGLDisplay d = getPlatformDisplay(c.platform, c.nativeDisplay, nullptr);
         EGLint major = 0, minor = 0;
+        // Already initialized (by the application, or by a context of ours)?
+        const bool wasOpen = d != EGL_NO_DISPLAY && eglQueryString(d, EGL_VENDOR) != nullptr;
+        if (!wasOpen) (void)eglGetError(); // EGL_NOT_INITIALIZED from the probe
         if (d == EGL_NO_DISPLAY || !eglInitialize(d, &major, &minor)) {
             why = "eglInitialize failed";
             return false;
         }
         registerExitHandler();
-        display = d; // never terminated: other contexts of the process may share it (see context.h)
+        display = d;
+        {
+            const std::lock_guard<std::mutex> lock(gDisplayMutex);
+            if (wasOpen && !gOwnDisplays.count(d)) gSharedDisplays.insert(d); // opened by someone else
+        }
+        retainOwnDisplay(d); // terminated with our last context only if we opened it alone
         if (!eglBindAPI(EGL_OPENGL_API)) {
             why = "no desktop OpenGL API";
             return false;
@@ -286,6 +331,7 @@ struct GlContext::Impl {
                 eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
             if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
             if (surface != EGL_NO_SURFACE) eglDestroySurface(display, surface);
+            releaseOwnDisplay(display);
         }
         display = EGL_NO_DISPLAY;
         context = EGL_NO_CONTEXT;
@@ -320,6 +366,7 @@ GlContext GlContext::adoptCurrent() {
     auto impl = std::make_unique<Impl>();
     impl->owned = false;
     impl->adopted = now;
+    if (now.api == detail::NativeContext::Api::Egl) markShared(static_cast<EGLDisplay>(now.display));
     impl->info.platform = now.api == detail::NativeContext::Api::Egl ? "adopted EGL" : "adopted GLX";
     impl->readInfo();
     if (impl->info.major < 4 || (impl->info.major == 4 && impl->info.minor < 3))
