@@ -389,6 +389,29 @@ TEST_F(Cli, OpenMeshIsBakedWithAWarningAndRecorded) {
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
 }
 
+// Typos get the nearest command or option named; swapped files say which comes first.
+TEST_F(Cli, TyposAndSwappedArgumentsNameTheFix) {
+    Result r = vds("clasify " + p("box.vds"));
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("'clasify' is not a vds command (did you mean 'classify'?)"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    r = vds("frobnicate");
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_EQ(r.output.find("did you mean"), std::string::npos) << r.output; // nothing near: no guess
+    r = vds("bake " + p("box.obj") + " -o " + p("t.vds") + " --resoltion 32");
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("(did you mean '--resolution'?)"), std::string::npos) << r.output;
+    r = vds("classify --metod exact --mesh " + p("box.obj") + " " + p("points.txt") + " -o " + p("t.txt"));
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("(did you mean '--method'?)"), std::string::npos) << r.output;
+    ASSERT_EQ(vds("bake " + p("box.obj") + " -o " + p("s.vds") + " --resolution 16 --quiet").code, 0);
+    r = vds("classify " + p("points.txt") + " " + p("s.vds") + " -o " + p("t.txt"));
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("the sprite comes first"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "t.txt"));
+}
+
 TEST_F(Cli, NoGlGivesAClearErrorAndTheCpuBakerStillWorks) {
     // glvnd finds no EGL vendor: as on a machine without any GL driver.
     const std::string noGl = "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json __EGL_VENDOR_LIBRARY_DIRS=/nonexistent ";

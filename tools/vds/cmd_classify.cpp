@@ -47,9 +47,32 @@ bool startsWith(const std::vector<char>& bytes, const char* magic, std::size_t s
     return bytes.size() >= size && std::equal(magic, magic + size, bytes.begin());
 }
 
+// The first bytes of a file ("" where it cannot be read).
+std::string firstBytes(const std::string& path, std::size_t n) {
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes(n, '\0');
+    in.read(&bytes[0], std::streamsize(n));
+    bytes.resize(std::size_t(in.gcount()));
+    return bytes;
+}
+
+// A .vds file is OpenEXR: its magic number.
+bool looksLikeSprite(const std::string& path) { return path != kStdio && firstBytes(path, 4) == "\x76\x2f\x31\x01"; }
+
 // A .npy file (N x 3 float32 or float64) or what vds::loadPoints reads; from
 // stdin ("-") any of these, told apart by their first bytes.
+std::vector<glm::vec3> readPointsFile(const std::string& path);
 std::vector<glm::vec3> readPoints(const std::string& path) {
+    try {
+        return readPointsFile(path);
+    } catch (const vds::FormatError& e) {
+        if (!looksLikeSprite(path)) throw;
+        throw vds::FormatError(std::string(e.what()) + "; " + path +
+                               " is a sprite file: the sprite comes first (vds classify SPRITE.vds POINTS -o LABELS)");
+    }
+}
+
+std::vector<glm::vec3> readPointsFile(const std::string& path) {
     if (path == kStdio) {
         const std::vector<char> bytes = readStdin();
         if (startsWith(bytes, "\x93NUMPY", 6)) return vds::npyPoints(vds::parseNpy(bytes.data(), bytes.size(), "<stdin>"), "<stdin>");
@@ -153,7 +176,14 @@ void classify(ClassifyArgs& a) {
         options.sourceName = mesh.name;
         classifier = vds::makeClassifier(mesh, a.method, options);
     } else {
-        vds::Sprite sprite = vds::readSprite(a.files.front());
+        vds::Sprite sprite;
+        try {
+            sprite = vds::readSprite(a.files.front());
+        } catch (const vds::FormatError& e) {
+            if (!looksLikeSprite(a.files.back())) throw;
+            throw vds::FormatError(std::string(e.what()) + "; the second file is the sprite: the sprite comes first "
+                                                            "(vds classify SPRITE.vds POINTS -o LABELS)");
+        }
         // The generalized winding number answers open meshes: no warning then.
         if (sprite.status == vds::SolidStatus::Open && a.options.rule != vds::Rule::GeneralizedWinding)
             std::fprintf(stderr, "vds classify: warning: the sprite was baked from an open mesh (%s)\n",

@@ -4,7 +4,9 @@
 #include <cstdlib>
 #include <exception>
 #include <new>
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include <vds/detail/atomic_file.h>
 #include <vds/error.h>
@@ -75,6 +77,62 @@ std::function<void(const std::string&)> progressPrinter(bool quiet) {
     };
 }
 
+namespace {
+
+// Levenshtein distance, for "did you mean".
+std::size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+// The candidate nearest to `word`, if it is near enough to be a typo (at
+// most a third of its letters off, and at least one), else empty.
+std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
+    std::string best;
+    std::size_t bestDistance = std::max<std::size_t>(1, word.size() / 3) + 1;
+    for (const std::string& c : candidates) {
+        const std::size_t d = editDistance(word, c);
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = c;
+        }
+    }
+    return best;
+}
+
+// " (did you mean 'X'?)" for the arguments CLI11 did not expect: a
+// misspelled subcommand, or a misspelled option of the chosen command.
+std::string suggestion(const CLI::App& app, const std::vector<std::string>& unexpected) {
+    const auto chosen = app.get_subcommands();
+    for (const std::string& arg : unexpected) {
+        std::vector<std::string> names;
+        std::string word = arg;
+        if (chosen.empty()) {
+            for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+        } else {
+            if (arg.rfind("-", 0) != 0) continue;
+            word = arg.substr(0, arg.find('='));
+            for (const CLI::Option* o : chosen.front()->get_options())
+                for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
+        }
+        const std::string best = nearest(word, names);
+        if (!best.empty()) return " (did you mean '" + best + "'?)";
+    }
+    return {};
+}
+
+} // namespace
+
 } // namespace cli
 
 int main(int argc, char** argv) {
@@ -93,6 +151,7 @@ int main(int argc, char** argv) {
         std::fputs(app.get_formatter()->make_help(&app, "vds", CLI::AppFormatMode::Normal).c_str(), stdout);
     });
     app.require_subcommand(1);
+    app.allow_extras(); // a word that is no command gets its nearest command suggested below
     app.footer("Run 'vds <command> --help' for a command's options.");
     if (argc < 2) {
         std::fputs(app.help().c_str(), stderr);
@@ -105,10 +164,25 @@ int main(int argc, char** argv) {
     };
     try {
         app.parse(argc, argv);
+        if (!app.remaining().empty()) {
+            std::fprintf(stderr, "vds: '%s' is not a vds command%s (try 'vds --help')\n", app.remaining().front().c_str(),
+                         cli::suggestion(app, app.remaining()).c_str());
+            return 2;
+        }
         return 0;
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e); // --help
-        std::fprintf(stderr, "%s: %s (try '%s --help')\n", who().c_str(), e.what(), who().c_str());
+        if (app.get_subcommands().empty() && argv[1][0] != '-') {
+            std::fprintf(stderr, "vds: '%s' is not a vds command%s (try 'vds --help')\n", argv[1],
+                         cli::suggestion(app, {argv[1]}).c_str());
+            return 2;
+        }
+        std::string hint;
+        if (dynamic_cast<const CLI::ExtrasError*>(&e) || dynamic_cast<const CLI::RequiredError*>(&e)) {
+            std::vector<std::string> args(argv + 1, argv + argc);
+            hint = cli::suggestion(app, args);
+        }
+        std::fprintf(stderr, "%s: %s%s (try '%s --help')\n", who().c_str(), e.what(), hint.c_str(), who().c_str());
         return 2;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "%s: error: out of memory\n", who().c_str());
