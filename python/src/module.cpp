@@ -90,7 +90,7 @@ void warn(const std::string& message) {
 /// a rule that answers for solids (the CLI's).
 void warnOpenSprite(const vds::Sprite& sprite, vds::Rule rule) {
     if (sprite.status == vds::SolidStatus::Open && rule != vds::Rule::GeneralizedWinding)
-        warn("the sprite was baked from an open mesh (" + sprite.validation + ")");
+        warn(vds::openSpriteMessage(sprite.validation, rule));
 }
 
 // ---- options ---------------------------------------------------------------
@@ -671,7 +671,7 @@ private:
         if (fromMesh_) {
             warn(insideMessage(report_, name_, rule));
         } else if (spriteOpen_ && rule != vds::Rule::GeneralizedWinding) {
-            warn("the sprite was baked from an open mesh (" + spriteValidation_ + ")");
+            warn(vds::openSpriteMessage(spriteValidation_, rule));
         }
     }
 

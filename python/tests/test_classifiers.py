@@ -359,8 +359,10 @@ def open_icosphere():
 
 def test_open_meshes_warn_with_the_libraries_text():
     OV, OF = open_icosphere()
-    text = ("mesh is open (3 boundary edges): inside is not defined by the parity rule; the generalized-winding "
-            "rule answers for it (exactly), and a sprite baked from it still answers by crossing count")
+    # The CLI's words, generated in one place in the library (vds::openMeshMessage).
+    text = ("mesh is open (3 boundary edges): inside is not defined by the parity rule; the generalized winding "
+            "number answers for it (--rule generalized-winding), and answering anyway (--allow-open) counts "
+            "crossings as for a surface, not a solid")
     points = around(100)
     with pytest.warns(vds.MeshWarning) as bake_warnings:
         sprite = vds.bake(OV, OF, resolution=32, method="cpu")
@@ -371,7 +373,7 @@ def test_open_meshes_warn_with_the_libraries_text():
         vds.Classifier(OV, OF, "certified", resolution=16).classify(points, rule="winding")
     with pytest.warns(vds.MeshWarning, match="named-mesh is open"):
         vds.Classifier(OV, OF, "exact", name="named-mesh").classify(points)
-    with pytest.warns(vds.MeshWarning, match="the sprite was baked from an open mesh"):
+    with pytest.warns(vds.MeshWarning, match="the sprite was baked from a mesh that bounds no solid"):
         sprite.contains(points)
     with pytest.warns(vds.MeshWarning):
         vds.occupancy(OV, OF, vds.Grid((-1, -1, -1), (1, 1, 1), 4))

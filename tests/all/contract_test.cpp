@@ -82,7 +82,9 @@ TEST_F(Contract, EveryMethodAnswersItsRulesAndRefusesTheOthers) {
                 ++wrong;
                 wrongFar += std::abs(sphere_.distance(points_[k])) > kFarFromSurface;
             }
-            if (info->exact) EXPECT_EQ(wrong, 0u);
+            if (info->exact) {
+                EXPECT_EQ(wrong, 0u);
+            }
             EXPECT_EQ(wrongFar, 0u);
 
             // The same points as doubles inside 40-byte records.

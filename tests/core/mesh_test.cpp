@@ -10,6 +10,7 @@
 
 #include <vds/error.h>
 #include <vds/exact.h>
+#include <vds/bake.h>
 #include <vds/mesh.h>
 #include <vds/sprite.h>
 #include "solids.h"
@@ -158,7 +159,40 @@ TEST(ValidateMesh, CountsDuplicateTrianglesIsolatedVerticesAndOrientationConflic
         FAIL() << "winding accepted with orientation conflicts";
     } catch (const InvalidMesh& e) {
         EXPECT_STREQ(e.what(), "flipped.obj has 3 inconsistently oriented edges: inside is not defined by the "
-                               "winding rule; the parity rule defines it");
+                               "winding rule; the parity rule and the generalized winding number (--rule "
+                               "generalized-winding) answer for it");
+        EXPECT_EQ(openMeshMessage(f, "flipped.obj", Rule::Winding), e.what()); // one wording, one place
+    }
+}
+
+// A flat sheet bounds no volume: one message, naming the flat axes, wherever a volume is needed.
+TEST(ValidateMesh, FlatMeshesGetOneMessage) {
+    TriangleMesh sheet;
+    sheet.positions = {{0, 0, 2}, {1, 0, 2}, {0, 1, 2}, {1, 1, 2}};
+    sheet.triangles = {{0, 1, 2}, {2, 1, 3}};
+    const MeshReport report = validateMesh(sheet);
+    EXPECT_TRUE(report.flat());
+    EXPECT_FALSE(validateMesh(solids::box({0, 0, 0}, {1, 1, 1}).mesh).flat());
+    const std::string expected = "sheet.obj is flat (no extent along z): it bounds no volume, so no point is inside "
+                                 "it by any rule and nothing is baked or written; its generalized winding number "
+                                 "still measures points off the sheet (between -1/2 and 1/2)";
+    try {
+        requireVolume(report, "sheet.obj");
+        FAIL() << "flat mesh accepted";
+    } catch (const InvalidMesh& e) {
+        EXPECT_EQ(e.what(), expected);
+    }
+    BakeOptions o;
+    o.resolution = 16;
+    o.sourceName = "sheet.obj";
+    for (std::optional<Axis> axis : {std::optional<Axis>(), std::optional<Axis>(Axis::X)}) {
+        o.axis = axis;
+        try {
+            bakeCpu(sheet, o);
+            FAIL() << "flat mesh baked";
+        } catch (const InvalidMesh& e) {
+            EXPECT_EQ(e.what(), expected);
+        }
     }
 }
 
@@ -174,8 +208,10 @@ TEST(ValidateMesh, OpenMeshesHaveNoInsideAndTheMessageSaysWhatAnswers) {
             EXPECT_EQ(std::string(e.what()), std::string("open.obj is open (3 boundary edges): inside is not defined "
                                                          "by the ") +
                                                  toString(rule) +
-                                                 " rule; the generalized-winding rule answers for it (exactly), and "
-                                                 "a sprite baked from it still answers by crossing count");
+                                                 " rule; the generalized winding number answers for it (--rule "
+                                                 "generalized-winding), and answering anyway (--allow-open) counts "
+                                                 "crossings as for a surface, not a solid");
+            EXPECT_EQ(openMeshMessage(validateMesh(open), "open.obj", rule), e.what());
         }
     }
     EXPECT_THROW(requireInsideDefined(validateMesh(TriangleMesh{}), "empty.obj", Rule::Parity), InvalidMesh);

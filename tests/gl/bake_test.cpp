@@ -371,7 +371,7 @@ TEST_F(BakeTest, BadInputIsRefusedWithAClearError) {
     TriangleMesh flat; // a single triangle in the z = 0 plane has no extent along z
     flat.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     flat.triangles = {{0, 1, 2}};
-    EXPECT_THROW(bakeWith(gl(), flat, BakeMethod::Lists, 16), InvalidArgument);
+    EXPECT_THROW(bakeWith(gl(), flat, BakeMethod::Lists, 16), InvalidMesh); // flat: bounds no volume
 }
 
 } // namespace

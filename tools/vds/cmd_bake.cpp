@@ -25,6 +25,7 @@ void bake(BakeArgs& a) {
     a.options.sourceName = mesh.name;
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, a.mesh);
+    vds::requireVolume(report, a.mesh);
     if (a.axis == "auto") {
         const vds::AxisChoice choice = vds::chooseViewAxis(mesh, a.options.resolution);
         a.options.axis = choice.axis;
@@ -33,9 +34,8 @@ void bake(BakeArgs& a) {
         a.options.axis = vds::parseAxis(a.axis);
     }
     if (!report.oriented())
-        std::fprintf(stderr, "vds bake: warning: %s is %s; parity and winding answer for a surface, not a solid "
-                     "(classify with --rule generalized-winding)\n",
-                     a.mesh.c_str(), report.summary().c_str());
+        std::fprintf(stderr, "vds bake: warning: %s (%s)\n", vds::openMeshMessage(report, a.mesh, vds::Rule::Parity).c_str(),
+                     report.summary().c_str());
     if (a.options.method == vds::BakeMethod::Auto) {
         std::string why;
         a.options.method = vds::chooseBakeMethod(&why);

@@ -145,15 +145,9 @@ void resolveMethod(ClassifyArgs& a) {
 // Refuses or warns about a mesh that bounds no solid, by the rule asked.
 void checkMesh(const ClassifyArgs& a, const vds::TriangleMesh& mesh) {
     const vds::MeshReport report = vds::validateMesh(mesh);
-    if (a.allowOpen || vds::methodInfo(a.method).needsClosedMesh) {
-        vds::requireUsable(report, a.mesh);
-    } else {
-        try {
-            vds::requireInsideDefined(report, a.mesh, a.options.rule);
-        } catch (const vds::InvalidMesh& e) {
-            throw vds::InvalidMesh(std::string(e.what()) + " (--allow-open classifies by crossing count anyway)");
-        }
-    }
+    vds::requireUsable(report, a.mesh);
+    vds::requireVolume(report, a.mesh);
+    if (!a.allowOpen && !vds::methodInfo(a.method).needsClosedMesh) vds::requireInsideDefined(report, a.mesh, a.options.rule);
     const std::string warning = vds::insideWarning(report, a.options.rule);
     if (!warning.empty()) std::fprintf(stderr, "vds classify: warning: %s: %s\n", a.mesh.c_str(), warning.c_str());
 }
@@ -186,8 +180,8 @@ void classify(ClassifyArgs& a) {
         }
         // The generalized winding number answers open meshes: no warning then.
         if (sprite.status == vds::SolidStatus::Open && a.options.rule != vds::Rule::GeneralizedWinding)
-            std::fprintf(stderr, "vds classify: warning: the sprite was baked from an open mesh (%s)\n",
-                         sprite.validation.c_str());
+            std::fprintf(stderr, "vds classify: warning: %s\n",
+                         vds::openSpriteMessage(sprite.validation, a.options.rule).c_str());
         classifier = vds::makeClassifier(std::move(sprite), a.method);
     }
     progress("built " + classifier->summary());

@@ -44,11 +44,10 @@ void voxelize(VoxelizeArgs& a) {
         mesh = vds::loadMesh(a.input);
         const vds::MeshReport report = vds::validateMesh(mesh);
         vds::requireUsable(report, a.input);
+        vds::requireVolume(report, a.input);
         bounds = report.bounds;
-        if (!report.closed() && a.options.rule != vds::Rule::GeneralizedWinding)
-            std::fprintf(stderr, "vds voxelize: warning: %s is %s; parity labels count crossings, not a solid's inside "
-                         "(--rule generalized-winding answers for open meshes)\n",
-                         a.input.c_str(), report.summary().c_str());
+        const std::string open = vds::openMeshMessage(report, a.input, a.options.rule);
+        if (!open.empty()) std::fprintf(stderr, "vds voxelize: warning: %s\n", open.c_str());
     }
     phase("load", secondsSince(start));
     vds::Grid grid;

@@ -66,6 +66,13 @@ std::unique_ptr<Classifier> makeCore(MeshView mesh, Method method, const MethodO
     }
 }
 
+// A flat mesh bounds no volume: the one message, before any method is built.
+void requireVolumeOf(MeshView mesh, const MethodOptions& options) {
+    MeshReport bounds;
+    bounds.bounds = meshBounds(mesh);
+    requireVolume(bounds, options.sourceName);
+}
+
 void refuseCustom(Method method) {
     if (!methodInfo(method).builtIn())
         throw InvalidArgument("method 'custom' is a classifier defined outside the library; makeClassifier builds "
@@ -77,6 +84,7 @@ void refuseCustom(Method method) {
 std::unique_ptr<Classifier> makeClassifier(const GlContext& gl, MeshView mesh, Method method,
                                            const MethodOptions& options) {
     refuseCustom(method);
+    requireVolumeOf(mesh, options);
     if (method == Method::Sprite) return std::make_unique<SpriteClassifier>(bakeFor(&gl, mesh, method, options));
     if (auto core = makeCore(mesh, method, options)) return core;
     if (method == Method::SpriteGpu)
@@ -91,6 +99,7 @@ std::unique_ptr<Classifier> makeClassifier(const GlContext& gl, MeshView mesh, M
 
 std::unique_ptr<Classifier> makeClassifier(MeshView mesh, Method method, const MethodOptions& options) {
     refuseCustom(method);
+    requireVolumeOf(mesh, options);
     const bool needsGl = methodInfo(method).layer != Layer::Core ||
                          (method == Method::Sprite && options.bakeMethod != BakeMethod::Cpu);
     if (!needsGl) return makeCore(mesh, method, options);

@@ -20,6 +20,7 @@ BakeSetup prepareBake(MeshView mesh, const BakeOptions& options) {
     BakeSetup setup;
     setup.report = validateMesh(mesh);
     requireUsable(setup.report, options.sourceName);
+    requireVolume(setup.report, options.sourceName);
     const Axis axis = options.axis ? *options.axis : chooseViewAxis(mesh, options.resolution).axis;
     setup.grid = makeGrid(setup.report.bounds, axis, options.resolution);
     return setup;
@@ -88,6 +89,7 @@ std::string AxisChoice::summary() const {
 AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution, unsigned threads) {
     const MeshReport report = validateMesh(mesh);
     requireUsable(report, "mesh");
+    requireVolume(report, "mesh");
     AxisChoice choice;
     choice.resolution = resolution;
     for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {

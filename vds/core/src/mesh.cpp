@@ -325,9 +325,14 @@ void requireUsable(const MeshReport& report, const std::string& meshName) {
         throw InvalidMesh(who + ": " + std::to_string(report.badIndices) + " triangle indices are out of range");
 }
 
-void requireInsideDefined(const MeshReport& report, const std::string& meshName, Rule rule) {
-    requireUsable(report, meshName);
-    if (rule == Rule::GeneralizedWinding) return; // defined for every usable mesh
+bool MeshReport::flat() const {
+    for (int a = 0; a < 3; ++a)
+        if (!(bounds.hi[a] > bounds.lo[a])) return true;
+    return false;
+}
+
+std::string openMeshMessage(const MeshReport& report, const std::string& meshName, Rule rule) {
+    if (rule == Rule::GeneralizedWinding) return {}; // defined for every usable mesh
     const std::string who = meshName.empty() ? std::string("mesh") : meshName;
     if (!report.closed()) {
         std::string why;
@@ -335,13 +340,39 @@ void requireInsideDefined(const MeshReport& report, const std::string& meshName,
         if (report.oddNonManifoldEdges)
             why += (why.empty() ? "" : ", ") + counted(report.oddNonManifoldEdges, "edge") +
                    " shared by an odd number of triangles";
-        throw InvalidMesh(who + " is open (" + why + "): inside is not defined by the " + toString(rule) +
-                          " rule; the generalized-winding rule answers for it (exactly), and a sprite baked from it "
-                          "still answers by crossing count");
+        return who + " is open (" + why + "): inside is not defined by the " + toString(rule) +
+               " rule; the generalized winding number answers for it (--rule generalized-winding), and answering "
+               "anyway (--allow-open) counts crossings as for a surface, not a solid";
     }
     if (rule == Rule::Winding && !report.oriented())
-        throw InvalidMesh(who + " has " + counted(report.inconsistentEdges, "inconsistently oriented edge") +
-                          ": inside is not defined by the winding rule; the parity rule defines it");
+        return who + " has " + counted(report.inconsistentEdges, "inconsistently oriented edge") +
+               ": inside is not defined by the winding rule; the parity rule and the generalized winding number "
+               "(--rule generalized-winding) answer for it";
+    return {};
+}
+
+std::string openSpriteMessage(const std::string& validation, Rule rule) {
+    if (rule == Rule::GeneralizedWinding) return {};
+    return "the sprite was baked from a mesh that bounds no solid (" + validation + "): its " + toString(rule) +
+           " answers count crossings as for a surface; the generalized winding number answers for it "
+           "(--rule generalized-winding)";
+}
+
+void requireVolume(const MeshReport& report, const std::string& meshName) {
+    if (!report.flat()) return;
+    const std::string who = meshName.empty() ? std::string("mesh") : meshName;
+    std::string axes;
+    for (int a = 0; a < 3; ++a)
+        if (!(report.bounds.hi[a] > report.bounds.lo[a])) axes += std::string(axes.empty() ? "" : " and ") + "xyz"[a];
+    throw InvalidMesh(who + " is flat (no extent along " + axes +
+                      "): it bounds no volume, so no point is inside it by any rule and nothing is baked or written; "
+                      "its generalized winding number still measures points off the sheet (between -1/2 and 1/2)");
+}
+
+void requireInsideDefined(const MeshReport& report, const std::string& meshName, Rule rule) {
+    requireUsable(report, meshName);
+    const std::string message = openMeshMessage(report, meshName, rule);
+    if (!message.empty()) throw InvalidMesh(message);
 }
 
 std::string insideWarning(const MeshReport& report, Rule rule) {

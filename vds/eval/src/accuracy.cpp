@@ -123,6 +123,7 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
     };
     const MeshReport validation = validateMesh(mesh);
     requireInsideDefined(validation, mesh.name, options.rule);
+    requireVolume(validation, mesh.name);
     EvalReport report;
     report.mesh = mesh.name;
     report.triangles = mesh.triangles.size();

@@ -193,6 +193,7 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
     const bool gwn = options.rule == Rule::GeneralizedWinding;
     const MeshReport validation = validateMesh(mesh);
     requireInsideDefined(validation, options.meshName, gwn ? Rule::GeneralizedWinding : Rule::Winding);
+    requireVolume(validation, options.meshName);
     const bool voxels = !gwn || validation.closed(); // the voxel builders need a closed mesh
     if (options.resolutions.empty()) throw InvalidArgument("compare needs at least one resolution");
     for (std::uint32_t r : options.resolutions)

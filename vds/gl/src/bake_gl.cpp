@@ -66,6 +66,7 @@ ValidatedMesh validateForBake(MeshView mesh, const BakeOptions& options, GlPhase
     ValidatedMesh v;
     v.report = validateMesh(mesh);
     requireUsable(v.report, options.sourceName);
+    requireVolume(v.report, options.sourceName);
     const Axis axis = options.axis ? *options.axis : chooseViewAxis(mesh, options.resolution).axis;
     v.grid = makeGrid(v.report.bounds, axis, options.resolution);
     return v;

@@ -86,6 +86,9 @@ struct MeshReport {
     bool oriented() const { return closed() && inconsistentEdges == 0; }
     /// True when every edge is used by at most two triangles.
     bool manifold() const { return nonManifoldEdges == 0; }
+    /// True when the box of the mesh has no extent along some axis: a flat
+    /// sheet, which bounds no volume (nothing is inside it by any rule).
+    bool flat() const;
     /// True when nothing at all would stop a bake (finite, non-empty, valid indices).
     bool usable() const { return triangleCount > 0 && nonFiniteVertices == 0 && badIndices == 0; }
     /// One line, e.g. "closed, 5856 triangles, 2930 vertices" or "open (12
@@ -110,6 +113,19 @@ void requireUsable(const MeshReport& report, const std::string& meshName);
 /// at fault and their counts, and says what still answers: a sprite, whose
 /// parity or winding rule classifies points of any usable mesh.
 void requireInsideDefined(const MeshReport& report, const std::string& meshName, Rule rule);
+/// The one wording (CLI, Python, C++) for a mesh whose inside `rule` does
+/// not define (open; or inconsistently oriented, for the winding rule):
+/// what the mesh is, the rule that answers for it (generalized-winding),
+/// and what answering anyway (--allow-open) gives. Empty where `rule`
+/// defines inside.
+std::string openMeshMessage(const MeshReport& report, const std::string& meshName, Rule rule);
+/// The same for a sprite baked from such a mesh (its `Sprite::validation`
+/// summary), asked by `rule`; empty for Rule::GeneralizedWinding.
+std::string openSpriteMessage(const std::string& validation, Rule rule);
+/// Throws `InvalidMesh` with the one wording for a flat mesh (`flat()`):
+/// it bounds no volume, what can still be asked of it. Every command that
+/// needs a volume (bake, classify, voxelize, compare) calls it first.
+void requireVolume(const MeshReport& report, const std::string& meshName);
 
 /// What a caller should warn about in a mesh that `requireInsideDefined`
 /// accepts for `rule`: non-manifold edges (named with their count) and, for

@@ -83,7 +83,11 @@
 //     `summary()` says it in one line. `requireUsable(report, name)` and
 //     `requireInsideDefined(report, name, rule)` throw InvalidMesh where a
 //     mesh cannot be used or its inside is not defined by a rule;
-//     `insideWarning(report, rule)` is the one-line warning otherwise.
+//     `insideWarning(report, rule)` is the one-line warning otherwise;
+//     `openMeshMessage(report, name, rule)` and `openSpriteMessage` are the
+//     one wording for a mesh or sprite that bounds no solid by a rule;
+//     `flat()` / `requireVolume(report, name)` the one for a flat sheet,
+//     which bounds no volume (bake, classify, voxelize, compare refuse it).
 //   Box meshBounds(mesh)    the axis-aligned bounds.
 //   loadPoints(path) / parsePoints(data, size, PointFormat, name)
 //     points from text, PLY vertices or .npy.
