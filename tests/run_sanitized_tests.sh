@@ -11,10 +11,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-# Leaks inside the GL driver (Mesa, LLVM, glvnd) are not ours: suppressed by
-# library name only (tests/sanitize/lsan.supp). Set before the build, which
-# runs each test program to list its tests.
-export LSAN_OPTIONS="suppressions=$PWD/tests/sanitize/lsan.supp:print_suppressions=0"
+# No leak suppressions: GL tests keep the driver loaded (tests/CMakeLists.txt),
+# and then neither our code nor Mesa's leaks. Set before the build, which runs
+# each test program to list its tests.
 export ASAN_OPTIONS="detect_leaks=1:check_initialization_order=1:strict_init_order=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # -O1 with the Debug flags (asserts stay on): at -O0 every glm vector

@@ -181,9 +181,8 @@ GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints) : bat
 GpuClassifier::~GpuClassifier() = default;
 
 GpuClassifier::GpuClassifier(GpuClassifier&& o) noexcept
-    : columns_(std::move(o.columns_)), texture_(std::move(o.texture_)), maxBlock_(o.maxBlock_),
-      maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)), capacity_(std::exchange(o.capacity_, 0)),
-      batch_(o.batch_) {}
+    : batch_(o.batch_), columns_(std::move(o.columns_)), texture_(std::move(o.texture_)), maxBlock_(o.maxBlock_),
+      maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)), capacity_(std::exchange(o.capacity_, 0)) {}
 
 GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
     if (this != &o) {
