@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 # No leak suppressions: GL tests keep the driver loaded (tests/CMakeLists.txt),
-# and then neither our code nor Mesa's leaks. Set before the build, which runs
+# and nothing then leaks. Set before the build, which runs
 # each test program to list its tests.
 export ASAN_OPTIONS="detect_leaks=1:check_initialization_order=1:strict_init_order=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
