@@ -1,6 +1,6 @@
 # Turns shader files into a C++ table (see VdsEmbedShaders.cmake). Script mode:
 # cmake -DSHADER_DIR=... -DFILES="a;b" -DNAMESPACE=ns -DSYMBOL=name -DOUTPUT=... -P embed_shaders.cmake
-set(out "// Generated from shaders/ by cmake/embed_shaders.cmake. Do not edit.\n")
+set(out "// Generated from shader files by vds's embed_shaders.cmake. Do not edit.\n")
 string(APPEND out "#include <cstddef>\n#include <vds/gl/shader.h>\nnamespace ${NAMESPACE} {\nnamespace {\n")
 set(entries "")
 set(i 0)

@@ -3,10 +3,13 @@
 # builds (Release, tests on) into build-tests/, runs every test with ctest.
 # GL tests run on a real headless context (llvmpipe without a GPU); a missing
 # GL fails them rather than skipping (set VDS_REQUIRE_GL=0 to allow skips).
+# ccache is used where it is installed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install-deps.sh
-cmake -S . -B build-tests -G Ninja -DCMAKE_BUILD_TYPE=Release -DVDS_BUILD_TESTS=ON
+launcher=()
+if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+cmake -S . -B build-tests -G Ninja -DCMAKE_BUILD_TYPE=Release -DVDS_BUILD_TESTS=ON "${launcher[@]}"
 cmake --build build-tests -j "$(nproc)"
 export VDS_REQUIRE_GL="${VDS_REQUIRE_GL:-1}"
 ctest --test-dir build-tests --output-on-failure -j "$(nproc)" --timeout 600

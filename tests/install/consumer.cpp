@@ -2,7 +2,9 @@
 // bakes a unit cube on the CPU, classifies points through the one contract
 // (the sprite, the exact and the certified classifier, each a
 // vds::Classifier), sweeps an occupancy grid, and checks every answer
-// against the cube itself. Exit 0 when every answer is right.
+// against the cube itself. It names glm's colour components (r, g, b): the
+// library's own GLM settings do not reach its users. Exit 0 when every
+// answer is right.
 #include <cstdio>
 #include <vector>
 
@@ -43,6 +45,8 @@ int main() {
     std::size_t inside = 0;
     for (auto c : cells) inside += c;
     wrong += inside == 1000 ? 0 : 1; // x, y, z in 0.05 .. 0.95: 10 cells each way
+    const glm::vec3 colour(1.0f, 0.5f, 0.25f);
+    wrong += colour.r == 1.0f && colour.g == 0.5f && colour.b == 0.25f ? 0 : 1;
     std::printf("%zu points by 3 methods and a %zu-cell grid, %zu wrong answers\n", points.size(), cells.size(), wrong);
     return wrong == 0 ? 0 : 1;
 }

@@ -233,18 +233,25 @@ TEST_F(Cli, EveryCommandHasHelp) {
     EXPECT_NE(none.output.find("usage: vds"), std::string::npos) << none.output;
 }
 
-// The sample and the benchmark read their command lines like the tool:
-// help exits 0, a wrong command line 2 with one line.
-TEST_F(Cli, SampleAndBenchmarkCommandLines) {
-    std::vector<std::string> programs = {VDS_CLIP};
-#ifdef VDS_EXACT_BENCH
-    programs.push_back(VDS_EXACT_BENCH);
-#endif
+#if defined(VDS_CLIP) || defined(VDS_EXACT_BENCH)
+// The sample and the benchmark (those built) read their command lines like
+// the tool: help exits 0, a wrong command line 2 with one line.
+void expectToolCommandLines(const std::vector<std::string>& programs, const std::vector<std::string>& bad) {
     for (const std::string& program : programs) {
         const Result r = run(program + " --help");
         EXPECT_EQ(r.code, 0) << program << ": " << r.output;
         EXPECT_NE(r.output.find("usage: vds_"), std::string::npos) << r.output;
     }
+    for (const std::string& command : bad) {
+        const Result r = run(command);
+        EXPECT_EQ(r.code, 2) << command << ": " << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << command << ": " << r.output;
+    }
+}
+#endif
+
+#ifdef VDS_CLIP
+TEST_F(Cli, SampleCommandLines) {
     const std::string mesh = p("box.obj"), clip = mesh + " --clip a.vds -o x.png";
     std::vector<std::string> bad;
     for (const std::string& args : std::vector<std::string>{
@@ -252,16 +259,18 @@ TEST_F(Cli, SampleAndBenchmarkCommandLines) {
              clip + " --size=abc", clip + " --view w", clip + " --rule odd", mesh + " " + clip,
              mesh + " -o x.png --clip 1 --clip 2 --clip 3 --clip 4 --clip 5 --clip 6 --clip 7 --clip 8 --clip 9"})
         bad.push_back(std::string(VDS_CLIP) + " " + args);
+    expectToolCommandLines({VDS_CLIP}, bad);
+}
+#endif
+
 #ifdef VDS_EXACT_BENCH
+TEST_F(Cli, BenchmarkCommandLines) {
+    std::vector<std::string> bad;
     for (const char* args : {"--points 0", "--sample=-1", "--points abc", "--bogus"})
         bad.push_back(std::string(VDS_EXACT_BENCH) + " " + args);
-#endif
-    for (const std::string& command : bad) {
-        const Result r = run(command);
-        EXPECT_EQ(r.code, 2) << command << ": " << r.output;
-        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << command << ": " << r.output;
-    }
+    expectToolCommandLines({VDS_EXACT_BENCH}, bad);
 }
+#endif
 
 // Defaults in the help are the library's option structs' own, and the
 // choices are the enums' names.
@@ -432,6 +441,7 @@ TEST_F(Cli, NoGlGivesAClearErrorAndTheCpuBakerStillWorks) {
     EXPECT_EQ(readFile(dir / "l.txt"), "1\n1\n0\n0\n0\n1\n");
 }
 
+#ifdef VDS_CLIP
 // The sample's picture: a thin plate facing the camera, clipped by a sphere
 // sprite through its middle. Pixels whose plate point lies inside the sphere
 // (by more than two texels) must show the background; those outside, the plate.
@@ -468,6 +478,7 @@ TEST_F(Cli, ClipSampleRemovesExactlyThePixelsInsideTheSprite) {
     // change there (max 255) but the mean stays small.
     EXPECT_TRUE(vds::test::imageMatchesReference(image, VDS_TEST_DATA "/clip-plate-sphere.png", 255, 1.0));
 }
+#endif
 
 } // namespace
 
