@@ -277,6 +277,7 @@ struct SceneRenderer::Impl {
     int layerCount = 0;
     std::uint32_t peeledWidth = 0, peeledHeight = 0;
     bool peelStale = true; // a solid moved since the last peel
+    std::optional<Target> window; // drawTo's picture, blitted to its framebuffer
 
     void buildPrograms();
     void uploadModel();
@@ -672,7 +673,14 @@ void SceneRenderer::drawTo(unsigned framebuffer, std::uint32_t width, std::uint3
     Impl& d = *impl_;
     d.gl->requireCurrent("SceneRenderer::drawTo");
     d.prepare(width, height, false);
-    d.draw(framebuffer, width, height);
+    // Drawn offscreen with a 32-bit float depth, then copied: the exact
+    // lookup matches fragments to peeled layers by depth, which a window's
+    // 24-bit depth buffer would round (llvmpipe rounds gl_FragCoord.z to it).
+    if (!d.window || d.window->width != width || d.window->height != height) d.window = makeTarget(width, height);
+    d.draw(d.window->fbo.id(), width, height);
+    glBlitNamedFramebuffer(d.window->fbo.id(), framebuffer, 0, 0, GLint(width), GLint(height), 0, 0, GLint(width),
+                           GLint(height), GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glUseProgram(0);
     checkGl("drawing the scene");
 }

@@ -99,7 +99,7 @@ public:
     /// bounding sphere across the shorter side (a square picture is render(size)'s).
     eval::Image render(std::uint32_t width, std::uint32_t height);
     /// Draws the scene into `framebuffer` (0: the window's) at `width` x
-    /// `height`, for a window's frame loop: the context must be current; the
+    /// `height` (offscreen, then copied), for a window's frame loop: the context must be current; the
     /// exact lookup peels again only when a solid moved or the size changed.
     void drawTo(unsigned framebuffer, std::uint32_t width, std::uint32_t height);
     /// The camera of a `width` x `height` picture: world -> clip space.
