@@ -156,6 +156,7 @@ vds::samples::Scene buildScene(const Options& o) {
             scene.solids.push_back({"lens", uvSphere(glm::vec3(0.0f), 0.42f, 24), {}, lensPath(0.0f), Role::Lens,
                                     Style::XRay});
             scene.baseStyle = Style::Gouraud;
+            scene.viewDirection = {1.0f, 0.45f, 0.35f}; // the lens scene's
         }
         if (!o.lens.empty()) {
             scene.solids.push_back({o.lens, vds::loadMesh(o.lens), {}, glm::mat4(1.0f), Role::Lens, Style::XRay});
