@@ -13,8 +13,8 @@
 // Mouse: left-drag moves the lens in the view plane, right-drag the clip
 // solid; the scroll wheel scales the solid dragged last. Keys: 1-5 the
 // inside test, B the outside style, L the lens style, K keep/cut, C union/
-// intersection, R reset, P screenshot, Q or Escape quit. The frame time is
-// in the window's title.
+// intersection, R reset, P screenshot, Q or Escape quit. The inside test and
+// the frame time are written at the top left (not in screenshots) and in the title.
 //
 // --script FILE drives the same handlers without a person, one command a line:
 //   key K                  a key (a letter, a digit, or escape)
@@ -28,6 +28,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -39,6 +40,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <GL/gl.h>
+#include <GL/glext.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
 
@@ -170,6 +172,46 @@ vds::samples::Scene buildScene(const Options& o) {
     return scene;
 }
 
+// A 3 x 5 pixel font for the overlay: five rows of three bits, top row first.
+int glyph(char c) {
+    static const std::pair<char, const char*> font[] = {
+        {'0', "111101101101111"}, {'1', "010110010010111"}, {'2', "111001111100111"}, {'3', "111001111001111"},
+        {'4', "101101111001001"}, {'5', "111100111001111"}, {'6', "111100111101111"}, {'7', "111001001001001"},
+        {'8', "111101111101111"}, {'9', "111101111001111"}, {'.', "000000000000010"}, {'-', "000000111000000"},
+        {'a', "000011101101011"}, {'c', "000111100100111"}, {'d', "001001111101111"}, {'e', "000111111100111"},
+        {'i', "010000010010010"}, {'l', "110010010010111"}, {'m', "000111111101101"}, {'o', "000111101101111"},
+        {'p', "000111101111100"}, {'s', "000011110011110"}, {'t', "010111010010011"}, {'v', "000101101101010"},
+        {'x', "000101010101101"}};
+    for (const auto& [ch, rows] : font)
+        if (ch == c) {
+            int bits = 0;
+            for (int k = 0; k < 15; ++k) bits = bits << 1 | (rows[k] == '1');
+            return bits;
+        }
+    return 0;
+}
+
+// Writes `text` at the window's top left: each font pixel a scissored clear
+// (no program, no buffers), dark on a light box, `scale` pixels a font pixel.
+void drawOverlay(const std::string& text, int height, int scale) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glEnable(GL_SCISSOR_TEST);
+    const int left = 2 * scale, top = height - 2 * scale;
+    glScissor(left - scale, top - 6 * scale, (int(text.size()) * 4 + 1) * scale, 7 * scale);
+    glClearColor(0.93f, 0.93f, 0.90f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glClearColor(0.10f, 0.10f, 0.12f, 1.0f);
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const int bits = glyph(text[i]);
+        for (int k = 0; k < 15; ++k)
+            if (bits >> (14 - k) & 1) {
+                glScissor(left + (int(i) * 4 + k % 3) * scale, top - (k / 3 + 1) * scale, scale, scale);
+                glClear(GL_COLOR_BUFFER_BIT);
+            }
+    }
+    glDisable(GL_SCISSOR_TEST);
+}
+
 class Viewer {
 public:
     Viewer(GLFWwindow* window, const vds::samples::Scene& scene, Lookup lookup, std::uint32_t resolution)
@@ -267,8 +309,9 @@ public:
         renderer_->place(active_, solid.placement);
     }
 
-    // Draws a frame into the window's back buffer; writes a pending screenshot.
-    void frame() {
+    // Draws a frame into the window's back buffer, writes a pending
+    // screenshot (the scene only), then the overlay: inside test and frame time.
+    void frame(double milliseconds) {
         int w = 0, h = 0;
         glfwGetFramebufferSize(window_, &w, &h);
         if (w <= 0 || h <= 0) return;
@@ -285,6 +328,9 @@ public:
             std::printf("wrote %s: %dx%d, %s\n", screenshot_.c_str(), w, h, vds::samples::toString(lookup_));
             screenshot_.clear();
         }
+        char text[64];
+        std::snprintf(text, sizeof text, "%s %.1f ms", vds::samples::toString(lookup_), milliseconds);
+        drawOverlay(text, h, h >= 400 ? 3 : 2);
     }
 
     void screenshotNextFrame(const std::string& path) { screenshot_ = path; }
@@ -320,6 +366,20 @@ private:
 
 std::string glfwProblem;
 
+// Runs a handler from a GLFW callback: an exception must not unwind through
+// GLFW's C frames, so it is kept, the window closed, and rethrown by the loop.
+template <typename F>
+void guarded(GLFWwindow* window, F&& handler) {
+    auto* failure = static_cast<std::exception_ptr*>(glfwGetWindowUserPointer(window));
+    try {
+        handler();
+    } catch (...) {
+        if (!*failure) *failure = std::current_exception();
+        glfwSetWindowShouldClose(window, GLFW_TRUE);
+    }
+}
+Viewer* theViewer = nullptr; // the one window's viewer, for the callbacks
+
 int run(const Options& o) {
     const std::vector<Command> script = o.script.empty() ? std::vector<Command>{} : readScript(o.script);
     const vds::samples::Scene scene = buildScene(o);
@@ -340,25 +400,25 @@ int run(const Options& o) {
     glfwMakeContextCurrent(window);
     glfwSwapInterval(script.empty() ? 1 : 0);
 
-    int status = 0;
     {
         Viewer viewer(window, scene, lookup, o.resolution);
-        glfwSetWindowUserPointer(window, &viewer);
+        std::exception_ptr failure;
+        theViewer = &viewer;
+        glfwSetWindowUserPointer(window, &failure);
         glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
-            if (action == GLFW_PRESS) static_cast<Viewer*>(glfwGetWindowUserPointer(w))->key(key);
+            if (action == GLFW_PRESS) guarded(w, [&] { theViewer->key(key); });
         });
         glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
-            auto* v = static_cast<Viewer*>(glfwGetWindowUserPointer(w));
             double x = 0, y = 0;
             glfwGetCursorPos(w, &x, &y);
-            if (action == GLFW_PRESS) v->press(button, x, y);
-            else v->release();
+            if (action == GLFW_PRESS) guarded(w, [&] { theViewer->press(button, x, y); });
+            else theViewer->release();
         });
         glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
-            static_cast<Viewer*>(glfwGetWindowUserPointer(w))->move(x, y);
+            guarded(w, [&] { theViewer->move(x, y); });
         });
         glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
-            static_cast<Viewer*>(glfwGetWindowUserPointer(w))->scroll(dy);
+            guarded(w, [&] { theViewer->scroll(dy); });
         });
         std::printf("vds_viewer: GL %s, %s; keys 1-5 inside test, B/L styles, K keep, C combine, R reset, Q quit\n",
                     viewer.gl().info().version.c_str(), viewer.gl().info().renderer.c_str());
@@ -368,6 +428,7 @@ int run(const Options& o) {
         std::size_t next = 0;
         int waiting = 0;
         auto last = Clock::now();
+        double shownMs = 0.0; // median of the last 10 frames
         while (!glfwWindowShouldClose(window)) {
             glfwPollEvents();
             if (!o.script.empty() && waiting > 0) --waiting;
@@ -396,7 +457,7 @@ int run(const Options& o) {
                 }
                 if (quit) glfwSetWindowShouldClose(window, GLFW_TRUE);
             }
-            viewer.frame();
+            viewer.frame(shownMs);
             glfwSwapBuffers(window);
             const auto now = Clock::now();
             frameMs.push_back(std::chrono::duration<double, std::milli>(now - last).count());
@@ -404,6 +465,7 @@ int run(const Options& o) {
             if (frameMs.size() % 10 == 0) {
                 std::vector<double> recent(frameMs.end() - 10, frameMs.end());
                 std::sort(recent.begin(), recent.end());
+                shownMs = recent[5];
                 char title[160];
                 std::snprintf(title, sizeof title, "vds_viewer: %s, %.1f ms/frame", vds::samples::toString(viewer.lookup()),
                               recent[5]);
@@ -414,10 +476,15 @@ int run(const Options& o) {
             std::sort(frameMs.begin(), frameMs.end());
             std::printf("vds_viewer: %zu frames, median %.1f ms/frame\n", frameMs.size(), frameMs[frameMs.size() / 2]);
         }
-        glfwSetWindowUserPointer(window, nullptr);
+        glfwSetKeyCallback(window, nullptr);
+        glfwSetMouseButtonCallback(window, nullptr);
+        glfwSetCursorPosCallback(window, nullptr);
+        glfwSetScrollCallback(window, nullptr);
+        theViewer = nullptr;
+        if (failure) std::rethrow_exception(failure);
     } // the viewer's GL objects go while the window's context is still current
     glfwDestroyWindow(window);
-    return status;
+    return 0;
 }
 
 } // namespace
