@@ -142,6 +142,24 @@ TEST_F(Viewer, LensSceneMatchesTheLensSampleThenFollowsTheMouseInAWideWindow) {
     EXPECT_LE(d.share(), kGalleryLimit) << d.pixels << " of " << d.covered;
 }
 
+TEST_F(Viewer, OpensABakedSpriteAndKeepsTheVdsLookupForIt) {
+    const std::string spot = data + "/spot.obj", sprite = p("sphere.vds");
+    const Result bake = run(std::string(VDS_TOOL) + " bake " + data + "/lens.obj -o " + sprite + " --resolution 96 --quiet");
+    ASSERT_EQ(bake.code, 0) << bake.output;
+    const Result clip = run(std::string(VDS_CLIP) + " " + spot + " --clip " + sprite + " -o " + p("clip.png") +
+                            " --size 160 --keep");
+    ASSERT_EQ(clip.code, 0) << clip.output;
+    const std::string s = script("sprite.txt", "key k\nscreenshot " + p("keep.png") + "\nkey 2\nscreenshot " +
+                                                   p("still-vds.png") + "\n");
+    const Result r = run(viewer + " " + spot + " --clip " + sprite + " --size 160x160 --script " + s);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("is a sprite only"), std::string::npos) << r.output; // no voxels without its mesh
+    const Difference keep = difference(png("keep.png"), png("clip.png"));
+    EXPECT_GT(keep.covered, 1000u);
+    EXPECT_LE(keep.share(), kGalleryLimit) << keep.pixels << " of " << keep.covered;
+    EXPECT_EQ(difference(png("still-vds.png"), png("keep.png")).pixels, 0u);
+}
+
 TEST_F(Viewer, BadInputExitsOneWithOneLine) {
     const std::string missing = p("no-such.obj");
     const std::vector<std::pair<std::string, std::string>> cases = {
@@ -149,6 +167,11 @@ TEST_F(Viewer, BadInputExitsOneWithOneLine) {
         {viewer + " --size 640", "--size"},
         {viewer + " --with octree", "--with"},
         {viewer + " --scene lens " + data + "/spot.obj", "--scene"},
+        {viewer + " --clip " + p("a.vds") + " --with solid", "--with vds only"},
+        {viewer + " --size 64x64 --solid " + data + "/spot.obj --solid " + data + "/spot.obj --solid " + data +
+             "/spot.obj --solid " + data + "/spot.obj --solid " + data + "/spot.obj --solid " + data +
+             "/spot.obj --solid " + data + "/spot.obj --solid " + data + "/spot.obj --lens " + data + "/lens.obj",
+         "at most 8 solids"},
         {viewer + " " + missing, "no-such.obj"},
         {viewer + " --script " + p("none.txt"), "none.txt"},
         {viewer + " --script " + script("bad.txt", "key 1\nfly 3\n"), "bad.txt:2: unknown command 'fly'"},
