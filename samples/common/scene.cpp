@@ -101,28 +101,33 @@ struct Camera {
     glm::vec3 towardsViewer;
 };
 
-Camera camera(const Box& box, const Scene& scene) {
+// Orthographic, fitted to the box's bounding sphere along the picture's
+// shorter side (a square picture sees exactly the sphere).
+Camera camera(const Box& box, const Scene& scene, std::uint32_t width, std::uint32_t height) {
     const glm::vec3 centre = 0.5f * (box.lo + box.hi);
     const float radius = 0.5f * glm::length(box.hi - box.lo);
     const glm::vec3 direction = glm::normalize(scene.viewDirection);
     const glm::mat4 lookAt = glm::lookAt(centre + 3.0f * radius * direction, centre, scene.up);
-    const glm::mat4 ortho = glm::ortho(-radius, radius, -radius, radius, 0.5f * radius, 6.0f * radius);
+    const float sx = width >= height ? float(width) / float(height) : 1.0f;
+    const float sy = width >= height ? 1.0f : float(height) / float(width);
+    const glm::mat4 ortho = glm::ortho(-radius * sx, radius * sx, -radius * sy, radius * sy, 0.5f * radius, 6.0f * radius);
     return {ortho * lookAt, direction};
 }
 
 struct Target {
-    std::uint32_t size = 0;
+    std::uint32_t width = 0, height = 0;
     Texture colour, depth;
     Framebuffer fbo;
 };
 
-Target makeTarget(std::uint32_t size) {
+Target makeTarget(std::uint32_t width, std::uint32_t height) {
     Target t;
-    t.size = size;
+    t.width = width;
+    t.height = height;
     t.colour = Texture::create(GL_TEXTURE_2D);
     t.depth = Texture::create(GL_TEXTURE_2D);
-    glTextureStorage2D(t.colour.id(), 1, GL_RGBA8, GLsizei(size), GLsizei(size));
-    glTextureStorage2D(t.depth.id(), 1, GL_DEPTH_COMPONENT32F, GLsizei(size), GLsizei(size));
+    glTextureStorage2D(t.colour.id(), 1, GL_RGBA8, GLsizei(width), GLsizei(height));
+    glTextureStorage2D(t.depth.id(), 1, GL_DEPTH_COMPONENT32F, GLsizei(width), GLsizei(height));
     t.fbo = Framebuffer::create();
     glNamedFramebufferTexture(t.fbo.id(), GL_COLOR_ATTACHMENT0, t.colour.id(), 0);
     glNamedFramebufferTexture(t.fbo.id(), GL_DEPTH_ATTACHMENT, t.depth.id(), 0);
@@ -253,6 +258,7 @@ struct SceneRenderer::Impl {
     Buffer positions, normals, indices;
     VertexArray vao;
     GLsizei indexCount = 0;
+    Box bounds;
     Camera view;
 
     // Per solid, one of:
@@ -269,13 +275,16 @@ struct SceneRenderer::Impl {
     // Exact reference: peeled layers.
     Texture layerDepth, layerMask;
     int layerCount = 0;
-    std::uint32_t peeledSize = 0;
+    std::uint32_t peeledWidth = 0, peeledHeight = 0;
+    bool peelStale = true; // a solid moved since the last peel
+    std::optional<Target> window; // drawTo's picture, blitted to its framebuffer
 
     void buildPrograms();
     void uploadModel();
     void setUniforms(GLuint program);
-    void peelAndClassify(std::uint32_t n);
-    void draw(const Target& target);
+    void peelAndClassify(std::uint32_t width, std::uint32_t height);
+    void prepare(std::uint32_t width, std::uint32_t height, bool alwaysPeel);
+    void draw(GLuint framebuffer, std::uint32_t width, std::uint32_t height);
 };
 
 SceneRenderer::SceneRenderer(const GlContext& gl, const Scene& scene, Lookup lookup, RepresentationSize size)
@@ -333,7 +342,7 @@ SceneRenderer::SceneRenderer(const GlContext& gl, const Scene& scene, Lookup loo
     d.uploadModel();
     d.buildPrograms();
     for (std::size_t i = 0; i < scene.solids.size(); ++i) place(i, scene.solids[i].placement);
-    d.view = camera(meshBounds(scene.model), scene);
+    d.bounds = meshBounds(scene.model);
 }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -418,6 +427,7 @@ void SceneRenderer::place(std::size_t index, const glm::mat4& placement) {
     Impl& d = *impl_;
     if (index >= d.scene.solids.size()) throw InvalidArgument("no solid " + std::to_string(index));
     d.scene.solids[index].placement = placement;
+    d.peelStale = true;
     if (d.lookup == Lookup::Vds) {
         Sprite moved = d.baked[index]; // the placement of the bake, then the solid's: Sprite::transform
         moved.transform(placement);
@@ -493,14 +503,14 @@ void SceneRenderer::Impl::setUniforms(GLuint p) {
 // Peels every depth layer of the model (world position and depth per
 // pixel), classifies each position against each solid exactly, and keeps
 // the layers' depths and masks as 2D array textures.
-void SceneRenderer::Impl::peelAndClassify(std::uint32_t n) {
-    const GLsizei s = GLsizei(n);
+void SceneRenderer::Impl::peelAndClassify(std::uint32_t width, std::uint32_t height) {
+    const GLsizei s = GLsizei(width), sh = GLsizei(height);
     Texture position = Texture::create(GL_TEXTURE_2D), depthColour = Texture::create(GL_TEXTURE_2D),
             depth = Texture::create(GL_TEXTURE_2D), previous = Texture::create(GL_TEXTURE_2D);
-    glTextureStorage2D(position.id(), 1, GL_RGBA32F, s, s);
-    glTextureStorage2D(depthColour.id(), 1, GL_R32F, s, s);
-    glTextureStorage2D(previous.id(), 1, GL_R32F, s, s);
-    glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, s, s);
+    glTextureStorage2D(position.id(), 1, GL_RGBA32F, s, sh);
+    glTextureStorage2D(depthColour.id(), 1, GL_R32F, s, sh);
+    glTextureStorage2D(previous.id(), 1, GL_R32F, s, sh);
+    glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, s, sh);
     nearest(previous);
     Framebuffer fbo = Framebuffer::create();
     glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, position.id(), 0);
@@ -511,12 +521,12 @@ void SceneRenderer::Impl::peelAndClassify(std::uint32_t n) {
     if (glCheckNamedFramebufferStatus(fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw GlError("peeling framebuffer is incomplete");
 
-    const std::size_t pixels = std::size_t(n) * n;
+    const std::size_t pixels = std::size_t(width) * height;
     std::vector<float> depths, layerPositions(pixels * 4);
     std::vector<std::uint32_t> masks;
     Query samples = Query::create(GL_SAMPLES_PASSED);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    glViewport(0, 0, s, s);
+    glViewport(0, 0, s, sh);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDisable(GL_BLEND);
@@ -537,7 +547,7 @@ void SceneRenderer::Impl::peelAndClassify(std::uint32_t n) {
         GLuint passed = 0;
         glGetQueryObjectuiv(samples.id(), GL_QUERY_RESULT, &passed);
         if (passed == 0) break;
-        glCopyImageSubData(depthColour.id(), GL_TEXTURE_2D, 0, 0, 0, 0, previous.id(), GL_TEXTURE_2D, 0, 0, 0, 0, s, s, 1);
+        glCopyImageSubData(depthColour.id(), GL_TEXTURE_2D, 0, 0, 0, 0, previous.id(), GL_TEXTURE_2D, 0, 0, 0, 0, s, sh, 1);
         depths.resize(depths.size() + pixels);
         glGetTextureImage(depthColour.id(), 0, GL_RED, GL_FLOAT, GLsizei(pixels * 4), &depths[depths.size() - pixels]);
         glGetTextureImage(position.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(pixels * 16), layerPositions.data());
@@ -563,29 +573,40 @@ void SceneRenderer::Impl::peelAndClassify(std::uint32_t n) {
         }
         ++layerCount;
     }
-    peeledSize = n;
+    peeledWidth = width;
+    peeledHeight = height;
+    peelStale = false;
     if (layerCount == kMaxLayers) throw InvalidArgument("the model has more than 32 depth layers");
     const GLsizei layers = std::max(layerCount, 1);
     depths.resize(std::size_t(layers) * pixels, 2.0f);
     masks.resize(std::size_t(layers) * pixels, 0u);
     layerDepth = Texture::create(GL_TEXTURE_2D_ARRAY);
     layerMask = Texture::create(GL_TEXTURE_2D_ARRAY);
-    glTextureStorage3D(layerDepth.id(), 1, GL_R32F, s, s, layers);
-    glTextureStorage3D(layerMask.id(), 1, GL_R32UI, s, s, layers);
+    glTextureStorage3D(layerDepth.id(), 1, GL_R32F, s, sh, layers);
+    glTextureStorage3D(layerMask.id(), 1, GL_R32UI, s, sh, layers);
     nearest(layerDepth);
     nearest(layerMask);
-    glTextureSubImage3D(layerDepth.id(), 0, 0, 0, 0, s, s, layers, GL_RED, GL_FLOAT, depths.data());
-    glTextureSubImage3D(layerMask.id(), 0, 0, 0, 0, s, s, layers, GL_RED_INTEGER, GL_UNSIGNED_INT, masks.data());
+    glTextureSubImage3D(layerDepth.id(), 0, 0, 0, 0, s, sh, layers, GL_RED, GL_FLOAT, depths.data());
+    glTextureSubImage3D(layerMask.id(), 0, 0, 0, 0, s, sh, layers, GL_RED_INTEGER, GL_UNSIGNED_INT, masks.data());
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     checkGl("peeling the exact reference");
 }
 
-void SceneRenderer::Impl::draw(const Target& target) {
-    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.id());
-    glViewport(0, 0, GLsizei(target.size), GLsizei(target.size));
+// The camera for this picture size, the exact lookup's layers (peeled again
+// when the size changed or a solid moved, or always), and the uniforms.
+void SceneRenderer::Impl::prepare(std::uint32_t width, std::uint32_t height, bool alwaysPeel) {
+    view = camera(bounds, scene, width, height);
+    if (lookup == Lookup::Exact && (alwaysPeel || peelStale || peeledWidth != width || peeledHeight != height))
+        peelAndClassify(width, height);
+    setUniforms(shading.id());
+}
+
+void SceneRenderer::Impl::draw(GLuint framebuffer, std::uint32_t width, std::uint32_t height) {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(0, 0, GLsizei(width), GLsizei(height));
     const float white[4] = {1, 1, 1, 1}, far = 1.0f;
-    glClearNamedFramebufferfv(target.fbo.id(), GL_COLOR, 0, white);
-    glClearNamedFramebufferfv(target.fbo.id(), GL_DEPTH, 0, &far);
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, white);
+    glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glBindVertexArray(vao.id());
@@ -603,22 +624,23 @@ void SceneRenderer::Impl::draw(const Target& target) {
     glDepthMask(GL_TRUE);
 }
 
-eval::Image SceneRenderer::render(std::uint32_t size) {
+eval::Image SceneRenderer::render(std::uint32_t size) { return render(size, size); }
+
+eval::Image SceneRenderer::render(std::uint32_t width, std::uint32_t height) {
     Impl& d = *impl_;
     d.gl->makeCurrent();
-    if (d.lookup == Lookup::Exact) d.peelAndClassify(size);
-    const Target target = makeTarget(size);
-    d.setUniforms(d.shading.id());
-    d.draw(target);
+    d.prepare(width, height, true);
+    const Target target = makeTarget(width, height);
+    d.draw(target.fbo.id(), width, height);
     checkGl("rendering the scene");
 
-    eval::Image image(size, size);
+    eval::Image image(width, height);
     std::vector<std::uint8_t> pixels(image.rgba.size());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glGetTextureImage(target.colour.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()), pixels.data());
-    const std::size_t row = std::size_t(size) * 4;
-    for (std::uint32_t y = 0; y < size; ++y) // GL rows run bottom to top, PNG rows top to bottom
-        std::memcpy(image.at(0, y), &pixels[(size - 1 - y) * row], row);
+    const std::size_t row = std::size_t(width) * 4;
+    for (std::uint32_t y = 0; y < height; ++y) // GL rows run bottom to top, PNG rows top to bottom
+        std::memcpy(image.at(0, y), &pixels[(height - 1 - y) * row], row);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glUseProgram(0);
     return image;
@@ -627,15 +649,14 @@ eval::Image SceneRenderer::render(std::uint32_t size) {
 double SceneRenderer::frameMilliseconds(std::uint32_t size, int repeats) {
     Impl& d = *impl_;
     d.gl->makeCurrent();
-    if (d.lookup == Lookup::Exact && d.peeledSize != size) d.peelAndClassify(size);
-    const Target target = makeTarget(size);
-    d.setUniforms(d.shading.id());
-    d.draw(target); // warm up: first use compiles state on some drivers
+    d.prepare(size, size, false);
+    const Target target = makeTarget(size, size);
+    d.draw(target.fbo.id(), size, size); // warm up: first use compiles state on some drivers
     Query timer = Query::create(GL_TIME_ELAPSED);
     std::vector<double> ms;
     for (int r = 0; r < std::max(repeats, 1); ++r) {
         glBeginQuery(GL_TIME_ELAPSED, timer.id());
-        d.draw(target);
+        d.draw(target.fbo.id(), size, size);
         glEndQuery(GL_TIME_ELAPSED);
         GLuint64 ns = 0;
         glGetQueryObjectui64v(timer.id(), GL_QUERY_RESULT, &ns);
@@ -647,6 +668,40 @@ double SceneRenderer::frameMilliseconds(std::uint32_t size, int repeats) {
     checkGl("timing the scene");
     return ms[ms.size() / 2];
 }
+
+void SceneRenderer::drawTo(unsigned framebuffer, std::uint32_t width, std::uint32_t height) {
+    Impl& d = *impl_;
+    d.gl->requireCurrent("SceneRenderer::drawTo");
+    d.prepare(width, height, false);
+    // Drawn offscreen with a 32-bit float depth, then copied: the exact
+    // lookup matches fragments to peeled layers by depth, which a window's
+    // 24-bit depth buffer would round (llvmpipe rounds gl_FragCoord.z to it).
+    if (!d.window || d.window->width != width || d.window->height != height) d.window = makeTarget(width, height);
+    d.draw(d.window->fbo.id(), width, height);
+    glBlitNamedFramebuffer(d.window->fbo.id(), framebuffer, 0, 0, GLint(width), GLint(height), 0, 0, GLint(width),
+                           GLint(height), GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glUseProgram(0);
+    checkGl("drawing the scene");
+}
+
+glm::mat4 SceneRenderer::viewProjection(std::uint32_t width, std::uint32_t height) const {
+    return camera(impl_->bounds, impl_->scene, width, height).viewProjection;
+}
+
+void SceneRenderer::setRole(std::size_t index, Role role, Style style) {
+    if (index >= impl_->scene.solids.size()) throw InvalidArgument("no solid " + std::to_string(index));
+    impl_->scene.solids[index].role = role;
+    impl_->scene.solids[index].style = style;
+}
+
+void SceneRenderer::setStyles(Style baseStyle, Combine combineAway, Combine combineTo) {
+    impl_->scene.baseStyle = baseStyle;
+    impl_->scene.combineAway = combineAway;
+    impl_->scene.combineTo = combineTo;
+}
+
+const Scene& SceneRenderer::scene() const { return impl_->scene; }
 
 std::size_t SceneRenderer::memoryBytes() const { return impl_->bytes; }
 

@@ -95,6 +95,21 @@ public:
     void place(std::size_t index, const glm::mat4& placement);
     /// Renders a `size` x `size` picture.
     eval::Image render(std::uint32_t size);
+    /// Renders a `width` x `height` picture; the camera sees the model's
+    /// bounding sphere across the shorter side (a square picture is render(size)'s).
+    eval::Image render(std::uint32_t width, std::uint32_t height);
+    /// Draws the scene into `framebuffer` (0: the window's) at `width` x
+    /// `height` (offscreen, then copied), for a window's frame loop: the context must be current; the
+    /// exact lookup peels again only when a solid moved or the size changed.
+    void drawTo(unsigned framebuffer, std::uint32_t width, std::uint32_t height);
+    /// The camera of a `width` x `height` picture: world -> clip space.
+    glm::mat4 viewProjection(std::uint32_t width, std::uint32_t height) const;
+    /// Changes what solid `index` does (role, style) without re-baking.
+    void setRole(std::size_t index, Role role, Style style);
+    /// Changes the style outside every solid and how clip solids combine.
+    void setStyles(Style baseStyle, Combine combineAway, Combine combineTo);
+    /// The scene with the solids' current placements.
+    const Scene& scene() const;
     /// GPU time of the shading passes of one frame (GL_TIME_ELAPSED), the
     /// median over `repeats` frames, in milliseconds; the exact lookup times
     /// its shading passes only (the CPU classification is not in it).
