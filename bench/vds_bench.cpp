@@ -7,7 +7,7 @@
 // 1. Bake time: the exact CPU baker, fragment lists (to the host, and
 //    straight into a GpuSprite) and depth peeling, in one run, with their
 //    ratios; then the fragment-list bake phase by phase (wall and GPU time).
-//    Meshes: the bundled ones (../shared/meshes, samples/data), a generated
+//    Meshes: bench/meshes (bench/fetch-meshes.sh), samples/data, a generated
 //    torus knot of 230,400 triangles and a UV sphere of 1,002,000.
 // 2. Classification throughput in G points/s: the CPU on 1 and on all
 //    threads; the GPU from host arrays to host arrays (upload, dispatch and
@@ -157,7 +157,7 @@ std::vector<BenchMesh> loadMeshes(const Settings& set) {
     if (files.empty()) {
         std::vector<std::string> dirs;
         if (!set.meshDir.empty()) dirs.push_back(set.meshDir);
-        for (const char* d : {VDS_SHARED_MESHES, "../shared/meshes", "../../shared/meshes", "../../../shared/meshes"})
+        for (const char* d : {VDS_BENCH_MESHES})
             dirs.emplace_back(d);
         for (const auto& dir : dirs)
             if (fs::is_directory(dir)) {
@@ -442,7 +442,7 @@ int main(int argc, char** argv) {
     app.add_option("--points", points, "points classified per mesh (default 10M)");
     app.add_option("--classify-resolution", classifyResolution, "resolution of the sprites classified against (default 2048)");
     app.add_option("--runs", runs, "runs of each timed step; the best is reported (default 2)");
-    app.add_option("--meshes", set.meshDir, "folder of .obj meshes (default ../shared/meshes)");
+    app.add_option("--meshes", set.meshDir, "folder of .obj meshes (default bench/meshes: bench/fetch-meshes.sh fills it)");
     app.add_flag("--no-cpu-bake", noCpuBake, "skip the exact CPU baker");
     app.add_flag("--no-peel", noPeel, "skip depth peeling");
     auto* bakeFlag = app.add_flag("--bake-only", bakeOnly, "bake tables only");
