@@ -67,7 +67,7 @@ for header, rows in tables():
     if "cpu / lists" in header:
         bundled = lambda r: r[0].endswith(".obj")
         same = all(r[header.index("lists == peel")] == "yes" for r in rows)
-        print("bake at 1024 on the bundled meshes: lists %s faster than the CPU baker (%s in CPU time), "
+        print("bake at 1024 on the six public meshes: lists %s the CPU baker's speed (%s in CPU time), "
               "%s faster than peeling; layers bit-identical to peeling's: %s"
               % (span(column(header, rows, "cpu / lists", bundled), unit="x"),
                  span(column(header, rows, "(CPU time)", bundled), unit="x"),
