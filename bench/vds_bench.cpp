@@ -292,7 +292,7 @@ void bakeTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchM
                     what, faster, ratios.size(), *lo, *hi, std::exp(logSum / double(ratios.size())));
     };
     if (!bundledRatios.empty()) {
-        std::puts("\nFragment lists vs the CPU baker on the bundled meshes, this run:");
+        std::puts("\nFragment lists vs the CPU baker on the mesh files, this run:");
         summary("wall time", bundledRatios);
         summary("process CPU time", bundledCpuRatios);
     }
@@ -432,13 +432,13 @@ int main(int argc, char** argv) {
     std::uint32_t classifyResolution = 0;
     unsigned runs = 0;
     auto* quickFlag = app.add_flag("--quick", quick,
-                                   "bundled meshes at 512, knot at 512, sphere at 1024, 1M points, one run each (about a "
+                                   "mesh files at 512, knot at 512, sphere at 1024, 1M points, one run each (about a "
                                    "minute on llvmpipe)");
     app.add_flag("--full", full,
-                 "bundled meshes at 512, 1024 and 2048, knot and sphere at 1024 and 2048, 100M points, best of 3 "
+                 "mesh files at 512, 1024 and 2048, knot and sphere at 1024 and 2048, 100M points, best of 3 "
                  "(for GPUs)")
         ->excludes(quickFlag);
-    app.add_option("--resolutions", resolutions, "bake resolutions of the bundled meshes (default 1024)")->delimiter(',');
+    app.add_option("--resolutions", resolutions, "bake resolutions of the mesh files (default 1024)")->delimiter(',');
     app.add_option("--points", points, "points classified per mesh (default 10M)");
     app.add_option("--classify-resolution", classifyResolution, "resolution of the sprites classified against (default 2048)");
     app.add_option("--runs", runs, "runs of each timed step; the best is reported (default 2)");
@@ -447,7 +447,7 @@ int main(int argc, char** argv) {
     app.add_flag("--no-peel", noPeel, "skip depth peeling");
     auto* bakeFlag = app.add_flag("--bake-only", bakeOnly, "bake tables only");
     app.add_flag("--classify-only", classifyOnly, "classification table only")->excludes(bakeFlag);
-    app.add_option("meshes", set.meshFiles, "mesh files instead of the bundled and generated meshes");
+    app.add_option("meshes", set.meshFiles, "mesh files instead of those of bench/meshes and the generated meshes");
     CLI11_PARSE(app, argc, argv);
 
     if (quick) {
