@@ -2,8 +2,8 @@
 # Downloads the six public meshes the benchmarks and docs name into
 # bench/meshes/ (or DIR), from Alec Jacobson's collection of common 3D test
 # models (github.com/alecjacobson/common-3d-test-models, a fixed commit), and
-# checks each against the SHA-256 of the copy the documented figures were
-# measured on. Needs curl or wget; not run by the tests (they build their
+# checks each against its SHA-256 at that commit, which is also that of the
+# copy the documented figures were measured on. Needs curl or wget; not run by the tests (they build their
 # meshes in code).
 #   bench/fetch-meshes.sh [DIR]
 #
@@ -44,6 +44,6 @@ for name in spot.obj fandisk.obj rocker-arm.obj stanford-bunny.obj teapot.obj su
   if [ "$(sha256sum < "$target" | cut -d' ' -f1)" = "${sha256[$name]}" ]; then
     echo "fetch-meshes: $target"
   else
-    echo "fetch-meshes: $target differs from the copy the documented figures were measured on (SHA-256)" >&2
+    echo "fetch-meshes: $target differs from the file at the pinned commit (SHA-256): delete it and run again" >&2
   fi
 done
