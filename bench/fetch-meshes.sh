@@ -35,6 +35,7 @@ else
   exit 1
 fi
 mkdir -p "$dir"
+bad=0
 for name in spot.obj fandisk.obj rocker-arm.obj stanford-bunny.obj teapot.obj suzanne.obj; do
   target="$dir/$name"
   if [ ! -s "$target" ]; then
@@ -45,5 +46,7 @@ for name in spot.obj fandisk.obj rocker-arm.obj stanford-bunny.obj teapot.obj su
     echo "fetch-meshes: $target"
   else
     echo "fetch-meshes: $target differs from the file at the pinned commit (SHA-256): delete it and run again" >&2
+    bad=1
   fi
 done
+exit "$bad"
