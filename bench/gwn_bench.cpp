@@ -175,7 +175,7 @@ int main(int argc, char** argv) {
     unsigned threads = 1;
     bool noGenerated = false;
     std::string only;
-    app.add_option("meshes", meshes, "meshes (default: the bunny, teapot and suzanne of ../shared/meshes)");
+    app.add_option("meshes", meshes, "meshes (default: the bunny, teapot and suzanne of bench/meshes, from bench/fetch-meshes.sh)");
     app.add_option("--points", pointCount, "uniform points in the padded box");
     app.add_option("--resolution", resolution, "sprite resolution");
     app.add_option("--dims", dims, "occupancy grid cells along each side");
@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     if (meshes.empty())
         for (const char* name : {"stanford-bunny", "teapot", "suzanne"})
-            meshes.push_back(std::string(VDS_SHARED_MESHES) + "/" + name + ".obj");
+            meshes.push_back(std::string(VDS_BENCH_MESHES) + "/" + name + ".obj");
     try {
         std::vector<std::pair<std::string, vds::TriangleMesh>> inputs;
         for (const std::string& path : meshes) {

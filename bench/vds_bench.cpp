@@ -7,7 +7,7 @@
 // 1. Bake time: the exact CPU baker, fragment lists (to the host, and
 //    straight into a GpuSprite) and depth peeling, in one run, with their
 //    ratios; then the fragment-list bake phase by phase (wall and GPU time).
-//    Meshes: the bundled ones (../shared/meshes, samples/data), a generated
+//    Meshes: bench/meshes (bench/fetch-meshes.sh), samples/data, a generated
 //    torus knot of 230,400 triangles and a UV sphere of 1,002,000.
 // 2. Classification throughput in G points/s: the CPU on 1 and on all
 //    threads; the GPU from host arrays to host arrays (upload, dispatch and
@@ -157,7 +157,7 @@ std::vector<BenchMesh> loadMeshes(const Settings& set) {
     if (files.empty()) {
         std::vector<std::string> dirs;
         if (!set.meshDir.empty()) dirs.push_back(set.meshDir);
-        for (const char* d : {VDS_SHARED_MESHES, "../shared/meshes", "../../shared/meshes", "../../../shared/meshes"})
+        for (const char* d : {VDS_BENCH_MESHES})
             dirs.emplace_back(d);
         for (const auto& dir : dirs)
             if (fs::is_directory(dir)) {
@@ -292,7 +292,7 @@ void bakeTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchM
                     what, faster, ratios.size(), *lo, *hi, std::exp(logSum / double(ratios.size())));
     };
     if (!bundledRatios.empty()) {
-        std::puts("\nFragment lists vs the CPU baker on the bundled meshes, this run:");
+        std::puts("\nFragment lists vs the CPU baker on the mesh files, this run:");
         summary("wall time", bundledRatios);
         summary("process CPU time", bundledCpuRatios);
     }
@@ -432,22 +432,22 @@ int main(int argc, char** argv) {
     std::uint32_t classifyResolution = 0;
     unsigned runs = 0;
     auto* quickFlag = app.add_flag("--quick", quick,
-                                   "bundled meshes at 512, knot at 512, sphere at 1024, 1M points, one run each (about a "
+                                   "mesh files at 512, knot at 512, sphere at 1024, 1M points, one run each (about a "
                                    "minute on llvmpipe)");
     app.add_flag("--full", full,
-                 "bundled meshes at 512, 1024 and 2048, knot and sphere at 1024 and 2048, 100M points, best of 3 "
+                 "mesh files at 512, 1024 and 2048, knot and sphere at 1024 and 2048, 100M points, best of 3 "
                  "(for GPUs)")
         ->excludes(quickFlag);
-    app.add_option("--resolutions", resolutions, "bake resolutions of the bundled meshes (default 1024)")->delimiter(',');
+    app.add_option("--resolutions", resolutions, "bake resolutions of the mesh files (default 1024)")->delimiter(',');
     app.add_option("--points", points, "points classified per mesh (default 10M)");
     app.add_option("--classify-resolution", classifyResolution, "resolution of the sprites classified against (default 2048)");
     app.add_option("--runs", runs, "runs of each timed step; the best is reported (default 2)");
-    app.add_option("--meshes", set.meshDir, "folder of .obj meshes (default ../shared/meshes)");
+    app.add_option("--meshes", set.meshDir, "folder of .obj meshes (default bench/meshes: bench/fetch-meshes.sh fills it)");
     app.add_flag("--no-cpu-bake", noCpuBake, "skip the exact CPU baker");
     app.add_flag("--no-peel", noPeel, "skip depth peeling");
     auto* bakeFlag = app.add_flag("--bake-only", bakeOnly, "bake tables only");
     app.add_flag("--classify-only", classifyOnly, "classification table only")->excludes(bakeFlag);
-    app.add_option("meshes", set.meshFiles, "mesh files instead of the bundled and generated meshes");
+    app.add_option("meshes", set.meshFiles, "mesh files instead of those of bench/meshes and the generated meshes");
     CLI11_PARSE(app, argc, argv);
 
     if (quick) {

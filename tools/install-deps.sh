@@ -11,6 +11,7 @@ packages=(
   libglm-dev libopenexr-dev libpng-dev libgtest-dev
   libcli11-dev nlohmann-json3-dev     # command lines, JSON reports
   python3-dev pybind11-dev python3-numpy python3-pytest   # the Python module vds and its tests
+  python3-pip python3-venv                                # pip install . (pyproject.toml), its test
   python3-dask python3-distributed                        # vds.dask: classification on a Dask cluster
 )
 if [ "${1:-}" = "--only" ]; then shift; packages=("$@"); fi

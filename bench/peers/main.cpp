@@ -387,7 +387,7 @@ int main(int argc, char** argv) {
     app.add_option("--mesh-dir", meshDir, "where spot.obj, fandisk.obj and rocker-arm.obj are read from")
         ->capture_default_str();
     app.add_flag("!--no-generated", generated, "leave out the generated boxes, tori and spheres");
-    app.add_option("meshes", meshPaths, "closed meshes to use instead of the bundled ones");
+    app.add_option("meshes", meshPaths, "closed meshes to use instead of those of bench/meshes");
     CLI11_PARSE(app, argc, argv);
     if (full)
         for (std::uint32_t n : {1024u})
@@ -414,7 +414,9 @@ int main(int argc, char** argv) {
 
         std::vector<Case> cases;
         if (meshPaths.empty()) meshPaths = defaultMeshPaths(meshDir);
-        if (meshPaths.empty()) std::printf("no bundled meshes in %s: generated meshes only\n", meshDir.c_str());
+        if (meshPaths.empty())
+            std::printf("no meshes in %s (bench/fetch-meshes.sh downloads them): generated meshes only\n",
+                        meshDir.c_str());
         for (const auto& path : meshPaths) cases.push_back({fs::path(path).filename().string(), vds::loadMesh(path)});
         if (generated)
             for (auto& c : generatedCases()) cases.push_back(std::move(c));
