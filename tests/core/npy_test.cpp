@@ -57,6 +57,15 @@ TEST_F(NpyTest, PointsRoundTripAsFloat32AndFloat64InEitherByteOrder) {
     write("f8be.npy", npy("{'descr': '>f8', 'fortran_order': False, 'shape': (2, 3), }", big));
     points = npyPoints(readNpy(path("f8be.npy")), "f8be");
     EXPECT_EQ(points[1], glm::vec3(0.0f, 1e-3f, -7.0f));
+
+    // Fortran order (numpy.asfortranarray): the x column, then y, then z.
+    const float columns[6] = {1.5f, 0.0f, -2.0f, 1e-3f, 3.25f, -7.0f};
+    write("fortran.npy", npy("{'descr': '<f4', 'fortran_order': True, 'shape': (2, 3), }",
+                             std::string(reinterpret_cast<const char*>(columns), sizeof columns)));
+    points = npyPoints(readNpy(path("fortran.npy")), "fortran");
+    ASSERT_EQ(points.size(), 2u);
+    EXPECT_EQ(points[0], glm::vec3(1.5f, -2.0f, 3.25f));
+    EXPECT_EQ(points[1], glm::vec3(0.0f, 1e-3f, -7.0f));
 }
 
 TEST_F(NpyTest, LabelsAreWrittenAsNumpyReadsThem) {

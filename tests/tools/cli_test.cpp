@@ -398,6 +398,27 @@ TEST_F(Cli, OpenMeshIsBakedWithAWarningAndRecorded) {
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
 }
 
+// A flat mesh gets one message, the same in every command that needs a volume, and nothing is written.
+TEST_F(Cli, FlatMeshesGetOneMessageEverywhere) {
+    {
+        std::ofstream out(dir / "sheet.obj");
+        out << "v 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\nf 1 2 3\nf 3 2 4\n";
+    }
+    const std::string sheet = p("sheet.obj");
+    const std::string expected = "sheet.obj is flat (no extent along z): it bounds no volume";
+    for (const std::string& command :
+         {"bake " + sheet + " -o " + p("flat.vds"), "bake " + sheet + " -o " + p("flat.vds") + " --axis x",
+          "classify --mesh " + sheet + " " + p("points.txt") + " -o " + p("flat.txt"),
+          "classify --method exact --mesh " + sheet + " " + p("points.txt") + " -o " + p("flat.txt"),
+          "voxelize " + sheet + " --dims 8 -o " + p("flat.npy"), "compare " + sheet + " --resolutions 8"}) {
+        const Result r = vds(command + " --quiet");
+        EXPECT_EQ(r.code, 1) << command << "\n" << r.output;
+        EXPECT_NE(r.output.find(expected), std::string::npos) << command << "\n" << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << command << "\n" << r.output;
+    }
+    for (const char* out : {"flat.vds", "flat.txt", "flat.npy"}) EXPECT_FALSE(fs::exists(dir / out)) << out;
+}
+
 // Typos get the nearest command or option named; swapped files say which comes first.
 TEST_F(Cli, TyposAndSwappedArgumentsNameTheFix) {
     Result r = vds("clasify " + p("box.vds"));
@@ -510,9 +531,17 @@ TEST_F(Cli, VoxelizeWritesExactGridsAsNpy) {
     r = vds("voxelize " + p("torus.obj") + " --dims-xyz 23 19 11 --packed -o " + p("bits.npy") + " --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
     const vds::NpyArray bits = vds::readNpy(p("bits.npy"));
-    std::vector<std::uint8_t> expectedBits((grid.data.size() + 7) / 8);
-    vds::packLabels(reinterpret_cast<const std::uint8_t*>(grid.data.data()), grid.data.size(), expectedBits.data());
-    EXPECT_EQ(std::vector<std::uint8_t>(bits.data.begin(), bits.data.end()), expectedBits);
+    // numpy.packbits(cells, axis=-1): shape (23, 19, 2), each row of 11 z cells in two bytes, first in the high bit.
+    EXPECT_EQ(bits.shape, (std::vector<std::uint64_t>{23, 19, 2}));
+    ASSERT_EQ(bits.data.size(), std::size_t(23 * 19 * 2));
+    std::size_t bitWrong = 0;
+    for (std::size_t row = 0; row < std::size_t(23 * 19); ++row)
+        for (std::size_t k = 0; k < 11; ++k) {
+            const bool bit = (std::uint8_t(bits.data[row * 2 + k / 8]) >> (7 - k % 8)) & 1;
+            bitWrong += bit != (grid.data[row * 11 + k] != 0);
+        }
+    EXPECT_EQ(bitWrong, 0u);
+    EXPECT_EQ(std::uint8_t(bits.data[1]) & 0x1f, 0); // the 5 padding bits of a row are 0
 
     ASSERT_EQ(vds("bake " + p("torus.obj") + " -o " + p("torus.vds") + " --method cpu --resolution 64 --quiet").code, 0);
     r = vds("voxelize " + p("torus.vds") + " --dims 16 -o " + p("sprite.npy") + " --quiet");

@@ -78,9 +78,12 @@ void voxelize(VoxelizeArgs& a) {
     std::size_t inside = 0;
     for (std::uint8_t c : cells) inside += c;
     if (a.packed) {
-        std::vector<std::uint8_t> bits((cells.size() + 7) / 8);
-        vds::packLabels(cells.data(), cells.size(), bits.data());
-        vds::writeNpy(a.output, "|u1", {bits.size()}, bits.data(), bits.size());
+        // numpy.packbits(cells, axis=-1): each z row packed on its own, shape (nx, ny, ceil(nz / 8)).
+        const std::size_t rowBytes = (std::size_t(grid.dims.z) + 7) / 8, rows = std::size_t(grid.dims.x) * grid.dims.y;
+        std::vector<std::uint8_t> bits(rows * rowBytes);
+        for (std::size_t r = 0; r < rows; ++r)
+            vds::packLabels(cells.data() + r * grid.dims.z, grid.dims.z, bits.data() + r * rowBytes);
+        vds::writeNpy(a.output, "|u1", {grid.dims.x, grid.dims.y, rowBytes}, bits.data(), bits.size());
     } else {
         vds::writeNpy(a.output, "|b1", {grid.dims.x, grid.dims.y, grid.dims.z}, cells.data(), cells.size());
     }
@@ -98,8 +101,9 @@ void addVoxelize(CLI::App& app) {
         "Cell (i, j, k) has the centre lo + (i + 1/2, j + 1/2, k + 1/2) * (hi - lo) / (NX, NY, NZ),\n"
         "box [lo, hi] the mesh's (or the sprite's) bounding box unless --box is given. GRID.npy is a\n"
         "C-order boolean array of shape (NX, NY, NZ), indexed [i][j][k] along x, y, z; with\n"
-        "--packed, a uint8 array of the same cells eight to a byte, first cell in the highest bit\n"
-        "(numpy.unpackbits). From a mesh the labels are exact (equal to 'vds classify --exact' on\n"
+        "--packed, a uint8 array of shape (NX, NY, ceil(NZ / 8)): each z row eight cells to a byte,\n"
+        "first cell in the highest bit (numpy.packbits(cells, axis=-1); numpy.unpackbits(a, axis=-1,\n"
+        "count=NZ) gives the cells back). From a mesh the labels are exact (equal to 'vds classify --exact' on\n"
         "the cell centres); from a SPRITE.vds they are the sprite's answers.",
         voxelize);
     c->add_option("INPUT", a->input, "a mesh (OBJ, PLY, STL, OFF) or a sprite (.vds)")->required()->type_name("");

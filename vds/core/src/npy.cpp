@@ -173,13 +173,14 @@ std::vector<glm::vec3> npyPoints(const NpyArray& array, const std::string& name)
     const std::string& d = array.descr;
     const bool known = (d == "<f4" || d == ">f4" || d == "=f4" || d == "<f8" || d == ">f8" || d == "=f8");
     if (!known) bad(name, "points must be float32 or float64, not '" + d + "'");
-    if (array.fortranOrder) bad(name, "points must be in C order (numpy.ascontiguousarray)");
     const std::uint64_t size = itemSize(d, name);
     const char order = d[0] == '=' ? '<' : d[0];
     std::vector<glm::vec3> points(std::size_t(array.shape[0]));
     for (std::size_t n = 0; n < points.size(); ++n)
         for (int c = 0; c < 3; ++c) {
-            const double v = scalar(array.data.data() + (n * 3 + std::size_t(c)) * size, order, size);
+            // C order: row by row; Fortran order (numpy's .T, np.asfortranarray): all x, all y, all z.
+            const std::size_t at = array.fortranOrder ? std::size_t(c) * points.size() + n : n * 3 + std::size_t(c);
+            const double v = scalar(array.data.data() + at * size, order, size);
             if (!std::isfinite(v) || std::fabs(v) > std::numeric_limits<float>::max())
                 bad(name, "row " + std::to_string(n) + " has a non-finite coordinate");
             points[n][c] = float(v);

@@ -122,8 +122,9 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
         if (progress) progress(s);
     };
     const MeshReport validation = validateMesh(mesh);
-    requireInsideDefined(validation, mesh.name, options.rule);
+    requireUsable(validation, mesh.name);
     requireVolume(validation, mesh.name);
+    requireInsideDefined(validation, mesh.name, options.rule);
     EvalReport report;
     report.mesh = mesh.name;
     report.triangles = mesh.triangles.size();

@@ -192,8 +192,9 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
     // the generalized winding number is defined for every usable mesh.
     const bool gwn = options.rule == Rule::GeneralizedWinding;
     const MeshReport validation = validateMesh(mesh);
-    requireInsideDefined(validation, options.meshName, gwn ? Rule::GeneralizedWinding : Rule::Winding);
+    requireUsable(validation, options.meshName);
     requireVolume(validation, options.meshName);
+    requireInsideDefined(validation, options.meshName, gwn ? Rule::GeneralizedWinding : Rule::Winding);
     const bool voxels = !gwn || validation.closed(); // the voxel builders need a closed mesh
     if (options.resolutions.empty()) throw InvalidArgument("compare needs at least one resolution");
     for (std::uint32_t r : options.resolutions)
