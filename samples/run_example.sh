@@ -22,9 +22,9 @@ awk 'BEGIN { n = 64; for (i = 0; i < n; i++) for (j = 0; j < n; j++) for (k = 0;
   printf "%.6f %.6f %.6f\n", -0.5 + 1.0 * (i + 0.5) / n, -0.75 + 1.75 * (j + 0.5) / n, -0.7 + 1.8 * (k + 0.5) / n }' \
   > "$out/points.txt"
 $vds classify "$out/spot.vds" "$out/points.txt" -o "$out/labels.txt"
-$vds classify "$out/spot.vds" "$out/points.txt" -o "$out/labels-gpu.txt" --gpu
-$vds classify --exact --mesh samples/data/spot.obj "$out/points.txt" -o "$out/labels-exact.txt"
-$vds classify --certified --mesh samples/data/spot.obj "$out/points.txt" -o "$out/labels-certified.txt"
+$vds classify "$out/spot.vds" "$out/points.txt" -o "$out/labels-gpu.txt" --method sprite-gpu
+$vds classify --method exact --mesh samples/data/spot.obj "$out/points.txt" -o "$out/labels-exact.txt"
+$vds classify --method certified --mesh samples/data/spot.obj "$out/points.txt" -o "$out/labels-certified.txt"
 cmp -s "$out/labels.txt" "$out/labels-gpu.txt" && echo "CPU and GPU labels are identical"
 cmp -s "$out/labels-exact.txt" "$out/labels-certified.txt" && echo "certified labels equal the exact classifier's"
 echo "labels differing from the exact classifier: $(paste "$out/labels.txt" "$out/labels-exact.txt" | awk '$1 != $2' | wc -l) of $(wc -l < "$out/points.txt")"
