@@ -111,3 +111,42 @@ TEST(Occupancy, BadGridsAreRefused) {
 
 } // namespace
 } // namespace vds
+
+namespace vds {
+namespace {
+
+// A grid labelled a slab of x layers at a time (Grid::slabX) gives the whole
+// grid's labels: the exact sweep (parity, and the GWN of an open mesh), a
+// sprite along z and along x.
+TEST(Occupancy, SlabsGiveTheWholeGridsLabels) {
+    const TriangleMesh torus = solids::torus({0.1f, 0.0f, -0.1f}, 1.0f, 0.4f, 24).mesh;
+    const TriangleMesh cup = solids::sphereCup();
+    const Grid grid{{glm::vec3(-1.6f, -1.5f, -1.3f), glm::vec3(1.7f, 1.4f, 1.2f)}, {23, 17, 13}};
+    const auto slabs = [&](const auto& label) {
+        std::vector<std::uint8_t> whole(grid.cellCount()), pieces(grid.cellCount());
+        label(grid, whole.data());
+        for (std::uint32_t i0 = 0; i0 < grid.dims.x; i0 += 5) {
+            const std::uint32_t i1 = std::min(grid.dims.x, i0 + 5);
+            label(grid.slabX(i0, i1), pieces.data() + grid.index(i0, 0, 0));
+        }
+        EXPECT_EQ(whole, pieces);
+        return std::count(whole.begin(), whole.end(), 1);
+    };
+    EXPECT_GT(slabs([&](const Grid& g, std::uint8_t* out) { occupancy(torus, g, out); }), 100);
+    ClassifyOptions gwn;
+    gwn.rule = Rule::GeneralizedWinding;
+    EXPECT_GT(slabs([&](const Grid& g, std::uint8_t* out) { occupancy(cup, g, out, gwn); }), 100);
+    for (Axis axis : {Axis::Z, Axis::X}) {
+        BakeOptions o;
+        o.resolution = 40;
+        o.axis = axis;
+        const Sprite sprite = bakeCpu(torus, o);
+        EXPECT_GT(slabs([&](const Grid& g, std::uint8_t* out) { occupancy(sprite, g, out); }), 100);
+    }
+    Grid past = grid.slabX(20, 23);
+    past.dims.x = 4;
+    EXPECT_THROW(checkGrid(past), InvalidArgument);
+}
+
+} // namespace
+} // namespace vds

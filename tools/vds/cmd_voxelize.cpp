@@ -1,7 +1,10 @@
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <vector>
 
+#include <vds/exact.h>
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 #include <vds/occupancy.h>
@@ -61,36 +64,53 @@ void voxelize(VoxelizeArgs& a) {
     vds::checkGrid(grid);
     progress("labelling " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) + "x" +
              std::to_string(grid.dims.z) + " cells " + (fromSprite ? "from the sprite" : "exactly from the mesh"));
-    std::vector<std::uint8_t> cells;
+    // The mesh's exact classifier is built once (every slab sweeps through it).
+    std::optional<vds::ExactClassifier> exact;
+    if (!fromSprite) exact.emplace(mesh, vds::Axis::Z);
+    const auto label = [&](const vds::Grid& g, std::uint8_t* out) {
+        if (fromSprite) vds::occupancy(sprite, g, out, a.options);
+        else exact->occupancy(g, out, a.options);
+    };
+    // --packed labels the grid a slab of x layers at a time (at most 2^26
+    // cells), packing each slab's rows as it goes: the unpacked grid is never
+    // held whole. Slabs have the whole grid's cell centres (Grid::slabX), so
+    // the labels are the same as in one call.
+    const std::size_t layer = std::size_t(grid.dims.y) * grid.dims.z;
+    const std::uint32_t slab =
+        a.packed ? std::uint32_t(std::clamp<std::size_t>((std::size_t(1) << 26) / layer, 1, grid.dims.x)) : grid.dims.x;
+    const std::size_t rowBytes = (std::size_t(grid.dims.z) + 7) / 8, rows = std::size_t(grid.dims.x) * grid.dims.y;
+    std::vector<std::uint8_t> cells, bits;
     start = std::chrono::steady_clock::now();
     try {
-        cells.resize(grid.cellCount());
+        cells.resize(std::size_t(slab) * layer);
+        if (a.packed) bits.resize(rows * rowBytes);
     } catch (const std::bad_alloc&) {
         throw vds::OutOfMemory("not enough memory for " + std::to_string(grid.cellCount()) + " cells");
     }
     phase("allocate", secondsSince(start));
     start = std::chrono::steady_clock::now();
-    if (fromSprite) vds::occupancy(sprite, grid, cells.data(), a.options);
-    else vds::occupancy(mesh, grid, cells.data(), a.options);
+    std::size_t inside = 0;
+    for (std::uint32_t i0 = 0; i0 < grid.dims.x; i0 += slab) {
+        const std::uint32_t i1 = std::min(grid.dims.x, i0 + slab);
+        label(slab == grid.dims.x ? grid : grid.slabX(i0, i1), cells.data());
+        const std::size_t count = std::size_t(i1 - i0) * layer;
+        for (std::size_t c = 0; c < count; ++c) inside += cells[c];
+        if (a.packed) // numpy.packbits(cells, axis=-1): each z row packed on its own
+            for (std::size_t r = 0; r < std::size_t(i1 - i0) * grid.dims.y; ++r)
+                vds::packLabels(cells.data() + r * grid.dims.z, grid.dims.z,
+                                bits.data() + (std::size_t(i0) * grid.dims.y + r) * rowBytes);
+    }
     const double sweep = secondsSince(start);
     phase("sweep", sweep);
     start = std::chrono::steady_clock::now();
-    std::size_t inside = 0;
-    for (std::uint8_t c : cells) inside += c;
-    if (a.packed) {
-        // numpy.packbits(cells, axis=-1): each z row packed on its own, shape (nx, ny, ceil(nz / 8)).
-        const std::size_t rowBytes = (std::size_t(grid.dims.z) + 7) / 8, rows = std::size_t(grid.dims.x) * grid.dims.y;
-        std::vector<std::uint8_t> bits(rows * rowBytes);
-        for (std::size_t r = 0; r < rows; ++r)
-            vds::packLabels(cells.data() + r * grid.dims.z, grid.dims.z, bits.data() + r * rowBytes);
+    if (a.packed)
         vds::writeNpy(a.output, "|u1", {grid.dims.x, grid.dims.y, rowBytes}, bits.data(), bits.size());
-    } else {
+    else
         vds::writeNpy(a.output, "|b1", {grid.dims.x, grid.dims.y, grid.dims.z}, cells.data(), cells.size());
-    }
     phase("write", secondsSince(start));
     std::printf("wrote %s: %ux%ux%u cells, %zu inside, %s rule, swept in %.3f s (%.0f M cells/s)\n", a.output.c_str(),
                 grid.dims.x, grid.dims.y, grid.dims.z, inside, vds::toString(a.options.rule), sweep,
-                double(cells.size()) / std::max(sweep, 1e-9) * 1e-6);
+                double(grid.cellCount()) / std::max(sweep, 1e-9) * 1e-6);
 }
 
 } // namespace

@@ -36,7 +36,7 @@ float centreCoordinate(float lo, float hi, std::uint32_t cells, std::uint32_t in
 std::vector<float> centres(const Grid& grid, int axis) {
     std::vector<float> c(grid.dims[axis]);
     for (std::uint32_t k = 0; k < grid.dims[axis]; ++k)
-        c[k] = centreCoordinate(grid.box.lo[axis], grid.box.hi[axis], grid.dims[axis], k);
+        c[k] = centreCoordinate(grid.box.lo[axis], grid.box.hi[axis], grid.wholeCells(axis), grid.first[axis] + k);
     return c;
 }
 
@@ -135,8 +135,9 @@ constexpr std::uint32_t kShortRun = 8;
 } // namespace
 
 glm::vec3 Grid::cellCentre(std::uint32_t i, std::uint32_t j, std::uint32_t k) const {
-    return {centreCoordinate(box.lo.x, box.hi.x, dims.x, i), centreCoordinate(box.lo.y, box.hi.y, dims.y, j),
-            centreCoordinate(box.lo.z, box.hi.z, dims.z, k)};
+    return {centreCoordinate(box.lo.x, box.hi.x, wholeCells(0), first.x + i),
+            centreCoordinate(box.lo.y, box.hi.y, wholeCells(1), first.y + j),
+            centreCoordinate(box.lo.z, box.hi.z, wholeCells(2), first.z + k)};
 }
 
 void checkGrid(const Grid& grid) {
@@ -145,6 +146,9 @@ void checkGrid(const Grid& grid) {
     if (std::uint64_t(grid.dims.x) * grid.dims.y * grid.dims.z > kMaxGridCells)
         throw InvalidArgument("occupancy grid of " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) +
                               "x" + std::to_string(grid.dims.z) + " cells is too large (at most 2^34 cells)");
+    for (int a = 0; a < 3; ++a)
+        if (grid.whole[a] && std::uint64_t(grid.first[a]) + grid.dims[a] > grid.whole[a])
+            throw InvalidArgument("occupancy grid slab reaches past its whole grid");
     for (int a = 0; a < 3; ++a)
         if (!(std::isfinite(grid.box.lo[a]) && std::isfinite(grid.box.hi[a]) && grid.box.lo[a] < grid.box.hi[a]))
             throw InvalidArgument("occupancy grid box is empty or not finite");

@@ -16,11 +16,28 @@ namespace vds {
 /// has the centre lo + (i + 1/2, j + 1/2, k + 1/2) * (hi - lo) / dims,
 /// evaluated in double and rounded to float (`cellCentre`), so every caller
 /// that needs the points gets the same floats.
+///
+/// A slab (`slabX`) is part of a larger grid: its cells (i, j, k) are cells
+/// `first` + (i, j, k) of the grid of `whole` cells over `box`, with those
+/// cells' centres exactly, so a large grid can be labelled a slab at a time
+/// (`vds voxelize --packed`) with the same labels as in one call.
 struct Grid {
     Box box;
     glm::uvec3 dims{0u};
+    glm::uvec3 first{0u}; ///< a slab's first cell in the whole grid
+    glm::uvec3 whole{0u}; ///< the whole grid's cells; 0 (the default): `dims`, no slab
 
     glm::vec3 cellCentre(std::uint32_t i, std::uint32_t j, std::uint32_t k) const;
+    /// Cells along axis a of the whole grid.
+    std::uint32_t wholeCells(int a) const { return whole[a] ? whole[a] : dims[a]; }
+    /// Cells [i0, i1) along x of this grid as a slab (of the same whole grid).
+    Grid slabX(std::uint32_t i0, std::uint32_t i1) const {
+        Grid s = *this;
+        s.whole = glm::uvec3(wholeCells(0), wholeCells(1), wholeCells(2));
+        s.first.x = first.x + i0;
+        s.dims.x = i1 - i0;
+        return s;
+    }
     /// dims.x * dims.y * dims.z.
     std::size_t cellCount() const { return std::size_t(dims.x) * dims.y * dims.z; }
     /// Index of cell (i, j, k) in the label arrays: C order, k fastest,
