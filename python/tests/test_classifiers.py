@@ -506,3 +506,33 @@ def test_a_forked_child_refuses_gl_its_parent_was_using_instead_of_hanging():
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.splitlines() == ["parent 5", "child refused True False", "child 5 True", "parent 5"], done.stdout
+
+
+# ---- defaults that choose ------------------------------------------------------------------
+
+
+def test_bake_defaults_choose_the_axis_with_fewest_layers_at_the_resolution_baked():
+    # Three slabs (thin along x) stacked along z: a ray along x or y meets one
+    # slab (two layers), a ray along z all three (six).
+    boxes = []
+    for k in range(3):
+        lo = np.array([0.0, 0.0, 1.5 * k])
+        boxes.append((lo, lo + np.array([0.2, 1.0, 1.0])))
+    V, F = [], []
+    for lo, hi in boxes:
+        corners = np.array([[lo[0] if i & 1 == 0 else hi[0], lo[1] if i & 2 == 0 else hi[1],
+                             lo[2] if i & 4 == 0 else hi[2]] for i in range(8)], dtype=np.float32)
+        quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+        base = len(V) * 8
+        for a, b, c, d in quads:
+            F += [(base + a, base + b, base + c), (base + a, base + c, base + d)]
+        V.append(corners)
+    V, F = np.concatenate(V), np.array(F, dtype=np.int32)
+    sprite = vds.bake(V, F, resolution=32)  # axis and method auto
+    assert sprite.axis in ("x", "y")  # two layers; along z the three slabs give six
+    along_z = vds.bake(V, F, resolution=32, axis="z", method="cpu")
+    assert sprite.depth_complexity == 2 and along_z.depth_complexity == 6
+    # method auto is the CPU baker on a software renderer or without GL, the
+    # fragment lists on a GPU: bit for bit one of the two
+    bakers = ["cpu"] + (["lists"] if vds.gl_available()[0] else [])
+    assert sprite.to_bytes() in [vds.bake(V, F, resolution=32, axis=sprite.axis, method=m).to_bytes() for m in bakers]
