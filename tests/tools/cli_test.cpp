@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include "../support/run_program.h"
 
 #include <vds/eval/image.h>
 #include <vds/exact.h>
@@ -32,21 +33,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-    int code = -1;
-    std::string output; // stdout and stderr together
-};
-
-Result run(const std::string& command) {
-    Result r;
-    std::FILE* p = ::popen((command + " 2>&1").c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), int(buffer.size()), p)) r.output += buffer.data();
-    const int status = ::pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using vds::test::Result;
+using vds::test::run;
 
 std::string lastLine(const std::string& text) {
     std::string t = text;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include "../support/run_program.h"
 #include <nlohmann/json.hpp>
 
 #include <vds/eval/image.h>
@@ -22,22 +23,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-    int code = -1;
-    std::string output;
-};
-
-Result run(const std::string& command) {
-    Result r;
-    std::FILE* p = ::popen((command + " 2>&1").c_str(), "r");
-    if (!p) return r;
-    char buffer[4096];
-    std::size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, p)) > 0) r.output.append(buffer, n);
-    const int status = ::pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using vds::test::Result;
+using vds::test::run;
 
 class Samples : public ::testing::Test {
 protected:
