@@ -13,6 +13,10 @@ packages=(
   python3-dev pybind11-dev python3-numpy python3-pytest   # the Python module vds and its tests
   python3-pip python3-venv                                # pip install . (pyproject.toml), its test
   python3-dask python3-distributed                        # vds.dask: classification on a Dask cluster
+  libglfw3-dev xvfb xauth              # the interactive viewer (samples/viewer) and its test under Xvfb
+  libepoxy-dev                         # tests: vds headers after an application's GL loader
+  libcgal-dev                          # tests: the exact predicates against CGAL's exact rationals
+  libeigen3-dev libopenmesh-dev        # tests: the header-only Eigen/libigl and OpenMesh adapters
 )
 if [ "${1:-}" = "--only" ]; then shift; packages=("$@"); fi
 missing=()
