@@ -17,6 +17,10 @@ namespace vds {
 namespace detail {
 
 void appendFan(TriangleMesh& mesh, const std::vector<std::uint32_t>& corners) {
+    if (corners.size() < 3) {
+        ++mesh.skippedFaces; // allowed by the formats, no triangle: counted for the validation summary
+        return;
+    }
     for (std::size_t k = 1; k + 1 < corners.size(); ++k)
         mesh.triangles.emplace_back(corners[0], corners[k], corners[k + 1]);
 }

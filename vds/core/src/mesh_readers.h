@@ -21,7 +21,9 @@ TriangleMesh readOff(const char* data, std::size_t size, const std::string& name
 TriangleMesh readPly(const char* data, std::size_t size, const std::string& name);
 TriangleMesh readStl(const char* data, std::size_t size, const std::string& name);
 
-/// Appends the triangles of the polygon `corners` (n >= 3) as a fan.
+/// Appends the triangles of the face `corners` as a fan (a triangle as it
+/// is); a face of fewer than 3 vertices adds none and counts in
+/// `TriangleMesh::skippedFaces`.
 void appendFan(TriangleMesh& mesh, const std::vector<std::uint32_t>& corners);
 
 class Tokens;

@@ -153,12 +153,7 @@ private:
     void face() {
         corners_.clear();
         for (std::string_view t; !(t = token()).empty();) corners_.push_back(reference(t));
-        if (corners_.size() == 3)
-            mesh_.triangles.emplace_back(corners_[0], corners_[1], corners_[2]);
-        else if (corners_.size() < 3)
-            ++mesh_.skippedFaces;
-        else
-            appendFan(mesh_, corners_);
+        appendFan(mesh_, corners_);
     }
 
     /// The 0-based vertex index of a reference "v[/vt][/vn]"; vt and vn are

@@ -155,10 +155,7 @@ private:
             const NumberStatus s = parseNumber(token, colour);
             if (s == NumberStatus::Malformed) fail("face colour " + numberProblem(s, token, "a number"));
         }
-        if (corners_.size() < 3)
-            ++mesh_.skippedFaces;
-        else
-            appendFan(mesh_, corners_);
+        appendFan(mesh_, corners_);
     }
 
     TextScanner text_;

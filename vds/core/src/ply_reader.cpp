@@ -383,12 +383,7 @@ private:
                              " is out of range (" + std::to_string(vertexCount_) + " vertices)");
                 corners_.push_back(std::uint32_t(index));
             }
-            if (n == 3)
-                mesh_.triangles.emplace_back(corners_[0], corners_[1], corners_[2]);
-            else if (n < 3)
-                ++mesh_.skippedFaces;
-            else
-                appendFan(mesh_, corners_);
+            appendFan(mesh_, corners_);
         }
     }
 
@@ -470,12 +465,7 @@ private:
             }
             if (!inRange) break;
             position_ += 1 + 4 * n;
-            if (n == 3)
-                mesh_.triangles.emplace_back(corners_[0], corners_[1], corners_[2]);
-            else if (n < 3)
-                ++mesh_.skippedFaces;
-            else
-                appendFan(mesh_, corners_);
+            appendFan(mesh_, corners_);
         }
         return i;
     }

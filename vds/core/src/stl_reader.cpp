@@ -191,10 +191,7 @@ private:
             }
             corners_.push_back(welder_.add({xyz[0], xyz[1], xyz[2]}));
         }
-        if (corners_.size() < 3)
-            ++mesh_.skippedFaces;
-        else
-            appendFan(mesh_, corners_);
+        appendFan(mesh_, corners_);
         expect("endfacet");
     }
 
