@@ -4,6 +4,7 @@
 //
 //   vds_gwn_bench [MESH.obj ...] [--points 200000] [--resolution 1024]
 //                 [--dims 64] [--threads 1] [--no-generated] [--only NAME]
+//                 [--dump DIR]
 //
 // Meshes: the ones named (default: the bunny, teapot and suzanne beside the
 // project, if present), then four hard cases built in code: a shell with one
@@ -20,10 +21,17 @@
 // sprite's bake not counted, the caps' build counted in the first call).
 // Occupancy: `--dims` cubed cells of the padded box by the mesh sweep, its
 // labels checked against the exact classifier at the cell centres.
+//
+// `--dump DIR` writes, for each mesh, NAME.obj (its positions and triangles
+// as measured), NAME.points (the points, little-endian float32 x y z) and
+// NAME.w (the yardstick's values, float64), so that a method built outside
+// the project can be measured on the same points and checked the same way.
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -165,6 +173,27 @@ Row measure(const std::string& mesh, const std::string& method, const std::vecto
     return row;
 }
 
+// A file name for a mesh's name: letters and digits, the rest '-'.
+std::string slug(const std::string& name) {
+    std::string s;
+    for (const char c : name) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '-';
+    return s;
+}
+
+void dump(const std::string& dir, const std::string& name, const vds::TriangleMesh& mesh,
+          const std::vector<glm::vec3>& points, const std::vector<double>& w) {
+    const std::string base = dir + "/" + slug(name);
+    std::ofstream obj(base + ".obj");
+    obj.precision(9);
+    for (const glm::vec3& p : mesh.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (const auto& t : mesh.triangles) obj << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+    std::ofstream(base + ".points", std::ios::binary)
+        .write(reinterpret_cast<const char*>(points.data()), std::streamsize(points.size() * sizeof(glm::vec3)));
+    std::ofstream(base + ".w", std::ios::binary)
+        .write(reinterpret_cast<const char*>(w.data()), std::streamsize(w.size() * sizeof(double)));
+    if (!obj) throw vds::Error(base + ".obj: cannot write");
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -174,7 +203,7 @@ int main(int argc, char** argv) {
     std::uint32_t resolution = 1024, dims = 64;
     unsigned threads = 1;
     bool noGenerated = false;
-    std::string only;
+    std::string only, dumpDir;
     app.add_option("meshes", meshes, "meshes (default: the bunny, teapot and suzanne of bench/meshes, from bench/fetch-meshes.sh)");
     app.add_option("--points", pointCount, "uniform points in the padded box");
     app.add_option("--resolution", resolution, "sprite resolution");
@@ -182,6 +211,7 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "threads (0: all)");
     app.add_flag("--no-generated", noGenerated, "leave out the hard cases built in code");
     app.add_option("--only", only, "measure only the meshes whose name contains this");
+    app.add_option("--dump", dumpDir, "write each mesh, its points and the yardstick's values into this folder");
     CLI11_PARSE(app, argc, argv);
     if (meshes.empty())
         for (const char* name : {"stanford-bunny", "teapot", "suzanne"})
@@ -213,6 +243,7 @@ int main(int argc, char** argv) {
             vds::parallelFor(0, points.size(), 256, [&](std::size_t begin, std::size_t end) {
                 for (std::size_t k = begin; k < end; ++k) w[k] = exact.generalizedWinding(points[k]);
             });
+            if (!dumpDir.empty()) dump(dumpDir, name, mesh, points, w);
             std::vector<std::vector<glm::vec3>> bands(kBandCount);
             std::size_t counts[kBandCount] = {};
             for (std::size_t k = 0; k < points.size(); ++k) {
