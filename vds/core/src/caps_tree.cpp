@@ -35,12 +35,18 @@ constexpr double kMaxTakenBound = 0.25;
 struct Moments {
     glm::dvec3 vectorArea{0.0};
     std::array<double, 9> moment{};
+    std::array<double, 18> quadrupole{}; ///< N_ijk, see Node::quadrupole
     double area = 0.0;
     double second = 0.0; ///< S: the integral of |x - centre|^2 dA
 };
 
-// Sum over triangles of their vector areas, first moments about `centre`
-// and unsigned areas.
+/// Index of the symmetric pair (j, k) in a row of Node::quadrupole.
+constexpr int kPairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+
+// Sum over triangles of their vector areas, first and second moments about
+// `centre` and unsigned areas. A flat triangle's integral of (x - c)(x - c)^T
+// is its area / 12 times (sum of v v^T over its corners v, taken from c,
+// plus s s^T, s the sum of the corners).
 template <class Tris>
 Moments momentsOf(const Tris& tris, std::size_t first, std::size_t last, const glm::dvec3& centre) {
     Moments m;
@@ -56,16 +62,23 @@ Moments momentsOf(const Tris& tris, std::size_t first, std::size_t last, const g
         m.second += area * (glm::dot(arm, arm) + sides / 36.0);
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) m.moment[std::size_t(3 * i + j)] += a[i] * arm[j];
+        const glm::dvec3 v[3] = {t[0] - centre, t[1] - centre, t[2] - centre};
+        const glm::dvec3 sum = v[0] + v[1] + v[2];
+        for (int pair = 0; pair < 6; ++pair) {
+            const int j = kPairs[pair][0], l = kPairs[pair][1];
+            const double xx = (v[0][j] * v[0][l] + v[1][j] * v[1][l] + v[2][j] * v[2][l] + sum[j] * sum[l]) / 12.0;
+            for (int i = 0; i < 3; ++i) m.quadrupole[std::size_t(6 * i + pair)] += a[i] * xx;
+        }
     }
     return m;
 }
 
 // The node's error bound over its errorScale (3 S / 4 pi), at distance
-// d = |q - c| > R, e = d - R: twice the integral over t in [0, 1] of
-// (1 - t) / (d - t R)^4 (Taylor's integral remainder with the kernel's
-// second derivative taken at distance d - t|h| >= d - t R), in closed form.
-// At most 1 / e^4 (the kernel taken at d - R all along); 1/6 of it at d = 2R.
-double remainderFactor(double d, double e) { return (d + 2.0 * e) / (3.0 * d * d * d * e * e); }
+// d = |q - c| > R, e = d - R: R times the integral over t in [0, 1] of
+// 4 (1 - t)^2 / (d - t R)^5 (Taylor's integral remainder after the second
+// order term, with |h|^3 <= R |h|^2 and the kernel's third derivative taken
+// at distance d - t|h| >= d - t R), in closed form.
+double remainderFactor(double d, double e, double radius) { return radius * (d + 3.0 * e) / (3.0 * d * d * d * d * e * e); }
 
 /// Adds twice the signed solid angle of cap triangle `t` seen from `p` (Van
 /// Oosterom & Strackee) to `integral`; false, adding nothing, when `p` lies
@@ -86,6 +99,11 @@ bool addCapTriangle(const std::array<glm::dvec3, 3>& t, const glm::dvec3& p, dou
 
 BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis)
     : axisIndex_(axisPermutation(axis).z), edges_(edges, edges + 2 * edgeCount) {
+    if (edgeCount > 0) {
+        treeEdges_ = edges_;
+        edgeNodes_.reserve(2 * edgeCount / kLeafTriangles + 2);
+        buildEdges(0, std::uint32_t(edgeCount));
+    }
     // Weld endpoints by bitwise-equal positions, as boundaryEdges() does.
     std::map<std::tuple<float, float, float>, std::uint32_t> ids;
     const auto idOf = [&](const glm::vec3& p) {
@@ -100,10 +118,33 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
     for (std::size_t k = 0; k < edgeCount; ++k) out[tail[k]].push_back(std::uint32_t(k));
     std::vector<std::size_t> nextOut(ids.size(), 0);
     std::vector<std::uint8_t> used(edgeCount, 0);
-    const auto takeOut = [&](std::uint32_t v) -> std::ptrdiff_t {
-        for (std::size_t& n = nextOut[v]; n < out[v].size(); ++n)
-            if (!used[out[v][n]]) return std::ptrdiff_t(out[v][n++]);
-        return -1;
+    // The next edge out of the head of edge `in`: where several are unused
+    // (a vertex the boundary passes more than once, as along a fin on a
+    // non-manifold ring of edges), the one turning back most sharply, so
+    // that loops stay small and tight (a fin's own triangle) instead of
+    // running around the ring: small loops have small caps, which the tree
+    // takes by expansion from close by.
+    const auto takeOut = [&](std::size_t in) -> std::ptrdiff_t {
+        const std::uint32_t v = head[in];
+        std::size_t& n = nextOut[v];
+        while (n < out[v].size() && used[out[v][n]]) ++n;
+        if (n == out[v].size()) return -1;
+        std::size_t best = n;
+        const glm::dvec3 arrive = glm::dvec3(edges[2 * in + 1]) - glm::dvec3(edges[2 * in]);
+        double bestTurn = std::numeric_limits<double>::infinity();
+        for (std::size_t m = n; m < out[v].size(); ++m) {
+            const std::uint32_t e = out[v][m];
+            if (used[e]) continue;
+            const glm::dvec3 leave = glm::dvec3(edges[2 * e + 1]) - glm::dvec3(edges[2 * e]);
+            const double scale = glm::length(arrive) * glm::length(leave);
+            const double turn = scale > 0.0 ? glm::dot(arrive, leave) / scale : 1.0;
+            if (turn < bestTurn) {
+                bestTurn = turn;
+                best = m;
+            }
+        }
+        std::swap(out[v][n], out[v][best]);
+        return std::ptrdiff_t(out[v][n++]);
     };
 
     // Walk each loop along unused outgoing edges until it returns to its start.
@@ -119,7 +160,7 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
             loopEdges_.push_back(edges[2 * std::size_t(e)]);
             loopEdges_.push_back(edges[2 * std::size_t(e) + 1]);
             if (head[std::size_t(e)] == tail[start]) break;
-            e = takeOut(head[std::size_t(e)]);
+            e = takeOut(std::size_t(e));
             if (e < 0) {
                 closed_ = false; // an open chain: these are not a mesh's boundary
                 break;
@@ -211,7 +252,7 @@ std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::
         const Moments m = momentsOf(Ordered{tris, order}, first, last, node.centre);
         node.vectorArea = m.vectorArea;
         node.moment = m.moment;
-        node.trace = m.moment[0] + m.moment[4] + m.moment[8];
+        node.quadrupole = m.quadrupole;
         node.errorScale = 3.0 * m.second / kFourPi;
         node.area = m.area;
         for (std::uint32_t k = first; k < last; ++k) {
@@ -222,6 +263,7 @@ std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::
         node.first = std::uint32_t(leafTris_.size());
         node.count = last - first;
         for (std::uint32_t k = first; k < last; ++k) leafTris_.push_back(tris[order[k]]);
+        finish(node);
         nodes_[index] = node;
         return index;
     }
@@ -247,14 +289,63 @@ std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j)
                 node.moment[std::size_t(3 * i + j)] += n.moment[std::size_t(3 * i + j)] + n.vectorArea[i] * d[j];
+        // N_ijk gains M_ij d_k + M_ik d_j + A_i d_j d_k (the child's M, A).
+        for (int i = 0; i < 3; ++i)
+            for (int pair = 0; pair < 6; ++pair) {
+                const int j = kPairs[pair][0], k = kPairs[pair][1];
+                node.quadrupole[std::size_t(6 * i + pair)] +=
+                    n.quadrupole[std::size_t(6 * i + pair)] + n.moment[std::size_t(3 * i + j)] * d[k] +
+                    n.moment[std::size_t(3 * i + k)] * d[j] + n.vectorArea[i] * d[j] * d[k];
+            }
         node.area += n.area;
         second += n.errorScale * kFourPi / 3.0 + 2.0 * glm::dot(d, unsignedMoments[child]) + n.area * glm::dot(d, d);
         unsignedMoments[index] += unsignedMoments[child] + n.area * d;
     }
-    node.trace = node.moment[0] + node.moment[4] + node.moment[8];
     node.errorScale = 3.0 * second / kFourPi;
+    finish(node);
     nodes_[index] = node;
     return index;
+}
+
+void BoundaryCaps::finish(Node& node) {
+    node.trace = node.moment[0] + node.moment[4] + node.moment[8];
+    node.quadrupoleRows = glm::dvec3(0.0);
+    node.quadrupoleColumns = glm::dvec3(0.0);
+    for (int i = 0; i < 3; ++i) {
+        node.quadrupoleRows[i] = node.quadrupole[std::size_t(6 * i)] + node.quadrupole[std::size_t(6 * i + 1)] +
+                                 node.quadrupole[std::size_t(6 * i + 2)];
+        // sum over i of N_iik: the pair (i, k) of row i
+        for (int k = 0; k < 3; ++k) {
+            int pair = 0;
+            while (!((kPairs[pair][0] == i && kPairs[pair][1] == k) || (kPairs[pair][0] == k && kPairs[pair][1] == i)))
+                ++pair;
+            node.quadrupoleColumns[k] += node.quadrupole[std::size_t(6 * i + pair)];
+        }
+    }
+}
+
+// The node's integral of n . (x - q) / |x - q|^3 dA by its Taylor expansion
+// about its centre to second order, at y = c - q (|y| = d): with
+// K_i(y) = y_i / d^3, the terms are A . K, M_ij dK_i/dy_j and
+// N_ijk d2K_i/dy_j dy_k / 2, where dK_i/dy_j = delta_ij / d^3 - 3 y_i y_j / d^5
+// and d2K_i/dy_j dy_k = -3 (delta_ij y_k + delta_ik y_j + delta_jk y_i) / d^5
+// + 15 y_i y_j y_k / d^7.
+double BoundaryCaps::expansion(const Node& n, const glm::dvec3& y, double d2, double d) {
+    const double inv2 = 1.0 / d2, inv3 = inv2 / d;
+    const std::array<double, 9>& M = n.moment;
+    const double yMy = y.x * (M[0] * y.x + M[1] * y.y + M[2] * y.z) + y.y * (M[3] * y.x + M[4] * y.y + M[5] * y.z) +
+                       y.z * (M[6] * y.x + M[7] * y.y + M[8] * y.z);
+    const std::array<double, 18>& N = n.quadrupole;
+    const double yy[6] = {y.x * y.x, y.y * y.y, y.z * y.z, 2.0 * y.x * y.y, 2.0 * y.x * y.z, 2.0 * y.y * y.z};
+    double yNyy = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const double* row = N.data() + 6 * i;
+        yNyy += y[i] * (row[0] * yy[0] + row[1] * yy[1] + row[2] * yy[2] + row[3] * yy[3] + row[4] * yy[4] +
+                        row[5] * yy[5]);
+    }
+    const double second =
+        0.5 * inv2 * (-3.0 * (2.0 * glm::dot(n.quadrupoleColumns, y) + glm::dot(n.quadrupoleRows, y)) + 15.0 * yNyy * inv2);
+    return (glm::dot(n.vectorArea, y) + n.trace - 3.0 * yMy * inv2 + second) * inv3;
 }
 
 BoundaryCaps::Estimate BoundaryCaps::estimate(const glm::vec3& q, double nodeTolerance) const {
@@ -273,15 +364,9 @@ BoundaryCaps::Estimate BoundaryCaps::estimate(const glm::vec3& q, double nodeTol
         // Taken when its bound is within the tolerance per unit of solid
         // angle it subtends (about area / D^2): the taken nodes' bounds then
         // sum to about the tolerance times the caps' apparent solid angle.
-        const double b = e > 0.0 ? n.errorScale * remainderFactor(d, e) : 0.0;
+        const double b = e > 0.0 ? n.errorScale * remainderFactor(d, e, n.radius) : 0.0;
         if (e > 0.0 && b * d2 <= nodeTolerance * n.area) {
-            // Dipole and quadrupole of the node about its centre, at y = c - q.
-            const double inv2 = 1.0 / d2, inv3 = inv2 / d;
-            const std::array<double, 9>& M = n.moment;
-            const double yMy = y.x * (M[0] * y.x + M[1] * y.y + M[2] * y.z) +
-                               y.y * (M[3] * y.x + M[4] * y.y + M[5] * y.z) +
-                               y.z * (M[6] * y.x + M[7] * y.y + M[8] * y.z);
-            integral += (glm::dot(n.vectorArea, y) + n.trace - 3.0 * yMy * inv2) * inv3;
+            integral += expansion(n, y, d2, d);
             bound += b;
             continue;
         }
@@ -297,6 +382,88 @@ BoundaryCaps::Estimate BoundaryCaps::estimate(const glm::vec3& q, double nodeTol
     return {double(crossings) - integral / kFourPi, bound + kRoundingSlack};
 }
 
+std::uint32_t BoundaryCaps::buildEdges(std::uint32_t first, std::uint32_t last) {
+    const std::uint32_t index = std::uint32_t(edgeNodes_.size());
+    edgeNodes_.emplace_back();
+    EdgeNode node{};
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (std::uint32_t k = first; k < last; ++k)
+        for (int end = 0; end < 2; ++end) {
+            lo = glm::min(lo, glm::dvec3(treeEdges_[2 * k + end]));
+            hi = glm::max(hi, glm::dvec3(treeEdges_[2 * k + end]));
+        }
+    node.centre = 0.5 * (lo + hi);
+    for (std::uint32_t k = first; k < last; ++k) {
+        const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
+        node.radius = std::max({node.radius, glm::length(a - node.centre), glm::length(b - node.centre)});
+        node.length += glm::length(b - a);
+    }
+    if (last - first <= kLeafTriangles) {
+        node.first = first;
+        node.count = last - first;
+        edgeNodes_[index] = node;
+        return index;
+    }
+    // Split at the median of the midpoints along the box's longest side,
+    // reordering the edges (pairs of points) in place.
+    const glm::dvec3 extent = hi - lo;
+    const int split = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    std::vector<std::array<glm::vec3, 2>> pairs(last - first);
+    for (std::uint32_t k = first; k < last; ++k) pairs[k - first] = {treeEdges_[2 * k], treeEdges_[2 * k + 1]};
+    const std::size_t middle = pairs.size() / 2;
+    std::nth_element(pairs.begin(), pairs.begin() + std::ptrdiff_t(middle), pairs.end(),
+                     [split](const auto& x, const auto& y) { return x[0][split] + x[1][split] < y[0][split] + y[1][split]; });
+    for (std::uint32_t k = first; k < last; ++k) {
+        treeEdges_[2 * k] = pairs[k - first][0];
+        treeEdges_[2 * k + 1] = pairs[k - first][1];
+    }
+    node.left = buildEdges(first, first + std::uint32_t(middle));
+    node.right = buildEdges(first + std::uint32_t(middle), last);
+    edgeNodes_[index] = node;
+    return index;
+}
+
+BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q) const {
+    Reach r;
+    r.gap = std::numeric_limits<double>::infinity();
+    if (edgeNodes_.empty()) return r;
+    const glm::dvec3 p(q);
+    double sum = 0.0; // of length / distance^2
+    std::uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const EdgeNode& n = edgeNodes_[stack[--top]];
+        const double d = glm::length(n.centre - p), e = d - n.radius;
+        // A cluster at least three radii away: every edge at distance e or
+        // more (the sum then exceeds its edges' by at most (d / e)^2 <= 2.25).
+        if (e >= 2.0 * n.radius && e > 0.0) {
+            r.gap = std::min(r.gap, e);
+            sum += n.length / (e * e);
+            continue;
+        }
+        if (n.count == 0) {
+            stack[top++] = n.left;
+            stack[top++] = n.right;
+            continue;
+        }
+        for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
+            const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
+            const glm::dvec3 ab = b - a;
+            const double length2 = glm::dot(ab, ab);
+            const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+            const double distance = glm::length(a + t * ab - p);
+            if (!(distance > 0.0)) return Reach{}; // on the curve: no move is certain
+            r.gap = std::min(r.gap, distance);
+            sum += std::sqrt(length2) / (distance * distance);
+        }
+    }
+    // A little slack on the distances: they are rounded.
+    r.gap *= 1.0 - 1e-9;
+    r.steepness = sum / kFourPi * (1.0 + 1e-9);
+    return r;
+}
+
 double BoundaryCaps::exact(int winding, const glm::vec3& q) const {
     return double(winding) + boundaryTermExact(edges_.data(), edges_.size() / 2, axisIndex_, glm::dvec3(q));
 }
@@ -307,8 +474,12 @@ double BoundaryCaps::generalizedWinding(int winding, const glm::vec3& q, double 
 }
 
 bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
-    if (!closed_) return generalizedWindingInside(exact(winding, q));
-    if (nodes_.empty()) return generalizedWindingInside(double(winding));
+    return generalizedWindingInside(decide(winding, q, 1.0).term);
+}
+
+BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, double margin) const {
+    if (!closed_) return {exact(winding, q), 0.0};
+    if (nodes_.empty()) return {double(winding), 0.0};
     // Greedy decide-or-refine: start from the coarsest cut whose nodes each
     // err by at most kMaxTakenBound, then open the node with the largest
     // bound until the value lies farther from 1/2 than the summed bounds.
@@ -347,15 +518,10 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
             const double d2 = glm::dot(y, y);
             const double d = std::sqrt(d2), e = d - n.radius;
             if (e > 0.0 && !(expand && i == index)) {
-                const double b = n.errorScale * remainderFactor(d, e);
+                const double b = n.errorScale * remainderFactor(d, e, n.radius);
                 if (b <= kMaxTakenBound) {
                     work += 1.0;
-                    const double inv2 = 1.0 / d2, inv3 = inv2 / d;
-                    const std::array<double, 9>& M = n.moment;
-                    const double yMy = y.x * (M[0] * y.x + M[1] * y.y + M[2] * y.z) +
-                                       y.y * (M[3] * y.x + M[4] * y.y + M[5] * y.z) +
-                                       y.z * (M[6] * y.x + M[7] * y.y + M[8] * y.z);
-                    const double value = (glm::dot(n.vectorArea, y) + n.trace - 3.0 * yMy * inv2) * inv3;
+                    const double value = expansion(n, y, d2, d);
                     integral += value;
                     bound += b;
                     heap.push_back({b, value, i});
@@ -383,7 +549,8 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
             const double value = offset - integral / kFourPi;
             // The running sums drift by some 1e-13 at most (each taken
             // bound is at most kMaxTakenBound), within the slack.
-            if (std::fabs(value) > bound + kRoundingSlack) return value > 0.0;
+            if (std::fabs(value) > margin * bound + kRoundingSlack)
+                return {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack};
             if (heap.empty() || work > budget) break;
             std::pop_heap(heap.begin(), heap.end());
             const Taken t = heap.back();
@@ -399,7 +566,7 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
             }
         }
     }
-    return generalizedWindingInside(exact(winding, q));
+    return {exact(winding, q), 0.0};
 }
 
 const BoundaryCaps& BoundaryCapsCache::get(const std::vector<glm::vec3>& edges, Axis axis) const {

@@ -18,30 +18,32 @@
 // over a boundary edge. w_caps is smooth away from the caps: a tree over the
 // cap triangles (Barill et al. 2018, "Fast winding numbers for soups and
 // clouds", section 3) takes each node whose sphere (centre c, radius R) lies
-// far enough from q by its expansion to first order about c (dipole plus
-// quadrupole), and sums the remaining leaves' triangles exactly.
+// far enough from q by its Taylor expansion to second order about c (the
+// vector area, the first moments M_ij and the second moments N_ijk of the
+// normal), and sums the remaining leaves' triangles exactly.
 //
 // Error of a node taken by expansion, with D = |q - c| > R: Taylor's
-// remainder of the kernel K(y) = y / |y|^3 after its linear term, for the
-// point x = c + h, is the integral over t in [0, 1] of
-// (1 - t) n . D^2K(c - q + t h)[h, h] dt. With y unit, D^2K contracted with a
-// unit n and h twice is 15 (n.y)(h.y)^2 - 6 (n.h)(h.y) - 3 (n.y) over |y|^4,
-// at most 6 (maximise over n: |(15 b^2 - 3) y - 6 b h| with b = h.y, whose
-// square 45 b^4 - 18 b^2 + 9 peaks at b^2 = 1), and |c - q + t h| >=
-// D - t |h| >= D - t R. The integral of 6 (1 - t) / (D - t R)^4 is
-// (D + 2e) / (D^3 e^2) with e = D - R, and |h|^2 integrates to S, so the
-// node errs by at most
+// remainder of the kernel K(y) = y / |y|^3 after its second order term, for
+// the point x = c + h, is the integral over t in [0, 1] of
+// (1 - t)^2 / 2 n . D^3K(c - q + t h)[h, h, h] dt. D^3K contracted with a
+// unit n and h three times is the fourth derivative of 1 / |y| along n, h,
+// h, h, at most 4! = 24 / |y|^5 (with y unit, b = h.y and the maximum over
+// n taken, its square is (105 b^3 - 45 b)^2 + (9 - 45 b^2)^2 +
+// 2 b (105 b^3 - 45 b)(9 - 45 b^2), which peaks at 576 for b^2 = 1), and
+// |c - q + t h| >= D - t R. With |h|^3 <= R |h|^2 and |h|^2 integrating to
+// S, and the integral of 12 (1 - t)^2 / (D - t R)^5 over t in [0, 1] being
+// (D + 3e) / (D^4 e^2) with e = D - R, the node errs by at most
 //
-//     (1 / 4 pi) * S * (D + 2e) / (D^3 e^2),   S = sum over its triangles of
-//                                              the integral of |x - c|^2 dA,
+//     (1 / 4 pi) * R * S * (D + 3e) / (D^4 e^2),   S = sum over its triangles
+//                                                  of the integral of
+//                                                  |x - c|^2 dA,
 //
 // (S = area * (|g - c|^2 + (sum of squared sides) / 36) for a triangle of
-// centroid g); that is 3 S / (4 pi e^4) (the kernel taken at D - R all along)
-// times (D + 2e) e^2 / (3 D^3): 1/6 of it at D = 2R. Values take a node by
-// expansion when that bound is at most a tolerance times the solid angle the
-// node subtends (area / D^2, so that the bounds sum to about the tolerance
-// times the caps' apparent solid angle); the sum of the taken nodes' bounds
-// comes back with the value, and values fall back to the per-edge sum
+// centroid g): about R / D times the first-order expansion's bound. Values
+// take a node by expansion when that bound is at most a tolerance times the
+// solid angle the node subtends (area / D^2, so that the bounds sum to
+// about the tolerance times the caps' apparent solid angle); the sum of the
+// taken nodes' bounds comes back with the value, and values fall back to the per-edge sum
 // (antipodal.h) where it exceeds their tolerance. Labels refine
 // greedily: from the coarsest cut whose nodes each err by at most 1/4, the
 // node with the largest bound is opened (its children, or a leaf's
@@ -54,6 +56,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -100,6 +103,31 @@ public:
     /// count and the solid angles are taken at the same point.
     Estimate estimate(const glm::vec3& q, double nodeTolerance) const;
 
+    /// How far B may drift from B(q) along a move from q parallel to the
+    /// axis. Along such a line B is continuous off the boundary curve G
+    /// (where it passes a cap, w_caps and C_caps jump together; across the
+    /// curtain below G, which such a line does not cross, C_caps alone
+    /// steps), and its gradient is the Biot-Savart integral over G, the
+    /// integral of (x - q) x dx / |x - q|^3 over 4 pi (the solid angle's
+    /// gradient depends only on the curve it is bounded by), of norm at
+    /// most the sum over the edges of length / (4 pi distance^2). With
+    /// `gap` at most q's distance to G and `steepness` at least that sum
+    /// at q (edge clusters taken at the distance of their bounding
+    /// spheres), a move by L < gap changes B by at most
+    /// steepness * L / (1 - L / gap)^2, every distance shrinking by at most
+    /// L, that is by at most the factor 1 - L / gap.
+    struct Reach {
+        double gap = 0.0;
+        double steepness = 0.0;
+        /// The largest change of B over a move by `length` (+inf from `gap` on).
+        double drift(double length) const {
+            if (!(length < gap)) return std::numeric_limits<double>::infinity();
+            const double shrink = 1.0 - length / gap;
+            return steepness * length / (shrink * shrink);
+        }
+    };
+    Reach reach(const glm::vec3& q) const;
+
     /// `winding + B(q)` within `tolerance` of `winding + boundaryTermExact`,
     /// falling back to the per-edge sum where the estimate's bound is larger.
     double generalizedWinding(int winding, const glm::vec3& q, double tolerance) const;
@@ -108,6 +136,14 @@ public:
     /// tree is refined greedily until the value is farther from 1/2 than its
     /// bound.
     bool inside(int winding, const glm::vec3& q) const;
+
+    /// `winding + B(q)` within `bound` of the per-edge sum's value, refined
+    /// as `inside` does until it lies farther than `margin` (>= 1) times
+    /// its bound from 1/2 (plus the tie), or the per-edge sum's value with
+    /// bound 0 where the tree does not get there: its side of the
+    /// threshold is the per-edge sum's label, and with margin > 1 the rest
+    /// of that distance is left for neighbours (Reach).
+    Estimate decide(int winding, const glm::vec3& q, double margin) const;
 
     /// False when the edges do not close into loops (not a mesh's boundary):
     /// every query then takes the per-edge sum.
@@ -122,15 +158,22 @@ private:
     struct Node {
         glm::dvec3 centre;
         double radius;
-        double errorScale; ///< 3 S / 4 pi: the bound is errorScale (D + 2e) / (3 D^3 e^2), e = D - R
+        double errorScale; ///< 3 S / 4 pi: the bound is errorScale R (D + 3e) / (3 D^4 e^2), e = D - R
         double area;       ///< unsigned
         glm::dvec3 vectorArea;
-        std::array<double, 9> moment;
-        double trace;
+        std::array<double, 9> moment; ///< M_ij = integral of n_i (x - c)_j dA, row-major
+        /// N_ijk = integral of n_i (x - c)_j (x - c)_k dA, row i holding the
+        /// pairs (j, k) = 00, 11, 22, 01, 02, 12
+        std::array<double, 18> quadrupole;
+        double trace;                 ///< sum of M_ii
+        glm::dvec3 quadrupoleRows;    ///< sum over j of N_ijj, for each i
+        glm::dvec3 quadrupoleColumns; ///< sum over i of N_iik, for each k
         std::uint32_t first, count; ///< leaf: cap triangles [first, first + count)
         std::uint32_t left, right;  ///< inner: children (count == 0)
     };
     double exact(int winding, const glm::vec3& q) const;
+    static void finish(Node& node);
+    static double expansion(const Node& n, const glm::dvec3& y, double d2, double d);
     /// `unsignedMoments[node]`: the integral of |n| (x - centre) dA, for the
     /// parent's moments from its children's.
     std::uint32_t build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,
@@ -147,6 +190,16 @@ private:
     std::vector<std::array<glm::dvec3, 3>> leafTris_; ///< cap triangles in tree order
     std::vector<Node> nodes_;                         ///< [0] is the root
     std::optional<ProjectedMesh> projected_;          ///< the caps, for C_caps
+    struct EdgeNode {
+        glm::dvec3 centre;
+        double radius;
+        double length;              ///< of its edges, summed
+        std::uint32_t first, count; ///< leaf: edges [first, first + count) of treeEdges_
+        std::uint32_t left, right;  ///< inner: children (count == 0)
+    };
+    std::uint32_t buildEdges(std::uint32_t first, std::uint32_t last);
+    std::vector<glm::vec3> treeEdges_; ///< edges_ in the tree's order
+    std::vector<EdgeNode> edgeNodes_; ///< a tree over edges_, for reach(); [0] is the root
 };
 
 } // namespace vds::detail

@@ -130,6 +130,10 @@ constexpr double kBracketSlack = 1e-9;
 /// Runs of one integer term this short are labelled cell by cell (by the
 /// capped loops), which is cheaper than brackets of O(boundary edges) each.
 constexpr std::uint32_t kShortRun = 8;
+/// How far from the threshold, in multiples of its bound, the value of a
+/// cell that labels a run after it is refined: the rest of that distance is
+/// what the boundary term may drift along the run.
+constexpr double kReachMargin = 2.0;
 
 
 } // namespace
@@ -368,7 +372,24 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                     ++columnsTimed[way];
                 };
                 if (!useBrackets || !bracket.reset(edges, double(q[0]), double(q[1]))) {
-                    for (std::uint32_t k = 0; k < n; ++k) cell(k);
+                    // Cell by cell, each estimate labelling the cells after
+                    // it as far as the boundary term provably stays on one
+                    // side of the threshold (BoundaryCaps::Reach).
+                    const double threshold = 0.5 + detail::kGeneralizedWindingTie;
+                    for (std::uint32_t k = 0; k < n;) {
+                        const glm::vec3 at(q[0], q[1], zs[k]);
+                        const detail::BoundaryCaps::Estimate e = caps->decide(integer[k], at, kReachMargin);
+                        out[k] = e.term > threshold ? 1 : 0;
+                        const detail::BoundaryCaps::Reach reach = caps->reach(at);
+                        std::uint32_t j = k + 1;
+                        for (; j < n; ++j) {
+                            const double v = double(integer[j] - integer[k]) + e.term;
+                            const double move = double(zs[j]) - double(zs[k]);
+                            if (!(std::fabs(v - threshold) > e.bound + reach.drift(move))) break;
+                            out[j] = v > threshold ? 1 : 0;
+                        }
+                        k = j;
+                    }
                     if (!useBrackets) record(0);
                     continue;
                 }

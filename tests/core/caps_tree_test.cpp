@@ -1,0 +1,182 @@
+// The boundary term's capped loops (vds/core/src/caps_tree.h) against the
+// per-edge sum (antipodal.h), the independent exact form: the expansion's
+// error bound, the drift bound along a move (what the occupancy sweep's runs
+// rest on), the margin of decide(), and how the boundary splits into loops
+// where a non-manifold ring of edges meets fins.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <vds/mesh.h>
+
+#include "antipodal.h"
+#include "caps_tree.h"
+
+namespace vds::detail {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A UV sphere of radius 1, keeping the quads whose centre `keep` accepts.
+template <class Keep>
+TriangleMesh sphere(int rings, int segments, Keep keep) {
+    TriangleMesh m;
+    const auto at = [&](int i, int j) {
+        const double theta = kPi * i / rings, phi = 2.0 * kPi * j / segments;
+        return glm::vec3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)),
+                         float(std::cos(theta)));
+    };
+    for (int i = 0; i <= rings; ++i)
+        for (int j = 0; j < segments; ++j) m.positions.push_back(at(i, j));
+    const auto id = [&](int i, int j) { return std::uint32_t(i * segments + (j % segments)); };
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const glm::vec3 c = glm::normalize(at(i, j) + at(i + 1, j + 1));
+            if (!keep(c)) continue;
+            if (i > 0) m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+            if (i + 1 < rings) m.triangles.push_back({id(i, j + 1), id(i + 1, j), id(i + 1, j + 1)});
+        }
+    return m;
+}
+
+// An open-bottomed sphere with a fin on every edge of its equator, pointing
+// inward: those edges have three faces, and the boundary passes each ring
+// vertex twice.
+TriangleMesh finnedShell(int rings, int segments) {
+    TriangleMesh m = sphere(rings, segments, [](const glm::vec3& c) { return c.z > -0.7f; });
+    const int i = rings / 2;
+    for (int j = 0; j < segments; ++j) {
+        const std::uint32_t a = std::uint32_t(i * segments + j), b = std::uint32_t(i * segments + (j + 1) % segments);
+        m.positions.push_back(0.3f * (m.positions[a] + m.positions[b]) + glm::vec3(0.0f, 0.0f, 0.3f));
+        m.triangles.push_back({a, b, std::uint32_t(m.positions.size() - 1)});
+    }
+    return m;
+}
+
+struct Case {
+    std::string name;
+    TriangleMesh mesh;
+};
+
+std::vector<Case> cases() {
+    std::vector<Case> out;
+    out.push_back({"cup, one large opening", sphere(24, 48, [](const glm::vec3& c) { return c.z < 0.5f; })});
+    out.push_back({"sphere, 12 punched holes", sphere(32, 64, [](const glm::vec3& c) {
+                       for (int h = 0; h < 12; ++h) {
+                           const double z = -1.0 + (2.0 * h + 1.0) / 12.0, r = std::sqrt(1.0 - z * z), phi = 2.4 * h;
+                           const glm::vec3 centre(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+                           if (glm::dot(c, centre) > 0.985f) return false;
+                       }
+                       return true;
+                   })});
+    out.push_back({"finned shell", finnedShell(16, 32)});
+    return out;
+}
+
+std::vector<glm::vec3> points(std::size_t count, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.3f, 1.3f);
+    std::vector<glm::vec3> out(count);
+    for (glm::vec3& p : out) p = {u(rng), u(rng), u(rng)};
+    return out;
+}
+
+double exactTerm(const std::vector<glm::vec3>& edges, const glm::vec3& q) {
+    return boundaryTermExact(edges.data(), edges.size() / 2, 2, glm::dvec3(q));
+}
+
+TEST(CapsTree, ExpansionErrsByNoMoreThanItsBound) {
+    for (const Case& c : cases()) {
+        const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
+        const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z);
+        ASSERT_TRUE(caps.closed()) << c.name;
+        std::size_t checked = 0, loose = 0;
+        for (const glm::vec3& q : points(1500, 3))
+            for (const double tolerance : {0.1, 1e-2, 1e-4}) {
+                const BoundaryCaps::Estimate e = caps.estimate(q, tolerance);
+                if (!std::isfinite(e.bound)) continue; // on a cap
+                const double error = std::fabs(e.term - exactTerm(edges, q));
+                ASSERT_LE(error, e.bound) << c.name << " tolerance " << tolerance;
+                ++checked;
+                loose += e.bound > 1e-6; // nodes really were taken by expansion
+            }
+        EXPECT_GT(checked, 4000u) << c.name;
+        EXPECT_GT(loose, checked / 4) << c.name;
+    }
+}
+
+TEST(CapsTree, BoundaryTermDriftsNoMoreThanItsReach) {
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (const Case& c : cases()) {
+        const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
+        const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z);
+        std::size_t moves = 0;
+        double tightest = 0.0; // largest observed drift over its bound
+        for (const glm::vec3& q : points(800, 5)) {
+            const BoundaryCaps::Reach reach = caps.reach(q);
+            ASSERT_GE(reach.gap, 0.0);
+            if (!(reach.gap > 0.0) || !std::isfinite(reach.gap)) continue;
+            const double b0 = exactTerm(edges, q);
+            // Along the axis, up or down (across it B steps where the ray
+            // starts or stops passing under the boundary curve).
+            const glm::dvec3 direction(0.0, 0.0, unit(rng) < 0.0 ? -1.0 : 1.0);
+            for (const double fraction : {0.05, 0.3, 0.7, 0.95}) {
+                const double length = fraction * reach.gap;
+                const glm::vec3 moved = glm::vec3(glm::dvec3(q) + length * direction);
+                const double actual = glm::length(glm::dvec3(moved) - glm::dvec3(q)); // after rounding to float
+                if (!(actual < reach.gap)) continue;
+                const double drift = std::fabs(exactTerm(edges, moved) - b0);
+                const double bound = reach.drift(actual);
+                ASSERT_LE(drift, bound + 1e-12) << c.name << " moved " << fraction << " of the gap";
+                tightest = std::max(tightest, drift / bound);
+                ++moves;
+            }
+        }
+        EXPECT_GT(moves, 2000u) << c.name;
+        EXPECT_GT(tightest, 0.05) << c.name; // a bound, not a wall
+    }
+}
+
+TEST(CapsTree, DecideLeavesItsMarginOrGivesTheExactValue) {
+    for (const Case& c : cases()) {
+        const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
+        const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z);
+        const double threshold = 0.5 + kGeneralizedWindingTie;
+        for (const glm::vec3& q : points(1500, 7))
+            for (const int winding : {0, 1}) {
+                const double exact = double(winding) + exactTerm(edges, q);
+                const BoundaryCaps::Estimate e = caps.decide(winding, q, 2.0);
+                ASSERT_LE(std::fabs(e.term - exact), std::max(e.bound, 1e-12)) << c.name;
+                if (e.bound > 1e-6) {
+                    ASSERT_GT(std::fabs(e.term - threshold), 2.0 * e.bound) << c.name;
+                }
+                ASSERT_EQ(e.term > threshold, generalizedWindingInside(exact)) << c.name;
+                ASSERT_EQ(caps.inside(winding, q), generalizedWindingInside(exact)) << c.name;
+            }
+    }
+}
+
+TEST(CapsTree, FinsOnANonManifoldRingAreLoopsOfTheirOwn) {
+    // 32 fins of three edges each, and the opening's ring of 32 edges: the
+    // ring vertices are passed twice, and a walk that kept going straight
+    // would run around the equator instead (a cap across the whole shell).
+    const TriangleMesh shell = finnedShell(16, 32);
+    const std::vector<glm::vec3> edges = boundaryEdges(MeshView(shell));
+    ASSERT_EQ(edges.size() / 2, 32u * 3u + 32u);
+    const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z);
+    ASSERT_TRUE(caps.closed());
+    ASSERT_EQ(caps.loops().size(), 33u);
+    std::size_t triangles = 0;
+    for (const CapLoop& loop : caps.loops()) triangles += loop.count == 3;
+    EXPECT_EQ(triangles, 32u);
+}
+
+} // namespace
+} // namespace vds::detail
