@@ -134,6 +134,8 @@ constexpr std::uint32_t kShortRun = 8;
 /// cell that labels a run after it is refined: the rest of that distance is
 /// what the boundary term may drift along the run.
 constexpr double kReachMargin = 2.0;
+/// Most cells labelled alone after a run came out empty.
+constexpr std::uint32_t kMaxAlone = 16;
 
 
 } // namespace
@@ -375,8 +377,18 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                     // Cell by cell, each estimate labelling the cells after
                     // it as far as the boundary term provably stays on one
                     // side of the threshold (BoundaryCaps::Reach).
+                    // Where runs come out empty (coarse grids, cells beside
+                    // the boundary) the next cells are labelled alone for a
+                    // while, twice as long each time, so that the reach is
+                    // not paid for nothing.
                     const double threshold = 0.5 + detail::kGeneralizedWindingTie;
+                    std::uint32_t alone = 0, backoff = 1;
                     for (std::uint32_t k = 0; k < n;) {
+                        if (alone > 0) {
+                            cell(k++);
+                            --alone;
+                            continue;
+                        }
                         const glm::vec3 at(q[0], q[1], zs[k]);
                         const detail::BoundaryCaps::Estimate e = caps->decide(integer[k], at, kReachMargin);
                         out[k] = e.term > threshold ? 1 : 0;
@@ -387,6 +399,12 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                             const double move = double(zs[j]) - double(zs[k]);
                             if (!(std::fabs(v - threshold) > e.bound + reach.drift(move))) break;
                             out[j] = v > threshold ? 1 : 0;
+                        }
+                        if (j == k + 1) {
+                            alone = backoff;
+                            backoff = std::min(2 * backoff, kMaxAlone);
+                        } else {
+                            backoff = 1;
                         }
                         k = j;
                     }
