@@ -46,12 +46,17 @@ bool vdsAnswer(int winding, int parity, ivec2 column, float r) {
 // `valid` points past the count are left 0.
 uint vdsClassify4(vec3 p[4], uint valid) {
     vec3 T[4];
-    bool inBox[4];
+    bool inBox[4];   // a column to count along: in the box (the generalized winding rule: in front or behind too)
+    bool beside[4];  // the generalized winding rule, beside the box: the boundary term alone
     ivec2 column[4];
+    bool everywhere = u_rule == VDS_RULE_GENERALIZED_WINDING;
     for (uint k = 0u; k < 4u; ++k) {
         T[k] = vdsToTexture(u_placement, p[k]);
         column[k] = ivec2(0);
-        inBox[k] = k < valid && vdsColumnOf(T[k], VDS_SIZE, column[k]);
+        bool finite = k < valid && vdsFinite(T[k]);
+        inBox[k] = k < valid && (everywhere ? finite && vdsColumnAcross(T[k], VDS_SIZE, column[k])
+                                            : vdsColumnOf(T[k], VDS_SIZE, column[k]));
+        beside[k] = everywhere && finite && !inBox[k];
     }
     uint word = 0u;
 #ifdef VDS_COLUMNS
@@ -69,14 +74,21 @@ uint vdsClassify4(vec3 p[4], uint valid) {
             parity ^= 1;
             winding += floatBitsToInt(e) < 0 ? -1 : 1;
         }
-        if (inBox[k] && vdsAnswer(winding, parity, column[k], T[k].z)) word |= 1u << (8u * k);
+        if (inBox[k] ? vdsAnswer(winding, parity, column[k], T[k].z)
+                     : beside[k] && vdsContainsGeneralizedBeside(u_boundary, VDS_SIZE, T[k]))
+            word |= 1u << (8u * k);
     }
 #else
     for (uint k = 0u; k < 4u; ++k) {
-        if (!inBox[k]) continue;
-        int parity;
-        int winding = vdsWinding(u_ldi, T[k], parity);
-        if (vdsAnswer(winding, parity, column[k], T[k].z)) word |= 1u << (8u * k);
+        bool inside = false;
+        if (inBox[k]) {
+            int parity;
+            int winding = vdsColumnWinding(u_ldi, column[k], T[k].z, parity);
+            inside = vdsAnswer(winding, parity, column[k], T[k].z);
+        } else if (beside[k]) {
+            inside = vdsContainsGeneralizedBeside(u_boundary, VDS_SIZE, T[k]);
+        }
+        if (inside) word |= 1u << (8u * k);
     }
 #endif
     return word;

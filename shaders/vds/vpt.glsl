@@ -69,9 +69,15 @@ vec3 vdsToTexture(VdsPlacement placement, vec3 world) {
 
 // The column (texel) of an LDI of size.x by size.y texels that texture-space
 // point T falls in; false when T lies outside the box [0,1]^3.
-bool vdsColumnOf(vec3 T, ivec2 size, out ivec2 column) {
+// Whether T is finite (points that are not are outside, as on the CPU).
+bool vdsFinite(vec3 T) {
+    return abs(T.x) < 3.0e38 && abs(T.y) < 3.0e38 && abs(T.z) < 3.0e38;
+}
+
+// The column that texture-space point T lies in front of, in or behind,
+// whatever its depth; false beside the box (or where T is not finite).
+bool vdsColumnAcross(vec3 T, ivec2 size, out ivec2 column) {
     column = ivec2(0);
-    if (!(T.z >= 0.0 && T.z <= 1.0)) return false;
     precise float fs = floor(T.x * float(size.x));
     precise float ft = floor(T.y * float(size.y));
     if (!(fs >= 0.0 && fs < float(size.x) && ft >= 0.0 && ft < float(size.y))) return false;
@@ -79,22 +85,38 @@ bool vdsColumnOf(vec3 T, ivec2 size, out ivec2 column) {
     return true;
 }
 
+bool vdsColumnOf(vec3 T, ivec2 size, out ivec2 column) {
+    column = ivec2(0);
+    if (!(T.z >= 0.0 && T.z <= 1.0)) return false;
+    return vdsColumnAcross(T, size, column);
+}
+
 // Winding number of the crossings strictly in front of texture-space point T
 // (entering +1, leaving -1); `parity` receives their count modulo 2. Points
 // outside [0,1]^3 have no crossings in front.
-int vdsWinding(sampler3D ldi, vec3 T, out int parity) {
+// The same for column `column` at any texture depth r: none in front of
+// r <= 0, all of them behind the box (r > 1). The padding (+1.0) ends the
+// column there; so does an entering crossing at exactly depth 1, which it
+// cannot be told from (a leaving one, -1.0, as a closed mesh's face on the
+// box's far side gives, is counted).
+int vdsColumnWinding(sampler3D ldi, ivec2 column, float r, out int parity) {
     parity = 0;
-    ivec3 size = textureSize(ldi, 0);
-    ivec2 column;
-    if (!vdsColumnOf(T, size.xy, column)) return 0;
     int winding = 0;
-    for (int k = 0; k < size.z; ++k) {
+    int layers = textureSize(ldi, 0).z;
+    for (int k = 0; k < layers; ++k) {
         float e = texelFetch(ldi, ivec3(column, k), 0).r;
-        if (!(abs(e) < T.z)) break; // sorted: nothing further is in front (padding is 1.0)
+        if (!(abs(e) < r) || e == 1.0) break; // sorted: nothing further is in front
         parity ^= 1;
         winding += floatBitsToInt(e) < 0 ? -1 : 1;
     }
     return winding;
+}
+
+int vdsWinding(sampler3D ldi, vec3 T, out int parity) {
+    parity = 0;
+    ivec2 column;
+    if (!vdsColumnOf(T, textureSize(ldi, 0).xy, column)) return 0;
+    return vdsColumnWinding(ldi, column, T.z, parity);
 }
 
 // Inside test of a world point against one sprite.
@@ -174,24 +196,52 @@ bool vdsContainsGeneralizedAt(VdsBoundary boundary, int winding, ivec2 column, f
     return vdsGeneralizedWindingAt(boundary, winding, column, r) > 0.5;
 }
 
+// Beside the box (T's (s, t) outside [0,1]^2, where no ray meets the mesh):
+// the point itself in the bake's frame, (s, t, r) order, as the C++
+// classifier places it.
+vec3 vdsBesidePoint(VdsBoundary boundary, ivec2 size, vec3 T) {
+    precise float s = boundary.lo.x + T.x * float(size.x) * boundary.step.x;
+    precise float t = boundary.lo.y + T.y * float(size.y) * boundary.step.y;
+    precise float d = boundary.lo.z + T.z * boundary.step.z;
+    return vec3(s, t, d);
+}
+
+// The rule's test beside the box: no crossing, the boundary term at the
+// point itself.
+bool vdsContainsGeneralizedBeside(VdsBoundary boundary, ivec2 size, vec3 T) {
+    if (boundary.edgeCount == 0) return false;
+    return vdsBoundaryTerm(boundary, vdsBesidePoint(boundary, size, T)) > 0.5;
+}
+
 // The generalized winding number at a world point, in float (C++
-// `Sprite::generalizedWinding`); 0 outside the box [0,1]^3.
+// `Sprite::generalizedWinding`), everywhere: the GWN of an open mesh need
+// not vanish outside the sprite's box (just beyond a large opening it
+// exceeds 1/2). In front of or behind the box, the column's count with
+// none or all of its crossings in front, at its texel centre as inside the
+// box; beside the box, no crossing and the term at the point itself. 0 where
+// the point is not finite.
 float vdsGeneralizedWinding(sampler3D ldi, VdsPlacement placement, VdsBoundary boundary, vec3 world) {
     vec3 T = vdsToTexture(placement, world);
+    if (!vdsFinite(T)) return 0.0;
+    ivec3 size = textureSize(ldi, 0);
     ivec2 column;
-    if (!vdsColumnOf(T, textureSize(ldi, 0).xy, column)) return 0.0;
+    if (!vdsColumnAcross(T, size.xy, column))
+        return boundary.edgeCount == 0 ? 0.0 : vdsBoundaryTerm(boundary, vdsBesidePoint(boundary, size.xy, T));
     int parity;
-    int winding = vdsWinding(ldi, T, parity);
+    int winding = vdsColumnWinding(ldi, column, T.z, parity);
     return vdsGeneralizedWindingAt(boundary, winding, column, T.z);
 }
 
-// Inside test of a world point by Rule::GeneralizedWinding; outside the box: false.
+// Inside test of a world point by Rule::GeneralizedWinding, everywhere (as
+// vdsGeneralizedWinding places it).
 bool vdsContainsGeneralized(sampler3D ldi, VdsPlacement placement, VdsBoundary boundary, vec3 world) {
     vec3 T = vdsToTexture(placement, world);
+    if (!vdsFinite(T)) return false;
+    ivec3 size = textureSize(ldi, 0);
     ivec2 column;
-    if (!vdsColumnOf(T, textureSize(ldi, 0).xy, column)) return false;
+    if (!vdsColumnAcross(T, size.xy, column)) return vdsContainsGeneralizedBeside(boundary, size.xy, T);
     int parity;
-    int winding = vdsWinding(ldi, T, parity);
+    int winding = vdsColumnWinding(ldi, column, T.z, parity);
     return vdsContainsGeneralizedAt(boundary, winding, column, T.z);
 }
 #endif

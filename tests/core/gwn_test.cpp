@@ -39,6 +39,7 @@ double bruteForceGwn(const TriangleMesh& mesh, const glm::vec3& point) {
     return sum / (4.0 * 3.14159265358979323846);
 }
 
+using solids::flatRimBowl;
 using solids::without;
 
 TriangleMesh soup(std::uint32_t seed) {
@@ -430,26 +431,6 @@ TEST(SpriteGeneralizedWinding, VersionOneFilesStillRead) {
 
 // ---- ties and degenerate rays ------------------------------------------------
 
-// A bowl: the half of a unit sphere with y <= 0, its rim the circle of
-// radius 1 exactly in the plane y = 0 (rim vertices have y == 0.0f).
-TriangleMesh flatRimBowl(int rings, int segments) {
-    TriangleMesh m;
-    const double pi = 3.14159265358979323846;
-    for (int i = 0; i <= rings; ++i) // i = 0: the rim, i = rings: the pole at y = -1
-        for (int j = 0; j < segments; ++j) {
-            const double theta = 0.5 * pi * i / rings, phi = 2.0 * pi * j / segments;
-            m.positions.emplace_back(float(std::cos(theta) * std::cos(phi)), i == 0 ? 0.0f : float(-std::sin(theta)),
-                                     float(std::cos(theta) * std::sin(phi)));
-        }
-    const auto id = [&](int i, int j) { return std::uint32_t(i * segments + (j % segments)); };
-    for (int i = 0; i < rings; ++i)
-        for (int j = 0; j < segments; ++j) {
-            m.triangles.push_back({id(i, j), id(i, j + 1), id(i + 1, j)});
-            if (i + 1 < rings) m.triangles.push_back({id(i, j + 1), id(i + 1, j + 1), id(i + 1, j)});
-        }
-    return m;
-}
-
 // Points exactly in the plane of a flat boundary loop, with the view axis in
 // that plane: every boundary edge's spherical triangle is degenerate there,
 // and the rays pass over the loop (through its vertices, too). The value is
@@ -568,15 +549,7 @@ TEST(VoxelizeGeneralizedWinding, CellsOnATriangleAreOutsideAsInClassify) {
 // the exact classifier does, beside its box (view axis z) and in front of
 // or behind it (view axis y).
 TEST(SpriteGeneralizedWinding, AnswersOutsideTheBoxBeyondAnOpening) {
-    TriangleMesh mesh = flatRimBowl(16, 64);
-    const std::uint32_t centre = std::uint32_t(mesh.positions.size());
-    mesh.positions.emplace_back(0.0f, -0.2f, 0.0f);
-    for (int j = 0; j < 32; ++j) {
-        const double phi = 2.0 * 3.14159265358979323846 * j / 32;
-        mesh.positions.emplace_back(float(0.6 * std::cos(phi)), -0.2f, float(0.6 * std::sin(phi)));
-    }
-    for (std::uint32_t j = 0; j < 32; ++j)
-        mesh.triangles.push_back({centre, centre + 1 + j, centre + 1 + (j + 1) % 32});
+    const TriangleMesh mesh = solids::bowlWithDisk();
     std::mt19937 rng(9);
     std::uniform_real_distribution<float> u(-0.4f, 0.4f), above(0.02f, 0.1f);
     std::vector<glm::vec3> points(500);

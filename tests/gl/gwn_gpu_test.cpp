@@ -5,6 +5,7 @@
 // centre point).
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
+#include <vds/exact.h>
 #include <vds/gl/bake.h>
 #include <vds/gl/sprite.h>
 #include <vds/gl/shader.h>
@@ -94,6 +96,38 @@ TEST_F(GwnGpuTest, ClassifierMatchesTheCpuOnOpenMeshes) {
                 }
             }
         }
+}
+
+TEST_F(GwnGpuTest, AnswersOutsideTheBoxBeyondAnOpening) {
+    // Just above a bowl's rim, with a disk hung inside, the GWN exceeds 1/2
+    // though the points lie outside the sprite's box: behind it along y,
+    // beside it along z (and beside it along both, past the rim: outside).
+    // The classifier's columns and texture paths answer there as the exact
+    // classifier does.
+    const TriangleMesh mesh = solids::bowlWithDisk();
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(-0.4f, 0.4f), above(0.02f, 0.1f), far(1.2f, 2.0f);
+    std::vector<glm::vec3> points;
+    for (int k = 0; k < 500; ++k) points.push_back({u(rng), above(rng), u(rng)});
+    for (int k = 0; k < 100; ++k) points.push_back({far(rng), u(rng), u(rng)});
+    const ExactClassifier exact(mesh, Axis::Z);
+    std::size_t inside = 0;
+    for (const glm::vec3& p : points) inside += exact.contains(p, Rule::GeneralizedWinding);
+    EXPECT_GT(inside, 250u);
+    GpuClassifier classifier(gl());
+    for (Axis axis : {Axis::Y, Axis::Z}) {
+        const Sprite sprite = bakeAt(mesh, axis, 64);
+        ASSERT_GT(sprite.grid.toTexture(points[0])[axis == Axis::Y ? 2 : 1], 1.0f) << toString(axis);
+        for (GpuSpriteParts parts : {GpuSpriteParts::ColumnsOnly, GpuSpriteParts::TextureOnly}) {
+            const GpuSprite gpu(sprite, parts);
+            std::vector<std::uint8_t> labels(points.size(), 7);
+            classifier.classify(gpu, {points.data(), points.size()}, labels.data(), {Rule::GeneralizedWinding});
+            std::size_t wrong = 0;
+            for (std::size_t k = 0; k < points.size(); ++k)
+                wrong += (labels[k] != 0) != exact.contains(points[k], Rule::GeneralizedWinding);
+            EXPECT_EQ(wrong, 0u) << toString(axis) << (parts == GpuSpriteParts::TextureOnly ? ", texture" : ", columns");
+        }
+    }
 }
 
 TEST_F(GwnGpuTest, ReferenceMatchesTheCpuLabels) {

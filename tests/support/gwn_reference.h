@@ -17,18 +17,30 @@ namespace vds::test {
 // The GWN the sprite stands for at `world`, in double, independently of the
 // library's boundary code: the signed count of the column's crossings in
 // front, plus the solid angles (+axis, a - q, b - q) / 4 pi of the boundary
-// edges at the texel-centre point q at the point's depth. NaN outside the box.
+// edges at the texel-centre point q at the point's depth. In front of or
+// behind the box the column's count is that of none or all of its
+// crossings; beside the box (no column) there are none and q is the point
+// itself. NaN where the point is not finite. (Where q's ray passes exactly
+// over a boundary edge this naive sum takes atan2's side of the jump, not
+// the library's tie rule, and can differ by 1.)
 inline double referenceGwn(const Sprite& s, const glm::vec3& world) {
     const glm::vec3 t = s.grid.toTexture(world);
-    if (!(t.z >= 0.0f && t.z <= 1.0f)) return std::nan("");
+    if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z))) return std::nan("");
     const float fs = std::floor(t.x * float(s.width())), ft = std::floor(t.y * float(s.height()));
-    if (!(fs >= 0.0f && fs < float(s.width()) && ft >= 0.0f && ft < float(s.height()))) return std::nan("");
-    const auto i = std::uint32_t(fs), j = std::uint32_t(ft);
-    const std::size_t c = std::size_t(j) * s.width() + i;
     int winding = 0;
-    for (std::uint32_t k = s.offsets[c]; k < s.offsets[c + 1] && crossingDepth(s.crossings[k]) < t.z; ++k)
-        winding += crossingEnters(s.crossings[k]) ? 1 : -1;
-    const glm::dvec3 q(s.grid.texelCentre(i, j, t.z));
+    glm::dvec3 q;
+    if (fs >= 0.0f && fs < float(s.width()) && ft >= 0.0f && ft < float(s.height())) {
+        const auto i = std::uint32_t(fs), j = std::uint32_t(ft);
+        const std::size_t c = std::size_t(j) * s.width() + i;
+        for (std::uint32_t k = s.offsets[c]; k < s.offsets[c + 1] && crossingDepth(s.crossings[k]) < t.z; ++k)
+            winding += crossingEnters(s.crossings[k]) ? 1 : -1;
+        q = glm::dvec3(s.grid.texelCentre(i, j, t.z));
+    } else {
+        const glm::ivec3 p = axisPermutation(s.grid.axis);
+        q[p.x] = double(s.grid.box.lo[p.x]) + double(t.x) * double(s.width()) * double(s.grid.texelSize);
+        q[p.y] = double(s.grid.box.lo[p.y]) + double(t.y) * double(s.height()) * double(s.grid.texelSize);
+        q[p.z] = double(s.grid.box.lo[p.z]) + double(t.z) * (double(s.grid.box.hi[p.z]) - double(s.grid.box.lo[p.z]));
+    }
     glm::dvec3 axis(0.0);
     axis[axisPermutation(s.grid.axis).z] = 1.0;
     double sum = 0.0;

@@ -73,5 +73,12 @@ TriangleMesh sphereCup();
 TriangleMesh sphereWithHoles();
 /// Two overlapping spheres (24 segments), each with a hole: self-intersecting and open.
 TriangleMesh overlappingShells();
+/// A bowl: the half of a unit sphere with y <= 0, its rim the circle of
+/// radius 1 exactly in the plane y = 0 (rim vertices have y == 0.0f).
+TriangleMesh flatRimBowl(int rings, int segments);
+/// The bowl (16 rings, 64 segments) with a disk of radius 0.6 hung inside at
+/// y = -0.2: the points just above the rim are inside by the generalized
+/// winding rule although they lie outside the box of any sprite of it.
+TriangleMesh bowlWithDisk();
 
 } // namespace vds::solids
