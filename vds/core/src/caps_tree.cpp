@@ -493,6 +493,9 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
     thread_local std::vector<Taken> heap;
     thread_local std::vector<std::uint32_t> stack;
     heap.clear();
+    // The taken nodes become a heap only once the first cut does not decide
+    // (most points stop there).
+    bool heaped = false;
     const glm::dvec3 p(q);
     double integral = 0.0, bound = 0.0;
     // Work spent, in nodes taken and leaf triangles summed (each some
@@ -525,7 +528,7 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
                     integral += value;
                     bound += b;
                     heap.push_back({b, value, i});
-                    std::push_heap(heap.begin(), heap.end());
+                    if (heaped) std::push_heap(heap.begin(), heap.end());
                     continue;
                 }
             }
@@ -552,6 +555,10 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
             if (std::fabs(value) > margin * bound + kRoundingSlack)
                 return {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack};
             if (heap.empty() || work > budget) break;
+            if (!heaped) {
+                std::make_heap(heap.begin(), heap.end());
+                heaped = true;
+            }
             std::pop_heap(heap.begin(), heap.end());
             const Taken t = heap.back();
             heap.pop_back();
