@@ -44,8 +44,10 @@
 // solid angle the node subtends (area / D^2, so that the bounds sum to
 // about the tolerance times the caps' apparent solid angle); the sum of the
 // taken nodes' bounds comes back with the value, and values fall back to the per-edge sum
-// (antipodal.h) where it exceeds their tolerance. Labels refine
-// greedily: from the coarsest cut whose nodes each err by at most 1/4, the
+// (antipodal.h) where it exceeds their tolerance. Labels take nodes by
+// the expansion to first order only, whose remainder bound is, the same
+// way (second derivative 3! / |y|^4 at most), S (D + 2e) / (4 pi D^3 e^2),
+// and refine greedily: from the coarsest cut whose nodes each err by at most 1/4, the
 // node with the largest bound is opened (its children, or a leaf's
 // triangles summed exactly) until the value lies farther from the label's
 // threshold (1/2 plus the tie, antipodal.h) than the summed bounds, and the
@@ -173,6 +175,7 @@ private:
     };
     double exact(int winding, const glm::vec3& q) const;
     static void finish(Node& node);
+    static double firstOrder(const Node& n, const glm::dvec3& y, double d2, double d);
     static double expansion(const Node& n, const glm::dvec3& y, double d2, double d);
     /// `unsignedMoments[node]`: the integral of |n| (x - centre) dA, for the
     /// parent's moments from its children's.
