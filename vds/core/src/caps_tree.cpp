@@ -107,11 +107,6 @@ bool addCapTriangle(const std::array<glm::dvec3, 3>& t, const glm::dvec3& p, dou
 
 BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis)
     : axisIndex_(axisPermutation(axis).z), edges_(edges, edges + 2 * edgeCount) {
-    if (edgeCount > 0) {
-        treeEdges_ = edges_;
-        edgeNodes_.reserve(2 * edgeCount / kLeafTriangles + 2);
-        buildEdges(0, std::uint32_t(edgeCount));
-    }
     // Weld endpoints by bitwise-equal positions, as boundaryEdges() does.
     std::map<std::tuple<float, float, float>, std::uint32_t> ids;
     const auto idOf = [&](const glm::vec3& p) {
@@ -218,6 +213,7 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
                 }
         }
     }
+    buildReach();
     if (!closed_ || tris.empty()) return;
     projected_.emplace(MeshView(capPositions_.data(), capPositions_.size(), capTriangles_.data(), capTriangles_.size()),
                        axis);
@@ -436,7 +432,68 @@ std::uint32_t BoundaryCaps::buildEdges(std::uint32_t first, std::uint32_t last) 
     return index;
 }
 
-BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q) const {
+void BoundaryCaps::buildReach() {
+    const std::size_t edgeCount = edges_.size() / 2;
+    if (edgeCount == 0) return;
+    edgeNodes_.reserve(2 * edgeCount / kLeafTriangles + 2 * loops_.size() + 2);
+    if (!closed_) { // no loops: the edges alone
+        treeEdges_ = edges_;
+        buildEdges(0, std::uint32_t(edgeCount));
+        return;
+    }
+    // Each loop's edges get a subtree of their own (in loop order, so that
+    // a loop's edges are contiguous), under a tree over the loops.
+    treeEdges_ = loopEdges_;
+    edgeNodes_.emplace_back(); // [0]: the root, filled below
+    std::vector<std::uint32_t> loopNodes(loops_.size());
+    for (std::size_t l = 0; l < loops_.size(); ++l) {
+        const CapLoop& loop = loops_[l];
+        const std::uint32_t edgesRoot = buildEdges(loop.first, loop.first + loop.count);
+        EdgeNode node{};
+        node.centre = loop.centroid; // the ball (centroid, radius) holds the loop and its cap
+        node.radius = loop.radius;
+        node.length = edgeNodes_[edgesRoot].length;
+        node.capArea = loop.area;
+        node.wholeLoops = true;
+        node.left = edgesRoot;
+        node.loopNode = true;
+        loopNodes[l] = std::uint32_t(edgeNodes_.size());
+        edgeNodes_.push_back(node);
+    }
+    const std::uint32_t root = buildLoops(loopNodes, 0, std::uint32_t(loopNodes.size()));
+    edgeNodes_[0] = edgeNodes_[root];
+}
+
+std::uint32_t BoundaryCaps::buildLoops(std::vector<std::uint32_t>& nodes, std::uint32_t first, std::uint32_t last) {
+    if (last - first == 1) return nodes[first];
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (std::uint32_t k = first; k < last; ++k) {
+        const EdgeNode& n = edgeNodes_[nodes[k]];
+        lo = glm::min(lo, n.centre - glm::dvec3(n.radius));
+        hi = glm::max(hi, n.centre + glm::dvec3(n.radius));
+    }
+    const glm::dvec3 extent = hi - lo;
+    const int split = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    const std::uint32_t middle = first + (last - first) / 2;
+    std::nth_element(nodes.begin() + first, nodes.begin() + middle, nodes.begin() + last,
+                     [&](std::uint32_t x, std::uint32_t y) { return edgeNodes_[x].centre[split] < edgeNodes_[y].centre[split]; });
+    EdgeNode node{};
+    node.left = buildLoops(nodes, first, middle);
+    node.right = buildLoops(nodes, middle, last);
+    node.wholeLoops = true;
+    node.centre = 0.5 * (lo + hi);
+    for (const std::uint32_t child : {node.left, node.right}) {
+        const EdgeNode& c = edgeNodes_[child];
+        node.radius = std::max(node.radius, glm::length(c.centre - node.centre) + c.radius);
+        node.length += c.length;
+        node.capArea += c.capArea;
+    }
+    edgeNodes_.push_back(node);
+    return std::uint32_t(edgeNodes_.size() - 1);
+}
+
+BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q, double steepest) const {
+    const double limit = steepest * kFourPi; // on the sum below
     Reach r;
     r.gap = std::numeric_limits<double>::infinity();
     if (edgeNodes_.empty()) return r;
@@ -448,11 +505,19 @@ BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q) const {
     while (top > 0) {
         const EdgeNode& n = edgeNodes_[stack[--top]];
         const double d = glm::length(n.centre - p), e = d - n.radius;
-        // A cluster at least three radii away: every edge at distance e or
-        // more (the sum then exceeds its edges' by at most (d / e)^2 <= 2.25).
+        // A cluster at least three radii away: every edge, and for whole
+        // loops every cap, at distance e or more (the sum then exceeds its
+        // edges' by at most (d / e)^2 <= 2.25). Whole loops take the
+        // smaller of the two bounds: by the curve, length / e^2, or by the
+        // caps, 2 area / e^3 (far small loops: their dipole).
         if (e >= 2.0 * n.radius && e > 0.0) {
             r.gap = std::min(r.gap, e);
-            sum += n.length / (e * e);
+            sum += n.wholeLoops ? std::min(n.length / (e * e), 2.0 * n.capArea / (e * e * e)) : n.length / (e * e);
+            if (sum > limit) return Reach{};
+            continue;
+        }
+        if (n.loopNode) { // the loop's own edges
+            stack[top++] = n.left;
             continue;
         }
         if (n.count == 0) {
@@ -470,6 +535,7 @@ BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q) const {
             r.gap = std::min(r.gap, distance);
             sum += std::sqrt(length2) / (distance * distance);
         }
+        if (sum > limit) return Reach{};
     }
     // A little slack on the distances: they are rounded.
     r.gap *= 1.0 - 1e-9;

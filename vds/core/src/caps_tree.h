@@ -109,15 +109,21 @@ public:
     /// axis. Along such a line B is continuous off the boundary curve G
     /// (where it passes a cap, w_caps and C_caps jump together; across the
     /// curtain below G, which such a line does not cross, C_caps alone
-    /// steps), and its gradient is the Biot-Savart integral over G, the
-    /// integral of (x - q) x dx / |x - q|^3 over 4 pi (the solid angle's
-    /// gradient depends only on the curve it is bounded by), of norm at
-    /// most the sum over the edges of length / (4 pi distance^2). With
-    /// `gap` at most q's distance to G and `steepness` at least that sum
-    /// at q (edge clusters taken at the distance of their bounding
-    /// spheres), a move by L < gap changes B by at most
-    /// steepness * L / (1 - L / gap)^2, every distance shrinking by at most
-    /// L, that is by at most the factor 1 - L / gap.
+    /// steps), and its gradient is the sum over the loops of the
+    /// Biot-Savart integral over the loop, the integral of
+    /// (x - q) x dx / |x - q|^3 over 4 pi (the solid angle's gradient
+    /// depends only on the curve it is bounded by), of norm at most the sum
+    /// over its edges of length / (4 pi distance^2); and, the loop's B
+    /// being its cap's crossing count less its cap's winding number, also
+    /// at most the cap's area times 2 / (4 pi distance^3) (the gradient of
+    /// n . (x - q) / |x - q|^3 has norm at most 2 / |x - q|^3), which is
+    /// smaller for small loops afar. `steepness` is at least the sum over
+    /// the loops of the smaller of the two at q (clusters taken at the
+    /// distance of their bounding balls, which hold their edges and caps),
+    /// `gap` at most q's distance to any edge or far cluster; a move by
+    /// L < gap shrinks every such distance by at most the factor
+    /// 1 - L / gap, so it changes B by at most
+    /// steepness * L / (1 - L / gap)^3.
     struct Reach {
         double gap = 0.0;
         double steepness = 0.0;
@@ -125,10 +131,13 @@ public:
         double drift(double length) const {
             if (!(length < gap)) return std::numeric_limits<double>::infinity();
             const double shrink = 1.0 - length / gap;
-            return steepness * length / (shrink * shrink);
+            return steepness * length / (shrink * shrink * shrink);
         }
     };
-    Reach reach(const glm::vec3& q) const;
+    /// Reach{} (no move certain) once the steepness is known to exceed
+    /// `steepest`: where that cannot carry a label one cell further, the
+    /// rest of the sum is not worth taking.
+    Reach reach(const glm::vec3& q, double steepest = std::numeric_limits<double>::infinity()) const;
 
     /// `winding + B(q)` within `tolerance` of `winding + boundaryTermExact`,
     /// falling back to the per-edge sum where the estimate's bound is larger.
@@ -193,13 +202,20 @@ private:
     std::vector<std::array<glm::dvec3, 3>> leafTris_; ///< cap triangles in tree order
     std::vector<Node> nodes_;                         ///< [0] is the root
     std::optional<ProjectedMesh> projected_;          ///< the caps, for C_caps
+    /// The tree reach() walks: over the loops (each ball holds its loop's
+    /// edges and cap), then within each loop over its edges.
     struct EdgeNode {
         glm::dvec3 centre;
         double radius;
         double length;              ///< of its edges, summed
+        double capArea;             ///< of its loops' caps (whole loops only)
         std::uint32_t first, count; ///< leaf: edges [first, first + count) of treeEdges_
-        std::uint32_t left, right;  ///< inner: children (count == 0)
+        std::uint32_t left, right;  ///< inner: children (count == 0); a loop's node: its edges' subtree in left
+        bool wholeLoops;            ///< its edges are whole loops, capped
+        bool loopNode;              ///< one loop
     };
+    void buildReach();
+    std::uint32_t buildLoops(std::vector<std::uint32_t>& nodes, std::uint32_t first, std::uint32_t last);
     std::uint32_t buildEdges(std::uint32_t first, std::uint32_t last);
     std::vector<glm::vec3> treeEdges_; ///< edges_ in the tree's order
     std::vector<EdgeNode> edgeNodes_; ///< a tree over edges_, for reach(); [0] is the root

@@ -392,7 +392,12 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                         const glm::vec3 at(q[0], q[1], zs[k]);
                         const detail::BoundaryCaps::Estimate e = caps->decide(integer[k], at, kReachMargin);
                         out[k] = e.term > threshold ? 1 : 0;
-                        const detail::BoundaryCaps::Reach reach = caps->reach(at);
+                        // No run unless the room left could hold at least the
+                        // next cell at the steepness found.
+                        const double room = std::fabs(e.term - threshold) - e.bound;
+                        const double step = k + 1 < n ? double(zs[k + 1]) - double(zs[k]) : 0.0;
+                        const detail::BoundaryCaps::Reach reach =
+                            room > 0.0 && step > 0.0 ? caps->reach(at, room / step) : detail::BoundaryCaps::Reach{};
                         std::uint32_t j = k + 1;
                         for (; j < n; ++j) {
                             const double v = double(integer[j] - integer[k]) + e.term;
