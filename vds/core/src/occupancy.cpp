@@ -136,6 +136,10 @@ constexpr std::uint32_t kShortRun = 8;
 constexpr double kReachMargin = 2.0;
 /// Most cells labelled alone after a run came out empty.
 constexpr std::uint32_t kMaxAlone = 16;
+/// Every this many columns a range is labelled the other way, to time it
+/// (1/64 spent on the slower way where one is much slower; 1/16 cost the
+/// non-manifold shell's grid 10 %).
+constexpr std::size_t kProbe = 64;
 
 
 } // namespace
@@ -326,7 +330,7 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
         // cost O(edges) a split, the capped loops a tree query a cell (cheap
         // for small holes, dear beside a large cap). Both give the same
         // labels, so each range of columns times both (the first two
-        // columns, then every 16th the other way) and takes the cheaper.
+        // columns, then every kProbe-th the other way) and takes the cheaper.
         double secondsSpent[2] = {0.0, 0.0}; // on the columns timed, [0]: cell by cell, [1]: brackets
         std::size_t columnsTimed[2] = {0, 0};
         std::size_t local = 0;
@@ -367,7 +371,7 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                     out[k] = caps->inside(integer[k], glm::vec3(q[0], q[1], zs[k])) ? 1 : 0;
                 };
                 const bool cheaper = secondsSpent[1] * double(columnsTimed[0]) <= secondsSpent[0] * double(columnsTimed[1]);
-                const bool useBrackets = local < 2 ? local == 0 : (local % 16 == 0) != cheaper;
+                const bool useBrackets = local < 2 ? local == 0 : (local % kProbe == 0) != cheaper;
                 const auto started = std::chrono::steady_clock::now();
                 const auto record = [&](int way) {
                     secondsSpent[way] += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
