@@ -193,6 +193,7 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
         loop.vectorArea = moments.vectorArea;
         loop.moment = moments.moment;
         loop.area = moments.area;
+        loopErrorScale_.push_back(3.0 * moments.second / kFourPi);
         loops_.push_back(loop);
         // The tree sums the same surface, each fan triangle cut into m^2
         // triangles of about the loop's edge length: fan triangles of a long
@@ -584,6 +585,7 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
     // cost about 1.5 per-edge sums, not the whole tree.
     const double budget = 0.25 * double(edges_.size() / 2);
     double work = 0.0;
+    bool onCap = false;
     // Opens the subtree at `index`: nodes far enough by expansion, the rest
     // down to leaves summed exactly. False where q lies on a cap, or once
     // the work exceeds the budget (the per-edge sum decides either way).
@@ -624,7 +626,10 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
             }
             work += double(n.count);
             for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
-                if (!addCapTriangle(leafTris_[k], p, integral)) return false; // on a cap
+                if (!addCapTriangle(leafTris_[k], p, integral)) { // on a cap
+                    onCap = true;
+                    return false;
+                }
         }
         return true;
     };
@@ -657,6 +662,72 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
                 break;
             }
         }
+    }
+    if (!onCap) return byLoops(winding, offset, q, margin);
+    return {exact(winding, q), 0.0};
+}
+
+BoundaryCaps::Estimate BoundaryCaps::byLoops(int winding, double offset, const glm::vec3& q, double margin) const {
+    // Where the tree's budget ran out: loop by loop, each far loop by its
+    // cap's expansion to first order (its bound as a node's), the others by
+    // their caps' fan triangles summed exactly (as many as the loop's
+    // edges, not the subdivided fan), then the far loop with the largest
+    // bound summed exactly until the value is far enough from 1/2. A large
+    // loop beside q then costs its own edges, not every boundary edge.
+    struct Taken {
+        double bound;
+        double value;
+        std::uint32_t loop;
+        bool operator<(const Taken& o) const { return bound < o.bound; }
+    };
+    thread_local std::vector<Taken> heap;
+    heap.clear();
+    const glm::dvec3 p(q);
+    double integral = 0.0, bound = 0.0;
+    // The loop's fan (c, b, a) over its edges a -> b, summed exactly; false
+    // where q lies on it.
+    const auto sumLoop = [&](std::uint32_t l) {
+        const CapLoop& loop = loops_[l];
+        for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k)
+            if (!addCapTriangle({loop.centroid, glm::dvec3(loopEdges_[2 * k + 1]), glm::dvec3(loopEdges_[2 * k])}, p,
+                                integral))
+                return false;
+        return true;
+    };
+    for (std::uint32_t l = 0; l < loops_.size(); ++l) {
+        const CapLoop& loop = loops_[l];
+        const glm::dvec3 y = loop.centroid - p;
+        const double d2 = glm::dot(y, y), d = std::sqrt(d2), e = d - loop.radius;
+        if (e > 0.0) {
+            const double b = loopErrorScale_[l] * firstOrderFactor(d, e);
+            if (b <= kMaxTakenBound) {
+                const std::array<double, 9>& M = loop.moment;
+                const double yMy = y.x * (M[0] * y.x + M[1] * y.y + M[2] * y.z) +
+                                   y.y * (M[3] * y.x + M[4] * y.y + M[5] * y.z) +
+                                   y.z * (M[6] * y.x + M[7] * y.y + M[8] * y.z);
+                const double value =
+                    (glm::dot(loop.vectorArea, y) + (M[0] + M[4] + M[8]) - 3.0 * yMy / d2) / (d2 * d);
+                integral += value;
+                bound += b;
+                heap.push_back({b, value, l});
+                continue;
+            }
+        }
+        if (!sumLoop(l)) return {exact(winding, q), 0.0};
+    }
+    std::make_heap(heap.begin(), heap.end());
+    while (true) {
+        const double value = offset - integral / kFourPi;
+        if (std::fabs(value) > margin * bound + kRoundingSlack)
+            return {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack};
+        if (heap.empty()) break; // every loop summed exactly, and still within the slack of 1/2
+        std::pop_heap(heap.begin(), heap.end());
+        const Taken t = heap.back();
+        heap.pop_back();
+        integral -= t.value;
+        bound -= t.bound;
+        if (heap.empty()) bound = 0.0;
+        if (!sumLoop(t.loop)) break;
     }
     return {exact(winding, q), 0.0};
 }

@@ -183,6 +183,7 @@ private:
         std::uint32_t left, right;  ///< inner: children (count == 0)
     };
     double exact(int winding, const glm::vec3& q) const;
+    Estimate byLoops(int winding, double offset, const glm::vec3& q, double margin) const;
     static void finish(Node& node);
     static double firstOrder(const Node& n, const glm::dvec3& y, double d2, double d);
     static double expansion(const Node& n, const glm::dvec3& y, double d2, double d);
@@ -197,6 +198,7 @@ private:
     std::vector<glm::vec3> edges_;
     std::vector<glm::vec3> loopEdges_;
     std::vector<CapLoop> loops_;
+    std::vector<double> loopErrorScale_; ///< per loop: 3 S / 4 pi of its fan, S about its centroid
     std::vector<glm::vec3> capPositions_;
     std::vector<glm::uvec3> capTriangles_;
     std::vector<std::array<glm::dvec3, 3>> leafTris_; ///< cap triangles in tree order
