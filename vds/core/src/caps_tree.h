@@ -43,16 +43,19 @@
 // take a node by expansion when that bound is at most a tolerance times the
 // solid angle the node subtends (area / D^2, so that the bounds sum to
 // about the tolerance times the caps' apparent solid angle); the sum of the
-// taken nodes' bounds comes back with the value, and values fall back to the per-edge sum
-// (antipodal.h) where it exceeds their tolerance. Labels take nodes by
-// the expansion to first order only, whose remainder bound is, the same
-// way (second derivative 3! / |y|^4 at most), S (D + 2e) / (4 pi D^3 e^2),
-// and refine greedily: from the coarsest cut whose nodes each err by at most 1/4, the
-// node with the largest bound is opened (its children, or a leaf's
-// triangles summed exactly) until the value lies farther from the label's
-// threshold (1/2 plus the tie, antipodal.h) than the summed bounds, and the
-// per-edge sum decides where it never does or once the tree's work passes a
-// quarter of that sum's; so labels equal the per-edge sum's.
+// taken nodes' bounds comes back with the value, and values fall back to
+// the per-edge sum (antipodal.h) where it exceeds their tolerance. Labels
+// take nodes by the expansion to first order only, whose remainder bound
+// is, the same way (second derivative 3! / |y|^4 at most),
+// S (D + 2e) / (4 pi D^3 e^2), and refine greedily: from the coarsest cut
+// whose nodes each err by at most 1/4, the node with the largest bound is
+// opened (its children, or a leaf's triangles summed exactly) until the
+// value lies farther from the label's threshold (1/2 plus the tie,
+// antipodal.h) than the summed bounds. Once the tree's work passes a
+// quarter of the per-edge sum's, the loops decide one by one (far loops by
+// their caps' expansion, near ones by their own fans summed exactly), and
+// the per-edge sum where they do not either; so labels equal the per-edge
+// sum's.
 #pragma once
 
 #include <array>
