@@ -26,11 +26,12 @@
 // It declares
 //   layout(std430, binding = VDS_BOUNDARY_BINDING) readonly buffer VdsBoundaryEdges {
 //       vec4 vdsBoundaryEdges[]; };
-// with 2 * VdsBoundary.edgeCount entries: edge k runs from vdsBoundaryEdges[2k]
+// with 2 * VdsBoundary.edgeCount entries (then the loop records, if any):
+// edge k runs from vdsBoundaryEdges[2k]
 // to vdsBoundaryEdges[2k+1], xyz the endpoint in the baked mesh's coordinates
-// permuted to the sprite's (s, t, r) order (Sprite::boundaryEdges[i] read at
-// axisPermutation(axis); a cyclic permutation, so solid angles keep their
-// sign), w unused. Placing the sprite elsewhere (GpuSprite::setPlacement)
+// permuted to the sprite's (s, t, r) order (Sprite::boundaryEdges read at
+// axisPermutation(axis), loop by loop where they close into loops; a cyclic
+// permutation, so solid angles keep their sign), w unused. Placing the sprite elsewhere (GpuSprite::setPlacement)
 // changes neither: the term is evaluated in the bake's frame.
 //
 // The GPU evaluates it in float where the C++ `Sprite::classify` uses double:
@@ -42,7 +43,10 @@
 // the point's texel-centre point lies, within float error, on the sweep of
 // a boundary edge along +r (there the term jumps by 1; the CPU's tie rule
 // for exact ties is mirrored, but a near-tie can round to either side).
-// The cost is O(boundary edges) a point.
+// The cost is O(boundary edges) a point at most: with the loop records
+// GpuSprite uploads after the edges (VdsBoundary.loopCount), a loop of 4 or
+// more edges whose ball the point's ray misses is taken by its cap's
+// expansion where that errs by at most 1e-5 (vdsBoundaryTerm).
 #ifndef VDS_VPT_GLSL
 #define VDS_VPT_GLSL
 
@@ -136,6 +140,7 @@ struct VdsBoundary {
     vec3 lo;
     vec3 step;
     int edgeCount;
+    int loopCount; // loop records after the edges (0: sum every edge)
 };
 
 // The point the column's count belongs to: the centre of texel `column` at
@@ -173,12 +178,79 @@ float vdsEdgeSolidAngle(vec3 a, vec3 b, vec3 q) {
 #ifdef VDS_BOUNDARY_BINDING
 layout(std430, binding = VDS_BOUNDARY_BINDING) readonly buffer VdsBoundaryEdges { vec4 vdsBoundaryEdges[]; };
 
-// The boundary term at q (the bake's frame, (s, t, r) order): the sum over
-// the edges of their solid angles, over 4 pi. O(edgeCount).
-float vdsBoundaryTerm(VdsBoundary boundary, vec3 q) {
+// The solid angles of edges [first, first + count), in steradians.
+float vdsEdgeRange(int first, int count, vec3 q) {
     float sum = 0.0;
-    for (int k = 0; k < boundary.edgeCount; ++k)
+    for (int k = first; k < first + count; ++k)
         sum += vdsEdgeSolidAngle(vdsBoundaryEdges[2 * k].xyz, vdsBoundaryEdges[2 * k + 1].xyz, q);
+    return sum;
+}
+
+// A far loop's edges are summed by its cap's expansion where that errs by
+// at most this (in winding number units; the float sum errs by some 1e-6).
+#define VDS_LOOP_TOLERANCE 1e-5
+
+// The boundary term at q (the bake's frame, (s, t, r) order): the sum over
+// the edges of their solid angles, over 4 pi. With loop records
+// (GpuSprite::setBoundaryUniforms sets loopCount), loop by loop: a loop
+// whose ball (it holds the loop and its cap, the fan from its centroid)
+// q's ray along the axis misses has no crossing with its cap, so its
+// edges' sum is minus its cap's solid angle, taken by the expansion to
+// second order about the centroid (C++ caps_tree.h gives the terms and the
+// remainder bound R S (D + 3e) / (4 pi D^4 e^2)) where that bound allows;
+// other loops sum their edges, and so do the loops of fewer than 4 edges,
+// which have no record (their edges come after the recorded loops').
+float vdsBoundaryTerm(VdsBoundary boundary, vec3 q) {
+    if (boundary.loopCount == 0) return vdsEdgeRange(0, boundary.edgeCount, q) / 12.566370614359172;
+    float sum = 0.0;
+    int tail = 0; // past the last recorded loop's edges
+    for (int l = 0; l < boundary.loopCount; ++l) {
+        int at = 2 * boundary.edgeCount + 12 * l;
+        vec4 m2 = vdsBoundaryEdges[at + 4];
+        int first = floatBitsToInt(m2.y);
+        int count = floatBitsToInt(m2.z);
+        tail = first + count;
+        vec4 ball = vdsBoundaryEdges[at];
+        vec3 y = ball.xyz - q;
+        if (y.x * y.x + y.y * y.y > ball.w * ball.w) {
+            vec4 area = vdsBoundaryEdges[at + 1];
+            float d2 = dot(y, y);
+            float d = sqrt(d2);
+            float e = d - ball.w;
+            float bound = area.w * ball.w * (d + 3.0 * e) / (3.0 * d2 * d2 * e * e);
+            if (bound <= VDS_LOOP_TOLERANCE) {
+                vec4 m0 = vdsBoundaryEdges[at + 2];
+                vec4 m1 = vdsBoundaryEdges[at + 3];
+                float yMy = y.x * (m0.x * y.x + m0.y * y.y + m0.z * y.z) +
+                            y.y * (m0.w * y.x + m1.x * y.y + m1.y * y.z) +
+                            y.z * (m1.z * y.x + m1.w * y.y + m2.x * y.z);
+                float first = dot(area.xyz, y) + (m0.x + m1.x + m2.x) - 3.0 * yMy / d2;
+                // N_ijk: 18 floats from [7], row i the pairs 00, 11, 22, 01, 02, 12.
+                float n[20];
+                for (int v = 0; v < 5; ++v) {
+                    vec4 w = vdsBoundaryEdges[at + 7 + v];
+                    n[4 * v] = w.x;
+                    n[4 * v + 1] = w.y;
+                    n[4 * v + 2] = w.z;
+                    n[4 * v + 3] = w.w;
+                }
+                float yy0 = y.x * y.x, yy1 = y.y * y.y, yy2 = y.z * y.z;
+                float yy3 = 2.0 * y.x * y.y, yy4 = 2.0 * y.x * y.z, yy5 = 2.0 * y.y * y.z;
+                float yNyy = 0.0;
+                for (int i = 0; i < 3; ++i)
+                    yNyy += y[i] * (n[6 * i] * yy0 + n[6 * i + 1] * yy1 + n[6 * i + 2] * yy2 + n[6 * i + 3] * yy3 +
+                                    n[6 * i + 4] * yy4 + n[6 * i + 5] * yy5);
+                vec3 rows = vdsBoundaryEdges[at + 5].xyz;
+                vec3 columns = vdsBoundaryEdges[at + 6].xyz;
+                float second = 0.5 / d2 * (-3.0 * (2.0 * dot(columns, y) + dot(rows, y)) + 15.0 * yNyy / d2);
+                sum -= (first + second) / (d2 * d);
+                continue;
+            }
+        }
+        sum += vdsEdgeRange(first, count, q);
+    }
+    // The edges of loops too small for a record come after the loops'.
+    sum += vdsEdgeRange(tail, boundary.edgeCount - tail, q);
     return sum / 12.566370614359172;
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <memory>
@@ -14,6 +15,7 @@
 #include <glm/geometric.hpp>
 
 #include "antipodal.h"
+#include <vds/detail/boundary_loops.h>
 
 namespace vds::detail {
 
@@ -730,6 +732,78 @@ BoundaryCaps::Estimate BoundaryCaps::byLoops(int winding, double offset, const g
         if (!sumLoop(t.loop)) break;
     }
     return {exact(winding, q), 0.0};
+}
+
+PackedBoundary packBoundary(const std::vector<glm::vec3>& edges, Axis axis) {
+    PackedBoundary packed;
+    const glm::ivec3 p = axisPermutation(axis);
+    const auto permuted = [&](const glm::dvec3& v) { return glm::vec3(float(v[p.x]), float(v[p.y]), float(v[p.z])); };
+    packed.edgeCount = std::uint32_t(edges.size() / 2);
+    if (packed.edgeCount == 0) return packed;
+    const BoundaryCaps caps(edges.data(), packed.edgeCount, axis);
+    const std::vector<glm::vec3>& loopEdges = caps.loopEdges();
+    const bool loops = caps.closed() && loopEdges.size() == edges.size();
+    if (!loops) {
+        for (const glm::vec3& v : edges) packed.data.emplace_back(permuted(glm::dvec3(v)), 0.0f);
+        return packed;
+    }
+    // Loops of kLoopMinEdges edges or more first, each with a record; the
+    // smaller loops' edges after them, summed as they are (a record would
+    // cost more than their few edges).
+    std::vector<CapLoop> large;
+    std::vector<glm::vec3> ordered;
+    for (const CapLoop& loop : caps.loops()) {
+        if (loop.count < kLoopMinEdges) continue;
+        CapLoop moved = loop;
+        moved.first = std::uint32_t(ordered.size() / 2);
+        ordered.insert(ordered.end(), loopEdges.begin() + 2 * std::ptrdiff_t(loop.first),
+                       loopEdges.begin() + 2 * std::ptrdiff_t(loop.first + loop.count));
+        large.push_back(moved);
+    }
+    for (const CapLoop& loop : caps.loops())
+        if (loop.count < kLoopMinEdges)
+            ordered.insert(ordered.end(), loopEdges.begin() + 2 * std::ptrdiff_t(loop.first),
+                           loopEdges.begin() + 2 * std::ptrdiff_t(loop.first + loop.count));
+    for (const glm::vec3& v : ordered) packed.data.emplace_back(permuted(glm::dvec3(v)), 0.0f);
+    packed.loopCount = std::uint32_t(large.size());
+    const auto pairIndex = [](int j, int k) {
+        if (j == k) return j;
+        const int lo = std::min(j, k), hi = std::max(j, k);
+        return lo == 0 ? (hi == 1 ? 3 : 4) : 5;
+    };
+    for (const CapLoop& loop : large) {
+        std::vector<std::array<glm::dvec3, 3>> fan;
+        for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k)
+            fan.push_back({loop.centroid, glm::dvec3(ordered[2 * k + 1]), glm::dvec3(ordered[2 * k])});
+        const Moments m = momentsOf(fan, 0, fan.size(), loop.centroid);
+        // In the (s, t, r) frame: every index through the permutation.
+        const auto M = [&](int i, int j) { return m.moment[std::size_t(3 * p[i] + p[j])]; };
+        const auto N = [&](int i, int j, int k) { return m.quadrupole[std::size_t(6 * p[i] + pairIndex(p[j], p[k]))]; };
+        const auto bits = [](std::uint32_t v) {
+            float f;
+            const std::int32_t i = std::int32_t(v);
+            std::memcpy(&f, &i, 4);
+            return f;
+        };
+        packed.data.emplace_back(permuted(loop.centroid), float(loop.radius * (1.0 + 1e-6))); // float may round it down
+        packed.data.emplace_back(permuted(m.vectorArea), float(3.0 * m.second / kFourPi));
+        packed.data.emplace_back(M(0, 0), M(0, 1), M(0, 2), M(1, 0));
+        packed.data.emplace_back(M(1, 1), M(1, 2), M(2, 0), M(2, 1));
+        packed.data.emplace_back(M(2, 2), bits(loop.first), bits(loop.count), 0.0f);
+        glm::dvec3 rows(0.0), columns(0.0);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                rows[i] += N(i, j, j);
+                columns[j] += N(i, i, j);
+            }
+        packed.data.emplace_back(glm::vec3(rows), 0.0f);
+        packed.data.emplace_back(glm::vec3(columns), 0.0f);
+        float n[20] = {};
+        for (int i = 0; i < 3; ++i)
+            for (int pair = 0; pair < 6; ++pair) n[6 * i + pair] = float(N(i, kPairs[pair][0], kPairs[pair][1]));
+        for (int v = 0; v < 5; ++v) packed.data.emplace_back(n[4 * v], n[4 * v + 1], n[4 * v + 2], n[4 * v + 3]);
+    }
+    return packed;
 }
 
 const BoundaryCaps& BoundaryCapsCache::get(const std::vector<glm::vec3>& edges, Axis axis) const {

@@ -1,5 +1,7 @@
 #include <vds/gl/sprite.h>
 
+#include <vds/detail/boundary_loops.h>
+
 #include <algorithm>
 #include <cassert>
 #include <cstring>
@@ -94,6 +96,7 @@ GpuSprite& GpuSprite::operator=(GpuSprite&& o) noexcept {
         status_ = o.status_;
         boundaryEdges_ = std::move(o.boundaryEdges_);
         boundaryEdgeCount_ = o.boundaryEdgeCount_;
+        boundaryLoopCount_ = o.boundaryLoopCount_;
         boundaryKnown_ = o.boundaryKnown_;
         boundaryLo_ = o.boundaryLo_;
         boundaryStep_ = o.boundaryStep_;
@@ -146,10 +149,13 @@ void GpuSprite::upload(const Sprite& sprite, GpuSpriteParts parts) {
 
 void GpuSprite::setBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>& edges, bool known) {
     const glm::ivec3 p = axisPermutation(grid.axis);
-    std::vector<glm::vec4> packed(std::max<std::size_t>(edges.size(), 1), glm::vec4(0.0f));
-    for (std::size_t k = 0; k < edges.size(); ++k) packed[k] = {edges[k][p.x], edges[k][p.y], edges[k][p.z], 0.0f};
-    boundaryEdges_ = uploadBuffer(packed.data(), packed.size() * sizeof(glm::vec4), "uploading the boundary edges");
-    boundaryEdgeCount_ = std::uint32_t(edges.size() / 2);
+    // The edges loop by loop, and each loop's cap moments after them, so
+    // that the shader takes far loops by their expansion.
+    detail::PackedBoundary packed = detail::packBoundary(edges, grid.axis);
+    if (packed.data.empty()) packed.data.emplace_back(0.0f);
+    boundaryEdges_ = uploadBuffer(packed.data.data(), packed.data.size() * sizeof(glm::vec4), "uploading the boundary edges");
+    boundaryEdgeCount_ = packed.edgeCount;
+    boundaryLoopCount_ = packed.loopCount;
     boundaryKnown_ = known;
     // As SpriteGrid::texelCentre computes a ray's point, in float.
     boundaryLo_ = {grid.box.lo[p.x], grid.box.lo[p.y], grid.box.lo[p.z]};
@@ -166,6 +172,8 @@ void GpuSprite::setBoundaryUniforms(GLuint program, const std::string& boundary,
     glProgramUniform3fv(program, glGetUniformLocation(program, (boundary + ".step").c_str()), 1, &boundaryStep_[0]);
     glProgramUniform1i(program, glGetUniformLocation(program, (boundary + ".edgeCount").c_str()),
                        GLint(boundaryEdgeCount_));
+    glProgramUniform1i(program, glGetUniformLocation(program, (boundary + ".loopCount").c_str()),
+                       GLint(boundaryLoopCount_));
     checkGl("GpuSprite::setBoundaryUniforms");
 }
 
