@@ -1,8 +1,9 @@
 // The boundary term's capped loops (vds/core/src/caps_tree.h) against the
 // per-edge sum (antipodal.h), the independent exact form: the expansion's
 // error bound, the drift bound along a move (what the occupancy sweep's runs
-// rest on), the margin of decide(), and how the boundary splits into loops
-// where a non-manifold ring of edges meets fins.
+// rest on), the margin of decide() and its cost beside a large loop, and
+// how the boundary splits into loops where a non-manifold ring of edges
+// meets fins.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -176,6 +177,48 @@ TEST(CapsTree, FinsOnANonManifoldRingAreLoopsOfTheirOwn) {
     std::size_t triangles = 0;
     for (const CapLoop& loop : caps.loops()) triangles += loop.count == 3;
     EXPECT_EQ(triangles, 32u);
+}
+
+TEST(CapsTree, PointsBesideALargeLoopCostItsChainsNearThemNotItsEdges) {
+    // A circle of 4,096 edges in z = 0, alone: just above and below its
+    // disk the boundary term lies within 0.05 of -1/2 or 1/2, so with
+    // winding 1 or 0 the value lies near 1/2, where labels need the term to
+    // some 1e-2, and there every cap's fan triangle is close by. The chain
+    // tree takes the far arcs by their chords and needs a few chains near
+    // the point: far less work than the per-edge sum's 4,096 angles.
+    constexpr int kEdges = 4096;
+    std::vector<glm::vec3> edges;
+    const auto at = [](int k) {
+        const double phi = 2.0 * kPi * (k % kEdges) / kEdges;
+        return glm::vec3(float(std::cos(phi)), float(std::sin(phi)), 0.0f);
+    };
+    for (int k = 0; k < kEdges; ++k) {
+        edges.push_back(at(k));
+        edges.push_back(at(k + 1));
+    }
+    const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z);
+    ASSERT_TRUE(caps.closed());
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> radius(0.0f, 0.9f), angle(0.0f, 6.2831853f), height(-0.05f, 0.05f);
+    double work = 0.0, nearest = 1.0;
+    std::size_t count = 0;
+    for (int k = 0; k < 400; ++k) {
+        const float r = radius(rng), phi = angle(rng);
+        const glm::vec3 q(r * std::cos(phi), r * std::sin(phi), height(rng));
+        for (const int winding : {0, 1}) {
+            const double exact = double(winding) + exactTerm(edges, q);
+            if (std::fabs(exact - 0.5) > 0.1) continue;
+            nearest = std::min(nearest, std::fabs(exact - 0.5));
+            const BoundaryCaps::Estimate e = caps.decide(winding, q, 1.0);
+            ASSERT_EQ(e.term > 0.5 + kGeneralizedWindingTie, generalizedWindingInside(exact)) << q.x << " " << q.y << " " << q.z;
+            ASSERT_LE(std::fabs(e.term - exact), std::max(e.bound, 1e-12));
+            work += e.work;
+            ++count;
+        }
+    }
+    ASSERT_GT(count, 300u);
+    EXPECT_LT(nearest, 1e-3); // some points really are close to 1/2
+    EXPECT_LT(work / double(count), kEdges / 16.0);
 }
 
 } // namespace

@@ -195,7 +195,6 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
         loop.vectorArea = moments.vectorArea;
         loop.moment = moments.moment;
         loop.area = moments.area;
-        loopErrorScale_.push_back(3.0 * moments.second / kFourPi);
         loops_.push_back(loop);
         // The tree sums the same surface, each fan triangle cut into m^2
         // triangles of about the loop's edge length: fan triangles of a long
@@ -218,6 +217,7 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
     }
     buildReach();
     if (!closed_ || tris.empty()) return;
+    buildChains();
     projected_.emplace(MeshView(capPositions_.data(), capPositions_.size(), capTriangles_.data(), capTriangles_.size()),
                        axis);
     std::vector<std::uint32_t> order(fine.size());
@@ -570,39 +570,152 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
     return generalizedWindingInside(decide(winding, q, 1.0).term);
 }
 
+// ------------------------------------------------------------ labels
+//
+// The tree labels refine: over the loops (each node's surface the loops'
+// fans, no chord), then within a loop over halves of its edges. A chain of
+// edges running from P to Q, closed by its chord Q -> P, bounds the fan
+// (g, b, a) over its edges a -> b and the chord, g the mean of its
+// vertices; the fan lies in the node's ball. Where q's ray towards -axis
+// misses the ball, the ray crosses no fan, so by the caps' identity (B of a
+// closed loop = its cap's crossing count less its cap's winding number,
+// caps_tree.h) the chain's per-edge angles sum to the chord's angle
+// f(P -> Q) (edgeSolidAngle, exact) less the fan's solid angle, which the
+// expansion takes. A chain's fan is a thin lune along the boundary, not a
+// cap across the loop: points near a large opening, where the caps' fans
+// all meet, are decided by a few chains of the loop near them, the rest of
+// the loop by chords. Leaves sum their edges' angles as the per-edge sum
+// does.
+
+namespace {
+/// Most edges a chain leaf holds.
+constexpr std::uint32_t kLeafEdges = 4;
+} // namespace
+
+void BoundaryCaps::buildChains() {
+    std::vector<std::uint32_t> order(loops_.size());
+    for (std::uint32_t l = 0; l < order.size(); ++l) order[l] = l;
+    chains_.reserve(2 * (edges_.size() / 2) / 2 + 2 * loops_.size() + 2);
+    buildChainGroup(order, 0, std::uint32_t(order.size()));
+}
+
+std::uint32_t BoundaryCaps::buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first,
+                                            std::uint32_t last) {
+    if (last - first == 1) {
+        const CapLoop& loop = loops_[loops[first]];
+        return buildChain(loops[first], loop.first, loop.count);
+    }
+    const std::uint32_t index = std::uint32_t(chains_.size());
+    chains_.emplace_back();
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    glm::dvec3 clo = lo, chi = hi;
+    std::vector<std::array<glm::dvec3, 3>> tris;
+    for (std::uint32_t l = first; l < last; ++l) {
+        const CapLoop& loop = loops_[loops[l]];
+        clo = glm::min(clo, loop.centroid);
+        chi = glm::max(chi, loop.centroid);
+        for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k) {
+            const glm::dvec3 a(loopEdges_[2 * k]), b(loopEdges_[2 * k + 1]);
+            lo = glm::min(lo, a);
+            hi = glm::max(hi, a);
+            tris.push_back({loop.centroid, b, a});
+        }
+    }
+    ChainNode node{};
+    node.centre = 0.5 * (lo + hi);
+    // The ball holds every fan's corners (the centroids, rounded to float,
+    // may lie off a flat loop's hull), so the fans too.
+    for (const auto& t : tris)
+        node.radius = std::max({node.radius, glm::length(t[0] - node.centre), glm::length(t[2] - node.centre)});
+    const Moments m = momentsOf(tris, 0, tris.size(), node.centre);
+    node.vectorArea = m.vectorArea;
+    node.moment = m.moment;
+    node.trace = m.moment[0] + m.moment[4] + m.moment[8];
+    node.errorScale = 3.0 * m.second / kFourPi;
+    node.chord = false;
+    const glm::dvec3 extent = chi - clo;
+    const int split = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    const std::uint32_t middle = first + (last - first) / 2;
+    std::nth_element(loops.begin() + first, loops.begin() + middle, loops.begin() + last,
+                     [&](std::uint32_t x, std::uint32_t y) { return loops_[x].centroid[split] < loops_[y].centroid[split]; });
+    node.left = buildChainGroup(loops, first, middle);
+    node.right = buildChainGroup(loops, middle, last);
+    chains_[index] = node;
+    return index;
+}
+
+std::uint32_t BoundaryCaps::buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count) {
+    const std::uint32_t index = std::uint32_t(chains_.size());
+    chains_.emplace_back();
+    ChainNode node{};
+    const bool whole = count == loops_[loop].count;
+    glm::dvec3 apex(0.0);
+    if (whole) {
+        apex = loops_[loop].centroid;
+    } else {
+        for (std::uint32_t k = first; k < first + count; ++k) apex += glm::dvec3(loopEdges_[2 * k]);
+        apex += glm::dvec3(loopEdges_[2 * (first + count - 1) + 1]);
+        apex /= double(count + 1);
+    }
+    std::vector<std::array<glm::dvec3, 3>> tris;
+    for (std::uint32_t k = first; k < first + count; ++k) {
+        const glm::dvec3 a(loopEdges_[2 * k]), b(loopEdges_[2 * k + 1]);
+        tris.push_back({apex, b, a});
+        node.radius = std::max({node.radius, glm::length(a - apex), glm::length(b - apex)});
+    }
+    node.from = glm::dvec3(loopEdges_[2 * first]);
+    node.to = glm::dvec3(loopEdges_[2 * (first + count - 1) + 1]);
+    node.chord = !whole;
+    if (node.chord) tris.push_back({apex, node.from, node.to}); // the chord Q -> P closes the chain
+    node.centre = apex;
+    const Moments m = momentsOf(tris, 0, tris.size(), apex);
+    node.vectorArea = m.vectorArea;
+    node.moment = m.moment;
+    node.trace = m.moment[0] + m.moment[4] + m.moment[8];
+    node.errorScale = 3.0 * m.second / kFourPi;
+    if (count <= kLeafEdges) {
+        node.first = first;
+        node.count = count;
+        chains_[index] = node;
+        return index;
+    }
+    const std::uint32_t half = count / 2;
+    node.left = buildChain(loop, first, half);
+    node.right = buildChain(loop, first + half, count - half);
+    chains_[index] = node;
+    return index;
+}
+
 BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, double margin) const {
     if (!closed_) return {exact(winding, q), 0.0};
-    if (nodes_.empty()) return {double(winding), 0.0};
-    // Greedy decide-or-refine: start from the coarsest cut whose nodes each
-    // err by at most kMaxTakenBound, then open the node with the largest
-    // bound until the value lies farther from 1/2 than the summed bounds.
-    // Most points lie far from 1/2 and stop after a few nodes.
+    if (chains_.empty()) return {double(winding), 0.0};
     struct Taken {
         double bound;
-        double value; ///< the node's expansion, in steradians
+        double value; ///< the node's edges' angles by its chord and expansion
         std::uint32_t node;
         bool operator<(const Taken& o) const { return bound < o.bound; }
     };
     thread_local std::vector<Taken> heap;
     thread_local std::vector<std::uint32_t> stack;
     heap.clear();
-    // The taken nodes become a heap only once the first cut does not decide
-    // (most points stop there).
+    // Greedy decide-or-refine: start from the coarsest cut whose nodes each
+    // err by at most kMaxTakenBound, then open the node with the largest
+    // bound until the value lies farther from 1/2 than the summed bounds.
+    // The taken nodes become a heap only once the first cut does not
+    // decide (most points stop there).
     bool heaped = false;
     const glm::dvec3 p(q);
-    double integral = 0.0, bound = 0.0;
-    // Work spent, in nodes taken and leaf triangles summed (each some
-    // times an edge of the per-edge sum, which needs no atan2 an edge):
-    // past a quarter of the edge count the per-edge sum decides, so that
-    // points the tree cannot settle (near 1/2, or close to a large cap)
-    // cost about 1.5 per-edge sums, not the whole tree.
-    const double budget = 0.25 * double(edges_.size() / 2);
+    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
+    double angles = 0.0, bound = 0.0; // the per-edge angles' sum, in radians
+    // Work spent, in nodes taken (a chord's angle and an expansion) and
+    // leaf edges summed: past the edge count (a point within rounding of
+    // 1/2) the per-edge sum decides.
+    const double budget = double(edges_.size() / 2);
     double work = 0.0;
-    bool onCap = false;
-    // Opens the subtree at `index`: nodes far enough by expansion, the rest
-    // down to leaves summed exactly. False where q lies on a cap, or once
-    // the work exceeds the budget (the per-edge sum decides either way).
-    // `expand`: not by its own expansion (a leaf taken before).
+    // Opens the subtree at `index`: nodes q's ray misses and far enough by
+    // expansion, the rest down to leaves summed exactly. False once the
+    // work exceeds the budget. `expand`: not by its own expansion (a leaf
+    // taken before).
     const auto open = [&](std::uint32_t index, bool expand) {
         stack.clear();
         stack.push_back(index);
@@ -610,22 +723,20 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
             if (work > budget) return false;
             const std::uint32_t i = stack.back();
             stack.pop_back();
-            const Node& n = nodes_[i];
+            const ChainNode& n = chains_[i];
             const glm::dvec3 y = n.centre - p;
             const double d2 = glm::dot(y, y);
-            const double d = std::sqrt(d2), e = d - n.radius;
-            if (e > 0.0 && !(expand && i == index)) {
-                // To first order: labels need coarse bounds, and a node
-                // taken to second order costs about twice as much while
-                // saving fewer nodes than that (measured: 0.87-0.98x the
-                // first order's rate on the bunny, teapot, suzanne and the
-                // generated cases, the second order alone or as a node's
-                // first refinement).
+            const double reach = n.radius * (1.0 + 1e-12);
+            // q's ray towards -axis misses the ball: the fan's crossing count is 0
+            const bool misses = y[s] * y[s] + y[t] * y[t] > reach * reach || p[a] < n.centre[a] - reach;
+            if (misses && d2 > reach * reach && !(expand && i == index)) {
+                const double d = std::sqrt(d2), e = d - reach;
                 const double b = n.errorScale * firstOrderFactor(d, e);
                 if (b <= kMaxTakenBound) {
-                    work += 1.0;
-                    const double value = firstOrder(n, y, d2, d);
-                    integral += value;
+                    work += n.chord ? 2.0 : 1.0;
+                    double value = -firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
+                    if (n.chord) value += edgeSolidAngle(a, n.from, n.to, p);
+                    angles += value;
                     bound += b;
                     heap.push_back({b, value, i});
                     if (heaped) std::push_heap(heap.begin(), heap.end());
@@ -639,106 +750,41 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
             }
             work += double(n.count);
             for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
-                if (!addCapTriangle(leafTris_[k], p, integral)) { // on a cap
-                    onCap = true;
-                    return false;
-                }
+                angles += edgeSolidAngle(a, glm::dvec3(loopEdges_[2 * k]), glm::dvec3(loopEdges_[2 * k + 1]), p);
         }
         return true;
     };
-    // value - (1/2 + tie) = offset - integral / 4 pi; the estimate lies
+    // value - (1/2 + tie) = offset + angles / 4 pi; the estimate lies
     // within bound + kRoundingSlack of the per-edge sum, so a value farther
     // than that from the threshold has the per-edge sum's label.
-    const double offset = double(winding) + double(projected_->winding(q)) - 0.5 - kGeneralizedWindingTie;
+    const double offset = double(winding) - 0.5 - kGeneralizedWindingTie;
     if (open(0, false)) {
         while (true) {
-            const double value = offset - integral / kFourPi;
+            const double value = offset + angles / kFourPi;
             // The running sums drift by some 1e-13 at most (each taken
             // bound is at most kMaxTakenBound), within the slack.
             if (std::fabs(value) > margin * bound + kRoundingSlack)
-                return {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack};
+                return {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack, work};
             if (heap.empty() || work > budget) break;
             if (!heaped) {
                 std::make_heap(heap.begin(), heap.end());
                 heaped = true;
             }
             std::pop_heap(heap.begin(), heap.end());
-            const Taken t = heap.back();
+            const Taken tk = heap.back();
             heap.pop_back();
-            integral -= t.value;
-            bound -= t.bound;
+            angles -= tk.value;
+            bound -= tk.bound;
             if (heap.empty()) bound = 0.0; // no drift left where nothing is taken
-            const Node& n = nodes_[t.node];
+            const ChainNode& n = chains_[tk.node];
             if (n.count == 0) {
                 if (!open(n.left, false) || !open(n.right, false)) break;
-            } else if (!open(t.node, true)) { // a leaf: summed exactly
+            } else if (!open(tk.node, true)) { // a leaf: summed exactly
                 break;
             }
         }
     }
-    if (!onCap) return byLoops(winding, offset, q, margin);
-    return {exact(winding, q), 0.0};
-}
-
-BoundaryCaps::Estimate BoundaryCaps::byLoops(int winding, double offset, const glm::vec3& q, double margin) const {
-    // Where the tree's budget ran out: loop by loop, each far loop by its
-    // cap's expansion to first order (its bound as a node's), the others by
-    // their caps' fan triangles summed exactly (as many as the loop's
-    // edges, not the subdivided fan), then the far loop with the largest
-    // bound summed exactly until the value is far enough from 1/2. A large
-    // loop beside q then costs its own edges, not every boundary edge.
-    struct Taken {
-        double bound;
-        double value;
-        std::uint32_t loop;
-        bool operator<(const Taken& o) const { return bound < o.bound; }
-    };
-    thread_local std::vector<Taken> heap;
-    heap.clear();
-    const glm::dvec3 p(q);
-    double integral = 0.0, bound = 0.0;
-    // The loop's fan (c, b, a) over its edges a -> b, summed exactly; false
-    // where q lies on it.
-    const auto sumLoop = [&](std::uint32_t l) {
-        const CapLoop& loop = loops_[l];
-        for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k)
-            if (!addCapTriangle({loop.centroid, glm::dvec3(loopEdges_[2 * k + 1]), glm::dvec3(loopEdges_[2 * k])}, p,
-                                integral))
-                return false;
-        return true;
-    };
-    for (std::uint32_t l = 0; l < loops_.size(); ++l) {
-        const CapLoop& loop = loops_[l];
-        const glm::dvec3 y = loop.centroid - p;
-        const double d2 = glm::dot(y, y), d = std::sqrt(d2), e = d - loop.radius;
-        if (e > 0.0) {
-            const double b = loopErrorScale_[l] * firstOrderFactor(d, e);
-            if (b <= kMaxTakenBound) {
-                const std::array<double, 9>& M = loop.moment;
-                const double value = firstOrderTerm(loop.vectorArea, M, M[0] + M[4] + M[8], y, d2, d);
-                integral += value;
-                bound += b;
-                heap.push_back({b, value, l});
-                continue;
-            }
-        }
-        if (!sumLoop(l)) return {exact(winding, q), 0.0};
-    }
-    std::make_heap(heap.begin(), heap.end());
-    while (true) {
-        const double value = offset - integral / kFourPi;
-        if (std::fabs(value) > margin * bound + kRoundingSlack)
-            return {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack};
-        if (heap.empty()) break; // every loop summed exactly, and still within the slack of 1/2
-        std::pop_heap(heap.begin(), heap.end());
-        const Taken t = heap.back();
-        heap.pop_back();
-        integral -= t.value;
-        bound -= t.bound;
-        if (heap.empty()) bound = 0.0;
-        if (!sumLoop(t.loop)) break;
-    }
-    return {exact(winding, q), 0.0};
+    return {exact(winding, q), 0.0, work + double(edges_.size() / 2)};
 }
 
 PackedBoundary packBoundary(const std::vector<glm::vec3>& edges, Axis axis) {

@@ -44,18 +44,23 @@
 // solid angle the node subtends (area / D^2, so that the bounds sum to
 // about the tolerance times the caps' apparent solid angle); the sum of the
 // taken nodes' bounds comes back with the value, and values fall back to
-// the per-edge sum (antipodal.h) where it exceeds their tolerance. Labels
-// take nodes by the expansion to first order only, whose remainder bound
-// is, the same way (second derivative 3! / |y|^4 at most),
-// S (D + 2e) / (4 pi D^3 e^2), and refine greedily: from the coarsest cut
-// whose nodes each err by at most 1/4, the node with the largest bound is
-// opened (its children, or a leaf's triangles summed exactly) until the
-// value lies farther from the label's threshold (1/2 plus the tie,
-// antipodal.h) than the summed bounds. Once the tree's work passes a
-// quarter of the per-edge sum's, the loops decide one by one (far loops by
-// their caps' expansion, near ones by their own fans summed exactly), and
-// the per-edge sum where they do not either; so labels equal the per-edge
-// sum's.
+// the per-edge sum (antipodal.h) where it exceeds their tolerance.
+//
+// Labels use a second tree whose nodes are chains of edges, not pieces of
+// the caps: a chain from P to Q closed by its chord Q -> P bounds a thin fan
+// along the boundary, and where q's ray misses the node's ball the chain's
+// per-edge angles sum to its chord's angle less that fan's solid angle
+// (the identity above, with no crossing). The fan is taken by its
+// expansion to first order, whose remainder bound is, the same way (second
+// derivative 3! / |y|^4 at most), S (D + 2e) / (4 pi D^3 e^2). From the
+// coarsest cut whose nodes each err by at most 1/4, the node with the
+// largest bound is opened (its children, or a leaf's edges summed exactly)
+// until the value lies farther from the label's threshold (1/2 plus the
+// tie, antipodal.h) than the summed bounds; past a budget of the per-edge
+// sum's work, the per-edge sum decides. So labels equal the per-edge sum's,
+// and a point near a large loop costs a few chains near it and the chords
+// of the rest, where the caps' fans, meeting across the opening, would
+// cost the loop's every edge.
 #pragma once
 
 #include <array>
@@ -102,6 +107,9 @@ public:
     struct Estimate {
         double term = 0.0;  ///< B(q)
         double bound = 0.0; ///< |B(q) - exact| <= bound; +inf where q lies on a cap (use the exact sum)
+        /// decide(): nodes taken and edges summed (the per-edge sum adds
+        /// its edges), the cost in edges' angles of the per-edge sum.
+        double work = 0.0;
     };
     /// B(q) and its error bound, taking nodes whose bound is at most
     /// `nodeTolerance` by expansion. Points are float so that the crossing
@@ -147,8 +155,8 @@ public:
     double generalizedWinding(int winding, const glm::vec3& q, double tolerance) const;
 
     /// Whether `winding + B(q) > 1/2`, with the per-edge sum's answer: the
-    /// tree is refined greedily until the value is farther from 1/2 than its
-    /// bound.
+    /// chain tree is refined greedily until the value is farther from 1/2
+    /// than its bound.
     bool inside(int winding, const glm::vec3& q) const;
 
     /// `winding + B(q)` within `bound` of the per-edge sum's value, refined
@@ -186,7 +194,6 @@ private:
         std::uint32_t left, right;  ///< inner: children (count == 0)
     };
     double exact(int winding, const glm::vec3& q) const;
-    Estimate byLoops(int winding, double offset, const glm::vec3& q, double margin) const;
     static void finish(Node& node);
     static double firstOrder(const Node& n, const glm::dvec3& y, double d2, double d);
     static double expansion(const Node& n, const glm::dvec3& y, double d2, double d);
@@ -201,7 +208,6 @@ private:
     std::vector<glm::vec3> edges_;
     std::vector<glm::vec3> loopEdges_;
     std::vector<CapLoop> loops_;
-    std::vector<double> loopErrorScale_; ///< per loop: 3 S / 4 pi of its fan, S about its centroid
     std::vector<glm::vec3> capPositions_;
     std::vector<glm::uvec3> capTriangles_;
     std::vector<std::array<glm::dvec3, 3>> leafTris_; ///< cap triangles in tree order
@@ -222,6 +228,29 @@ private:
     void buildReach();
     std::uint32_t buildLoops(std::vector<std::uint32_t>& nodes, std::uint32_t first, std::uint32_t last);
     std::uint32_t buildEdges(std::uint32_t first, std::uint32_t last);
+    /// The tree labels refine (decide): over the loops, then within each
+    /// loop over halves of its edges (chains). A chain a node holds runs
+    /// from P to Q; closed by its chord Q -> P it bounds the fan from its
+    /// centre, a surface inside its ball. Where q's ray misses the ball the
+    /// fan's crossing count is 0, so the chain's edges sum to the chord's
+    /// angle f(P -> Q) less the fan's solid angle, which the expansion
+    /// takes: the fan hugs the chain (a lune, not a cap across the loop).
+    struct ChainNode {
+        glm::dvec3 centre;
+        double radius;
+        double errorScale; ///< 3 S / 4 pi of its fan about the centre
+        glm::dvec3 vectorArea;
+        std::array<double, 9> moment;
+        double trace;
+        glm::dvec3 from, to;        ///< the chord P -> Q (P == Q: whole loops)
+        bool chord;
+        std::uint32_t first, count; ///< leaf: loopEdges_ [first, first + count)
+        std::uint32_t left, right;  ///< inner: children (count == 0)
+    };
+    void buildChains();
+    std::uint32_t buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first, std::uint32_t last);
+    std::uint32_t buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count);
+    std::vector<ChainNode> chains_;
     std::vector<glm::vec3> treeEdges_; ///< edges_ in the tree's order
     std::vector<EdgeNode> edgeNodes_; ///< a tree over edges_, for reach(); [0] is the root
 };
