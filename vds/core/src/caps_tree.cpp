@@ -706,7 +706,14 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
     bool heaped = false;
     const glm::dvec3 p(q);
     const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
-    double angles = 0.0, bound = 0.0; // the per-edge angles' sum, in radians
+    // The per-edge angles' sum, in radians: of the taken nodes, and of the
+    // leaves' edges (as the per-edge sum takes them: by their products,
+    // one atan2 a side when a label is tried, not one an edge).
+    double angles = 0.0, bound = 0.0, apart = 0.0;
+    AngleSum leafSums[2];
+    const auto towardsApex = [&](const glm::dvec3& w, double length) {
+        return w[a] >= 0.0 ? length + w[a] : (w[s] * w[s] + w[t] * w[t]) / (length - w[a]);
+    };
     // Work spent, in nodes taken (a chord's angle and an expansion) and
     // leaf edges summed: past the edge count (a point within rounding of
     // 1/2) the per-edge sum decides.
@@ -749,8 +756,18 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
                 continue;
             }
             work += double(n.count);
-            for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
-                angles += edgeSolidAngle(a, glm::dvec3(loopEdges_[2 * k]), glm::dvec3(loopEdges_[2 * k + 1]), p);
+            for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
+                const glm::dvec3 ea(loopEdges_[2 * k]), eb(loopEdges_[2 * k + 1]);
+                const glm::dvec3 u = ea - p, v = eb - p;
+                const double det = u[s] * v[t] - u[t] * v[s];
+                if (det == 0.0) {
+                    apart += edgeSolidAngle(a, ea, eb, p);
+                    continue;
+                }
+                const double den = towardsApex(u, glm::length(u)) * towardsApex(v, glm::length(v)) + u[s] * v[s] + u[t] * v[t];
+                const double size = std::fabs(den) + std::fabs(det);
+                leafSums[det > 0.0 ? 0 : 1].add(den / size, std::fabs(det) / size);
+            }
         }
         return true;
     };
@@ -760,7 +777,8 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
     const double offset = double(winding) - 0.5 - kGeneralizedWindingTie;
     if (open(0, false)) {
         while (true) {
-            const double value = offset + angles / kFourPi;
+            const double leaves = 2.0 * (leafSums[0].angle() - leafSums[1].angle()) + apart;
+            const double value = offset + (angles + leaves) / kFourPi;
             // The running sums drift by some 1e-13 at most (each taken
             // bound is at most kMaxTakenBound), within the slack.
             if (std::fabs(value) > margin * bound + kRoundingSlack)
