@@ -630,8 +630,10 @@ std::uint32_t BoundaryCaps::buildChainGroup(std::vector<std::uint32_t>& loops, s
     const Moments m = momentsOf(tris, 0, tris.size(), node.centre);
     node.vectorArea = m.vectorArea;
     node.moment = m.moment;
-    node.trace = m.moment[0] + m.moment[4] + m.moment[8];
+    node.quadrupole = m.quadrupole;
+    node.area = m.area;
     node.errorScale = 3.0 * m.second / kFourPi;
+    finish(node);
     node.chord = false;
     const glm::dvec3 extent = chi - clo;
     const int split = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
@@ -671,8 +673,10 @@ std::uint32_t BoundaryCaps::buildChain(std::uint32_t loop, std::uint32_t first, 
     const Moments m = momentsOf(tris, 0, tris.size(), apex);
     node.vectorArea = m.vectorArea;
     node.moment = m.moment;
-    node.trace = m.moment[0] + m.moment[4] + m.moment[8];
+    node.quadrupole = m.quadrupole;
+    node.area = m.area;
     node.errorScale = 3.0 * m.second / kFourPi;
+    finish(node);
     if (count <= kLeafEdges) {
         node.first = first;
         node.count = count;

@@ -176,7 +176,8 @@ public:
     const std::vector<glm::vec3>& loopEdges() const { return loopEdges_; }
     std::size_t edgeCount() const { return edges_.size() / 2; }
 
-private:
+    /// A node of either tree: a ball (centre, radius) holding a surface,
+    /// with that surface's moments about the centre.
     struct Node {
         glm::dvec3 centre;
         double radius;
@@ -193,6 +194,24 @@ private:
         std::uint32_t first, count; ///< leaf: cap triangles [first, first + count)
         std::uint32_t left, right;  ///< inner: children (count == 0)
     };
+
+    /// The tree labels refine (decide): over the loops, then within each
+    /// loop over halves of its edges (chains). A chain a node holds runs
+    /// from P to Q; closed by its chord Q -> P it bounds the fan from its
+    /// centre, a surface inside its ball. Where q's ray misses the ball the
+    /// fan's crossing count is 0, so the chain's edges sum to the chord's
+    /// angle f(P -> Q) less the fan's solid angle, which the expansion
+    /// takes: the fan hugs the chain (a lune, not a cap across the loop).
+    /// Node's moments are its fan's, about `centre` (the ball's centre);
+    /// a leaf's `first`, `count` are edges of loopEdges().
+    struct ChainNode : Node {
+        glm::dvec3 from, to; ///< the chord P -> Q (none for whole loops)
+        bool chord;
+    };
+    /// [0] is the root; empty where the edges do not close into loops.
+    const std::vector<ChainNode>& chains() const { return chains_; }
+
+private:
     double exact(int winding, const glm::vec3& q) const;
     static void finish(Node& node);
     static double firstOrder(const Node& n, const glm::dvec3& y, double d2, double d);
@@ -228,25 +247,6 @@ private:
     void buildReach();
     std::uint32_t buildLoops(std::vector<std::uint32_t>& nodes, std::uint32_t first, std::uint32_t last);
     std::uint32_t buildEdges(std::uint32_t first, std::uint32_t last);
-    /// The tree labels refine (decide): over the loops, then within each
-    /// loop over halves of its edges (chains). A chain a node holds runs
-    /// from P to Q; closed by its chord Q -> P it bounds the fan from its
-    /// centre, a surface inside its ball. Where q's ray misses the ball the
-    /// fan's crossing count is 0, so the chain's edges sum to the chord's
-    /// angle f(P -> Q) less the fan's solid angle, which the expansion
-    /// takes: the fan hugs the chain (a lune, not a cap across the loop).
-    struct ChainNode {
-        glm::dvec3 centre;
-        double radius;
-        double errorScale; ///< 3 S / 4 pi of its fan about the centre
-        glm::dvec3 vectorArea;
-        std::array<double, 9> moment;
-        double trace;
-        glm::dvec3 from, to;        ///< the chord P -> Q (P == Q: whole loops)
-        bool chord;
-        std::uint32_t first, count; ///< leaf: loopEdges_ [first, first + count)
-        std::uint32_t left, right;  ///< inner: children (count == 0)
-    };
     void buildChains();
     std::uint32_t buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first, std::uint32_t last);
     std::uint32_t buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count);
