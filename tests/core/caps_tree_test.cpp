@@ -1,9 +1,9 @@
 // The boundary term's capped loops (vds/core/src/caps_tree.h) against the
 // per-edge sum (antipodal.h), the independent exact form: the expansion's
 // error bound, the drift bound along a move (what the occupancy sweep's runs
-// rest on), the margin of decide() and its cost beside a large loop, and
-// how the boundary splits into loops where a non-manifold ring of edges
-// meets fins.
+// rest on), the margin of decide() and its cost beside a large loop, how
+// the boundary splits into loops where a non-manifold ring of edges meets
+// fins, and the exact grid sweep's two ways, forced, cell by cell.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,10 +14,12 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <vds/grid.h>
 #include <vds/mesh.h>
 
 #include "antipodal.h"
 #include "caps_tree.h"
+#include "projected_mesh.h"
 
 namespace vds::detail {
 namespace {
@@ -219,6 +221,48 @@ TEST(CapsTree, PointsBesideALargeLoopCostItsChainsNearThemNotItsEdges) {
     ASSERT_GT(count, 300u);
     EXPECT_LT(nearest, 1e-3); // some points really are close to 1/2
     EXPECT_LT(work / double(count), kEdges / 16.0);
+}
+
+TEST(CapsTree, ColumnSweepsLabelEveryCellAsThePerEdgeSum) {
+    // Both ways of the exact grid sweep, forced: cell by cell (decide and
+    // reach) and by brackets over each column's cut of the chain tree
+    // (chords and far fans, edges near the column). The reference: each
+    // cell's crossing count plus the per-edge sum at its centre. A soup of
+    // loose triangles joins the cases (many small loops close together).
+    std::vector<Case> all = cases();
+    TriangleMesh soup;
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (std::uint32_t k = 0; k < 60; ++k) {
+        const glm::vec3 c(u(rng), u(rng), u(rng));
+        for (int v = 0; v < 3; ++v) soup.positions.push_back(c + 0.3f * glm::vec3(u(rng), u(rng), u(rng)));
+        soup.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    all.push_back({"soup", soup});
+    for (const Case& c : all) {
+        const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
+        const ProjectedMesh projected(MeshView(c.mesh), Axis::Z);
+        Box box{glm::vec3(-1.3f), glm::vec3(1.3f)};
+        const Grid grid = cubicGrid(box, 40);
+        const std::size_t count = std::size_t(grid.dims.x) * grid.dims.y * grid.dims.z;
+        std::vector<std::uint8_t> expected(count);
+        std::size_t inside = 0;
+        for (std::uint32_t i = 0; i < grid.dims.x; ++i)
+            for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+                for (std::uint32_t k = 0; k < grid.dims.z; ++k) {
+                    const glm::vec3 p = grid.cellCentre(i, j, k);
+                    const double value = double(projected.winding(p)) + exactTerm(edges, p);
+                    inside += expected[grid.index(i, j, k)] = generalizedWindingInside(value) ? 1 : 0;
+                }
+        EXPECT_GT(inside, 50u) << c.name; // labels of both kinds
+        for (const SweepWay way : {SweepWay::CellByCell, SweepWay::Brackets, SweepWay::Timed}) {
+            std::vector<std::uint8_t> cells(count, 7);
+            sweepExact(projected, edges, grid, cells.data(), {Rule::GeneralizedWinding, 2}, way);
+            std::size_t differ = 0;
+            for (std::size_t k = 0; k < count; ++k) differ += cells[k] != expected[k];
+            EXPECT_EQ(differ, 0u) << c.name << " way " << int(way);
+        }
+    }
 }
 
 } // namespace

@@ -352,6 +352,16 @@ double firstOrderTerm(const glm::dvec3& vectorArea, const std::array<double, 9>&
 
 } // namespace
 
+double BoundaryCaps::firstOrderSolidAngle(const Node& n, const glm::dvec3& q) {
+    const glm::dvec3 y = n.centre - q;
+    const double d2 = glm::dot(y, y);
+    return firstOrder(n, y, d2, std::sqrt(d2));
+}
+
+double BoundaryCaps::firstOrderBound(const Node& n, double distance) {
+    return n.errorScale * firstOrderFactor(distance, distance - n.radius);
+}
+
 double BoundaryCaps::firstOrder(const Node& n, const glm::dvec3& y, double d2, double d) {
     return firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
 }

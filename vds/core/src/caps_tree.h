@@ -210,6 +210,12 @@ public:
     };
     /// [0] is the root; empty where the edges do not close into loops.
     const std::vector<ChainNode>& chains() const { return chains_; }
+    /// A node's fan's solid angle seen from q by its expansion to first
+    /// order, and the bound on that expansion's error (over 4 pi: in B's
+    /// units) at distance `distance` > radius from its centre, which falls
+    /// as the distance grows.
+    static double firstOrderSolidAngle(const Node& n, const glm::dvec3& q);
+    static double firstOrderBound(const Node& n, double distance);
 
 private:
     double exact(int winding, const glm::vec3& q) const;

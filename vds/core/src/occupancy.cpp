@@ -58,32 +58,87 @@ std::vector<float> centres(const Grid& grid, int axis) {
 // <= 0: over the edge, or through an end) step at one depth by the tie
 // rule; columns with such an edge are labelled cell by cell instead, and so
 // are runs whose ends the column passes almost over an edge (see `at`).
+//
+// With the boundary's chain tree (caps_tree.h), a node whose ball the
+// column passes beside (at every depth, so its fan's crossing count is 0)
+// stands for its edges by its chord, an edge like the others, and its fan,
+// taken by expansion: F(z), within the expansions' bounds E of the fans'
+// own, which move by at most G a unit of depth. On [z0, z1] (length L)
+// then, for the fans' part,
+//
+//     (F(z0) + F(z1)) / 2 - E - G L / 2 <= . <= (F(z0) + F(z1)) / 2 + E + G L / 2,
+//
+// so a split costs the column's cut (chords and fans where the boundary is
+// far, edges where it is near), not every edge.
+/// The boundary term at one depth of a column, split as ColumnBoundary
+/// brackets it.
+struct Split {
+    double up = 0.0, down = 0.0, smooth = 0.0;
+};
+
 class ColumnBoundary {
 public:
-    /// False when the column meets an edge's projection (no bracket).
-    bool reset(const std::vector<glm::vec3>& edges, double x, double y) {
+    /// The column's terms: with `caps` (closed loops), by its chain tree
+    /// (see the comment above `at`), else every edge. False when the column
+    /// meets an edge's projection (no bracket).
+    bool reset(const std::vector<glm::vec3>& edges, const detail::BoundaryCaps* caps, double x, double y,
+               double height) {
         terms_.clear();
-        for (std::size_t k = 0; k + 1 < edges.size(); k += 2) {
-            Term t;
-            t.ux = double(edges[k].x) - x;
-            t.uy = double(edges[k].y) - y;
-            t.vx = double(edges[k + 1].x) - x;
-            t.vy = double(edges[k + 1].y) - y;
-            t.az = double(edges[k].z);
-            t.bz = double(edges[k + 1].z);
-            t.det = t.ux * t.vy - t.uy * t.vx;
-            t.across = t.ux * t.vx + t.uy * t.vy;
-            if (t.det == 0.0) {
-                if (t.across <= 0.0) return false;
-                continue; // adds 0 all along the column
-            }
-            terms_.push_back(t);
+        far_.clear();
+        error_ = 0.0;
+        drift_ = 0.0;
+        x_ = x;
+        y_ = y;
+        if (caps == nullptr || caps->chains().empty()) {
+            for (std::size_t k = 0; k + 1 < edges.size(); k += 2)
+                if (!addEdge(glm::dvec3(edges[k]), glm::dvec3(edges[k + 1]))) return false;
+            return true;
         }
+        const std::vector<detail::BoundaryCaps::ChainNode>& nodes = caps->chains();
+        const std::vector<glm::vec3>& loopEdges = caps->loopEdges();
+        std::uint32_t stack[64];
+        int top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const detail::BoundaryCaps::ChainNode& n = nodes[stack[--top]];
+            const double dx = n.centre.x - x, dy = n.centre.y - y;
+            const double rho = std::sqrt(dx * dx + dy * dy), e = rho - n.radius * (1.0 + 1e-12);
+            if (e > 0.0) {
+                // The column passes beside the ball at every depth: the
+                // fan's crossing count is 0 all along, its expansion errs
+                // by at most the bound at the closest approach, and its
+                // solid angle moves by at most 2 area / e^3 a unit of depth
+                // (the gradient of n . (x - q) / |x - q|^3 has norm at most
+                // 2 / |x - q|^3).
+                const double bound = detail::BoundaryCaps::firstOrderBound(n, n.radius * (1.0 + 1e-12) + e);
+                const double drift = 2.0 * n.area / (e * e * e) / kFourPi;
+                if (bound <= kFarBound && drift * height <= kFarDrift) {
+                    far_.push_back(&n);
+                    error_ += bound;
+                    drift_ += drift;
+                    if (n.chord && !addEdge(n.from, n.to)) return false;
+                    continue;
+                }
+            }
+            if (n.count == 0) {
+                stack[top++] = n.left;
+                stack[top++] = n.right;
+                continue;
+            }
+            for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
+                if (!addEdge(glm::dvec3(loopEdges[2 * k]), glm::dvec3(loopEdges[2 * k + 1]))) return false;
+        }
+        // The expansions' bounds, and rounding: the fans' float sums.
+        error_ = error_ * (1.0 + 1e-9) + 1e-12 * double(far_.size());
         return true;
     }
-    /// (B+, B-) at depth z, each over 4 pi; false where some edge's angle
-    /// is ill-conditioned there (its denominator cancelling to within 1e-6
-    /// of its parts: the column passes almost over the edge).
+
+    /// B at depth z as (B+, B-, F): B+ non-decreasing, B- non-increasing
+    /// in z, F the far nodes' fans by expansion, within `error()` of
+    /// theirs, which move by at most `drift()` a unit of depth; each over
+    /// 4 pi. False where some edge's angle is ill-conditioned there (its
+    /// denominator cancelling to within 1e-6 of its parts: the column
+    /// passes almost over the edge).
     ///
     /// Without an atan2 per edge: the angles of one sign are summed as the
     /// argument of the product of the complex numbers den + i |det|, each
@@ -92,7 +147,7 @@ public:
     /// less than pi can cross the real axis from above only there). The
     /// products err by some 1e-16 an edge relative, so the sums stay well
     /// within kBracketSlack.
-    bool at(double z, std::pair<double, double>& split) const {
+    bool at(double z, Split& split) const {
         // Two products a sign, alternating, so that consecutive multiplies
         // do not wait on each other.
         detail::AngleSum sums[4];
@@ -105,22 +160,56 @@ public:
             // products stay within (1/sqrt 2)^n of 1.
             sums[(t.det > 0.0 ? 0 : 2) + (k & 1)].add(den / size, std::fabs(t.det) / size);
         }
+        double fans = 0.0;
+        const glm::dvec3 q(x_, y_, z);
+        for (const detail::BoundaryCaps::Node* n : far_) fans += detail::BoundaryCaps::firstOrderSolidAngle(*n, q);
         // Each edge adds 2 atan2(det, den); over 4 pi.
-        split = {(sums[0].angle() + sums[1].angle()) / (2.0 * kPi), -(sums[2].angle() + sums[3].angle()) / (2.0 * kPi)};
+        split.up = (sums[0].angle() + sums[1].angle()) / (2.0 * kPi);
+        split.down = -(sums[2].angle() + sums[3].angle()) / (2.0 * kPi);
+        split.smooth = -fans / kFourPi;
         return true;
     }
+    double error() const { return error_; }
+    double drift() const { return drift_; }
 
 private:
     static constexpr double kPi = 3.14159265358979323846;
+    static constexpr double kFourPi = 4.0 * kPi;
+    /// A node is taken by its fan's expansion where that errs by at most
+    /// this anywhere along the column,
+    static constexpr double kFarBound = 1e-3;
+    /// and its fan's solid angle (over 4 pi) moves by at most this over the
+    /// column's height; else its edges or children are taken. (Measured on
+    /// the bench's generated cases: a drift allowance of 1e-2 made the
+    /// non-manifold shell's and the soup's grids 2-3x slower than 1, which
+    /// cuts long runs in halves instead; 1e-2 on the bound was no faster.)
+    static constexpr double kFarDrift = 1.0;
     struct Term {
         double ux, uy, vx, vy, az, bz, det, across;
     };
+    /// Adds edge a -> b; false where its projection meets the column.
+    bool addEdge(const glm::dvec3& a, const glm::dvec3& b) {
+        Term t;
+        t.ux = a.x - x_;
+        t.uy = a.y - y_;
+        t.vx = b.x - x_;
+        t.vy = b.y - y_;
+        t.az = a.z;
+        t.bz = b.z;
+        t.det = t.ux * t.vy - t.uy * t.vx;
+        t.across = t.ux * t.vx + t.uy * t.vy;
+        if (t.det == 0.0) return t.across > 0.0; // else adds 0 all along the column
+        terms_.push_back(t);
+        return true;
+    }
     /// |w| + w_z, without cancellation where w_z is close to -|w|.
     static double apex(double wx, double wy, double wz) {
         const double rho2 = wx * wx + wy * wy, length = std::sqrt(rho2 + wz * wz);
         return wz >= 0.0 ? length + wz : rho2 / (length - wz);
     }
     std::vector<Term> terms_;
+    std::vector<const detail::BoundaryCaps::Node*> far_;
+    double error_ = 0.0, drift_ = 0.0, x_ = 0.0, y_ = 0.0;
 };
 
 /// Slack on a bracket's ends: they and the per-edge sum each err by some
@@ -307,7 +396,7 @@ void occupancy(MeshView mesh, const Grid& grid, std::uint8_t* cells, const Class
 }
 
 void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::vec3>& edges, const Grid& grid,
-                        std::uint8_t* cells, const ClassifyOptions& options) {
+                        std::uint8_t* cells, const ClassifyOptions& options, SweepWay way) {
     assert(projected.axis == Axis::Z);
     // The generalized winding number of a mesh with boundary: each cell's
     // crossing count plus the boundary term at its centre, by the boundary's
@@ -323,9 +412,10 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
         // For the generalized winding number: each cell's integer term, and
         // the column's boundary term split by monotony, memoized per cell.
         std::vector<int> integer(edgeCount > 0 ? n : 0);
-        std::vector<std::pair<double, double>> terms(integer.size());
+        std::vector<Split> terms(integer.size());
         std::vector<std::uint8_t> known(integer.size());
         ColumnBoundary bracket;
+        const double height = double(zs.back()) - double(zs.front());
         // Which way labels a column faster depends on the boundary: brackets
         // cost O(edges) a split, the capped loops a tree query a cell (cheap
         // for small holes, dear beside a large cap). Both give the same
@@ -371,13 +461,15 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                     out[k] = caps->inside(integer[k], glm::vec3(q[0], q[1], zs[k])) ? 1 : 0;
                 };
                 const bool cheaper = secondsSpent[1] * double(columnsTimed[0]) <= secondsSpent[0] * double(columnsTimed[1]);
-                const bool useBrackets = local < 2 ? local == 0 : (local % kProbe == 0) != cheaper;
+                const bool useBrackets = way == detail::SweepWay::Timed ? (local < 2 ? local == 0 : (local % kProbe == 0) != cheaper)
+                                                                        : way == detail::SweepWay::Brackets;
                 const auto started = std::chrono::steady_clock::now();
                 const auto record = [&](int way) {
                     secondsSpent[way] += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
                     ++columnsTimed[way];
                 };
-                if (!useBrackets || !bracket.reset(edges, double(q[0]), double(q[1]))) {
+                if (!useBrackets ||
+                    !bracket.reset(edges, caps->closed() ? &*caps : nullptr, double(q[0]), double(q[1]), height)) {
                     // Cell by cell, each estimate labelling the cells after
                     // it as far as the boundary term provably stays on one
                     // side of the threshold (BoundaryCaps::Reach).
@@ -435,18 +527,25 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                     }
                     // One or two cells: the split's value, or the capped
                     // loops where it is too close to call.
+                    const double error = bracket.error() + kBracketSlack;
                     if (k1 - k0 <= 1) {
                         for (const std::uint32_t k : {k0, k1}) {
-                            const double value = double(integer[k]) + terms[k].first + terms[k].second;
-                            if (std::fabs(value - threshold) > kBracketSlack) out[k] = value > threshold ? 1 : 0;
+                            const Split& t = terms[k];
+                            const double value = double(integer[k]) + t.up + t.down + t.smooth;
+                            if (std::fabs(value - threshold) > error) out[k] = value > threshold ? 1 : 0;
                             else cell(k);
                         }
                         return;
                     }
-                    const auto [up0, down0] = terms[k0];
-                    const auto [up1, down1] = terms[k1];
-                    const double lo = double(integer[k0]) + up0 + down1, hi = double(integer[k0]) + up1 + down0;
-                    if (lo > threshold + kBracketSlack || hi < threshold - kBracketSlack) {
+                    const Split& t0 = terms[k0];
+                    const Split& t1 = terms[k1];
+                    // The fans' part: their mean at the ends, less (plus) the
+                    // error and how far they may move over half the run.
+                    const double fans = 0.5 * (t0.smooth + t1.smooth),
+                                 spread = error + 0.5 * bracket.drift() * (double(zs[k1]) - double(zs[k0]));
+                    const double lo = double(integer[k0]) + t0.up + t1.down + fans - spread,
+                                 hi = double(integer[k0]) + t1.up + t0.down + fans + spread;
+                    if (lo > threshold || hi < threshold) {
                         std::memset(out + k0, lo > threshold ? 1 : 0, k1 - k0 + 1);
                         return;
                     }
@@ -454,7 +553,8 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                     // beside the crossing their line predicts (the halves
                     // then mostly decide at once); else halve, the halves
                     // sharing the middle cell (one new split a cut).
-                    const double v0 = double(integer[k0]) + up0 + down0, v1 = double(integer[k0]) + up1 + down1;
+                    const double v0 = double(integer[k0]) + t0.up + t0.down + t0.smooth,
+                                 v1 = double(integer[k0]) + t1.up + t1.down + t1.smooth;
                     if ((v0 - threshold) * (v1 - threshold) < 0.0) {
                         const double at = (threshold - v0) / (v1 - v0) * double(k1 - k0);
                         const std::uint32_t m = k0 + std::min(k1 - k0 - 1, std::uint32_t(std::max(0.0, at)));

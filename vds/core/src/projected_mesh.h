@@ -235,10 +235,15 @@ struct ProjectedMesh {
     }
 };
 
+/// How the exact sweep labels the columns of a mesh with boundary under
+/// Rule::GeneralizedWinding: both ways give the same labels; Timed times
+/// both on a few columns of each range and takes the cheaper.
+enum class SweepWay { Timed, CellByCell, Brackets };
+
 /// The exact column sweep of `occupancy(mesh, ...)` (<vds/occupancy.h>) on
 /// a mesh projected along z; `edges` (2 points an edge) its boundary for
 /// Rule::GeneralizedWinding (ignored for the other rules).
 void sweepExact(const ProjectedMesh& projected, const std::vector<glm::vec3>& edges, const Grid& grid,
-                std::uint8_t* cells, const ClassifyOptions& options);
+                std::uint8_t* cells, const ClassifyOptions& options, SweepWay way = SweepWay::Timed);
 
 } // namespace vds::detail
