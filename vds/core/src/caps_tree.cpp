@@ -337,26 +337,6 @@ void BoundaryCaps::finish(Node& node) {
 // N_ijk d2K_i/dy_j dy_k / 2, where dK_i/dy_j = delta_ij / d^3 - 3 y_i y_j / d^5
 // and d2K_i/dy_j dy_k = -3 (delta_ij y_k + delta_ik y_j + delta_jk y_i) / d^5
 // + 15 y_i y_j y_k / d^7.
-namespace {
-
-// A surface's integral of n . (x - q) / |x - q|^3 dA by its expansion to
-// first order about c, at y = c - q (|y| = d): vector area A, first moments
-// M_ij (row-major) and their trace.
-double firstOrderTerm(const glm::dvec3& vectorArea, const std::array<double, 9>& M, double trace,
-                      const glm::dvec3& y, double d2, double d) {
-    const double inv2 = 1.0 / d2, inv3 = inv2 / d;
-    const double yMy = y.x * (M[0] * y.x + M[1] * y.y + M[2] * y.z) + y.y * (M[3] * y.x + M[4] * y.y + M[5] * y.z) +
-                       y.z * (M[6] * y.x + M[7] * y.y + M[8] * y.z);
-    return (glm::dot(vectorArea, y) + trace - 3.0 * yMy * inv2) * inv3;
-}
-
-} // namespace
-
-double BoundaryCaps::firstOrderSolidAngle(const Node& n, const glm::dvec3& q) {
-    const glm::dvec3 y = n.centre - q;
-    const double d2 = glm::dot(y, y);
-    return firstOrder(n, y, d2, std::sqrt(d2));
-}
 
 double BoundaryCaps::firstOrderBound(const Node& n, double distance) {
     return n.errorScale * firstOrderFactor(distance, distance - n.radius);

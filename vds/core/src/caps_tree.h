@@ -64,6 +64,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -95,6 +96,17 @@ struct CapLoop {
     std::uint32_t first = 0;       ///< the loop's first edge in `loopEdges()`
     std::uint32_t count = 0;       ///< its edges
 };
+
+/// A surface's integral of n . (x - q) / |x - q|^3 dA by its expansion to
+/// first order about c, at y = c - q (|y| = d): vector area A, first
+/// moments M_ij (row-major) and their trace.
+inline double firstOrderTerm(const glm::dvec3& vectorArea, const std::array<double, 9>& M, double trace,
+                             const glm::dvec3& y, double d2, double d) {
+    const double inv2 = 1.0 / d2, inv3 = inv2 / d;
+    const double yMy = y.x * (M[0] * y.x + M[1] * y.y + M[2] * y.z) + y.y * (M[3] * y.x + M[4] * y.y + M[5] * y.z) +
+                       y.z * (M[6] * y.x + M[7] * y.y + M[8] * y.z);
+    return (vectorArea.x * y.x + vectorArea.y * y.y + vectorArea.z * y.z + trace - 3.0 * yMy * inv2) * inv3;
+}
 
 /// The boundary term of a set of boundary edges by their capped loops. Built
 /// once (O(E log E)), then thread safe to query.
@@ -214,7 +226,11 @@ public:
     /// order, and the bound on that expansion's error (over 4 pi: in B's
     /// units) at distance `distance` > radius from its centre, which falls
     /// as the distance grows.
-    static double firstOrderSolidAngle(const Node& n, const glm::dvec3& q);
+    static double firstOrderSolidAngle(const Node& n, const glm::dvec3& q) {
+        const glm::dvec3 y = n.centre - q;
+        const double d2 = y.x * y.x + y.y * y.y + y.z * y.z;
+        return firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, std::sqrt(d2));
+    }
     static double firstOrderBound(const Node& n, double distance);
 
 private:
