@@ -3,7 +3,8 @@
 // error bound, the drift bound along a move (what the occupancy sweep's runs
 // rest on), the margin of decide() and its cost beside a large loop, how
 // the boundary splits into loops where a non-manifold ring of edges meets
-// fins, and the exact grid sweep's two ways, forced, cell by cell.
+// fins, the grid of ranges inside() answers from first, and the exact grid
+// sweep's two ways, forced, cell by cell.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -221,6 +222,35 @@ TEST(CapsTree, PointsBesideALargeLoopCostItsChainsNearThemNotItsEdges) {
     ASSERT_GT(count, 300u);
     EXPECT_LT(nearest, 1e-3); // some points really are close to 1/2
     EXPECT_LT(work / double(count), kEdges / 16.0);
+}
+
+TEST(CapsTree, RangesOfTheBoundaryTermLabelAsThePerEdgeSum) {
+    // With a domain, inside() answers first from each grid cell's range of
+    // B (an estimate at the cell's centre, widened by the reach over the
+    // cell) where the curve and its sweep along +axis keep out of the
+    // cell: the same labels as the per-edge sum, points near the boundary
+    // curve and its sweep included.
+    for (const Case& c : cases()) {
+        const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
+        const Box domain{glm::vec3(-1.0f), glm::vec3(1.0f)};
+        const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z, &domain);
+        std::vector<glm::vec3> at = points(3000, 17);
+        std::mt19937 rng(19);
+        std::normal_distribution<float> near(0.0f, 0.02f);
+        for (std::size_t e = 0; e + 1 < edges.size(); e += 2) // beside the curve, and above it (its sweep)
+            for (const float up : {0.0f, 0.4f, 0.9f})
+                at.push_back(0.5f * (edges[e] + edges[e + 1]) + glm::vec3(near(rng), near(rng), up + near(rng)));
+        std::size_t checked = 0;
+        for (const glm::vec3& q : at)
+            for (const int winding : {-1, 0, 1, 2}) {
+                const double exact = double(winding) + exactTerm(edges, q);
+                ASSERT_EQ(caps.inside(winding, q), generalizedWindingInside(exact))
+                    << c.name << " at " << q.x << " " << q.y << " " << q.z << " winding " << winding;
+                ++checked;
+            }
+        EXPECT_GT(checked, 12000u);
+        EXPECT_GT(caps.rangedCells(), 200u) << c.name; // the grid really answered
+    }
 }
 
 TEST(CapsTree, ColumnSweepsLabelEveryCellAsThePerEdgeSum) {

@@ -197,7 +197,7 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
     const glm::vec3* edges = sprite.boundaryEdges.data();
     const int axis = axisPermutation(sprite.grid.axis).z;
     const BoundaryCaps* caps = options.boundary == BoundaryEvaluation::Caps
-                                   ? &sprite.boundaryCaps.get(sprite.boundaryEdges, sprite.grid.axis)
+                                   ? &sprite.boundaryCaps.get(sprite.boundaryEdges, sprite.grid.axis, &sprite.grid.box)
                                    : nullptr;
     const char* base = reinterpret_cast<const char*>(xyz);
     const SpriteGrid& sg = sprite.grid;
@@ -246,7 +246,7 @@ bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world) {
     int winding = 0;
     glm::vec3 q;
     if (!gwnSample(sg, sprite.offsets.data(), sprite.crossings.data(), t, columnAcross(sg, t), winding, q)) return false;
-    return sprite.boundaryCaps.get(sprite.boundaryEdges, sg.axis).inside(winding, q);
+    return sprite.boundaryCaps.get(sprite.boundaryEdges, sg.axis, &sg.box).inside(winding, q);
 }
 
 } // namespace vds::detail
@@ -268,7 +268,7 @@ double Sprite::generalizedWinding(const glm::vec3& world) const {
     glm::vec3 q;
     if (!detail::gwnSample(grid, offsets.data(), crossings.data(), t, detail::columnAcross(grid, t), winding, q))
         return 0.0;
-    return boundaryCaps.get(boundaryEdges, grid.axis).generalizedWinding(winding, q, detail::kGeneralizedWindingTolerance);
+    return boundaryCaps.get(boundaryEdges, grid.axis, &grid.box).generalizedWinding(winding, q, detail::kGeneralizedWindingTolerance);
 }
 
 } // namespace vds

@@ -107,7 +107,7 @@ bool addCapTriangle(const std::array<glm::dvec3, 3>& t, const glm::dvec3& p, dou
 
 } // namespace
 
-BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis)
+BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis, const Box* domain)
     : axisIndex_(axisPermutation(axis).z), edges_(edges, edges + 2 * edgeCount) {
     // Weld endpoints by bitwise-equal positions, as boundaryEdges() does.
     std::map<std::tuple<float, float, float>, std::uint32_t> ids;
@@ -218,6 +218,7 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
     buildReach();
     if (!closed_ || tris.empty()) return;
     buildChains();
+    if (domain) buildRangeGrid(*domain);
     projected_.emplace(MeshView(capPositions_.data(), capPositions_.size(), capTriangles_.data(), capTriangles_.size()),
                        axis);
     std::vector<std::uint32_t> order(fine.size());
@@ -556,7 +557,124 @@ double BoundaryCaps::generalizedWinding(int winding, const glm::vec3& q, double 
     return e.bound <= tolerance ? double(winding) + e.term : exact(winding, q);
 }
 
+// ------------------------------------------------------------ range grid
+
+namespace {
+/// Cells of the range grid along its longest side.
+constexpr double kRangeCells = 24.0;
+} // namespace
+
+void BoundaryCaps::buildRangeGrid(const Box& domain) {
+    // The domain and a margin of a quarter of its longest side all round
+    // (queries beside a box are common: points in a padded box, a sprite's
+    // columns in front of and behind it).
+    const double side = std::max({double(domain.hi.x) - domain.lo.x, double(domain.hi.y) - domain.lo.y,
+                                  double(domain.hi.z) - domain.lo.z});
+    if (!(side > 0.0) || !std::isfinite(side)) return;
+    RangeGrid& g = ranges_;
+    g.box = {glm::vec3(glm::dvec3(domain.lo) - 0.25 * side), glm::vec3(glm::dvec3(domain.hi) + 0.25 * side)};
+    const glm::dvec3 lo(g.box.lo), hi(g.box.hi), extent = hi - lo;
+    const double longest = std::max({extent.x, extent.y, extent.z});
+    if (!(longest > 0.0) || !std::isfinite(longest) || !(extent.x >= 0.0 && extent.y >= 0.0 && extent.z >= 0.0)) return;
+    for (int a = 0; a < 3; ++a) {
+        g.dims[a] = std::uint32_t(std::clamp(std::ceil(extent[a] / longest * kRangeCells), 1.0, kRangeCells));
+        g.size[a] = extent[a] / double(g.dims[a]);
+    }
+    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
+    g.lowestEdge.assign(std::size_t(g.dims[s]) * g.dims[t], std::numeric_limits<double>::infinity());
+    // Cell extents are widened by `slack` against the rounding of a point's
+    // cell index (and an edge's box by twice that).
+    const double slack = 1e-7 * longest;
+    const auto span = [&](int axis, double from, double to, std::uint32_t& first, std::uint32_t& last) {
+        if (to < lo[axis] - 2.0 * slack || from > hi[axis] + 2.0 * slack) return false;
+        const auto index = [&](double x) {
+            if (!(g.size[axis] > 0.0)) return 0.0;
+            return std::clamp(std::floor((x - lo[axis]) / g.size[axis]), 0.0, double(g.dims[axis] - 1));
+        };
+        first = std::uint32_t(index(from - 2.0 * slack));
+        last = std::uint32_t(index(to + 2.0 * slack));
+        return true;
+    };
+    for (std::size_t k = 0; k + 1 < edges_.size(); k += 2) {
+        const glm::dvec3 p(edges_[k]), q(edges_[k + 1]);
+        std::uint32_t s0, s1, t0, t1;
+        if (!span(s, std::min(p[s], q[s]), std::max(p[s], q[s]), s0, s1) ||
+            !span(t, std::min(p[t], q[t]), std::max(p[t], q[t]), t0, t1))
+            continue;
+        const double low = std::min(p[a], q[a]);
+        for (std::uint32_t i = s0; i <= s1; ++i)
+            for (std::uint32_t j = t0; j <= t1; ++j) {
+                double& lowest = g.lowestEdge[std::size_t(j) * g.dims[s] + i];
+                lowest = std::min(lowest, low);
+            }
+    }
+    const std::size_t cells = std::size_t(g.dims.x) * g.dims.y * g.dims.z;
+    g.state.reset(new std::atomic<std::uint8_t>[cells]);
+    for (std::size_t c = 0; c < cells; ++c) g.state[c].store(0, std::memory_order_relaxed);
+    g.lo.reset(new double[cells]);
+    g.hi.reset(new double[cells]);
+}
+
+std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const {
+    const RangeGrid& g = ranges_;
+    std::uint8_t state = g.state[cell].load(std::memory_order_acquire);
+    if (state != 0) return state;
+    // One thread fills the cell (state 3 while it does); the others go on
+    // by the tree meanwhile.
+    if (!g.state[cell].compare_exchange_strong(state, 3, std::memory_order_acquire)) return state;
+    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
+    const glm::dvec3 lo(g.box.lo), hi(g.box.hi);
+    const double slack = 1e-7 * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    std::uint8_t result = 2;
+    // Clear of the boundary curve and its sweep along +axis: every edge
+    // whose projection may meet the cell's column lies above the cell.
+    const double top = lo[a] + double(at[a] + 1) * g.size[a] + 2.0 * slack;
+    if (top < g.lowestEdge[std::size_t(at[t]) * g.dims[s] + at[s]]) {
+        const glm::dvec3 centre = lo + (glm::dvec3(at) + 0.5) * g.size;
+        const glm::vec3 c(centre);
+        // Every point of the widened cell lies within this of c.
+        const double half = 0.5 * glm::length(g.size) + glm::length(glm::dvec3(c) - centre) + 2.0 * slack;
+        const Estimate e = estimate(c, kCapValueTolerance);
+        const double drift = std::isfinite(e.bound) ? reach(c).drift(half * (1.0 + 1e-9)) : e.bound;
+        if (std::isfinite(drift) && e.bound + drift < 0.5) {
+            g.lo[cell] = e.term - e.bound - drift;
+            g.hi[cell] = e.term + e.bound + drift;
+            result = 1;
+        }
+    }
+    g.state[cell].store(result, std::memory_order_release);
+    return result;
+}
+
+std::size_t BoundaryCaps::rangedCells() const {
+    const RangeGrid& g = ranges_;
+    if (!g.state) return 0;
+    std::size_t ranged = 0;
+    for (std::size_t c = 0, n = std::size_t(g.dims.x) * g.dims.y * g.dims.z; c < n; ++c)
+        ranged += g.state[c].load(std::memory_order_acquire) == 1;
+    return ranged;
+}
+
 bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
+    if (ranges_.state) {
+        const RangeGrid& g = ranges_;
+        glm::uvec3 at;
+        bool within = true;
+        for (int a = 0; a < 3 && within; ++a) {
+            const double x = g.size[a] > 0.0 ? (double(q[a]) - double(g.box.lo[a])) / g.size[a]
+                                             : (q[a] == g.box.lo[a] ? 0.0 : -1.0);
+            within = x >= 0.0 && x < double(g.dims[a]);
+            if (within) at[a] = std::uint32_t(x);
+        }
+        if (within) {
+            const std::size_t cell = (std::size_t(at.z) * g.dims.y + at.y) * g.dims.x + at.x;
+            if (rangeOf(cell, at) == 1) {
+                const double threshold = 0.5 + kGeneralizedWindingTie;
+                if (double(winding) + g.hi[cell] < threshold - kRoundingSlack) return false;
+                if (double(winding) + g.lo[cell] > threshold + kRoundingSlack) return true;
+            }
+        }
+    }
     return generalizedWindingInside(decide(winding, q, 1.0).term);
 }
 
@@ -871,9 +989,9 @@ PackedBoundary packBoundary(const std::vector<glm::vec3>& edges, Axis axis) {
     return packed;
 }
 
-const BoundaryCaps& BoundaryCapsCache::get(const std::vector<glm::vec3>& edges, Axis axis) const {
+const BoundaryCaps& BoundaryCapsCache::get(const std::vector<glm::vec3>& edges, Axis axis, const Box* domain) const {
     if (const BoundaryCaps* caps = caps_.load(std::memory_order_acquire)) return *caps;
-    auto built = std::make_unique<BoundaryCaps>(edges.data(), edges.size() / 2, axis);
+    auto built = std::make_unique<BoundaryCaps>(edges.data(), edges.size() / 2, axis, domain);
     const BoundaryCaps* expected = nullptr;
     if (caps_.compare_exchange_strong(expected, built.get(), std::memory_order_acq_rel)) return *built.release();
     return *expected; // another thread built it first

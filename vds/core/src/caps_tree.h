@@ -64,10 +64,12 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -114,7 +116,10 @@ class BoundaryCaps {
 public:
     /// `edges`: 2 * `edgeCount` points, edge k from [2k] to [2k+1] (copied).
     /// `axis`: the integer term's ray runs towards -axis.
-    BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis);
+    /// `domain`: where most queries lie (the mesh's or sprite's box), for
+    /// the grid of bounds `inside` answers from first (see there); none:
+    /// every query refines the tree.
+    BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis, const Box* domain = nullptr);
 
     struct Estimate {
         double term = 0.0;  ///< B(q)
@@ -168,7 +173,12 @@ public:
 
     /// Whether `winding + B(q) > 1/2`, with the per-edge sum's answer: the
     /// chain tree is refined greedily until the value is farther from 1/2
-    /// than its bound.
+    /// than its bound. Within the domain, first from a coarse grid of
+    /// bounds on B: each cell, when a query first lands in it, gets B's
+    /// range over the cell, from an estimate at its centre and the reach
+    /// over its half diagonal, where no part of the boundary curve nor of
+    /// its sweep along +axis (where B jumps) passes through the cell; a
+    /// winding that this range puts clear of 1/2 answers at once.
     bool inside(int winding, const glm::vec3& q) const;
 
     /// `winding + B(q)` within `bound` of the per-edge sum's value, refined
@@ -178,6 +188,9 @@ public:
     /// threshold is the per-edge sum's label, and with margin > 1 the rest
     /// of that distance is left for neighbours (Reach).
     Estimate decide(int winding, const glm::vec3& q, double margin) const;
+
+    /// Cells of the grid of bounds that have a range of B so far.
+    std::size_t rangedCells() const;
 
     /// False when the edges do not close into loops (not a mesh's boundary):
     /// every query then takes the per-edge sum.
@@ -234,6 +247,25 @@ public:
     static double firstOrderBound(const Node& n, double distance);
 
 private:
+    /// The grid of bounds `inside` answers from first: cells of the
+    /// domain's box, their state (0: not yet looked at, 1: a range, 2:
+    /// none) and range of B, filled on a query's first visit (two threads
+    /// filling one cell write the same values).
+    struct RangeGrid {
+        Box box;
+        glm::uvec3 dims{0};
+        glm::dvec3 size{0.0};
+        /// Per column of cells along the axis: the lowest height along the
+        /// axis of a boundary edge whose projection's box meets the
+        /// column's (+inf: none), so the cells wholly below it are clear
+        /// of the curve and its sweep.
+        std::vector<double> lowestEdge;
+        std::unique_ptr<std::atomic<std::uint8_t>[]> state;
+        std::unique_ptr<double[]> lo, hi;
+    };
+    void buildRangeGrid(const Box& domain);
+    /// The cell's state, filling it on the first visit.
+    std::uint8_t rangeOf(std::size_t cell, const glm::uvec3& at) const;
     double exact(int winding, const glm::vec3& q) const;
     static void finish(Node& node);
     static double firstOrder(const Node& n, const glm::dvec3& y, double d2, double d);
@@ -273,6 +305,7 @@ private:
     std::uint32_t buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first, std::uint32_t last);
     std::uint32_t buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count);
     std::vector<ChainNode> chains_;
+    RangeGrid ranges_;
     std::vector<glm::vec3> treeEdges_; ///< edges_ in the tree's order
     std::vector<EdgeNode> edgeNodes_; ///< a tree over edges_, for reach(); [0] is the root
 };

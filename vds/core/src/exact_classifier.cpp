@@ -53,7 +53,8 @@ std::vector<BoundaryEdge> toDouble(const std::vector<glm::vec3>& ends) {
 struct ExactClassifier::Impl : detail::ProjectedMesh {
     Impl(MeshView mesh, Axis viewAxis)
         : detail::ProjectedMesh(mesh, viewAxis), boundaryEnds(detail::boundaryEdges(mesh)), boundary(toDouble(boundaryEnds)) {
-        if (!boundaryEnds.empty()) caps.emplace(boundaryEnds.data(), boundaryEnds.size() / 2, viewAxis);
+        const Box box = meshBounds(mesh);
+        if (!boundaryEnds.empty()) caps.emplace(boundaryEnds.data(), boundaryEnds.size() / 2, viewAxis, &box);
     }
     std::vector<glm::vec3> boundaryEnds; ///< as `Sprite::boundaryEdges`: 2 points an edge
     int axisIndex = axisPermutation(axis).z; ///< +axis: the apex of every boundary term's spherical triangle

@@ -106,8 +106,9 @@ public:
     ~BoundaryCapsCache() { reset(); }
     void reset() noexcept;
     /// The caps of `edges` (2 points an edge) for the integer term along
-    /// `axis`, built by the first caller.
-    const BoundaryCaps& get(const std::vector<glm::vec3>& edges, Axis axis) const;
+    /// `axis`, built by the first caller; `domain`: where the queries lie
+    /// (the sprite's box), for its grid of bounds.
+    const BoundaryCaps& get(const std::vector<glm::vec3>& edges, Axis axis, const Box* domain = nullptr) const;
 
 private:
     mutable std::atomic<const BoundaryCaps*> caps_{nullptr};
