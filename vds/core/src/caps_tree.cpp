@@ -33,6 +33,9 @@ constexpr double kRoundingSlack = 1e-9;
 /// erring by more are opened at once (they cannot help decide a label, and
 /// keeping every taken bound small keeps the running sums' drift small).
 constexpr double kMaxTakenBound = 0.25;
+/// Labels refine by the expansion to second order once the value lies
+/// within this of the threshold (decide()).
+constexpr double kFineBelow = 0.1;
 
 struct Moments {
     glm::dvec3 vectorArea{0.0};
@@ -835,6 +838,7 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
     // expansion, the rest down to leaves summed exactly. False once the
     // work exceeds the budget. `expand`: not by its own expansion (a leaf
     // taken before).
+    bool fine = false;
     const auto open = [&](std::uint32_t index, bool expand) {
         stack.clear();
         stack.push_back(index);
@@ -850,10 +854,10 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
             const bool misses = y[s] * y[s] + y[t] * y[t] > reach * reach || p[a] < n.centre[a] - reach;
             if (misses && d2 > reach * reach && !(expand && i == index)) {
                 const double d = std::sqrt(d2), e = d - reach;
-                const double b = n.errorScale * firstOrderFactor(d, e);
+                const double b = fine ? n.errorScale * remainderFactor(d, e, reach) : n.errorScale * firstOrderFactor(d, e);
                 if (b <= kMaxTakenBound) {
                     work += n.chord ? 2.0 : 1.0;
-                    double value = -firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
+                    double value = fine ? -expansion(n, y, d2, d) : -firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
                     if (n.chord) value += edgeSolidAngle(a, n.from, n.to, p);
                     angles += value;
                     bound += b;
@@ -900,6 +904,13 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
                 std::make_heap(heap.begin(), heap.end());
                 heaped = true;
             }
+            // Close to the threshold, the nodes opened from here are taken
+            // to second order (their bound about R / D of the first
+            // order's, for about twice the work; bulk points stop at the
+            // first cut). Measured on the generated cases, with 0.01 to 0.2
+            // here alike: 1.1-2x the rate within 0.02 of 1/2, 1-1.9x within
+            // 0.001, the rest unchanged.
+            fine = std::fabs(value) < kFineBelow;
             std::pop_heap(heap.begin(), heap.end());
             const Taken tk = heap.back();
             heap.pop_back();

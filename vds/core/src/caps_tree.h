@@ -54,9 +54,10 @@
 // expansion to first order, whose remainder bound is, the same way (second
 // derivative 3! / |y|^4 at most), S (D + 2e) / (4 pi D^3 e^2). From the
 // coarsest cut whose nodes each err by at most 1/4, the node with the
-// largest bound is opened (its children, or a leaf's edges summed exactly)
-// until the value lies farther from the label's threshold (1/2 plus the
-// tie, antipodal.h) than the summed bounds; past a budget of the per-edge
+// largest bound is opened (its children, or a leaf's edges summed exactly;
+// within 0.1 of the threshold, the children to second order) until the
+// value lies farther from the label's threshold (1/2 plus the tie,
+// antipodal.h) than the summed bounds; past a budget of the per-edge
 // sum's work, the per-edge sum decides. So labels equal the per-edge sum's,
 // and a point near a large loop costs a few chains near it and the chords
 // of the rest, where the caps' fans, meeting across the opening, would
