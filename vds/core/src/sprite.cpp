@@ -25,30 +25,12 @@
 
 namespace vds {
 
-glm::ivec3 axisPermutation(Axis axis) {
-    switch (axis) {
-    case Axis::X: return {1, 2, 0};
-    case Axis::Y: return {2, 0, 1};
-    case Axis::Z: break;
-    }
-    return {0, 1, 2};
-}
-
 glm::vec3 SpriteGrid::toTexture(const glm::vec3& world) const {
     const glm::vec3 d(world.x - position.x, world.y - position.y, world.z - position.z);
     const glm::mat3& m = matrix;
     return {(m[0][0] * d.x + m[1][0] * d.y) + m[2][0] * d.z,
             (m[0][1] * d.x + m[1][1] * d.y) + m[2][1] * d.z,
             (m[0][2] * d.x + m[1][2] * d.y) + m[2][2] * d.z};
-}
-
-glm::vec3 SpriteGrid::texelCentre(std::uint32_t i, std::uint32_t j, float r) const {
-    const glm::ivec3 p = axisPermutation(axis);
-    glm::vec3 c;
-    c[p.x] = box.lo[p.x] + (float(i) + 0.5f) * texelSize;
-    c[p.y] = box.lo[p.y] + (float(j) + 0.5f) * texelSize;
-    c[p.z] = box.lo[p.z] + r * (box.hi[p.z] - box.lo[p.z]);
-    return c;
 }
 
 SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution) {

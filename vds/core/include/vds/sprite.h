@@ -31,7 +31,14 @@
 namespace vds {
 
 /// Index of the texture's s, t and r axes in mesh coordinates for a view axis.
-glm::ivec3 axisPermutation(Axis axis);
+inline glm::ivec3 axisPermutation(Axis axis) {
+    switch (axis) {
+    case Axis::X: return {1, 2, 0};
+    case Axis::Y: return {2, 0, 1};
+    case Axis::Z: break;
+    }
+    return {0, 1, 2};
+}
 
 /// The texel grid of a sprite: how a mesh box becomes an LDI.
 ///
@@ -52,7 +59,14 @@ struct SpriteGrid {
     glm::vec3 toTexture(const glm::vec3& world) const;
     /// Centre of texel (i, j) at depth r, in the mesh coordinates of the bake
     /// (the placement is not applied): the point a baker's ray runs through.
-    glm::vec3 texelCentre(std::uint32_t i, std::uint32_t j, float r) const;
+    glm::vec3 texelCentre(std::uint32_t i, std::uint32_t j, float r) const {
+        const glm::ivec3 p = axisPermutation(axis);
+        glm::vec3 c;
+        c[p.x] = box.lo[p.x] + (float(i) + 0.5f) * texelSize;
+        c[p.y] = box.lo[p.y] + (float(j) + 0.5f) * texelSize;
+        c[p.z] = box.lo[p.z] + r * (box.hi[p.z] - box.lo[p.z]);
+        return c;
+    }
 };
 
 /// Largest resolution accepted anywhere (bake, voxel grids): 16384 texels.
