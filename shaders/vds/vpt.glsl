@@ -27,8 +27,7 @@
 //   layout(std430, binding = VDS_BOUNDARY_BINDING) readonly buffer VdsBoundaryEdges {
 //       vec4 vdsBoundaryEdges[]; };
 // with 2 * VdsBoundary.edgeCount entries (then the tree's node records, if
-// any):
-// edge k runs from vdsBoundaryEdges[2k]
+// any): edge k runs from vdsBoundaryEdges[2k]
 // to vdsBoundaryEdges[2k+1], xyz the endpoint in the baked mesh's coordinates
 // permuted to the sprite's (s, t, r) order (Sprite::boundaryEdges read at
 // axisPermutation(axis), loop by loop where they close into loops; a cyclic
@@ -38,19 +37,26 @@
 // The GPU evaluates it in float where the C++ `Sprite::classify` uses double:
 // the value errs by about float epsilon times the coordinates' magnitude
 // over the distance to the boundary curve (a 32-segment unit sphere with
-// three holes, 20,000 points in its box: median 5e-7, 99.9th percentile
-// 1.2e-5, worst 1.6e-4; tests/gl/gwn_gpu_test.cpp). So labels can differ
+// three holes, 20,000 points in its box, on llvmpipe: median 1.0e-6, 99.9th
+// percentile 1.8e-5, worst 1.6e-4, the same with the tree below as with
+// every edge summed; tests/gl/gwn_gpu_test.cpp), and each node the tree
+// takes by its expansion adds at most 1e-5 (VDS_NODE_TOLERANCE, a proven
+// bound; the true error is far smaller). So labels can differ
 // from the CPU's only where the value is within that error of 1/2, or where
 // the point's texel-centre point lies, within float error, on the sweep of
 // a boundary edge along +r (there the term jumps by 1; the CPU's tie rule
 // for exact ties is mirrored, but a near-tie can round to either side).
-// The cost is O(boundary edges) a point at most, and mostly far less: with
-// the chain tree GpuSprite uploads after the edges (VdsBoundary.nodeCount:
-// groups of whole loops, then halves of a loop's edges down to chains of
-// at most 4), a node whose ball the point's ray misses is taken by its
-// chord and its fan's expansion where that errs little (vdsBoundaryTerm),
-// so a point near a large opening sums the few chains near it and takes
-// the rest by their chords, not the loop's every edge.
+// The cost is O(boundary edges) a point at most: GpuSprite uploads the
+// chain tree of the C++ labels (VdsBoundary.nodeCount records after the
+// edges: groups of whole loops, then halves of a loop's edges down to
+// chains of at most 4), and a node whose ball the point's ray misses is
+// taken by its chord and its fan's expansion where that errs little
+// (vdsBoundaryTerm), so a point near a large opening sums the few chains
+// near it and takes the rest of the rim by their chords. Each node visited
+// costs about as much as an edge on llvmpipe, so where the points need
+// most of a small boundary's edges anyway (a teapot's 160, a shell's fins
+// of 3 edges) the walk is up to 1.3x slower than the per-edge sum was;
+// near larger loops it is 1.5x faster (docs/benchmarks.md).
 #ifndef VDS_VPT_GLSL
 #define VDS_VPT_GLSL
 
