@@ -26,8 +26,8 @@
 // It declares
 //   layout(std430, binding = VDS_BOUNDARY_BINDING) readonly buffer VdsBoundaryEdges {
 //       vec4 vdsBoundaryEdges[]; };
-// with 2 * VdsBoundary.edgeCount entries (then the loop records, if any):
-// edge k runs from vdsBoundaryEdges[2k]
+// with 2 * VdsBoundary.edgeCount entries (then the tree's node records, if
+// any): edge k runs from vdsBoundaryEdges[2k]
 // to vdsBoundaryEdges[2k+1], xyz the endpoint in the baked mesh's coordinates
 // permuted to the sprite's (s, t, r) order (Sprite::boundaryEdges read at
 // axisPermutation(axis), loop by loop where they close into loops; a cyclic
@@ -37,16 +37,26 @@
 // The GPU evaluates it in float where the C++ `Sprite::classify` uses double:
 // the value errs by about float epsilon times the coordinates' magnitude
 // over the distance to the boundary curve (a 32-segment unit sphere with
-// three holes, 20,000 points in its box: median 5e-7, 99.9th percentile
-// 1.2e-5, worst 1.6e-4; tests/gl/gwn_gpu_test.cpp). So labels can differ
+// three holes, 20,000 points in its box, on llvmpipe: median 1.0e-6, 99.9th
+// percentile 1.8e-5, worst 1.6e-4, the same with the tree below as with
+// every edge summed; tests/gl/gwn_gpu_test.cpp), and each node the tree
+// takes by its expansion adds at most 1e-5 (VDS_NODE_TOLERANCE, a proven
+// bound; the true error is far smaller). So labels can differ
 // from the CPU's only where the value is within that error of 1/2, or where
 // the point's texel-centre point lies, within float error, on the sweep of
 // a boundary edge along +r (there the term jumps by 1; the CPU's tie rule
 // for exact ties is mirrored, but a near-tie can round to either side).
-// The cost is O(boundary edges) a point at most: with the loop records
-// GpuSprite uploads after the edges (VdsBoundary.loopCount), a loop of 4 or
-// more edges whose ball the point's ray misses is taken by its cap's
-// expansion where that errs by at most 1e-5 (vdsBoundaryTerm).
+// The cost is O(boundary edges) a point at most: GpuSprite uploads the
+// chain tree of the C++ labels (VdsBoundary.nodeCount records after the
+// edges: groups of whole loops, then halves of a loop's edges down to
+// chains of at most 4), and a node whose ball the point's ray misses is
+// taken by its chord and its fan's expansion where that errs little
+// (vdsBoundaryTerm), so a point near a large opening sums the few chains
+// near it and takes the rest of the rim by their chords. Each node visited
+// costs about as much as an edge on llvmpipe, so where the points need
+// most of a small boundary's edges anyway (a teapot's 160, a shell's fins
+// of 3 edges) the walk is up to 1.3x slower than the per-edge sum was;
+// near larger loops it is 1.5x faster (docs/benchmarks.md).
 #ifndef VDS_VPT_GLSL
 #define VDS_VPT_GLSL
 
@@ -140,7 +150,7 @@ struct VdsBoundary {
     vec3 lo;
     vec3 step;
     int edgeCount;
-    int loopCount; // loop records after the edges (0: sum every edge)
+    int nodeCount; // chain tree node records after the edges (0: sum every edge)
 };
 
 // The point the column's count belongs to: the centre of texel `column` at
@@ -178,79 +188,132 @@ float vdsEdgeSolidAngle(vec3 a, vec3 b, vec3 q) {
 #ifdef VDS_BOUNDARY_BINDING
 layout(std430, binding = VDS_BOUNDARY_BINDING) readonly buffer VdsBoundaryEdges { vec4 vdsBoundaryEdges[]; };
 
-// The solid angles of edges [first, first + count), in steradians.
-float vdsEdgeRange(int first, int count, vec3 q) {
+// A node is taken by its chord and its fan's expansion where the
+// expansion's remainder bound is at most this (winding number units; C++
+// kBoundaryNodeTolerance).
+#define VDS_NODE_TOLERANCE 1e-5
+// A node of this many edges or fewer that is not taken sums its edges
+// rather than opening its children (each node visited costs about as much
+// as an edge: on llvmpipe 16 beat 8 and 32).
+#define VDS_NODE_SUM_EDGES 16
+// Nodes taken, and ranges of edges (or chords) to sum, gathered before
+// they are evaluated.
+#define VDS_NODE_BATCH 16
+
+// The solid angles of `count` edges whose endpoints are the pairs of
+// entries from vdsBoundaryEdges[at] on, in steradians.
+float vdsEdgePairs(int at, int count, vec3 q) {
     float sum = 0.0;
-    for (int k = first; k < first + count; ++k)
-        sum += vdsEdgeSolidAngle(vdsBoundaryEdges[2 * k].xyz, vdsBoundaryEdges[2 * k + 1].xyz, q);
+    for (int k = at; k < at + 2 * count; k += 2)
+        sum += vdsEdgeSolidAngle(vdsBoundaryEdges[k].xyz, vdsBoundaryEdges[k + 1].xyz, q);
     return sum;
 }
 
-// A far loop's edges are summed by its cap's expansion where that errs by
-// at most this (in winding number units; the float sum errs by some 1e-6).
-#define VDS_LOOP_TOLERANCE 1e-5
+// The integral of n . (x - q) / |x - q|^3 over the fan of the node record
+// at `at`, by its expansion to second order about the ball's centre (C++
+// BoundaryCaps::expansion), at y = centre - q.
+float vdsNodeExpansion(int at, vec3 y) {
+    float d2 = dot(y, y);
+    vec4 a = vdsBoundaryEdges[at + 2];
+    vec4 m1 = vdsBoundaryEdges[at + 3];
+    vec4 m2 = vdsBoundaryEdges[at + 4];
+    // M_ij, row-major: M_00 = a.w, then m1 (M_01, M_02, M_10, M_11) and
+    // m2 (M_12, M_20, M_21, M_22)
+    float yMy = y.x * (a.w * y.x + m1.x * y.y + m1.y * y.z) + y.y * (m1.z * y.x + m1.w * y.y + m2.x * y.z) +
+                y.z * (m2.y * y.x + m2.z * y.y + m2.w * y.z);
+    float first = dot(a.xyz, y) + (a.w + m1.w + m2.w) - 3.0 * yMy / d2;
+    // N_ijk: 18 floats in [7] to [11], row i the pairs 00, 11, 22, 01, 02,
+    // 12, against y_j y_k (twice for j != k).
+    vec4 n0 = vdsBoundaryEdges[at + 7];
+    vec4 n1 = vdsBoundaryEdges[at + 8];
+    vec4 n2 = vdsBoundaryEdges[at + 9];
+    vec4 n3 = vdsBoundaryEdges[at + 10];
+    vec4 n4 = vdsBoundaryEdges[at + 11];
+    vec4 yyA = vec4(y.x * y.x, y.y * y.y, y.z * y.z, 2.0 * y.x * y.y);
+    vec2 yyB = vec2(2.0 * y.x * y.z, 2.0 * y.y * y.z);
+    float yNyy = y.x * (dot(n0, yyA) + dot(n1.xy, yyB)) + y.y * (dot(n1.zw, yyA.xy) + dot(n2, vec4(yyA.zw, yyB))) +
+                 y.z * (dot(n3, yyA) + dot(n4.xy, yyB));
+    vec3 rows = vdsBoundaryEdges[at + 5].xyz;
+    vec3 columns = vdsBoundaryEdges[at + 6].xyz;
+    float second = 0.5 / d2 * (-3.0 * (2.0 * dot(columns, y) + dot(rows, y)) + 15.0 * yNyy / d2);
+    return (first + second) / (d2 * sqrt(d2));
+}
 
 // The boundary term at q (the bake's frame, (s, t, r) order): the sum over
-// the edges of their solid angles, over 4 pi. With loop records
-// (GpuSprite::setBoundaryUniforms sets loopCount), loop by loop: a loop
-// whose ball (it holds the loop and its cap, the fan from its centroid)
-// q's ray along the axis misses has no crossing with its cap, so its
-// edges' sum is minus its cap's solid angle, taken by the expansion to
-// second order about the centroid (C++ caps_tree.h gives the terms and the
-// remainder bound R S (D + 3e) / (4 pi D^4 e^2)) where that bound allows;
-// other loops sum their edges, and so do the loops of fewer than 4 edges,
-// which have no record (their edges come after the recorded loops').
+// the edges of their solid angles, over 4 pi. With the chain tree
+// (GpuSprite::setBoundaryUniforms sets nodeCount; C++ caps_tree.h,
+// BoundaryCaps::chains, and boundary_loops.h for the records): a node's
+// edges run from P to Q, closed by its chord Q -> P into a fan in its
+// ball (whole loops have no chord). Where q's ray towards -r misses the
+// ball, the ray crosses no fan, so the node's edges' angles sum to the
+// chord's angle less the fan's solid angle, taken by the expansion to
+// second order about the ball's centre c where its remainder bound
+// errorScale R (d + 3e) / (3 d^4 e^2), e = d - R, allows; other nodes are
+// opened, and small ones and leaves sum their edges. The nodes come in
+// preorder, each with the index of the node after its subtree, so the walk
+// needs no stack: opening a node goes on to the next one, taking or
+// summing it skips its subtree. Neighbouring invocations run in lockstep
+// on SIMD hardware, so the walk only gathers what to evaluate (a few
+// loads a node), then the expansions and the edges (chords among them)
+// are evaluated in two flat loops.
 float vdsBoundaryTerm(VdsBoundary boundary, vec3 q) {
-    if (boundary.loopCount == 0) return vdsEdgeRange(0, boundary.edgeCount, q) / 12.566370614359172;
+    if (boundary.nodeCount == 0) return vdsEdgePairs(0, boundary.edgeCount, q) / 12.566370614359172;
+    int base = 2 * boundary.edgeCount;
     float sum = 0.0;
-    int tail = 0; // past the last recorded loop's edges
-    for (int l = 0; l < boundary.loopCount; ++l) {
-        int at = 2 * boundary.edgeCount + 12 * l;
-        vec4 m2 = vdsBoundaryEdges[at + 4];
-        int first = floatBitsToInt(m2.y);
-        int count = floatBitsToInt(m2.z);
-        tail = first + count;
-        vec4 ball = vdsBoundaryEdges[at];
-        vec3 y = ball.xyz - q;
-        if (y.x * y.x + y.y * y.y > ball.w * ball.w) {
-            vec4 area = vdsBoundaryEdges[at + 1];
+    int node = 0;
+    int taken[VDS_NODE_BATCH];
+    int pairsAt[VDS_NODE_BATCH]; // a range of edges, or a chord, to sum:
+    int pairs[VDS_NODE_BATCH];   // its first endpoint's entry and its edges
+    while (node < boundary.nodeCount) {
+        int takenCount = 0;
+        int rangeCount = 0;
+        while (node < boundary.nodeCount && takenCount < VDS_NODE_BATCH && rangeCount < VDS_NODE_BATCH) {
+            int at = base + 14 * node;
+            vec4 ball = vdsBoundaryEdges[at];
+            vec4 links = vdsBoundaryEdges[at + 1]; // errorScale, skip, first edge, count << 2 | flags
+            int skip = floatBitsToInt(links.y);
+            int flags = floatBitsToInt(links.w);
+            vec3 y = ball.xyz - q;
+            float r2 = ball.w * ball.w;
             float d2 = dot(y, y);
             float d = sqrt(d2);
             float e = d - ball.w;
-            float bound = area.w * ball.w * (d + 3.0 * e) / (3.0 * d2 * d2 * e * e);
-            if (bound <= VDS_LOOP_TOLERANCE) {
-                vec4 m0 = vdsBoundaryEdges[at + 2];
-                vec4 m1 = vdsBoundaryEdges[at + 3];
-                float yMy = y.x * (m0.x * y.x + m0.y * y.y + m0.z * y.z) +
-                            y.y * (m0.w * y.x + m1.x * y.y + m1.y * y.z) +
-                            y.z * (m1.z * y.x + m1.w * y.y + m2.x * y.z);
-                float first = dot(area.xyz, y) + (m0.x + m1.x + m2.x) - 3.0 * yMy / d2;
-                // N_ijk: 18 floats from [7], row i the pairs 00, 11, 22, 01, 02, 12.
-                float n[20];
-                for (int v = 0; v < 5; ++v) {
-                    vec4 w = vdsBoundaryEdges[at + 7 + v];
-                    n[4 * v] = w.x;
-                    n[4 * v + 1] = w.y;
-                    n[4 * v + 2] = w.z;
-                    n[4 * v + 3] = w.w;
+            // q's ray towards -r misses the ball (the fan's crossing count
+            // is 0), q lies outside it and the bound allows
+            if ((y.x * y.x + y.y * y.y > r2 || q.z < ball.z - ball.w) && e > 0.0 &&
+                links.x * ball.w * (d + 3.0 * e) <= VDS_NODE_TOLERANCE * 3.0 * d2 * d2 * e * e) {
+                taken[takenCount] = at;
+                takenCount += 1;
+                if ((flags & 2) != 0) {
+                    pairsAt[rangeCount] = at + 12;
+                    pairs[rangeCount] = 1;
+                    rangeCount += 1;
                 }
-                float yy0 = y.x * y.x, yy1 = y.y * y.y, yy2 = y.z * y.z;
-                float yy3 = 2.0 * y.x * y.y, yy4 = 2.0 * y.x * y.z, yy5 = 2.0 * y.y * y.z;
-                float yNyy = 0.0;
-                for (int i = 0; i < 3; ++i)
-                    yNyy += y[i] * (n[6 * i] * yy0 + n[6 * i + 1] * yy1 + n[6 * i + 2] * yy2 + n[6 * i + 3] * yy3 +
-                                    n[6 * i + 4] * yy4 + n[6 * i + 5] * yy5);
-                vec3 rows = vdsBoundaryEdges[at + 5].xyz;
-                vec3 columns = vdsBoundaryEdges[at + 6].xyz;
-                float second = 0.5 / d2 * (-3.0 * (2.0 * dot(columns, y) + dot(rows, y)) + 15.0 * yNyy / d2);
-                sum -= (first + second) / (d2 * d);
-                continue;
+                node = skip;
+            } else if ((flags & 1) != 0 || (flags >> 2) <= VDS_NODE_SUM_EDGES) {
+                pairsAt[rangeCount] = 2 * floatBitsToInt(links.z);
+                pairs[rangeCount] = flags >> 2;
+                rangeCount += 1;
+                node = skip;
+            } else {
+                node += 1;
             }
         }
-        sum += vdsEdgeRange(first, count, q);
+        for (int k = 0; k < takenCount; ++k)
+            sum -= vdsNodeExpansion(taken[k], vdsBoundaryEdges[taken[k]].xyz - q);
+        // the ranges' edges in one flat loop
+        int range = 0;
+        int edge = 0;
+        while (range < rangeCount) {
+            int at = pairsAt[range] + 2 * edge;
+            sum += vdsEdgeSolidAngle(vdsBoundaryEdges[at].xyz, vdsBoundaryEdges[at + 1].xyz, q);
+            edge += 1;
+            if (edge == pairs[range]) {
+                range += 1;
+                edge = 0;
+            }
+        }
     }
-    // The edges of loops too small for a record come after the loops'.
-    sum += vdsEdgeRange(tail, boundary.edgeCount - tail, q);
     return sum / 12.566370614359172;
 }
 

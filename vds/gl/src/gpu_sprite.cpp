@@ -96,7 +96,7 @@ GpuSprite& GpuSprite::operator=(GpuSprite&& o) noexcept {
         status_ = o.status_;
         boundaryEdges_ = std::move(o.boundaryEdges_);
         boundaryEdgeCount_ = o.boundaryEdgeCount_;
-        boundaryLoopCount_ = o.boundaryLoopCount_;
+        boundaryNodeCount_ = o.boundaryNodeCount_;
         boundaryKnown_ = o.boundaryKnown_;
         boundaryLo_ = o.boundaryLo_;
         boundaryStep_ = o.boundaryStep_;
@@ -149,13 +149,13 @@ void GpuSprite::upload(const Sprite& sprite, GpuSpriteParts parts) {
 
 void GpuSprite::setBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>& edges, bool known) {
     const glm::ivec3 p = axisPermutation(grid.axis);
-    // The edges loop by loop, and each loop's cap moments after them, so
-    // that the shader takes far loops by their expansion.
+    // The edges loop by loop, and the chain tree's nodes after them, so
+    // that the shader takes far chains by their chords and expansions.
     detail::PackedBoundary packed = detail::packBoundary(edges, grid.axis);
     if (packed.data.empty()) packed.data.emplace_back(0.0f);
     boundaryEdges_ = uploadBuffer(packed.data.data(), packed.data.size() * sizeof(glm::vec4), "uploading the boundary edges");
     boundaryEdgeCount_ = packed.edgeCount;
-    boundaryLoopCount_ = packed.loopCount;
+    boundaryNodeCount_ = packed.nodeCount;
     boundaryKnown_ = known;
     // As SpriteGrid::texelCentre computes a ray's point, in float.
     boundaryLo_ = {grid.box.lo[p.x], grid.box.lo[p.y], grid.box.lo[p.z]};
@@ -172,8 +172,8 @@ void GpuSprite::setBoundaryUniforms(GLuint program, const std::string& boundary,
     glProgramUniform3fv(program, glGetUniformLocation(program, (boundary + ".step").c_str()), 1, &boundaryStep_[0]);
     glProgramUniform1i(program, glGetUniformLocation(program, (boundary + ".edgeCount").c_str()),
                        GLint(boundaryEdgeCount_));
-    glProgramUniform1i(program, glGetUniformLocation(program, (boundary + ".loopCount").c_str()),
-                       GLint(boundaryLoopCount_));
+    glProgramUniform1i(program, glGetUniformLocation(program, (boundary + ".nodeCount").c_str()),
+                       GLint(boundaryNodeCount_));
     checkGl("GpuSprite::setBoundaryUniforms");
 }
 

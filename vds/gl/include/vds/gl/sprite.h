@@ -94,13 +94,14 @@ public:
     /// The boundary edges, for Rule::GeneralizedWinding: 2 * boundaryEdgeCount()
     /// vec4 (16 bytes each, at least one), edge k from entry 2k to 2k+1, xyz
     /// the endpoint in the baked mesh's coordinates in the sprite's (s, t, r)
-    /// order, loop by loop where the edges close into loops; then 12 vec4
-    /// for each of boundaryLoopCount() loops, its cap's centroid, radius and
-    /// moments (see shaders/vds/vpt.glsl). Empty only on a default-made
-    /// sprite.
+    /// order, loop by loop where the edges close into loops; then 14 vec4
+    /// for each of boundaryNodeCount() nodes of a tree over the loops and
+    /// chains of their edges: its ball, its fan's moments, its chord and
+    /// its children or edges (see shaders/vds/vpt.glsl). Empty only on a
+    /// default-made sprite.
     const Buffer& boundaryEdges() const { return boundaryEdges_; }
     std::uint32_t boundaryEdgeCount() const { return boundaryEdgeCount_; }
-    std::uint32_t boundaryLoopCount() const { return boundaryLoopCount_; }
+    std::uint32_t boundaryNodeCount() const { return boundaryNodeCount_; }
     /// False for a sprite of an open mesh read from a version-1 .vds file:
     /// its boundary is unknown, and Rule::GeneralizedWinding refuses it.
     bool boundaryKnown() const { return boundaryKnown_; }
@@ -133,7 +134,7 @@ private:
     SolidStatus status_ = SolidStatus::Closed;
     Buffer boundaryEdges_;
     std::uint32_t boundaryEdgeCount_ = 0;
-    std::uint32_t boundaryLoopCount_ = 0; ///< loop records after the edges (vpt.glsl)
+    std::uint32_t boundaryNodeCount_ = 0; ///< tree node records after the edges (vpt.glsl)
     bool boundaryKnown_ = true;
     glm::vec3 boundaryLo_{0.0f};   ///< the baked box's low corner, (s, t, r) order
     glm::vec3 boundaryStep_{0.0f}; ///< (texel, texel, extent along r)
