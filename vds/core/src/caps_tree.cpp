@@ -565,6 +565,8 @@ double BoundaryCaps::generalizedWinding(int winding, const glm::vec3& q, double 
 namespace {
 /// Cells of the range grid along its longest side.
 constexpr double kRangeCells = 24.0;
+/// The node tolerance of the estimate at a cell's centre (estimate()).
+constexpr double kRangeTolerance = 1e-2;
 } // namespace
 
 void BoundaryCaps::buildRangeGrid(const Box& domain) {
@@ -637,8 +639,12 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
         const glm::vec3 c(centre);
         // Every point of the widened cell lies within this of c.
         const double half = 0.5 * glm::length(g.size) + glm::length(glm::dvec3(c) - centre) + 2.0 * slack;
-        const Estimate e = estimate(c, kCapValueTolerance);
-        const double drift = std::isfinite(e.bound) ? reach(c).drift(half * (1.0 + 1e-9)) : e.bound;
+        // Coarse will do: a range serves only where it keeps clear of 1/2
+        // (and a reach that cannot carry half a unit over the cell is not
+        // worth finishing).
+        const Estimate e = estimate(c, kRangeTolerance);
+        const double drift =
+            std::isfinite(e.bound) ? reach(c, 0.5 / (half * (1.0 + 1e-9))).drift(half * (1.0 + 1e-9)) : e.bound;
         if (std::isfinite(drift) && e.bound + drift < 0.5) {
             g.lo[cell] = e.term - e.bound - drift;
             g.hi[cell] = e.term + e.bound + drift;

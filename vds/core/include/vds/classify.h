@@ -73,11 +73,12 @@ enum class QueryLayout : std::uint8_t {
 
 /// How a sprite evaluates the boundary term of Rule::GeneralizedWinding.
 enum class BoundaryEvaluation : std::uint8_t {
-    /// The boundary loops closed by caps: the caps' signed crossing count
-    /// minus their solid angle, the latter by a tree of multipole expansions
-    /// with a proven error bound, and the per-edge sum wherever that bound
-    /// could change a label. The same labels as Exact; about O(log edges) a
-    /// point away from the boundary. The caps are built once per sprite.
+    /// The boundary's loops and chains closed by fans (caps_tree.h): a
+    /// coarse grid of proven ranges of the term answers most points, a tree
+    /// of chords and multipole expansions with proven error bounds the
+    /// rest, and the per-edge sum wherever those bounds could change a
+    /// label. The same labels as Exact; about O(log edges) a point near the
+    /// boundary, O(1) in most of the box. Built once per sprite.
     Caps,
     Exact, ///< the per-edge sum for every point: O(boundary edges) a point
 };
