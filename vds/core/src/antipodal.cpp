@@ -114,7 +114,6 @@ double edgeSolidAngle(int axis, const glm::dvec3& a, const glm::dvec3& b, const 
 }
 
 double boundaryTermExact(const glm::vec3* edges, std::size_t edgeCount, int axis, const glm::dvec3& q) {
-    const int s = (axis + 1) % 3, t = (axis + 2) % 3;
     // Two sums a sign, alternating, so that consecutive multiplies do not
     // wait on each other; the edges edgeSolidAngle treats apart (det = 0,
     // an end on q's ray) summed as it gives them.
@@ -122,19 +121,12 @@ double boundaryTermExact(const glm::vec3* edges, std::size_t edgeCount, int axis
     double apart = 0.0;
     for (std::size_t k = 0; k < edgeCount; ++k) {
         const glm::dvec3 a(edges[2 * k]), b(edges[2 * k + 1]);
-        const glm::dvec3 u = a - q, v = b - q;
-        const double det = u[s] * v[t] - u[t] * v[s];
-        if (det == 0.0) {
+        double x, y;
+        if (!edgeAngleFactor(axis, a, b, q, x, y)) {
             apart += edgeSolidAngle(axis, a, b, q);
             continue;
         }
-        const double lu = glm::length(u), lv = glm::length(v);
-        const auto towardsApex = [&](const glm::dvec3& w, double length) {
-            return w[axis] >= 0.0 ? length + w[axis] : (w[s] * w[s] + w[t] * w[t]) / (length - w[axis]);
-        };
-        const double den = towardsApex(u, lu) * towardsApex(v, lv) + u[s] * v[s] + u[t] * v[t];
-        const double size = std::fabs(den) + std::fabs(det); // scaled to size 1: the products stay in range
-        sums[(det > 0.0 ? 0 : 2) + (k & 1)].add(den / size, std::fabs(det) / size);
+        sums[(y > 0.0 ? 0 : 2) + (k & 1)].add(x, std::fabs(y));
     }
     // Each edge adds 2 atan2(det, den).
     const double angles = 2.0 * (sums[0].angle() + sums[1].angle() - sums[2].angle() - sums[3].angle());

@@ -709,6 +709,17 @@ namespace {
 constexpr std::uint32_t kLeafEdges = 4;
 } // namespace
 
+namespace {
+/// A chain node's fan: its moments about the node's centre.
+void setFan(BoundaryCaps::Node& node, const Moments& m) {
+    node.vectorArea = m.vectorArea;
+    node.moment = m.moment;
+    node.quadrupole = m.quadrupole;
+    node.area = m.area;
+    node.errorScale = 3.0 * m.second / kFourPi;
+}
+} // namespace
+
 void BoundaryCaps::buildChains() {
     std::vector<std::uint32_t> order(loops_.size());
     for (std::uint32_t l = 0; l < order.size(); ++l) order[l] = l;
@@ -744,12 +755,7 @@ std::uint32_t BoundaryCaps::buildChainGroup(std::vector<std::uint32_t>& loops, s
     // may lie off a flat loop's hull), so the fans too.
     for (const auto& t : tris)
         node.radius = std::max({node.radius, glm::length(t[0] - node.centre), glm::length(t[2] - node.centre)});
-    const Moments m = momentsOf(tris, 0, tris.size(), node.centre);
-    node.vectorArea = m.vectorArea;
-    node.moment = m.moment;
-    node.quadrupole = m.quadrupole;
-    node.area = m.area;
-    node.errorScale = 3.0 * m.second / kFourPi;
+    setFan(node, momentsOf(tris, 0, tris.size(), node.centre));
     finish(node);
     node.chord = false;
     const glm::dvec3 extent = chi - clo;
@@ -787,12 +793,7 @@ std::uint32_t BoundaryCaps::buildChain(std::uint32_t loop, std::uint32_t first, 
     node.chord = !whole;
     if (node.chord) tris.push_back({apex, node.from, node.to}); // the chord Q -> P closes the chain
     node.centre = apex;
-    const Moments m = momentsOf(tris, 0, tris.size(), apex);
-    node.vectorArea = m.vectorArea;
-    node.moment = m.moment;
-    node.quadrupole = m.quadrupole;
-    node.area = m.area;
-    node.errorScale = 3.0 * m.second / kFourPi;
+    setFan(node, momentsOf(tris, 0, tris.size(), apex));
     finish(node);
     if (count <= kLeafEdges) {
         node.first = first;
@@ -832,9 +833,6 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
     // one atan2 a side when a label is tried, not one an edge).
     double angles = 0.0, bound = 0.0, apart = 0.0;
     AngleSum leafSums[2];
-    const auto towardsApex = [&](const glm::dvec3& w, double length) {
-        return w[a] >= 0.0 ? length + w[a] : (w[s] * w[s] + w[t] * w[t]) / (length - w[a]);
-    };
     // Work spent, in nodes taken (a chord's angle and an expansion) and
     // leaf edges summed: past the edge count (a point within rounding of
     // 1/2) the per-edge sum decides.
@@ -880,15 +878,12 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
             work += double(n.count);
             for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
                 const glm::dvec3 ea(loopEdges_[2 * k]), eb(loopEdges_[2 * k + 1]);
-                const glm::dvec3 u = ea - p, v = eb - p;
-                const double det = u[s] * v[t] - u[t] * v[s];
-                if (det == 0.0) {
+                double re, im;
+                if (!edgeAngleFactor(a, ea, eb, p, re, im)) {
                     apart += edgeSolidAngle(a, ea, eb, p);
                     continue;
                 }
-                const double den = towardsApex(u, glm::length(u)) * towardsApex(v, glm::length(v)) + u[s] * v[s] + u[t] * v[t];
-                const double size = std::fabs(den) + std::fabs(det);
-                leafSums[det > 0.0 ? 0 : 1].add(den / size, std::fabs(det) / size);
+                leafSums[im > 0.0 ? 0 : 1].add(re, std::fabs(im));
             }
         }
         return true;

@@ -461,12 +461,13 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
                     out[k] = caps->inside(integer[k], glm::vec3(q[0], q[1], zs[k])) ? 1 : 0;
                 };
                 const bool cheaper = secondsSpent[1] * double(columnsTimed[0]) <= secondsSpent[0] * double(columnsTimed[1]);
-                const bool useBrackets = way == detail::SweepWay::Timed ? (local < 2 ? local == 0 : (local % kProbe == 0) != cheaper)
-                                                                        : way == detail::SweepWay::Brackets;
+                const bool useBrackets = way == detail::SweepWay::Timed
+                                             ? (local < 2 ? local == 0 : (local % kProbe == 0) != cheaper)
+                                             : way == detail::SweepWay::Brackets;
                 const auto started = std::chrono::steady_clock::now();
-                const auto record = [&](int way) {
-                    secondsSpent[way] += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-                    ++columnsTimed[way];
+                const auto record = [&](int timed) {
+                    secondsSpent[timed] += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+                    ++columnsTimed[timed];
                 };
                 if (!useBrackets ||
                     !bracket.reset(edges, caps->closed() ? &*caps : nullptr, double(q[0]), double(q[1]), height)) {
