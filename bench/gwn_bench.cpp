@@ -48,6 +48,8 @@
 #include <vds/sprite.h>
 #include <vds/detail/parallel.h>
 
+#include "solids.h"
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -66,31 +68,8 @@ std::vector<glm::vec3> uniformPoints(const vds::Box& box, std::size_t n, std::mt
 
 // ---- generated hard cases --------------------------------------------------
 
-// A UV sphere of radius 1 (`rings` x `segments` quads), keeping the quads
-// `keep` accepts (by their centre).
-template <class Keep>
-vds::TriangleMesh sphere(int rings, int segments, Keep keep) {
-    vds::TriangleMesh m;
-    const auto at = [&](int i, int j) {
-        const double theta = kPi * i / rings, phi = 2.0 * kPi * j / segments;
-        return glm::vec3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)),
-                         float(std::cos(theta)));
-    };
-    for (int i = 0; i <= rings; ++i)
-        for (int j = 0; j < segments; ++j) m.positions.push_back(at(i, j));
-    const auto id = [&](int i, int j) { return std::uint32_t(i * segments + (j % segments)); };
-    for (int i = 0; i < rings; ++i)
-        for (int j = 0; j < segments; ++j) {
-            const glm::vec3 c = glm::normalize(at(i, j) + at(i + 1, j + 1));
-            if (!keep(c)) continue;
-            if (i > 0) m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
-            if (i + 1 < rings) m.triangles.push_back({id(i, j + 1), id(i + 1, j), id(i + 1, j + 1)});
-        }
-    return m;
-}
-
 vds::TriangleMesh shellWithOpening() {
-    return sphere(96, 192, [](const glm::vec3& c) { return c.z < 0.6f; });
+    return vds::solids::openSphere(96, 192, [](const glm::vec3& c) { return c.z < 0.6f; });
 }
 
 vds::TriangleMesh punchedSphere() {
@@ -98,7 +77,7 @@ vds::TriangleMesh punchedSphere() {
     std::normal_distribution<float> g(0.0f, 1.0f);
     std::vector<glm::vec3> holes(100);
     for (glm::vec3& h : holes) h = glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
-    return sphere(96, 192, [&](const glm::vec3& c) {
+    return vds::solids::openSphere(96, 192, [&](const glm::vec3& c) {
         for (const glm::vec3& h : holes)
             if (glm::dot(c, h) > 0.9985f) return false;
         return true;
@@ -121,7 +100,7 @@ vds::TriangleMesh soup() {
 // at the equator, pointing inward, so that ring's edges have three faces.
 vds::TriangleMesh nonManifoldShell() {
     const int rings = 64, segments = 128;
-    vds::TriangleMesh m = sphere(rings, segments, [](const glm::vec3& c) { return c.z > -0.7f; });
+    vds::TriangleMesh m = vds::solids::openSphere(rings, segments, [](const glm::vec3& c) { return c.z > -0.7f; });
     const int i = rings / 2;
     for (int j = 0; j < segments; ++j) {
         const glm::vec3 a = m.positions[std::size_t(i * segments + j)],

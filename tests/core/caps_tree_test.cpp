@@ -21,39 +21,18 @@
 #include "antipodal.h"
 #include "caps_tree.h"
 #include "projected_mesh.h"
+#include "solids.h"
 
 namespace vds::detail {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A UV sphere of radius 1, keeping the quads whose centre `keep` accepts.
-template <class Keep>
-TriangleMesh sphere(int rings, int segments, Keep keep) {
-    TriangleMesh m;
-    const auto at = [&](int i, int j) {
-        const double theta = kPi * i / rings, phi = 2.0 * kPi * j / segments;
-        return glm::vec3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)),
-                         float(std::cos(theta)));
-    };
-    for (int i = 0; i <= rings; ++i)
-        for (int j = 0; j < segments; ++j) m.positions.push_back(at(i, j));
-    const auto id = [&](int i, int j) { return std::uint32_t(i * segments + (j % segments)); };
-    for (int i = 0; i < rings; ++i)
-        for (int j = 0; j < segments; ++j) {
-            const glm::vec3 c = glm::normalize(at(i, j) + at(i + 1, j + 1));
-            if (!keep(c)) continue;
-            if (i > 0) m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
-            if (i + 1 < rings) m.triangles.push_back({id(i, j + 1), id(i + 1, j), id(i + 1, j + 1)});
-        }
-    return m;
-}
-
 // An open-bottomed sphere with a fin on every edge of its equator, pointing
 // inward: those edges have three faces, and the boundary passes each ring
 // vertex twice.
 TriangleMesh finnedShell(int rings, int segments) {
-    TriangleMesh m = sphere(rings, segments, [](const glm::vec3& c) { return c.z > -0.7f; });
+    TriangleMesh m = solids::openSphere(rings, segments, [](const glm::vec3& c) { return c.z > -0.7f; });
     const int i = rings / 2;
     for (int j = 0; j < segments; ++j) {
         const std::uint32_t a = std::uint32_t(i * segments + j), b = std::uint32_t(i * segments + (j + 1) % segments);
@@ -70,8 +49,8 @@ struct Case {
 
 std::vector<Case> cases() {
     std::vector<Case> out;
-    out.push_back({"cup, one large opening", sphere(24, 48, [](const glm::vec3& c) { return c.z < 0.5f; })});
-    out.push_back({"sphere, 12 punched holes", sphere(32, 64, [](const glm::vec3& c) {
+    out.push_back({"cup, one large opening", solids::openSphere(24, 48, [](const glm::vec3& c) { return c.z < 0.5f; })});
+    out.push_back({"sphere, 12 punched holes", solids::openSphere(32, 64, [](const glm::vec3& c) {
                        for (int h = 0; h < 12; ++h) {
                            const double z = -1.0 + (2.0 * h + 1.0) / 12.0, r = std::sqrt(1.0 - z * z), phi = 2.4 * h;
                            const glm::vec3 centre(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));

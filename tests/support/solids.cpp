@@ -256,6 +256,27 @@ TriangleMesh without(const TriangleMesh& mesh, bool (*drop)(const glm::vec3& cen
     return out;
 }
 
+TriangleMesh openSphere(int rings, int segments, const std::function<bool(const glm::vec3&)>& keep) {
+    constexpr double kPi = 3.14159265358979323846;
+    TriangleMesh m;
+    const auto at = [&](int i, int j) {
+        const double theta = kPi * i / rings, phi = 2.0 * kPi * j / segments;
+        return glm::vec3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)),
+                         float(std::cos(theta)));
+    };
+    for (int i = 0; i <= rings; ++i)
+        for (int j = 0; j < segments; ++j) m.positions.push_back(at(i, j));
+    const auto id = [&](int i, int j) { return std::uint32_t(i * segments + (j % segments)); };
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const glm::vec3 c = glm::normalize(at(i, j) + at(i + 1, j + 1));
+            if (!keep(c)) continue;
+            if (i > 0) m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+            if (i + 1 < rings) m.triangles.push_back({id(i, j + 1), id(i + 1, j), id(i + 1, j + 1)});
+        }
+    return m;
+}
+
 TriangleMesh sphereCup() {
     return without(sphere({0, 0, 0}, 1.0f, 32).mesh, [](const glm::vec3& c) { return c.z > 0.5f; });
 }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -63,6 +64,10 @@ TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b);
 
 // Open meshes, for the generalized winding number.
 
+/// A UV sphere of radius 1 at the origin, `rings` x `segments` quads, keeping
+/// the quads whose centre (normalized) `keep` accepts: shells with openings,
+/// punched holes and the like.
+TriangleMesh openSphere(int rings, int segments, const std::function<bool(const glm::vec3&)>& keep);
 /// `mesh` without the triangles whose centroid `drop` picks.
 TriangleMesh without(const TriangleMesh& mesh, bool (*drop)(const glm::vec3& centroid));
 /// The unit sphere at the origin (32 segments) without its cap above z = 0.5:
