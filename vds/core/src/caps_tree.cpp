@@ -157,7 +157,6 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
 
     // Walk each loop along unused outgoing edges until it returns to its start.
     std::vector<std::array<glm::dvec3, 3>> tris, fine; // the caps' fans, and cut finer for the tree
-    const glm::ivec3 perm = axisPermutation(axis);
     for (std::size_t start = 0; start < edgeCount && closed_; ++start) {
         if (used[start]) continue;
         CapLoop loop;
@@ -181,7 +180,6 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
         loop.centroid = glm::dvec3(c);
         const std::uint32_t apex = std::uint32_t(capPositions_.size());
         capPositions_.push_back(c);
-        loop.lo = loop.hi = glm::vec2(c[perm.x], c[perm.y]);
         const std::size_t firstTri = tris.size();
         for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k) {
             const glm::vec3 a = loopEdges_[2 * k], b = loopEdges_[2 * k + 1];
@@ -191,13 +189,9 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
             capTriangles_.emplace_back(apex, ia + 1, ia); // (c, b, a): the cap's boundary is the loop reversed
             tris.push_back({loop.centroid, glm::dvec3(b), glm::dvec3(a)});
             loop.radius = std::max(loop.radius, glm::length(glm::dvec3(a) - loop.centroid));
-            loop.lo = glm::min(loop.lo, glm::vec2(a[perm.x], a[perm.y]));
-            loop.hi = glm::max(loop.hi, glm::vec2(a[perm.x], a[perm.y]));
         }
-        const Moments moments = momentsOf(tris, firstTri, tris.size(), loop.centroid);
-        loop.vectorArea = moments.vectorArea;
-        loop.moment = moments.moment;
-        loop.area = moments.area;
+        for (std::size_t f = firstTri; f < tris.size(); ++f)
+            loop.area += 0.5 * glm::length(glm::cross(tris[f][1] - tris[f][0], tris[f][2] - tris[f][0]));
         loops_.push_back(loop);
         // The tree sums the same surface, each fan triangle cut into m^2
         // triangles of about the loop's edge length: fan triangles of a long

@@ -88,14 +88,11 @@ namespace vds::detail {
 /// exceeds the value's tolerance).
 constexpr double kCapValueTolerance = 1e-3;
 
-/// One boundary loop and its cap, for the GLSL include's per-loop method.
+/// One boundary loop and its cap, the fan from its centroid.
 struct CapLoop {
     glm::dvec3 centroid{0.0};      ///< c: the fan's apex (mean of the loop's vertices, rounded to float)
-    glm::dvec3 vectorArea{0.0};    ///< integral of the cap's normal: sum over (c, b, a) of (b - c) x (a - c) / 2
-    std::array<double, 9> moment{}; ///< M_ij = integral of n_i (x - c)_j over the cap, row-major
     double radius = 0.0;           ///< R: max |vertex - c|
     double area = 0.0;             ///< sum of the fan triangles' unsigned areas
-    glm::vec2 lo{0.0f}, hi{0.0f};  ///< the cap's box across the axis, (s, t)
     std::uint32_t first = 0;       ///< the loop's first edge in `loopEdges()`
     std::uint32_t count = 0;       ///< its edges
 };
