@@ -232,6 +232,51 @@ TEST(CapsTree, RangesOfTheBoundaryTermLabelAsThePerEdgeSum) {
     }
 }
 
+TEST(CapsTree, RangesOfTheWholeWindingNumberLabelAsThePerEdgeSum) {
+    // Given its surface, a cell the triangles keep out of gets the range of
+    // the whole winding number (the crossing count at its centre plus B
+    // there, widened by the reach: the winding number is smooth there,
+    // across the boundary's sweep too), and inside(q) answers from it
+    // without the crossing count. The same labels as the crossing count
+    // plus the per-edge sum: uniform points, points just off the triangles
+    // on both sides, and beside and above the boundary curve.
+    std::vector<Case> all = cases();
+    TriangleMesh soup;
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (std::uint32_t k = 0; k < 80; ++k) {
+        const glm::vec3 c(u(rng), u(rng), u(rng));
+        for (int v = 0; v < 3; ++v) soup.positions.push_back(c + 0.2f * glm::vec3(u(rng), u(rng), u(rng)));
+        soup.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    all.push_back({"soup", soup});
+    for (const Case& c : all) {
+        const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
+        const ProjectedMesh projected(MeshView(c.mesh), Axis::Z);
+        const ProjectedSurface surface(projected);
+        const Box domain{glm::vec3(-1.0f), glm::vec3(1.0f)};
+        const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z, &domain, &surface);
+        std::vector<glm::vec3> at = points(4000, 29);
+        std::normal_distribution<float> near(0.0f, 0.01f);
+        for (const auto& t : c.mesh.triangles) {
+            const glm::vec3 a = c.mesh.positions[t[0]], b = c.mesh.positions[t[1]], d = c.mesh.positions[t[2]];
+            const glm::vec3 n = glm::normalize(glm::cross(b - a, d - a));
+            for (const float side : {-1e-3f, 1e-3f}) at.push_back((a + b + d) / 3.0f + side * n);
+        }
+        for (std::size_t e = 0; e + 1 < edges.size(); e += 2)
+            for (const float up : {0.0f, 0.3f, 0.8f})
+                at.push_back(0.5f * (edges[e] + edges[e + 1]) + glm::vec3(near(rng), near(rng), up + near(rng)));
+        std::size_t inside = 0;
+        for (const glm::vec3& q : at) {
+            const bool expected = generalizedWindingInside(double(projected.winding(q)) + exactTerm(edges, q));
+            ASSERT_EQ(caps.inside(q), expected) << c.name << " at " << q.x << " " << q.y << " " << q.z;
+            inside += expected;
+        }
+        EXPECT_GT(inside, 20u) << c.name; // labels of both kinds
+        EXPECT_GT(caps.windingRangedCells(), 100u) << c.name; // the grid really answered
+    }
+}
+
 TEST(CapsTree, ColumnSweepsLabelEveryCellAsThePerEdgeSum) {
     // Both ways of the exact grid sweep, forced: cell by cell (decide and
     // reach) and by brackets over each column's cut of the chain tree

@@ -110,8 +110,9 @@ bool addCapTriangle(const std::array<glm::dvec3, 3>& t, const glm::dvec3& p, dou
 
 } // namespace
 
-BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis, const Box* domain)
-    : axisIndex_(axisPermutation(axis).z), edges_(edges, edges + 2 * edgeCount) {
+BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis, const Box* domain,
+                           const CapsSurface* surface)
+    : axisIndex_(axisPermutation(axis).z), surface_(surface), edges_(edges, edges + 2 * edgeCount) {
     // Weld endpoints by bitwise-equal positions, as boundaryEdges() does.
     std::map<std::tuple<float, float, float>, std::uint32_t> ids;
     const auto idOf = [&](const glm::vec3& p) {
@@ -608,6 +609,10 @@ void BoundaryCaps::buildRangeGrid(const Box& domain) {
             }
     }
     const std::size_t cells = std::size_t(g.dims.x) * g.dims.y * g.dims.z;
+    if (surface_) {
+        g.met.assign(cells, 0);
+        surface_->markCells(CellLattice{lo, g.size, g.dims}, g.met);
+    }
     g.state.reset(new std::atomic<std::uint8_t>[cells]);
     for (std::size_t c = 0; c < cells; ++c) g.state[c].store(0, std::memory_order_relaxed);
     g.lo.reset(new double[cells]);
@@ -628,7 +633,11 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
     // Clear of the boundary curve and its sweep along +axis: every edge
     // whose projection may meet the cell's column lies above the cell.
     const double top = lo[a] + double(at[a] + 1) * g.size[a] + 2.0 * slack;
-    if (top < g.lowestEdge[std::size_t(at[t]) * g.dims[s] + at[s]]) {
+    const bool clearOfSweep = top < g.lowestEdge[std::size_t(at[t]) * g.dims[s] + at[s]];
+    // Clear of the surface: the whole winding number is smooth over the
+    // cell (the boundary curve too lies on the surface).
+    const bool clearOfSurface = !g.met.empty() && g.met[cell] == 0;
+    if (clearOfSweep || clearOfSurface) {
         const glm::dvec3 centre = lo + (glm::dvec3(at) + 0.5) * g.size;
         const glm::vec3 c(centre);
         // Every point of the widened cell lies within this of c.
@@ -640,9 +649,10 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
         const double drift =
             std::isfinite(e.bound) ? reach(c, 0.5 / (half * (1.0 + 1e-9))).drift(half * (1.0 + 1e-9)) : e.bound;
         if (std::isfinite(drift) && e.bound + drift < 0.5) {
-            g.lo[cell] = e.term - e.bound - drift;
-            g.hi[cell] = e.term + e.bound + drift;
-            result = 1;
+            const double base = clearOfSurface ? double(surface_->winding(c)) + e.term : e.term;
+            g.lo[cell] = base - e.bound - drift;
+            g.hi[cell] = base + e.bound + drift;
+            result = clearOfSurface ? 4 : 1;
         }
     }
     g.state[cell].store(result, std::memory_order_release);
@@ -653,32 +663,109 @@ std::size_t BoundaryCaps::rangedCells() const {
     const RangeGrid& g = ranges_;
     if (!g.state) return 0;
     std::size_t ranged = 0;
-    for (std::size_t c = 0, n = std::size_t(g.dims.x) * g.dims.y * g.dims.z; c < n; ++c)
-        ranged += g.state[c].load(std::memory_order_acquire) == 1;
+    for (std::size_t c = 0, n = std::size_t(g.dims.x) * g.dims.y * g.dims.z; c < n; ++c) {
+        const std::uint8_t state = g.state[c].load(std::memory_order_acquire);
+        ranged += state == 1 || state == 4;
+    }
     return ranged;
 }
 
+std::size_t BoundaryCaps::windingRangedCells() const {
+    const RangeGrid& g = ranges_;
+    if (!g.state) return 0;
+    std::size_t ranged = 0;
+    for (std::size_t c = 0, n = std::size_t(g.dims.x) * g.dims.y * g.dims.z; c < n; ++c)
+        ranged += g.state[c].load(std::memory_order_acquire) == 4;
+    return ranged;
+}
+
+bool BoundaryCaps::cellOf(const glm::vec3& q, std::size_t& cell, glm::uvec3& at) const {
+    const RangeGrid& g = ranges_;
+    if (!g.state) return false;
+    for (int a = 0; a < 3; ++a) {
+        const double x = g.size[a] > 0.0 ? (double(q[a]) - double(g.box.lo[a])) / g.size[a]
+                                         : (q[a] == g.box.lo[a] ? 0.0 : -1.0);
+        if (!(x >= 0.0 && x < double(g.dims[a]))) return false;
+        at[a] = std::uint32_t(x);
+    }
+    cell = (std::size_t(at.z) * g.dims.y + at.y) * g.dims.x + at.x;
+    return true;
+}
+
+namespace {
+/// -1: the range puts the value below the threshold, 1: above, 0: neither.
+int sideOf(double lo, double hi) {
+    const double threshold = 0.5 + kGeneralizedWindingTie;
+    if (hi < threshold - kRoundingSlack) return -1;
+    if (lo > threshold + kRoundingSlack) return 1;
+    return 0;
+}
+} // namespace
+
 bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
-    if (ranges_.state) {
-        const RangeGrid& g = ranges_;
-        glm::uvec3 at;
-        bool within = true;
-        for (int a = 0; a < 3 && within; ++a) {
-            const double x = g.size[a] > 0.0 ? (double(q[a]) - double(g.box.lo[a])) / g.size[a]
-                                             : (q[a] == g.box.lo[a] ? 0.0 : -1.0);
-            within = x >= 0.0 && x < double(g.dims[a]);
-            if (within) at[a] = std::uint32_t(x);
-        }
-        if (within) {
-            const std::size_t cell = (std::size_t(at.z) * g.dims.y + at.y) * g.dims.x + at.x;
-            if (rangeOf(cell, at) == 1) {
-                const double threshold = 0.5 + kGeneralizedWindingTie;
-                if (double(winding) + g.hi[cell] < threshold - kRoundingSlack) return false;
-                if (double(winding) + g.lo[cell] > threshold + kRoundingSlack) return true;
-            }
+    std::size_t cell;
+    glm::uvec3 at;
+    if (cellOf(q, cell, at)) {
+        const std::uint8_t state = rangeOf(cell, at);
+        const double shift = state == 1 ? double(winding) : 0.0;
+        if (state == 1 || state == 4) {
+            const int side = sideOf(shift + ranges_.lo[cell], shift + ranges_.hi[cell]);
+            if (side != 0) return side > 0;
         }
     }
     return generalizedWindingInside(decide(winding, q, 1.0).term);
+}
+
+bool BoundaryCaps::inside(const glm::vec3& q) const {
+    std::size_t cell;
+    glm::uvec3 at;
+    if (cellOf(q, cell, at) && rangeOf(cell, at) == 4) {
+        const int side = sideOf(ranges_.lo[cell], ranges_.hi[cell]);
+        if (side != 0) return side > 0;
+    }
+    return inside(surface_->winding(q), q);
+}
+
+void ProjectedSurface::markCells(const CellLattice& cells, std::vector<std::uint8_t>& met) const {
+    // Against the rounding of a point's cell index, as the grid's edges.
+    const double slack = 1e-7 * std::max({cells.size.x * cells.dims.x, cells.size.y * cells.dims.y,
+                                          cells.size.z * cells.dims.z});
+    for (const Triangle& t : mesh_.tris) {
+        glm::dvec3 v[3];
+        for (int k = 0; k < 3; ++k)
+            for (int i = 0; i < 3; ++i) v[k][mesh_.perm[i]] = double(t.v[k][i]);
+        markTriangleCells(cells, v[0], v[1], v[2], slack, met);
+    }
+}
+
+void markTriangleCells(const CellLattice& cells, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                       double slack, std::vector<std::uint8_t>& met) {
+    glm::uvec3 first(0), last(0);
+    for (int k = 0; k < 3; ++k) {
+        const double from = std::min({a[k], b[k], c[k]}) - slack, to = std::max({a[k], b[k], c[k]}) + slack;
+        const double end = cells.lo[k] + double(cells.dims[k]) * cells.size[k];
+        if (!(to >= cells.lo[k] && from <= end)) return; // NaN too
+        const auto index = [&](double x) {
+            if (!(cells.size[k] > 0.0)) return 0.0;
+            return std::clamp(std::floor((x - cells.lo[k]) / cells.size[k]), 0.0, double(cells.dims[k] - 1));
+        };
+        first[k] = std::uint32_t(index(from));
+        last[k] = std::uint32_t(index(to));
+    }
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const glm::dvec3 half = 0.5 * cells.size + slack;
+    const double reach = std::fabs(n.x) * half.x + std::fabs(n.y) * half.y + std::fabs(n.z) * half.z;
+    // The plane's offset at a cell's centre, against its reach over the
+    // cell, with room for the rounding of both (relative 1e-9).
+    const double rounding = 1e-9 * (glm::length(n) * (glm::length(a - cells.lo) + glm::length(cells.size * glm::dvec3(cells.dims))) + reach);
+    glm::uvec3 at;
+    for (at.z = first.z; at.z <= last.z; ++at.z)
+        for (at.y = first.y; at.y <= last.y; ++at.y)
+            for (at.x = first.x; at.x <= last.x; ++at.x) {
+                const glm::dvec3 centre = cells.lo + (glm::dvec3(at) + 0.5) * cells.size;
+                if (std::fabs(glm::dot(n, centre - a)) > reach + rounding) continue;
+                met[cells.index(at)] = 1;
+            }
 }
 
 // ------------------------------------------------------------ labels

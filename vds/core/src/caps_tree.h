@@ -108,6 +108,50 @@ inline double firstOrderTerm(const glm::dvec3& vectorArea, const std::array<doub
     return (vectorArea.x * y.x + vectorArea.y * y.y + vectorArea.z * y.z + trace - 3.0 * yMy * inv2) * inv3;
 }
 
+/// The cells of a grid: cell (i, j, k) spans lo + (i, j, k) * size to
+/// lo + (i + 1, j + 1, k + 1) * size.
+struct CellLattice {
+    glm::dvec3 lo{0.0}, size{0.0};
+    glm::uvec3 dims{0};
+    std::size_t index(const glm::uvec3& at) const { return (std::size_t(at.z) * dims.y + at.y) * dims.x + at.x; }
+};
+
+/// The surface a boundary belongs to, for ranges of its whole generalized
+/// winding number: over a cell that no part of the surface meets, the
+/// winding number is smooth (its gradient is the boundary's Biot-Savart
+/// integral, which BoundaryCaps::reach bounds in any direction; across a
+/// cap or a boundary edge's sweep its integer term and boundary term jump
+/// together), so its value at the cell's centre and the reach over the
+/// cell give its range, and a query there needs neither term.
+class CapsSurface {
+public:
+    virtual ~CapsSurface() = default;
+    /// The integer term at q, as the caller counts it (crossings strictly
+    /// in front of q towards -axis, the top-left rule on ties).
+    virtual int winding(const glm::vec3& q) const = 0;
+    /// Sets met[cells.index(at)] = 1 for every cell the surface may meet:
+    /// a cell left 0 must be clear of every triangle, a cell set may be.
+    virtual void markCells(const CellLattice& cells, std::vector<std::uint8_t>& met) const = 0;
+};
+
+/// Marks the cells triangle (a, b, c) may meet: those its box overlaps
+/// that its plane does not pass clear of, both with a margin of `slack`.
+void markTriangleCells(const CellLattice& cells, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                       double slack, std::vector<std::uint8_t>& met);
+
+/// A projected mesh as the surface of its boundary edges: its crossing
+/// count, and the cells its triangles (parallel ones too: the winding
+/// number jumps across them as well) may meet. Keeps a reference.
+class ProjectedSurface final : public CapsSurface {
+public:
+    explicit ProjectedSurface(const ProjectedMesh& mesh) : mesh_(mesh) {}
+    int winding(const glm::vec3& q) const override { return mesh_.winding(q); }
+    void markCells(const CellLattice& cells, std::vector<std::uint8_t>& met) const override;
+
+private:
+    const ProjectedMesh& mesh_;
+};
+
 /// The boundary term of a set of boundary edges by their capped loops. Built
 /// once (O(E log E)), then thread safe to query.
 class BoundaryCaps {
@@ -117,7 +161,11 @@ public:
     /// `domain`: where most queries lie (the mesh's or sprite's box), for
     /// the grid of bounds `inside` answers from first (see there); none:
     /// every query refines the tree.
-    BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis, const Box* domain = nullptr);
+    /// `surface` (kept, to outlive this): the surface of which the edges
+    /// are the boundary, for cells of the grid that it does not meet (see
+    /// CapsSurface); none: only cells clear of the boundary's sweep.
+    BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis, const Box* domain = nullptr,
+                 const CapsSurface* surface = nullptr);
 
     struct Estimate {
         double term = 0.0;  ///< B(q)
@@ -176,8 +224,13 @@ public:
     /// range over the cell, from an estimate at its centre and the reach
     /// over its half diagonal, where no part of the boundary curve nor of
     /// its sweep along +axis (where B jumps) passes through the cell; a
-    /// winding that this range puts clear of 1/2 answers at once.
+    /// winding that this range puts clear of 1/2 answers at once. Where
+    /// the caps know their surface, a cell it does not meet gets the range
+    /// of the whole winding number, which answers without `winding`.
     bool inside(int winding, const glm::vec3& q) const;
+    /// As `inside`, asking the surface (given at construction) for the
+    /// integer term only where the grid does not answer alone.
+    bool inside(const glm::vec3& q) const;
 
     /// `winding + B(q)` within `bound` of the per-edge sum's value, refined
     /// as `inside` does until it lies farther than `margin` (>= 1) times
@@ -187,8 +240,10 @@ public:
     /// of that distance is left for neighbours (Reach).
     Estimate decide(int winding, const glm::vec3& q, double margin) const;
 
-    /// Cells of the grid of bounds that have a range of B so far.
+    /// Cells of the grid of bounds that have a range of B so far, and of
+    /// those, the ones with the range of the whole winding number.
     std::size_t rangedCells() const;
+    std::size_t windingRangedCells() const;
 
     /// False when the edges do not close into loops (not a mesh's boundary):
     /// every query then takes the per-edge sum.
@@ -246,13 +301,17 @@ public:
 
 private:
     /// The grid of bounds `inside` answers from first: cells of the
-    /// domain's box, their state (0: not yet looked at, 1: a range, 2:
-    /// none) and range of B, filled on a query's first visit (two threads
-    /// filling one cell write the same values).
+    /// domain's box, their state (0: not yet looked at, 1: a range of B,
+    /// 2: none, 3: being filled, 4: a range of the whole winding number)
+    /// and range, filled on a query's first visit (one thread fills a
+    /// cell; the others go on by the tree meanwhile).
     struct RangeGrid {
         Box box;
         glm::uvec3 dims{0};
         glm::dvec3 size{0.0};
+        /// 1 where the surface may meet the cell (CapsSurface::markCells);
+        /// empty without a surface.
+        std::vector<std::uint8_t> met;
         /// Per column of cells along the axis: the lowest height along the
         /// axis of a boundary edge whose projection's box meets the
         /// column's (+inf: none), so the cells wholly below it are clear
@@ -264,6 +323,8 @@ private:
     void buildRangeGrid(const Box& domain);
     /// The cell's state, filling it on the first visit.
     std::uint8_t rangeOf(std::size_t cell, const glm::uvec3& at) const;
+    /// The cell q lies in; false outside the grid.
+    bool cellOf(const glm::vec3& q, std::size_t& cell, glm::uvec3& at) const;
     double exact(int winding, const glm::vec3& q) const;
     static void finish(Node& node);
     static double firstOrder(const Node& n, const glm::dvec3& y, double d2, double d);
@@ -275,6 +336,7 @@ private:
                         std::vector<glm::dvec3>& unsignedMoments);
 
     int axisIndex_;
+    const CapsSurface* surface_ = nullptr;
     bool closed_ = true;
     std::vector<glm::vec3> edges_;
     std::vector<glm::vec3> loopEdges_;

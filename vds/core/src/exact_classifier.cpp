@@ -52,13 +52,17 @@ std::vector<BoundaryEdge> toDouble(const std::vector<glm::vec3>& ends) {
 
 struct ExactClassifier::Impl : detail::ProjectedMesh {
     Impl(MeshView mesh, Axis viewAxis)
-        : detail::ProjectedMesh(mesh, viewAxis), boundaryEnds(detail::boundaryEdges(mesh)), boundary(toDouble(boundaryEnds)) {
+        : detail::ProjectedMesh(mesh, viewAxis), boundaryEnds(detail::boundaryEdges(mesh)), boundary(toDouble(boundaryEnds)),
+          surface(*this) {
         const Box box = meshBounds(mesh);
-        if (!boundaryEnds.empty()) caps.emplace(boundaryEnds.data(), boundaryEnds.size() / 2, viewAxis, &box);
+        if (!boundaryEnds.empty())
+            caps.emplace(boundaryEnds.data(), boundaryEnds.size() / 2, viewAxis, &box, &surface);
     }
     std::vector<glm::vec3> boundaryEnds; ///< as `Sprite::boundaryEdges`: 2 points an edge
     int axisIndex = axisPermutation(axis).z; ///< +axis: the apex of every boundary term's spherical triangle
     std::vector<BoundaryEdge> boundary;
+    /// The triangles, for the caps' ranges of the whole winding number.
+    detail::ProjectedSurface surface;
     /// The boundary's capped loops: labels equal to the per-edge sum's,
     /// without summing every edge for most points (caps_tree.h).
     std::optional<detail::BoundaryCaps> caps;
@@ -68,7 +72,7 @@ struct ExactClassifier::Impl : detail::ProjectedMesh {
     }
     double generalizedWinding(const glm::vec3& p) const { return double(winding(p)) + boundaryTerm(p); }
     bool contains(const glm::vec3& p, Rule rule) const {
-        if (rule == Rule::GeneralizedWinding && caps) return caps->inside(winding(p), p);
+        if (rule == Rule::GeneralizedWinding && caps) return caps->inside(p);
         return insideByRule(winding(p), rule);
     }
 };

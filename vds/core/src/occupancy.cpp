@@ -403,7 +403,8 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
     // capped loops (the labels of the exact per-edge sum).
     const std::size_t edgeCount = options.rule == Rule::GeneralizedWinding ? edges.size() / 2 : 0;
     std::optional<detail::BoundaryCaps> caps;
-    if (edgeCount > 0) caps.emplace(edges.data(), edgeCount, Axis::Z, &grid.box);
+    const detail::ProjectedSurface surface(projected);
+    if (edgeCount > 0) caps.emplace(edges.data(), edgeCount, Axis::Z, &grid.box, &surface);
     const std::vector<float> xs = centres(grid, 0), ys = centres(grid, 1), zs = centres(grid, 2);
     const std::uint32_t n = grid.dims.z;
     const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
