@@ -613,6 +613,10 @@ void BoundaryCaps::buildRangeGrid(const Box& domain) {
         g.met.assign(cells, 0);
         surface_->markCells(CellLattice{lo, g.size, g.dims}, g.met);
     }
+    g.capMet.assign(cells, 0);
+    for (const glm::uvec3& c : capTriangles_)
+        markTriangleCells(CellLattice{lo, g.size, g.dims}, glm::dvec3(capPositions_[c.x]), glm::dvec3(capPositions_[c.y]),
+                          glm::dvec3(capPositions_[c.z]), 2.0 * slack, g.capMet);
     g.state.reset(new std::atomic<std::uint8_t>[cells]);
     for (std::size_t c = 0; c < cells; ++c) g.state[c].store(0, std::memory_order_relaxed);
     g.lo.reset(new double[cells]);
@@ -637,7 +641,10 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
     // Clear of the surface: the whole winding number is smooth over the
     // cell (the boundary curve too lies on the surface).
     const bool clearOfSurface = !g.met.empty() && g.met[cell] == 0;
-    if (clearOfSweep || clearOfSurface) {
+    // Clear of the caps: w_caps is smooth over the cell, and B is the caps'
+    // crossing count (an integer, asked at the query) less w_caps.
+    const bool clearOfCaps = g.capMet[cell] == 0;
+    if (clearOfSweep || clearOfSurface || clearOfCaps) {
         const glm::dvec3 centre = lo + (glm::dvec3(at) + 0.5) * g.size;
         const glm::vec3 c(centre);
         // Every point of the widened cell lies within this of c.
@@ -649,33 +656,35 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
         const double drift =
             std::isfinite(e.bound) ? reach(c, 0.5 / (half * (1.0 + 1e-9))).drift(half * (1.0 + 1e-9)) : e.bound;
         if (std::isfinite(drift) && e.bound + drift < 0.5) {
-            const double base = clearOfSurface ? double(surface_->winding(c)) + e.term : e.term;
+            // The cheapest range to ask at a query: the whole winding
+            // number's, then B's, then -w_caps.
+            double base = e.term;
+            result = 1;
+            if (clearOfSurface) {
+                base += double(surface_->winding(c));
+                result = 4;
+            } else if (!clearOfSweep) {
+                base -= double(projected_->winding(c));
+                result = 5;
+            }
             g.lo[cell] = base - e.bound - drift;
             g.hi[cell] = base + e.bound + drift;
-            result = clearOfSurface ? 4 : 1;
         }
     }
     g.state[cell].store(result, std::memory_order_release);
     return result;
 }
 
-std::size_t BoundaryCaps::rangedCells() const {
+BoundaryCaps::RangedCells BoundaryCaps::rangedCells() const {
     const RangeGrid& g = ranges_;
-    if (!g.state) return 0;
-    std::size_t ranged = 0;
+    RangedCells ranged;
+    if (!g.state) return ranged;
     for (std::size_t c = 0, n = std::size_t(g.dims.x) * g.dims.y * g.dims.z; c < n; ++c) {
         const std::uint8_t state = g.state[c].load(std::memory_order_acquire);
-        ranged += state == 1 || state == 4;
+        ranged.boundary += state == 1;
+        ranged.winding += state == 4;
+        ranged.capped += state == 5;
     }
-    return ranged;
-}
-
-std::size_t BoundaryCaps::windingRangedCells() const {
-    const RangeGrid& g = ranges_;
-    if (!g.state) return 0;
-    std::size_t ranged = 0;
-    for (std::size_t c = 0, n = std::size_t(g.dims.x) * g.dims.y * g.dims.z; c < n; ++c)
-        ranged += g.state[c].load(std::memory_order_acquire) == 4;
     return ranged;
 }
 
@@ -707,8 +716,9 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
     glm::uvec3 at;
     if (cellOf(q, cell, at)) {
         const std::uint8_t state = rangeOf(cell, at);
-        const double shift = state == 1 ? double(winding) : 0.0;
-        if (state == 1 || state == 4) {
+        const double shift =
+            state == 1 ? double(winding) : state == 5 ? double(winding + projected_->winding(q)) : 0.0;
+        if (state == 1 || state == 4 || state == 5) {
             const int side = sideOf(shift + ranges_.lo[cell], shift + ranges_.hi[cell]);
             if (side != 0) return side > 0;
         }

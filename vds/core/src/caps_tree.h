@@ -240,10 +240,15 @@ public:
     /// of that distance is left for neighbours (Reach).
     Estimate decide(int winding, const glm::vec3& q, double margin) const;
 
-    /// Cells of the grid of bounds that have a range of B so far, and of
-    /// those, the ones with the range of the whole winding number.
-    std::size_t rangedCells() const;
-    std::size_t windingRangedCells() const;
+    /// Cells of the grid of bounds with a range so far, by kind: of B
+    /// (clear of the boundary's sweep), of the whole winding number (clear
+    /// of the surface), of -w_caps (clear of the caps; the caps' crossing
+    /// count is asked at the query).
+    struct RangedCells {
+        std::size_t boundary = 0, winding = 0, capped = 0;
+        std::size_t all() const { return boundary + winding + capped; }
+    };
+    RangedCells rangedCells() const;
 
     /// False when the edges do not close into loops (not a mesh's boundary):
     /// every query then takes the per-edge sum.
@@ -302,7 +307,8 @@ public:
 private:
     /// The grid of bounds `inside` answers from first: cells of the
     /// domain's box, their state (0: not yet looked at, 1: a range of B,
-    /// 2: none, 3: being filled, 4: a range of the whole winding number)
+    /// 2: none, 3: being filled, 4: a range of the whole winding number,
+    /// 5: a range of B less the caps' crossing count, -w_caps)
     /// and range, filled on a query's first visit (one thread fills a
     /// cell; the others go on by the tree meanwhile).
     struct RangeGrid {
@@ -312,6 +318,8 @@ private:
         /// 1 where the surface may meet the cell (CapsSurface::markCells);
         /// empty without a surface.
         std::vector<std::uint8_t> met;
+        /// 1 where a cap may meet the cell.
+        std::vector<std::uint8_t> capMet;
         /// Per column of cells along the axis: the lowest height along the
         /// axis of a boundary edge whose projection's box meets the
         /// column's (+inf: none), so the cells wholly below it are clear
