@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -123,6 +124,62 @@ TEST(CapsTree, BoundaryTermDriftsNoMoreThanItsReach) {
             }
         }
         EXPECT_GT(moves, 2000u) << c.name;
+        EXPECT_GT(tightest, 0.05) << c.name; // a bound, not a wall
+    }
+}
+
+TEST(CapsTree, WindingNumberDriftsNoMoreThanDriftWithinAnyBallClearOfTheSurface) {
+    // driftWithin bounds the change over a move in any direction, each part
+    // of the boundary taken at the nearest a move reaches: checked on the
+    // whole winding number (crossing count plus per-edge sum), smooth in a
+    // ball that no triangle meets, across the boundary's sweep too.
+    std::vector<Case> all = cases();
+    TriangleMesh soup;
+    std::mt19937 build(31);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (std::uint32_t k = 0; k < 40; ++k) {
+        const glm::vec3 c(u(build), u(build), u(build));
+        for (int v = 0; v < 3; ++v) soup.positions.push_back(c + 0.2f * glm::vec3(u(build), u(build), u(build)));
+        soup.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    all.push_back({"soup", soup});
+    std::mt19937 rng(37);
+    std::normal_distribution<double> gauss(0.0, 1.0);
+    for (const Case& c : all) {
+        const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
+        const ProjectedMesh projected(MeshView(c.mesh), Axis::Z);
+        const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z);
+        const auto gwn = [&](const glm::vec3& p) { return double(projected.winding(p)) + exactTerm(edges, p); };
+        std::size_t moves = 0;
+        double tightest = 0.0;
+        for (const glm::vec3& q : points(500, 41)) {
+            // The distance to the nearest triangle's bounding ball: no
+            // triangle meets a ball about q of a smaller radius.
+            double clear = std::numeric_limits<double>::infinity();
+            for (const auto& t : c.mesh.triangles) {
+                const glm::dvec3 a(c.mesh.positions[t[0]]), b(c.mesh.positions[t[1]]), d(c.mesh.positions[t[2]]);
+                const glm::dvec3 g = (a + b + d) / 3.0;
+                const double r = std::max({glm::length(a - g), glm::length(b - g), glm::length(d - g)});
+                clear = std::min(clear, glm::length(glm::dvec3(q) - g) - r);
+            }
+            for (const double length : {0.02, 0.08, 0.25}) {
+                if (!(length < 0.9 * clear)) continue;
+                const double bound = caps.driftWithin(q, length, std::numeric_limits<double>::infinity());
+                ASSERT_GE(bound, 0.0);
+                if (!std::isfinite(bound)) continue;
+                const double w0 = gwn(q);
+                for (int k = 0; k < 4; ++k) {
+                    const glm::dvec3 direction = glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
+                    const glm::vec3 moved = glm::vec3(glm::dvec3(q) + length * direction);
+                    if (!(glm::length(glm::dvec3(moved) - glm::dvec3(q)) <= length)) continue; // float rounding
+                    const double drift = std::fabs(gwn(moved) - w0);
+                    ASSERT_LE(drift, bound + 1e-12) << c.name << " moved " << length;
+                    tightest = std::max(tightest, drift / bound);
+                    ++moves;
+                }
+            }
+        }
+        EXPECT_GT(moves, 1000u) << c.name;
         EXPECT_GT(tightest, 0.05) << c.name; // a bound, not a wall
     }
 }

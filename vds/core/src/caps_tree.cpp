@@ -546,6 +546,100 @@ BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q, double steepest) con
     return r;
 }
 
+double BoundaryCaps::driftWithin(const glm::vec3& q, double length, double limit) const {
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
+    if (edgeNodes_.empty()) return 0.0;
+    const double sumLimit = limit / length * kFourPi; // on the sums below
+    const glm::dvec3 p(q);
+    // Two bounds from one walk, the smaller taken: each part at its
+    // nearest a move reaches (moved), and Reach's, all at their distance
+    // from q (at) times the nearest part's shrink factor.
+    double moved = 0.0, at = 0.0, gap = kInfinity;
+    const auto over = [&] {
+        const double shrink = 1.0 - length / gap;
+        return moved > sumLimit && (!(shrink > 0.0) || at / (shrink * shrink * shrink) > sumLimit);
+    };
+    std::uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const EdgeNode& n = edgeNodes_[stack[--top]];
+        // e: q's distance to the node's ball (which holds its edges, and
+        // for whole loops its caps); a move reaches within e - length.
+        const double d = glm::length(n.centre - p), e = d - n.radius, near = e - length;
+        if (near >= 2.0 * n.radius && near > 0.0) {
+            const auto term = [&](double r) {
+                return n.wholeLoops ? std::min(n.length / (r * r), 2.0 * n.capArea / (r * r * r)) : n.length / (r * r);
+            };
+            moved += term(near);
+            at += term(e);
+            gap = std::min(gap, e);
+            if (over()) return kInfinity;
+            continue;
+        }
+        if (n.loopNode) {
+            // The loop's edges one by one, or where that sums to more, its
+            // cap's bound (its ball clear of every move: near > 0).
+            double loopMoved = 0.0, loopAt = 0.0, loopGap = kInfinity;
+            std::uint32_t inner[64];
+            int depth = 0;
+            inner[depth++] = n.left;
+            while (depth > 0) {
+                const EdgeNode& m = edgeNodes_[inner[--depth]];
+                if (m.count == 0) {
+                    inner[depth++] = m.left;
+                    inner[depth++] = m.right;
+                    continue;
+                }
+                for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+                    const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
+                    const glm::dvec3 ab = b - a;
+                    const double length2 = glm::dot(ab, ab);
+                    const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+                    const double distance = glm::length(a + t * ab - p);
+                    if (!(distance > length)) return kInfinity; // a move may reach the curve
+                    const double edge = std::sqrt(length2);
+                    loopMoved += edge / ((distance - length) * (distance - length));
+                    loopAt += edge / (distance * distance);
+                    loopGap = std::min(loopGap, distance);
+                }
+            }
+            if (near > 0.0) {
+                loopMoved = std::min(loopMoved, 2.0 * n.capArea / (near * near * near));
+                loopAt = std::min(loopAt, 2.0 * n.capArea / (e * e * e));
+                loopGap = std::min(loopGap, e);
+            }
+            moved += loopMoved;
+            at += loopAt;
+            gap = std::min(gap, loopGap);
+            if (over()) return kInfinity;
+            continue;
+        }
+        if (n.count == 0) {
+            stack[top++] = n.left;
+            stack[top++] = n.right;
+            continue;
+        }
+        for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
+            const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
+            const glm::dvec3 ab = b - a;
+            const double length2 = glm::dot(ab, ab);
+            const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+            const double distance = glm::length(a + t * ab - p);
+            if (!(distance > length)) return kInfinity; // a move may reach the curve
+            const double edge = std::sqrt(length2);
+            moved += edge / ((distance - length) * (distance - length));
+            at += edge / (distance * distance);
+            gap = std::min(gap, distance);
+        }
+        if (over()) return kInfinity;
+    }
+    const double shrink = 1.0 - length / gap;
+    const double byReach = shrink > 0.0 ? at / (shrink * shrink * shrink) : kInfinity;
+    // A little slack: the distances are rounded.
+    return std::min(moved, byReach) / kFourPi * length * (1.0 + 1e-8);
+}
+
 double BoundaryCaps::exact(int winding, const glm::vec3& q) const {
     return double(winding) + boundaryTermExact(edges_.data(), edges_.size() / 2, axisIndex_, glm::dvec3(q));
 }
@@ -653,8 +747,7 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
         // (and a reach that cannot carry half a unit over the cell is not
         // worth finishing).
         const Estimate e = estimate(c, kRangeTolerance);
-        const double drift =
-            std::isfinite(e.bound) ? reach(c, 0.5 / (half * (1.0 + 1e-9))).drift(half * (1.0 + 1e-9)) : e.bound;
+        const double drift = std::isfinite(e.bound) ? driftWithin(c, half * (1.0 + 1e-9), 0.5) : e.bound;
         if (std::isfinite(drift) && e.bound + drift < 0.5) {
             // The cheapest range to ask at a query: the whole winding
             // number's, then B's, then -w_caps.
@@ -934,6 +1027,10 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
     // work exceeds the budget. `expand`: not by its own expansion (a leaf
     // taken before).
     bool fine = false;
+    // The leaves' angle, taken again (two atan2) only after leaves were
+    // summed.
+    bool leavesChanged = false;
+    double leaves = 0.0;
     const auto open = [&](std::uint32_t index, bool expand) {
         stack.clear();
         stack.push_back(index);
@@ -976,6 +1073,7 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
                 }
                 leafSums[im > 0.0 ? 0 : 1].add(re, std::fabs(im));
             }
+            leavesChanged = true;
         }
         return true;
     };
@@ -985,7 +1083,10 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
     const double offset = double(winding) - 0.5 - kGeneralizedWindingTie;
     if (open(0, false)) {
         while (true) {
-            const double leaves = 2.0 * (leafSums[0].angle() - leafSums[1].angle()) + apart;
+            if (leavesChanged) {
+                leaves = 2.0 * (leafSums[0].angle() - leafSums[1].angle()) + apart;
+                leavesChanged = false;
+            }
             const double value = offset + (angles + leaves) / kFourPi;
             // The running sums drift by some 1e-13 at most (each taken
             // bound is at most kMaxTakenBound), within the slack.

@@ -212,6 +212,14 @@ public:
     /// `steepest`: where that cannot carry a label one cell further, the
     /// rest of the sum is not worth taking.
     Reach reach(const glm::vec3& q, double steepest = std::numeric_limits<double>::infinity()) const;
+    /// The largest change of B (and of w_caps) over a move from q by at
+    /// most `length` in any direction along which B is smooth, the same
+    /// bounds taken term by term: each edge or cluster at distance r
+    /// (beyond `length`) adds its bound at r - length, so that far parts
+    /// are not charged for the nearest one's closeness as Reach::drift
+    /// charges them. +inf past `limit`, or where an edge lies within
+    /// `length` of q.
+    double driftWithin(const glm::vec3& q, double length, double limit) const;
 
     /// `winding + B(q)` within `tolerance` of `winding + boundaryTermExact`,
     /// falling back to the per-edge sum where the estimate's bound is larger.
