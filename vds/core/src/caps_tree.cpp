@@ -654,8 +654,12 @@ double BoundaryCaps::generalizedWinding(int winding, const glm::vec3& q, double 
 namespace {
 /// Cells of the range grid along its longest side.
 constexpr double kRangeCells = 24.0;
-/// The node tolerance of the estimate at a cell's centre (estimate()).
-constexpr double kRangeTolerance = 1e-2;
+/// The node tolerance of the estimate at a cell's centre (estimate()):
+/// coarse, as a range serves only where it keeps clear of 1/2. Measured
+/// (exact classifier, first call, 200,000 points, this project's VM):
+/// 5e-2 against 1e-2, 1.1-1.25x on the fins and the punched sphere, the
+/// rest within noise; 1e-1 costs the teapot 9%.
+constexpr double kRangeTolerance = 5e-2;
 } // namespace
 
 void BoundaryCaps::buildRangeGrid(const Box& domain) {
