@@ -289,6 +289,9 @@ TEST(CapsTree, RangesOfTheBoundaryTermLabelAsThePerEdgeSum) {
         // their range of -w_caps.
         EXPECT_GT(caps.rangedCells().boundary, 200u) << c.name;
         EXPECT_GT(caps.rangedCells().capped, 20u) << c.name;
+        // Cells with no range answer by their plan: the near loops by the
+        // tree, the far ones' -w_caps by its range.
+        EXPECT_GT(caps.rangedCells().planned, 50u) << c.name;
     }
 }
 

@@ -234,7 +234,12 @@ public:
     /// its sweep along +axis (where B jumps) passes through the cell; a
     /// winding that this range puts clear of 1/2 answers at once. Where
     /// the caps know their surface, a cell it does not meet gets the range
-    /// of the whole winding number, which answers without `winding`.
+    /// of the whole winding number, which answers without `winding`; a
+    /// cell the caps do not meet, the range of -w_caps, to which the caps'
+    /// crossing count at q is added. A cell with no range gets a plan
+    /// where it pays: the loops far from it collapsed into the range of
+    /// their caps' -w over the cell (plus their crossing count at q), the
+    /// few near ones refined from each query as decide() does.
     bool inside(int winding, const glm::vec3& q) const;
     /// As `inside`, asking the surface (given at construction) for the
     /// integer term only where the grid does not answer alone.
@@ -255,6 +260,9 @@ public:
     struct RangedCells {
         std::size_t boundary = 0, winding = 0, capped = 0;
         std::size_t all() const { return boundary + winding + capped; }
+        /// Cells with no range but a plan: the loops near the cell, the
+        /// rest's -w_caps by its range over the cell (see decide).
+        std::size_t planned = 0;
     };
     RangedCells rangedCells() const;
 
@@ -298,7 +306,11 @@ public:
     struct ChainNode : Node {
         glm::dvec3 from, to; ///< the chord P -> Q (none for whole loops)
         bool chord;
+        /// One whole loop: its index in loops(); else (a group of loops, or
+        /// part of one) kNoLoop.
+        std::uint32_t loop;
     };
+    static constexpr std::uint32_t kNoLoop = 0xffffffffu;
     /// [0] is the root; empty where the edges do not close into loops.
     const std::vector<ChainNode>& chains() const { return chains_; }
     /// A node's fan's solid angle seen from q by its expansion to first
@@ -316,7 +328,9 @@ private:
     /// The grid of bounds `inside` answers from first: cells of the
     /// domain's box, their state (0: not yet looked at, 1: a range of B,
     /// 2: none, 3: being filled, 4: a range of the whole winding number,
-    /// 5: a range of B less the caps' crossing count, -w_caps)
+    /// 5: a range of B less the caps' crossing count, -w_caps, 6: a plan:
+    /// the range of -w of the caps of the loops far from the cell, and the
+    /// loops near it)
     /// and range, filled on a query's first visit (one thread fills a
     /// cell; the others go on by the tree meanwhile).
     struct RangeGrid {
@@ -328,6 +342,14 @@ private:
         std::vector<std::uint8_t> met;
         /// 1 where a cap may meet the cell.
         std::vector<std::uint8_t> capMet;
+        /// A planned cell's near nodes (whole loops, or groups of them),
+        /// then the loops they hold, ascending: nearCount[cell] of the
+        /// first, nearLoops[cell] of the second.
+        std::unique_ptr<std::unique_ptr<std::uint32_t[]>[]> near;
+        std::unique_ptr<std::uint32_t[]> nearCount, nearLoops;
+        /// A planned cell's queries the plan did not decide: past a few,
+        /// the cell goes back to state 2 (its queries lie close to 1/2).
+        std::unique_ptr<std::atomic<std::uint8_t>[]> planMisses;
         /// Per column of cells along the axis: the lowest height along the
         /// axis of a boundary edge whose projection's box meets the
         /// column's (+inf: none), so the cells wholly below it are clear
@@ -359,6 +381,22 @@ private:
     std::vector<CapLoop> loops_;
     std::vector<glm::vec3> capPositions_;
     std::vector<glm::uvec3> capTriangles_;
+    std::vector<std::uint32_t> capLoopOf_; ///< the loop of each cap triangle
+    /// The cap triangles q's ray towards -axis crosses in front of q, as
+    /// (loop, +1 or -1): C_caps loop by loop, counted as projected_ counts.
+    void capCrossings(const glm::vec3& q, std::vector<std::pair<std::uint32_t, int>>& out) const;
+    /// A cell's plan, on the fill: false where the far loops' range would
+    /// be too wide to help.
+    bool plan(std::size_t cell, const glm::vec3& c, double half) const;
+    /// decide() from a planned cell's near loops; false where that does
+    /// not decide (the far range is as wide as the rest of the distance).
+    bool decidePlanned(int winding, const glm::vec3& q, std::size_t cell, Estimate& out) const;
+    /// The decide-or-refine of decide(), from the chain nodes `roots`
+    /// (whole loops, or the root) with `farCrossings` + [farLo, farHi]
+    /// standing for the rest; false where it runs out of nodes with the
+    /// far range left (planned) or of budget.
+    bool refine(int winding, const glm::vec3& q, double margin, const std::uint32_t* roots, std::size_t rootCount,
+                double farLo, double farHi, Estimate& out) const;
     std::vector<std::array<glm::dvec3, 3>> leafTris_; ///< cap triangles in tree order
     std::vector<Node> nodes_;                         ///< [0] is the root
     std::optional<ProjectedMesh> projected_;          ///< the caps, for C_caps
