@@ -670,9 +670,11 @@ namespace {
 /// diagonals beyond it.
 constexpr double kPlanReach = 2.0;
 /// Widest range of the far loops' part a plan keeps.
-constexpr double kPlanWidth = 0.1;
-/// Most near loops a plan keeps.
-constexpr std::size_t kPlanNear = 12;
+constexpr double kPlanWidth = 0.45;
+/// Most near loops a plan keeps, and their most relative to the work of
+/// the tree from its root at the cell's centre.
+constexpr std::size_t kPlanNear = 64;
+constexpr double kPlanShare = 0.75;
 /// Queries a plan may leave undecided before its cell drops it.
 constexpr unsigned kPlanMisses = 4;
 } // namespace
@@ -1100,6 +1102,9 @@ bool BoundaryCaps::plan(std::size_t cell, const glm::vec3& c, double half) const
             }
         }
     }
+    // Worth it where the near loops are fewer than the tree from its root
+    // takes at the centre (nodes and edges).
+    if (double(near.size()) > kPlanShare * decide(0, c, 1.0).work) return false;
     std::sort(loops.begin(), loops.end());
     const RangeGrid& g = ranges_; // the filling thread owns the cell (state 3)
     width = width * (1.0 + 1e-9) + kRoundingSlack;
