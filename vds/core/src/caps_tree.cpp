@@ -1248,6 +1248,8 @@ bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const 
                 return true;
             }
             if (heap.empty() || work > budget) break;
+            // Within the far range's half width of 1/2 no refining decides.
+            if (std::fabs(value) <= margin * farBound + kRoundingSlack) break;
             // Few taken nodes: the largest bound by a scan (cheaper than a
             // heap's upkeep: 1.15x on the soup); many (points close to 1/2),
             // a heap from here on.
