@@ -772,8 +772,9 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
         // Coarse will do: a range serves only where it keeps clear of 1/2
         // (and a reach that cannot carry half a unit over the cell is not
         // worth finishing).
-        const Estimate e = estimate(c, kRangeTolerance);
-        const double drift = std::isfinite(e.bound) ? driftWithin(c, half * (1.0 + 1e-9), 0.5) : e.bound;
+        // The drift first: where it alone spans a unit, no estimate helps.
+        const double drift = driftWithin(c, half * (1.0 + 1e-9), 0.5);
+        const Estimate e = std::isfinite(drift) ? estimate(c, kRangeTolerance) : Estimate{0.0, drift};
         if (std::isfinite(drift) && e.bound + drift < 0.5) {
             // The cheapest range to ask at a query: the whole winding
             // number's, then B's, then -w_caps.
