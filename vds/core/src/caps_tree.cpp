@@ -694,6 +694,7 @@ void BoundaryCaps::buildRangeGrid(const Box& domain) {
     for (int a = 0; a < 3; ++a) {
         g.dims[a] = std::uint32_t(std::clamp(std::ceil(extent[a] / longest * kRangeCells), 1.0, kRangeCells));
         g.size[a] = extent[a] / double(g.dims[a]);
+        g.inverse[a] = g.size[a] > 0.0 ? 1.0 / g.size[a] : 0.0;
     }
     const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
     g.lowestEdge.assign(std::size_t(g.dims[s]) * g.dims[t], std::numeric_limits<double>::infinity());
@@ -819,7 +820,9 @@ bool BoundaryCaps::cellOf(const glm::vec3& q, std::size_t& cell, glm::uvec3& at)
     const RangeGrid& g = ranges_;
     if (!g.state) return false;
     for (int a = 0; a < 3; ++a) {
-        const double x = g.size[a] > 0.0 ? (double(q[a]) - double(g.box.lo[a])) / g.size[a]
+        // By the reciprocal: its extra rounding (a few ulps of the index)
+        // is far inside the slack the cells are widened by.
+        const double x = g.size[a] > 0.0 ? (double(q[a]) - double(g.box.lo[a])) * g.inverse[a]
                                          : (q[a] == g.box.lo[a] ? 0.0 : -1.0);
         if (!(x >= 0.0 && x < double(g.dims[a]))) return false;
         at[a] = std::uint32_t(x);
@@ -842,7 +845,8 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
     std::size_t cell;
     glm::uvec3 at;
     if (cellOf(q, cell, at)) {
-        const std::uint8_t state = rangeOf(cell, at);
+        std::uint8_t state = ranges_.state[cell].load(std::memory_order_acquire);
+        if (state == 0) state = rangeOf(cell, at);
         const double shift =
             state == 1 ? double(winding) : state == 5 ? double(winding + projected_->winding(q)) : 0.0;
         if (state == 1 || state == 4 || state == 5) {

@@ -337,6 +337,7 @@ private:
         Box box;
         glm::uvec3 dims{0};
         glm::dvec3 size{0.0};
+        glm::dvec3 inverse{0.0}; ///< 1 / size (0 where size is 0)
         /// 1 where the surface may meet the cell (CapsSurface::markCells);
         /// empty without a surface.
         std::vector<std::uint8_t> met;
