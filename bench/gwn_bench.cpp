@@ -17,7 +17,8 @@
 // plus the boundary term summed over every boundary edge in double (the
 // Antipodal split); inside where w > 1/2 + 1e-9 (closer to 1/2 is a tie). Each method labels every
 // point once (wrong labels counted against the yardstick), again, and then
-// each |w - 1/2| band on its own, timed (wall clock, `--threads` threads;
+// each |w - 1/2| band on its own, its points repeated up to 20,000 where
+// fewer, timed (wall clock, `--threads` threads;
 // the sprite's bake not counted, the caps' build and the cells of their
 // range grid the points land in counted in the first call, "all").
 // Occupancy: `--dims` cubed cells of the padded box by the mesh sweep, its
@@ -135,6 +136,9 @@ struct Row {
     double band[kBandCount] = {};
 };
 
+/// Fewest points a band is timed on (its points repeated).
+constexpr std::size_t kBandTimed = 20000;
+
 template <class Classify>
 Row measure(const std::string& mesh, const std::string& method, const std::vector<glm::vec3>& points,
             const std::vector<double>& w, const std::vector<std::vector<glm::vec3>>& bands, Classify&& classify) {
@@ -148,10 +152,16 @@ Row measure(const std::string& mesh, const std::string& method, const std::vecto
     classify(points, labels);
     row.again = double(points.size()) / seconds(t0) / 1e6;
     for (int b = 0; b < kBandCount; ++b) {
-        if (bands[std::size_t(b)].empty()) continue;
-        std::vector<std::uint8_t> l(bands[std::size_t(b)].size());
+        const std::vector<glm::vec3>& band = bands[std::size_t(b)];
+        if (band.empty()) continue;
+        // A small band is timed over copies of its points (at least
+        // kBandTimed in one call): a dozen points alone time the call.
+        std::vector<glm::vec3> timed;
+        timed.reserve(std::max(band.size(), kBandTimed));
+        while (timed.size() < kBandTimed) timed.insert(timed.end(), band.begin(), band.end());
+        std::vector<std::uint8_t> l(timed.size());
         t0 = Clock::now();
-        classify(bands[std::size_t(b)], l);
+        classify(timed, l);
         row.band[b] = double(l.size()) / seconds(t0) / 1e6;
     }
     return row;
