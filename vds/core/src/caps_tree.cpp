@@ -770,10 +770,9 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
         const glm::vec3 c(centre);
         // Every point of the widened cell lies within this of c.
         const double half = 0.5 * glm::length(g.size) + glm::length(glm::dvec3(c) - centre) + 2.0 * slack;
-        // Coarse will do: a range serves only where it keeps clear of 1/2
-        // (and a reach that cannot carry half a unit over the cell is not
-        // worth finishing).
-        // The drift first: where it alone spans a unit, no estimate helps.
+        // Coarse will do: a range serves only where it keeps clear of 1/2.
+        // The drift first (not finished past half a unit): where it alone
+        // spans a unit, no estimate helps.
         const double drift = driftWithin(c, half * (1.0 + 1e-9), 0.5);
         const Estimate e = std::isfinite(drift) ? estimate(c, kRangeTolerance) : Estimate{0.0, drift};
         if (std::isfinite(drift) && e.bound + drift < 0.5) {

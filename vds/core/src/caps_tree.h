@@ -119,10 +119,10 @@ struct CellLattice {
 /// The surface a boundary belongs to, for ranges of its whole generalized
 /// winding number: over a cell that no part of the surface meets, the
 /// winding number is smooth (its gradient is the boundary's Biot-Savart
-/// integral, which BoundaryCaps::reach bounds in any direction; across a
-/// cap or a boundary edge's sweep its integer term and boundary term jump
-/// together), so its value at the cell's centre and the reach over the
-/// cell give its range, and a query there needs neither term.
+/// integral, which BoundaryCaps::driftWithin bounds in any direction;
+/// across a cap or a boundary edge's sweep its integer term and boundary
+/// term jump together), so its value at the cell's centre and the drift
+/// over the cell give its range, and a query there needs neither term.
 class CapsSurface {
 public:
     virtual ~CapsSurface() = default;
@@ -229,7 +229,7 @@ public:
     /// chain tree is refined greedily until the value is farther from 1/2
     /// than its bound. Within the domain, first from a coarse grid of
     /// bounds on B: each cell, when a query first lands in it, gets B's
-    /// range over the cell, from an estimate at its centre and the reach
+    /// range over the cell, from an estimate at its centre and the drift
     /// over its half diagonal, where no part of the boundary curve nor of
     /// its sweep along +axis (where B jumps) passes through the cell; a
     /// winding that this range puts clear of 1/2 answers at once. Where
@@ -330,9 +330,8 @@ private:
     /// 2: none, 3: being filled, 4: a range of the whole winding number,
     /// 5: a range of B less the caps' crossing count, -w_caps, 6: a plan:
     /// the range of -w of the caps of the loops far from the cell, and the
-    /// loops near it)
-    /// and range, filled on a query's first visit (one thread fills a
-    /// cell; the others go on by the tree meanwhile).
+    /// loops near it) and range, filled on a query's first visit (one
+    /// thread fills a cell; the others go on by the tree meanwhile).
     struct RangeGrid {
         Box box;
         glm::uvec3 dims{0};
