@@ -562,6 +562,23 @@ double BoundaryCaps::driftWithin(const glm::vec3& q, double length, double limit
         const double shrink = 1.0 - length / gap;
         return moved > sumLimit && (!(shrink > 0.0) || at / (shrink * shrink * shrink) > sumLimit);
     };
+    // A leaf's edges, each at its nearest to q; false where a move may
+    // reach one.
+    const auto addEdges = [&](const EdgeNode& leaf, double& sumMoved, double& sumAt, double& nearest) {
+        for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
+            const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
+            const glm::dvec3 ab = b - a;
+            const double length2 = glm::dot(ab, ab);
+            const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+            const double distance = glm::length(a + t * ab - p);
+            if (!(distance > length)) return false;
+            const double edge = std::sqrt(length2);
+            sumMoved += edge / ((distance - length) * (distance - length));
+            sumAt += edge / (distance * distance);
+            nearest = std::min(nearest, distance);
+        }
+        return true;
+    };
     std::uint32_t stack[64];
     int top = 0;
     stack[top++] = 0;
@@ -594,18 +611,7 @@ double BoundaryCaps::driftWithin(const glm::vec3& q, double length, double limit
                     inner[depth++] = m.right;
                     continue;
                 }
-                for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-                    const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
-                    const glm::dvec3 ab = b - a;
-                    const double length2 = glm::dot(ab, ab);
-                    const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
-                    const double distance = glm::length(a + t * ab - p);
-                    if (!(distance > length)) return kInfinity; // a move may reach the curve
-                    const double edge = std::sqrt(length2);
-                    loopMoved += edge / ((distance - length) * (distance - length));
-                    loopAt += edge / (distance * distance);
-                    loopGap = std::min(loopGap, distance);
-                }
+                if (!addEdges(m, loopMoved, loopAt, loopGap)) return kInfinity;
             }
             if (near > 0.0) {
                 loopMoved = std::min(loopMoved, 2.0 * n.capArea / (near * near * near));
@@ -623,19 +629,7 @@ double BoundaryCaps::driftWithin(const glm::vec3& q, double length, double limit
             stack[top++] = n.right;
             continue;
         }
-        for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
-            const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
-            const glm::dvec3 ab = b - a;
-            const double length2 = glm::dot(ab, ab);
-            const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
-            const double distance = glm::length(a + t * ab - p);
-            if (!(distance > length)) return kInfinity; // a move may reach the curve
-            const double edge = std::sqrt(length2);
-            moved += edge / ((distance - length) * (distance - length));
-            at += edge / (distance * distance);
-            gap = std::min(gap, distance);
-        }
-        if (over()) return kInfinity;
+        if (!addEdges(n, moved, at, gap) || over()) return kInfinity;
     }
     const double shrink = 1.0 - length / gap;
     const double byReach = shrink > 0.0 ? at / (shrink * shrink * shrink) : kInfinity;
