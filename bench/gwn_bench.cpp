@@ -85,17 +85,7 @@ vds::TriangleMesh punchedSphere() {
     });
 }
 
-vds::TriangleMesh soup() {
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    vds::TriangleMesh m;
-    for (std::uint32_t k = 0; k < 400; ++k) {
-        const glm::vec3 c(u(rng), u(rng), u(rng));
-        for (int v = 0; v < 3; ++v) m.positions.push_back(c + 0.15f * glm::vec3(u(rng), u(rng), u(rng)));
-        m.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
-    }
-    return m;
-}
+vds::TriangleMesh soup() { return vds::solids::looseTriangles(400, 0.15f, 11); }
 
 // An open-bottomed sphere with a fin inside: triangles on the ring of edges
 // at the equator, pointing inward, so that ring's edges have three faces.

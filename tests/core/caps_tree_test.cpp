@@ -134,15 +134,7 @@ TEST(CapsTree, WindingNumberDriftsNoMoreThanDriftWithinAnyBallClearOfTheSurface)
     // whole winding number (crossing count plus per-edge sum), smooth in a
     // ball that no triangle meets, across the boundary's sweep too.
     std::vector<Case> all = cases();
-    TriangleMesh soup;
-    std::mt19937 build(31);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    for (std::uint32_t k = 0; k < 40; ++k) {
-        const glm::vec3 c(u(build), u(build), u(build));
-        for (int v = 0; v < 3; ++v) soup.positions.push_back(c + 0.2f * glm::vec3(u(build), u(build), u(build)));
-        soup.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
-    }
-    all.push_back({"soup", soup});
+    all.push_back({"soup", solids::looseTriangles(40, 0.2f, 31)});
     std::mt19937 rng(37);
     std::normal_distribution<double> gauss(0.0, 1.0);
     for (const Case& c : all) {
@@ -304,15 +296,8 @@ TEST(CapsTree, RangesOfTheWholeWindingNumberLabelAsThePerEdgeSum) {
     // plus the per-edge sum: uniform points, points just off the triangles
     // on both sides, and beside and above the boundary curve.
     std::vector<Case> all = cases();
-    TriangleMesh soup;
+    all.push_back({"soup", solids::looseTriangles(80, 0.2f, 23)});
     std::mt19937 rng(23);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    for (std::uint32_t k = 0; k < 80; ++k) {
-        const glm::vec3 c(u(rng), u(rng), u(rng));
-        for (int v = 0; v < 3; ++v) soup.positions.push_back(c + 0.2f * glm::vec3(u(rng), u(rng), u(rng)));
-        soup.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
-    }
-    all.push_back({"soup", soup});
     for (const Case& c : all) {
         const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
         const ProjectedMesh projected(MeshView(c.mesh), Axis::Z);
@@ -347,15 +332,7 @@ TEST(CapsTree, ColumnSweepsLabelEveryCellAsThePerEdgeSum) {
     // cell's crossing count plus the per-edge sum at its centre. A soup of
     // loose triangles joins the cases (many small loops close together).
     std::vector<Case> all = cases();
-    TriangleMesh soup;
-    std::mt19937 rng(13);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    for (std::uint32_t k = 0; k < 60; ++k) {
-        const glm::vec3 c(u(rng), u(rng), u(rng));
-        for (int v = 0; v < 3; ++v) soup.positions.push_back(c + 0.3f * glm::vec3(u(rng), u(rng), u(rng)));
-        soup.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
-    }
-    all.push_back({"soup", soup});
+    all.push_back({"soup", solids::looseTriangles(60, 0.3f, 13)});
     for (const Case& c : all) {
         const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
         const ProjectedMesh projected(MeshView(c.mesh), Axis::Z);

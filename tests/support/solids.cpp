@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include <glm/geometric.hpp>
 
@@ -254,6 +255,18 @@ TriangleMesh without(const TriangleMesh& mesh, bool (*drop)(const glm::vec3& cen
     for (const glm::uvec3& t : mesh.triangles)
         if (!drop((mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0f)) out.triangles.push_back(t);
     return out;
+}
+
+TriangleMesh looseTriangles(std::uint32_t count, float size, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    TriangleMesh m;
+    for (std::uint32_t k = 0; k < count; ++k) {
+        const glm::vec3 c(u(rng), u(rng), u(rng));
+        for (int v = 0; v < 3; ++v) m.positions.push_back(c + size * glm::vec3(u(rng), u(rng), u(rng)));
+        m.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    return m;
 }
 
 TriangleMesh openSphere(int rings, int segments, const std::function<bool(const glm::vec3&)>& keep) {

@@ -68,6 +68,10 @@ TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b);
 /// the quads whose centre (normalized) `keep` accepts: shells with openings,
 /// punched holes and the like.
 TriangleMesh openSphere(int rings, int segments, const std::function<bool(const glm::vec3&)>& keep);
+/// A soup of `count` loose triangles: each a centre uniform in [-1, 1]^3
+/// (std::mt19937 seeded `seed`), then its three corners that centre plus
+/// `size` times a point uniform in [-1, 1]^3. Every edge is a boundary edge.
+TriangleMesh looseTriangles(std::uint32_t count, float size, std::uint32_t seed);
 /// `mesh` without the triangles whose centroid `drop` picks.
 TriangleMesh without(const TriangleMesh& mesh, bool (*drop)(const glm::vec3& centroid));
 /// The unit sphere at the origin (32 segments) without its cap above z = 0.5:
