@@ -1037,16 +1037,8 @@ void BoundaryCaps::capCrossings(const glm::vec3& q, std::vector<std::pair<std::u
     out.clear();
     float v[3];
     projected_->toViewSpace(q, v);
-    const CellGrid::Found found = projected_->grid.find(v);
-    for (const CellEntry* e = found.begin; e != found.end; ++e) {
-        if (e->depthLo >= v[2]) break;
-        if (!CellGrid::mayHold(*e, found.sub)) continue;
-        const Triangle& t = projected_->tris[e->triangle];
-        if (!claims(t, v)) continue;
-        const int crossing = t.v[0][2] < v[2] && t.v[1][2] < v[2] && t.v[2][2] < v[2] ? ((t.flags & kEntering) ? 1 : -1)
-                                                                                      : crossingInFront(t, v);
-        if (crossing != 0) out.emplace_back(capLoopOf_[t.index], crossing);
-    }
+    projected_->crossings(projected_->grid.find(v), v,
+                          [&](const Triangle& t, int crossing) { out.emplace_back(capLoopOf_[t.index], crossing); });
 }
 
 bool BoundaryCaps::plan(std::size_t cell, const glm::vec3& c, double half) const {

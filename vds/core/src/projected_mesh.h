@@ -213,15 +213,22 @@ struct ProjectedMesh {
     /// the scan.
     int winding(const CellGrid::Found& found, const float* q) const {
         int w = 0;
+        crossings(found, q, [&](const Triangle&, int crossing) { w += crossing; });
+        return w;
+    }
+    /// Calls visit(triangle, +1 or -1) for each crossing `winding` counts.
+    template <class Visit>
+    void crossings(const CellGrid::Found& found, const float* q, Visit&& visit) const {
         for (const CellEntry* e = found.begin; e != found.end; ++e) {
             if (e->depthLo >= q[2]) break;
             if (!CellGrid::mayHold(*e, found.sub)) continue;
             const Triangle& t = tris[e->triangle];
             if (!claims(t, q)) continue;
-            if (t.v[0][2] < q[2] && t.v[1][2] < q[2] && t.v[2][2] < q[2]) w += (t.flags & kEntering) ? 1 : -1;
-            else w += crossingInFront(t, q);
+            const int crossing = t.v[0][2] < q[2] && t.v[1][2] < q[2] && t.v[2][2] < q[2]
+                                     ? ((t.flags & kEntering) ? 1 : -1)
+                                     : crossingInFront(t, q);
+            if (crossing != 0) visit(t, crossing);
         }
-        return w;
     }
 
     int windingBruteForce(const glm::vec3& p) const {
