@@ -834,15 +834,20 @@ int sideOf(double lo, double hi) {
 }
 } // namespace
 
-bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
+template <class Winding>
+bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt) const {
     std::size_t cell;
     glm::uvec3 at;
     if (cellOf(q, cell, at)) {
         std::uint8_t state = ranges_.state[cell].load(std::memory_order_acquire);
         if (state == 0) state = rangeOf(cell, at);
-        const double shift =
-            state == 1 ? double(winding) : state == 5 ? double(winding + projected_->winding(q)) : 0.0;
-        if (state == 1 || state == 4 || state == 5) {
+        if (state == 4) { // the whole winding number's range: no integer term asked
+            const int side = sideOf(ranges_.lo[cell], ranges_.hi[cell]);
+            if (side != 0) return side > 0;
+        }
+        const int winding = windingAt();
+        if (state == 1 || state == 5) {
+            const double shift = double(state == 1 ? winding : winding + projected_->winding(q));
             const int side = sideOf(shift + ranges_.lo[cell], shift + ranges_.hi[cell]);
             if (side != 0) return side > 0;
         }
@@ -854,18 +859,17 @@ bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
             if (unsigned(ranges_.planMisses[cell].fetch_add(1, std::memory_order_relaxed)) + 1 >= kPlanMisses)
                 ranges_.state[cell].store(2, std::memory_order_relaxed);
         }
+        return generalizedWindingInside(decide(winding, q, 1.0).term);
     }
-    return generalizedWindingInside(decide(winding, q, 1.0).term);
+    return generalizedWindingInside(decide(windingAt(), q, 1.0).term);
+}
+
+bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
+    return insideBy(q, [winding] { return winding; });
 }
 
 bool BoundaryCaps::inside(const glm::vec3& q) const {
-    std::size_t cell;
-    glm::uvec3 at;
-    if (cellOf(q, cell, at) && rangeOf(cell, at) == 4) {
-        const int side = sideOf(ranges_.lo[cell], ranges_.hi[cell]);
-        if (side != 0) return side > 0;
-    }
-    return inside(surface_->winding(q), q);
+    return insideBy(q, [&] { return surface_->winding(q); });
 }
 
 void ProjectedSurface::markCells(const CellLattice& cells, std::vector<std::uint8_t>& met) const {

@@ -361,6 +361,10 @@ private:
     void buildRangeGrid(const Box& domain);
     /// The cell's state, filling it on the first visit.
     std::uint8_t rangeOf(std::size_t cell, const glm::uvec3& at) const;
+    /// inside(), asking `windingAt()` for the integer term only where the
+    /// cell's range does not answer without it.
+    template <class Winding>
+    bool insideBy(const glm::vec3& q, const Winding& windingAt) const;
     /// The cell q lies in; false outside the grid.
     bool cellOf(const glm::vec3& q, std::size_t& cell, glm::uvec3& at) const;
     double exact(int winding, const glm::vec3& q) const;
