@@ -4,7 +4,8 @@
 // rest on), the margin of decide() and its cost beside a large loop, how
 // the boundary splits into loops where a non-manifold ring of edges meets
 // fins, the grid of ranges inside() answers from first, and the exact grid
-// sweep's two ways, forced, cell by cell.
+// sweep's two ways, forced, cell by cell; and a sprite's cells over which
+// its columns count one integer.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -16,8 +17,10 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <vds/bake.h>
 #include <vds/grid.h>
 #include <vds/mesh.h>
+#include <vds/sprite.h>
 
 #include "antipodal.h"
 #include "caps_tree.h"
@@ -357,6 +360,93 @@ TEST(CapsTree, ColumnSweepsLabelEveryCellAsThePerEdgeSum) {
             EXPECT_EQ(differ, 0u) << c.name << " way " << int(way);
         }
     }
+}
+
+// An open cylinder along z (radius 0.5, z in [-0.5, 0.5]): side walls, a
+// bottom disk, no lid. Baked along z its walls run along the columns: the
+// columns inside the wall cross the bottom and those outside cross nothing,
+// so above the bottom they count differently with no crossing anywhere near.
+TriangleMesh openCylinder(int segments) {
+    TriangleMesh m;
+    m.positions.push_back({0.0f, 0.0f, -0.5f});
+    for (int k = 0; k < segments; ++k) {
+        const double phi = 2.0 * kPi * k / segments;
+        const float x = float(0.5 * std::cos(phi)), y = float(0.5 * std::sin(phi));
+        m.positions.push_back({x, y, -0.5f});
+        m.positions.push_back({x, y, 0.5f});
+    }
+    const auto bottom = [&](int k) { return std::uint32_t(1 + 2 * (k % segments)); };
+    const auto top = [&](int k) { return std::uint32_t(2 + 2 * (k % segments)); };
+    for (int k = 0; k < segments; ++k) {
+        m.triangles.push_back({0u, bottom(k + 1), bottom(k)});
+        m.triangles.push_back({bottom(k), bottom(k + 1), top(k + 1)});
+        m.triangles.push_back({bottom(k), top(k + 1), top(k)});
+    }
+    return m;
+}
+
+TEST(CapsTree, SpriteCellsWhereEveryColumnCountsAlikeLabelAsThePerEdgeSum) {
+    // A sprite's caps know its columns, not its triangles: a cell clear of
+    // the boundary's sweep, none of whose columns has a crossing within its
+    // depths and all of which count alike (0 where the cell reaches beside
+    // the texture), gets the range of the whole winding number, that count
+    // plus B's range, and answers without reading a column. Labels by the
+    // caps equal those by the per-edge sum (BoundaryEvaluation::Exact) on
+    // points in, beside, in front of and behind the box, close to the
+    // walls (where columns either side count differently) and to the
+    // boundary curve, the cells found on one thread and on all.
+    struct SpriteCase {
+        std::string name;
+        TriangleMesh mesh;
+        Axis axis;
+    };
+    const std::vector<SpriteCase> all = {
+        {"open cylinder along its walls", openCylinder(48), Axis::Z},
+        {"open cylinder across", openCylinder(48), Axis::X},
+        {"cup, one large opening", cases()[0].mesh, Axis::Z},
+        {"finned shell", finnedShell(16, 32), Axis::Y},
+    };
+    std::mt19937 rng(41);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), angle(0.0f, 6.2831853f), height(-0.7f, 0.7f);
+    std::normal_distribution<float> near(0.0f, 0.01f);
+    for (const SpriteCase& c : all)
+        for (const std::uint32_t resolution : {40u, 96u}) {
+            BakeOptions o;
+            o.resolution = resolution;
+            o.axis = c.axis;
+            const Sprite baked = bakeCpu(c.mesh, o);
+            ASSERT_EQ(baked.status, SolidStatus::Open) << c.name;
+            const Box box = baked.grid.box;
+            const glm::vec3 mid = 0.5f * (box.lo + box.hi), half = 0.5f * (box.hi - box.lo);
+            std::vector<glm::vec3> at;
+            for (int k = 0; k < 6000; ++k) // the box and 80% more each way: past the grid's margin
+                at.push_back(mid + 1.8f * half * glm::vec3(u(rng), u(rng), u(rng)));
+            for (int k = 0; k < 3000; ++k) { // beside a cylinder's wall
+                const float phi = angle(rng), r = 0.5f + near(rng);
+                at.push_back({r * std::cos(phi), r * std::sin(phi), height(rng)});
+            }
+            for (std::size_t e = 0; e + 1 < baked.boundaryEdges.size(); e += 2)
+                for (int k = 0; k < 4; ++k)
+                    at.push_back(0.5f * (baked.boundaryEdges[e] + baked.boundaryEdges[e + 1]) +
+                                 glm::vec3(near(rng), near(rng), near(rng)) * 3.0f);
+            std::vector<std::uint8_t> expected(at.size()), labels(at.size());
+            classify(baked, {at.data(), at.size()}, expected.data(),
+                     {Rule::GeneralizedWinding, 1, QueryLayout::Auto, BoundaryEvaluation::Exact});
+            std::size_t inside = 0;
+            for (const std::uint8_t l : expected) inside += l;
+            EXPECT_GT(inside, at.size() / 50) << c.name; // labels of both kinds
+            EXPECT_LT(inside, at.size() - at.size() / 50) << c.name;
+            for (const unsigned threads : {1u, 0u}) {
+                const Sprite sprite = baked; // a copy: its caps built anew
+                classify(sprite, {at.data(), at.size()}, labels.data(),
+                         {Rule::GeneralizedWinding, threads, QueryLayout::Auto, BoundaryEvaluation::Caps});
+                for (std::size_t k = 0; k < at.size(); ++k)
+                    ASSERT_EQ(labels[k], expected[k]) << c.name << " at " << resolution << ", " << threads
+                                                      << " threads: " << at[k].x << " " << at[k].y << " " << at[k].z;
+                // The cells really answered alone.
+                EXPECT_GT(sprite.boundaryCaps.get(sprite).rangedCells().winding, 100u) << c.name;
+            }
+        }
 }
 
 } // namespace

@@ -151,6 +151,26 @@ std::ptrdiff_t columnAcross(const SpriteGrid& grid, const glm::vec3& t) {
     return std::ptrdiff_t(ft) * std::ptrdiff_t(grid.width) + std::ptrdiff_t(fs);
 }
 
+/// gwnSample's point alone (it reads no memory): false for a point that
+/// is not finite.
+bool gwnPoint(const SpriteGrid& grid, const glm::vec3& t, std::ptrdiff_t column, glm::vec3& point) {
+    if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z))) return false;
+    if (column >= 0) {
+        point = columnPoint(grid, column, t.z);
+        return true;
+    }
+    const glm::ivec3 p = axisPermutation(grid.axis);
+    point[p.x] = grid.box.lo[p.x] + t.x * float(grid.width) * grid.texelSize;
+    point[p.y] = grid.box.lo[p.y] + t.y * float(grid.height) * grid.texelSize;
+    point[p.z] = grid.box.lo[p.z] + t.z * (grid.box.hi[p.z] - grid.box.lo[p.z]);
+    return true;
+}
+
+/// gwnSample's integer term alone, for a finite point.
+int gwnWinding(const std::uint32_t* offsets, const float* crossings, const glm::vec3& t, std::ptrdiff_t column) {
+    return column >= 0 ? columnWinding(crossings + offsets[column], crossings + offsets[column + 1], t.z) : 0;
+}
+
 /// The generalized winding number of an open mesh need not vanish outside
 /// the sprite's box (just beyond a large opening it exceeds 1/2), so GWN
 /// queries are answered everywhere: `winding` and `point` get the integer
@@ -161,18 +181,197 @@ std::ptrdiff_t columnAcross(const SpriteGrid& grid, const glm::vec3& t) {
 /// point that is not finite.
 bool gwnSample(const SpriteGrid& grid, const std::uint32_t* offsets, const float* crossings, const glm::vec3& t,
                std::ptrdiff_t column, int& winding, glm::vec3& point) {
-    if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z))) return false;
-    if (column >= 0) {
-        winding = columnWinding(crossings + offsets[column], crossings + offsets[column + 1], t.z);
-        point = columnPoint(grid, column, t.z);
-        return true;
-    }
-    const glm::ivec3 p = axisPermutation(grid.axis);
-    winding = 0;
-    point[p.x] = grid.box.lo[p.x] + t.x * float(grid.width) * grid.texelSize;
-    point[p.y] = grid.box.lo[p.y] + t.y * float(grid.height) * grid.texelSize;
-    point[p.z] = grid.box.lo[p.z] + t.z * (grid.box.hi[p.z] - grid.box.lo[p.z]);
+    if (!gwnPoint(grid, t, column, point)) return false;
+    winding = gwnWinding(offsets, crossings, t, column);
     return true;
+}
+
+/// A sprite's columns as CellWindings for its caps' grid of bounds. A
+/// query in a cell has its integer term counted in one column (the one
+/// whose texel centre its point was moved to, gwnSample) at its depth, or
+/// is 0 beside the texture. So where every column whose centre may lie in
+/// the cell (a texel's margin all round) has no crossing within the cell's
+/// depths (a margin for the rounding of depth to float), each counts the
+/// same in front at every depth of the cell; where they all count alike,
+/// and beside the texture (if the cell reaches past it) that is 0, the
+/// integer term is that one count over the cell. Reads the sprite during
+/// constantWindings() only.
+class SpriteColumns final : public CellWindings {
+public:
+    /// `threads`: over the cells' columns along the axis (0: all cores).
+    SpriteColumns(const Sprite& sprite, unsigned threads) : sprite_(sprite), threads_(threads) {}
+    void constantWindings(const CellLattice& cells, std::vector<std::int32_t>& windings) const override;
+
+private:
+    const Sprite& sprite_;
+    unsigned threads_;
+};
+
+void SpriteColumns::constantWindings(const CellLattice& cells, std::vector<std::int32_t>& windings) const {
+    const SpriteGrid& g = sprite_.grid;
+    const glm::ivec3 p = axisPermutation(g.axis);
+    constexpr std::uint32_t kMostLayers = 32; // a bit a layer of cells along the axis
+    const std::uint32_t layers = cells.dims[p.z];
+    if (layers == 0 || layers > kMostLayers || !(g.texelSize > 0.0f)) return;
+    const double boxLo = g.box.lo[p.z], depth = double(g.box.hi[p.z]) - boxLo;
+    if (!(depth > 0.0) || !(cells.size[p.z] > 0.0)) return;
+    // In texture depth, layer k spans [first + k step, first + (k + 1) step]
+    // widened by `margin` each way, for the rounding of a point's depth and
+    // of its position from it (float, some 1e-7 of the coordinates'
+    // magnitude), generously. A crossing at depth d lies in the widened
+    // layers from floor((d - first - 2 margin) / step) to
+    // floor((d - first + 2 margin) / step) at most (twice the margin: room
+    // for the rounding of these quotients, taken by the reciprocal); a
+    // layer holding none of a column's crossings has the column's count at
+    // every depth in it.
+    const double zLo = cells.lo[p.z], zHi = zLo + double(layers) * cells.size[p.z];
+    const double margin =
+        1e-6 * (std::fabs(zLo) + std::fabs(zHi) + std::fabs(boxLo) + std::fabs(double(g.box.hi[p.z])) + depth) / depth;
+    const double first = (zLo - boxLo) / depth, inverse = depth / cells.size[p.z];
+    // Twice the margin in layers, and room for the rounding of x below.
+    const double reach = 2.0 * margin * inverse + 1e-9;
+    const std::uint64_t all = (std::uint64_t(1) << layers) - 1u;
+    // Layers [a, b) as bits.
+    const auto bits = [&](std::int64_t a, std::int64_t b) -> std::uint64_t {
+        a = std::clamp<std::int64_t>(a, 0, layers);
+        b = std::clamp<std::int64_t>(b, 0, layers);
+        if (a >= b) return 0;
+        return ((std::uint64_t(1) << b) - 1u) & ~((std::uint64_t(1) << a) - 1u);
+    };
+    // floor((d - first) / step), clamped to [-1, layers] (no libm floor:
+    // this runs once a crossing of the sprite).
+    const auto layerOf = [&](double d) -> std::int64_t {
+        const double x = (d - first) * inverse;
+        if (!(x >= 0.0)) return -1;
+        if (x >= double(layers)) return std::int64_t(layers);
+        return std::int64_t(x);
+    };
+    // A column's count as runs over the layers: from layer start[r] on
+    // (up to the next run), the count value[r]; the layers a crossing may
+    // lie in are left out (spoilt) whatever the runs say there.
+    struct Runs {
+        std::int64_t start[kMostLayers + 1];
+        std::int32_t value[kMostLayers + 1];
+        int size = 0;
+    };
+    const auto runsOf = [&](const float* c, const float* end, Runs& runs, std::uint64_t& spoilt) {
+        runs.size = 1;
+        runs.start[0] = 0;
+        runs.value[0] = 0;
+        std::int32_t count = 0;
+        for (; c != end; ++c) {
+            const double d = std::fabs(double(*c));
+            if (std::isnan(d)) { // columnWinding stops there: no layer vouched for
+                spoilt = all;
+                return;
+            }
+            // The layer d lies in, and its neighbour where d lies within
+            // twice the margin of their face.
+            const double x = (d - first) * inverse;
+            std::int64_t from, to;
+            if (x >= 0.0 && x < double(layers)) {
+                const std::int64_t k = std::int64_t(x);
+                const double fraction = x - double(k);
+                from = k - (fraction < reach ? 1 : 0);
+                to = k + (fraction > 1.0 - reach ? 1 : 0);
+            } else {
+                from = layerOf(d - 2.0 * margin);
+                to = layerOf(d + 2.0 * margin);
+            }
+            spoilt |= bits(from, to + 1);
+            count += crossingEnters(*c) ? 1 : -1;
+            // Layers past `to` count this crossing.
+            if (to + 1 >= std::int64_t(layers)) break; // the rest lie behind every layer
+            if (runs.start[runs.size - 1] == to + 1) {
+                runs.value[runs.size - 1] = count;
+            } else if (runs.size < int(kMostLayers + 1)) {
+                runs.start[runs.size] = to + 1;
+                runs.value[runs.size] = count;
+                ++runs.size;
+            }
+        }
+    };
+    // The layers where two run lists differ.
+    const auto differ = [&](const Runs& a, const Runs& b) {
+        std::uint64_t out = 0;
+        int i = 0, j = 0;
+        std::int64_t at = 0;
+        while (at < std::int64_t(layers)) {
+            const std::int64_t nextA = i + 1 < a.size ? a.start[i + 1] : std::int64_t(layers);
+            const std::int64_t nextB = j + 1 < b.size ? b.start[j + 1] : std::int64_t(layers);
+            const std::int64_t next = std::min(nextA, nextB);
+            if (a.value[i] != b.value[j]) out |= bits(at, next);
+            at = next;
+            if (nextA == next) ++i;
+            if (nextB == next) ++j;
+        }
+        return out;
+    };
+    const double texel = g.texelSize;
+    const std::uint32_t extent[2] = {g.width, g.height};
+    const int axes[2] = {p.x, p.y};
+    // Footprints (columns of cells along the axis) apart, each writing its
+    // own cells.
+    const std::size_t footprints = std::size_t(cells.dims[p.x]) * cells.dims[p.y];
+    parallelFor(threads_, footprints, 8, [&](std::size_t begin, std::size_t end) {
+        Runs reference, runs;
+        for (std::size_t f = begin; f < end; ++f) {
+            const std::uint32_t i = std::uint32_t(f % cells.dims[p.x]), j = std::uint32_t(f / cells.dims[p.x]);
+            // The texels whose centres may lie in the footprint (a texel
+            // beyond it each way); beside the texture if those run past it.
+            const std::uint32_t at[2] = {i, j};
+            std::int64_t lowest[2], highest[2];
+            bool zero = false; // some query there counts 0 at every depth
+            for (int u = 0; u < 2; ++u) {
+                const double lo = cells.lo[axes[u]] + double(at[u]) * cells.size[axes[u]];
+                const double hi = lo + cells.size[axes[u]];
+                const double a = std::floor((lo - double(g.box.lo[axes[u]])) / texel) - 1.0;
+                const double b = std::floor((hi - double(g.box.lo[axes[u]])) / texel) + 1.0;
+                if (!(a >= -1e9 && b <= 1e9)) return; // not finite, or absurd: this chunk vouches for none
+                zero = zero || a < 0.0 || b >= double(extent[u]);
+                lowest[u] = std::max<std::int64_t>(0, std::int64_t(a));
+                highest[u] = std::min<std::int64_t>(std::int64_t(extent[u]) - 1, std::int64_t(b));
+            }
+            std::uint64_t spoilt = 0;
+            bool counted = false;
+            for (std::int64_t t = lowest[1]; t <= highest[1] && spoilt != all; ++t)
+                for (std::int64_t s = lowest[0]; s <= highest[0] && spoilt != all; ++s) {
+                    const std::size_t column = std::size_t(t) * g.width + std::size_t(s);
+                    const float* c = sprite_.crossings.data() + sprite_.offsets[column];
+                    const float* last = sprite_.crossings.data() + sprite_.offsets[column + 1];
+                    if (c == last) {
+                        zero = true;
+                        continue;
+                    }
+                    if (!counted) {
+                        runsOf(c, last, reference, spoilt);
+                        counted = true;
+                        continue;
+                    }
+                    runsOf(c, last, runs, spoilt);
+                    spoilt |= differ(reference, runs);
+                }
+            if (!counted) {
+                reference.size = 1;
+                reference.start[0] = 0;
+                reference.value[0] = 0;
+            }
+            for (int r = 0; r < reference.size; ++r) {
+                const std::int64_t next = r + 1 < reference.size ? reference.start[r + 1] : std::int64_t(layers);
+                // Where a column counts 0 everywhere (empty, or beside the
+                // texture), only a count of 0 is shared.
+                if (zero && reference.value[r] != 0) spoilt |= bits(reference.start[r], next);
+                for (std::int64_t k = reference.start[r]; k < next; ++k) {
+                    if ((spoilt >> k) & 1u) continue;
+                    glm::uvec3 cell;
+                    cell[p.x] = i;
+                    cell[p.y] = j;
+                    cell[p.z] = std::uint32_t(k);
+                    windings[cells.index(cell)] = reference.value[r];
+                }
+            }
+        }
+    });
 }
 
 } // namespace
@@ -188,48 +387,85 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
     const std::size_t edgeCount = sprite.boundaryEdges.size() / 2;
     const glm::vec3* edges = sprite.boundaryEdges.data();
     const int axis = axisPermutation(sprite.grid.axis).z;
-    const BoundaryCaps* caps = options.boundary == BoundaryEvaluation::Caps
-                                   ? &sprite.boundaryCaps.get(sprite.boundaryEdges, sprite.grid.axis, &sprite.grid.box)
-                                   : nullptr;
+    const BoundaryCaps* caps =
+        options.boundary == BoundaryEvaluation::Caps ? &sprite.boundaryCaps.get(sprite, options.threads) : nullptr;
     const char* base = reinterpret_cast<const char*>(xyz);
     const SpriteGrid& sg = sprite.grid;
     const std::uint32_t* offsets = sprite.offsets.data();
     const float* crossings = sprite.crossings.data();
+    const glm::ivec3 perm = axisPermutation(sg.axis);
+    const float width = float(sg.width), height = float(sg.height);
+    const float depth = sg.box.hi[perm.z] - sg.box.lo[perm.z];
+    const glm::vec3 lo = sg.box.lo;
     parallelFor(options.threads, count, 1024, [&](std::size_t begin, std::size_t end) {
         // In batches, so that the cache misses of many points overlap: find
-        // a batch's columns and prefetch their offsets, then prefetch their
-        // crossings, then label.
-        constexpr std::size_t kBatch = 16;
-        glm::vec3 texture[kBatch];
+        // a batch's points (no memory read), label those whose cell of the
+        // caps answers alone, prefetch the rest's offsets, then their
+        // crossings, then label them.
+        constexpr std::size_t kBatch = 32;
+        glm::vec3 texture[kBatch], points[kBatch];
         std::ptrdiff_t columns[kBatch];
+        std::size_t pending[kBatch];
         for (std::size_t b0 = begin; b0 < end; b0 += kBatch) {
             const std::size_t n = std::min(kBatch, end - b0);
+            std::size_t waiting = 0;
             for (std::size_t i = 0; i < n; ++i) {
                 glm::vec3 p;
                 std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
-                texture[i] = sg.toTexture(p);
-                columns[i] = columnAcross(sg, texture[i]);
-                if (columns[i] >= 0) __builtin_prefetch(offsets + columns[i]);
-            }
-            for (std::size_t i = 0; i < n; ++i)
-                if (columns[i] >= 0) __builtin_prefetch(crossings + offsets[columns[i]]);
-            for (std::size_t i = 0; i < n; ++i) {
-                const std::size_t k = b0 + i;
-                int winding = 0;
-                glm::vec3 q;
-                if (!gwnSample(sg, offsets, crossings, texture[i], columns[i], winding, q)) {
-                    labels[k] = 0;
+                const glm::vec3 t = sg.toTexture(p);
+                texture[i] = t;
+                // columnAcross and gwnPoint, their constants taken once.
+                const float fs = std::floor(t.x * width), ft = std::floor(t.y * height);
+                if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z))) {
+                    labels[b0 + i] = 0;
                     continue;
                 }
-                labels[k] = (caps ? caps->inside(winding, q)
-                                  : generalizedWindingInside(double(winding) +
-                                                             boundaryTermExact(edges, edgeCount, axis, glm::dvec3(q))))
-                                ? 1
-                                : 0;
+                glm::vec3& q = points[i];
+                q[perm.z] = lo[perm.z] + t.z * depth;
+                if (fs >= 0.0f && fs < width && ft >= 0.0f && ft < height) {
+                    columns[i] = std::ptrdiff_t(ft) * std::ptrdiff_t(sg.width) + std::ptrdiff_t(fs);
+                    q[perm.x] = lo[perm.x] + (fs + 0.5f) * sg.texelSize; // texelCentre
+                    q[perm.y] = lo[perm.y] + (ft + 0.5f) * sg.texelSize;
+                } else {
+                    columns[i] = -1;
+                    q[perm.x] = lo[perm.x] + t.x * width * sg.texelSize;
+                    q[perm.y] = lo[perm.y] + t.y * height * sg.texelSize;
+                }
+                const int alone = caps ? caps->insideAlone(points[i]) : -1;
+                if (alone >= 0) {
+                    labels[b0 + i] = std::uint8_t(alone);
+                    continue;
+                }
+                pending[waiting++] = i;
+                if (columns[i] >= 0) __builtin_prefetch(offsets + columns[i]);
+            }
+            for (std::size_t w = 0; w < waiting; ++w)
+                if (columns[pending[w]] >= 0) __builtin_prefetch(crossings + offsets[columns[pending[w]]]);
+            for (std::size_t w = 0; w < waiting; ++w) {
+                const std::size_t i = pending[w];
+                const int winding = gwnWinding(offsets, crossings, texture[i], columns[i]);
+                const glm::vec3& q = points[i];
+                labels[b0 + i] = (caps ? caps->inside(winding, q)
+                                       : generalizedWindingInside(double(winding) +
+                                                                  boundaryTermExact(edges, edgeCount, axis, glm::dvec3(q))))
+                                     ? 1
+                                     : 0;
             }
         }
     });
 }
+
+const BoundaryCaps& BoundaryCapsCache::get(const Sprite& sprite, unsigned threads) const {
+    if (const BoundaryCaps* caps = caps_.load(std::memory_order_acquire)) return *caps;
+    const SpriteColumns columns(sprite, threads);
+    auto built = std::make_unique<BoundaryCaps>(sprite.boundaryEdges.data(), sprite.boundaryEdges.size() / 2,
+                                                sprite.grid.axis, &sprite.grid.box, nullptr, &columns);
+    const BoundaryCaps* expected = nullptr;
+    if (caps_.compare_exchange_strong(expected, built.get(), std::memory_order_acq_rel)) return *built.release();
+    return *expected; // another thread built it first
+}
+
+void BoundaryCapsCache::reset() noexcept { delete caps_.exchange(nullptr); }
 
 bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world) {
     requireBoundaryKnown(sprite, Rule::GeneralizedWinding);
@@ -238,7 +474,7 @@ bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world) {
     int winding = 0;
     glm::vec3 q;
     if (!gwnSample(sg, sprite.offsets.data(), sprite.crossings.data(), t, columnAcross(sg, t), winding, q)) return false;
-    return sprite.boundaryCaps.get(sprite.boundaryEdges, sg.axis, &sg.box).inside(winding, q);
+    return sprite.boundaryCaps.get(sprite).inside(winding, q);
 }
 
 } // namespace vds::detail
@@ -260,7 +496,7 @@ double Sprite::generalizedWinding(const glm::vec3& world) const {
     glm::vec3 q;
     if (!detail::gwnSample(grid, offsets.data(), crossings.data(), t, detail::columnAcross(grid, t), winding, q))
         return 0.0;
-    return boundaryCaps.get(boundaryEdges, grid.axis, &grid.box).generalizedWinding(winding, q, detail::kGeneralizedWindingTolerance);
+    return boundaryCaps.get(*this).generalizedWinding(winding, q, detail::kGeneralizedWindingTolerance);
 }
 
 } // namespace vds

@@ -113,7 +113,7 @@ bool addCapTriangle(const std::array<glm::dvec3, 3>& t, const glm::dvec3& p, dou
 } // namespace
 
 BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis, const Box* domain,
-                           const CapsSurface* surface)
+                           const CapsSurface* surface, const CellWindings* windings)
     : axisIndex_(axisPermutation(axis).z), surface_(surface), edges_(edges, edges + 2 * edgeCount) {
     // Weld endpoints by bitwise-equal positions, as boundaryEdges() does.
     std::map<std::tuple<float, float, float>, std::uint32_t> ids;
@@ -219,7 +219,7 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
     buildReach();
     if (!closed_ || tris.empty()) return;
     buildChains();
-    if (domain) buildRangeGrid(*domain);
+    if (domain) buildRangeGrid(*domain, surface ? nullptr : windings);
     projected_.emplace(MeshView(capPositions_.data(), capPositions_.size(), capTriangles_.data(), capTriangles_.size()),
                        axis);
     std::vector<std::uint32_t> order(fine.size());
@@ -673,7 +673,17 @@ constexpr double kPlanShare = 0.75;
 constexpr unsigned kPlanMisses = 4;
 } // namespace
 
-void BoundaryCaps::buildRangeGrid(const Box& domain) {
+namespace {
+/// -1: the range puts the value below the threshold, 1: above, 0: neither.
+int sideOf(double lo, double hi) {
+    const double threshold = 0.5 + kGeneralizedWindingTie;
+    if (hi < threshold - kRoundingSlack) return -1;
+    if (lo > threshold + kRoundingSlack) return 1;
+    return 0;
+}
+} // namespace
+
+void BoundaryCaps::buildRangeGrid(const Box& domain, const CellWindings* windings) {
     // The domain and a margin of a quarter of its longest side all round
     // (queries beside a box are common: points in a padded box, a sprite's
     // columns in front of and behind it).
@@ -723,6 +733,10 @@ void BoundaryCaps::buildRangeGrid(const Box& domain) {
         g.met.assign(cells, 0);
         surface_->markCells(CellLattice{lo, g.size, g.dims}, g.met);
     }
+    if (windings) {
+        g.constantWinding.assign(cells, CellWindings::kUnknown);
+        windings->constantWindings(CellLattice{lo, g.size, g.dims}, g.constantWinding);
+    }
     g.capMet.assign(cells, 0);
     for (const glm::uvec3& c : capTriangles_)
         markTriangleCells(CellLattice{lo, g.size, g.dims}, glm::dvec3(capPositions_[c.x]), glm::dvec3(capPositions_[c.y]),
@@ -734,6 +748,7 @@ void BoundaryCaps::buildRangeGrid(const Box& domain) {
     g.planMisses.reset(new std::atomic<std::uint8_t>[cells]);
     for (std::size_t c = 0; c < cells; ++c) g.planMisses[c].store(0, std::memory_order_relaxed);
     for (std::size_t c = 0; c < cells; ++c) g.state[c].store(0, std::memory_order_relaxed);
+    g.alone.reset(new std::uint8_t[cells]);
     g.lo.reset(new double[cells]);
     g.hi.reset(new double[cells]);
 }
@@ -780,9 +795,18 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
             } else if (!clearOfSweep) {
                 base -= double(projected_->winding(c));
                 result = 5;
+            } else if (!g.constantWinding.empty() && g.constantWinding[cell] != CellWindings::kUnknown) {
+                // B's range, and an integer term the caller knows is one
+                // integer over the cell.
+                base += double(g.constantWinding[cell]);
+                result = 4;
             }
             g.lo[cell] = base - e.bound - drift;
             g.hi[cell] = base + e.bound + drift;
+            if (result == 4) {
+                const int side = sideOf(g.lo[cell], g.hi[cell]);
+                g.alone[cell] = side == 0 ? kUndecided : std::uint8_t(side > 0);
+            }
         }
     }
     if (result == 2) {
@@ -808,31 +832,6 @@ BoundaryCaps::RangedCells BoundaryCaps::rangedCells() const {
     }
     return ranged;
 }
-
-bool BoundaryCaps::cellOf(const glm::vec3& q, std::size_t& cell, glm::uvec3& at) const {
-    const RangeGrid& g = ranges_;
-    if (!g.state) return false;
-    for (int a = 0; a < 3; ++a) {
-        // By the reciprocal: its extra rounding (a few ulps of the index)
-        // is far inside the slack the cells are widened by.
-        const double x = g.size[a] > 0.0 ? (double(q[a]) - double(g.box.lo[a])) * g.inverse[a]
-                                         : (q[a] == g.box.lo[a] ? 0.0 : -1.0);
-        if (!(x >= 0.0 && x < double(g.dims[a]))) return false;
-        at[a] = std::uint32_t(x);
-    }
-    cell = (std::size_t(at.z) * g.dims.y + at.y) * g.dims.x + at.x;
-    return true;
-}
-
-namespace {
-/// -1: the range puts the value below the threshold, 1: above, 0: neither.
-int sideOf(double lo, double hi) {
-    const double threshold = 0.5 + kGeneralizedWindingTie;
-    if (hi < threshold - kRoundingSlack) return -1;
-    if (lo > threshold + kRoundingSlack) return 1;
-    return 0;
-}
-} // namespace
 
 template <class Winding>
 bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt) const {
@@ -1384,15 +1383,5 @@ PackedBoundary packBoundary(const std::vector<glm::vec3>& edges, Axis axis) {
     }
     return packed;
 }
-
-const BoundaryCaps& BoundaryCapsCache::get(const std::vector<glm::vec3>& edges, Axis axis, const Box* domain) const {
-    if (const BoundaryCaps* caps = caps_.load(std::memory_order_acquire)) return *caps;
-    auto built = std::make_unique<BoundaryCaps>(edges.data(), edges.size() / 2, axis, domain);
-    const BoundaryCaps* expected = nullptr;
-    if (caps_.compare_exchange_strong(expected, built.get(), std::memory_order_acq_rel)) return *built.release();
-    return *expected; // another thread built it first
-}
-
-void BoundaryCapsCache::reset() noexcept { delete caps_.exchange(nullptr); }
 
 } // namespace vds::detail

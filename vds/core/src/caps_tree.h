@@ -134,6 +134,21 @@ public:
     virtual void markCells(const CellLattice& cells, std::vector<std::uint8_t>& met) const = 0;
 };
 
+/// What a caller knows of its integer term over whole cells, where the
+/// surface itself is not at hand (a sprite has columns, not triangles):
+/// over a cell clear of the boundary's sweep B is smooth, so an integer
+/// term that is one integer n over the cell, as the queries landing in it
+/// ask it, makes n plus B's range the whole winding number's range there,
+/// and a query in the cell needs neither term.
+class CellWindings {
+public:
+    static constexpr std::int32_t kUnknown = std::numeric_limits<std::int32_t>::min();
+    virtual ~CellWindings() = default;
+    /// Sets windings[cells.index(at)] = n for every cell over which the
+    /// integer term is known to be n; leaves the rest (kUnknown).
+    virtual void constantWindings(const CellLattice& cells, std::vector<std::int32_t>& windings) const = 0;
+};
+
 /// Marks the cells triangle (a, b, c) may meet: those its box overlaps
 /// that its plane does not pass clear of, both with a margin of `slack`.
 void markTriangleCells(const CellLattice& cells, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
@@ -164,8 +179,10 @@ public:
     /// `surface` (kept, to outlive this): the surface of which the edges
     /// are the boundary, for cells of the grid that it does not meet (see
     /// CapsSurface); none: only cells clear of the boundary's sweep.
+    /// `windings` (asked once, here, not kept): where no surface is given,
+    /// the cells over which the integer term is one integer (CellWindings).
     BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis, const Box* domain = nullptr,
-                 const CapsSurface* surface = nullptr);
+                 const CapsSurface* surface = nullptr, const CellWindings* windings = nullptr);
 
     struct Estimate {
         double term = 0.0;  ///< B(q)
@@ -234,7 +251,9 @@ public:
     /// its sweep along +axis (where B jumps) passes through the cell; a
     /// winding that this range puts clear of 1/2 answers at once. Where
     /// the caps know their surface, a cell it does not meet gets the range
-    /// of the whole winding number, which answers without `winding`; a
+    /// of the whole winding number, which answers without `winding` (so
+    /// does a cell clear of the sweep over which the caller's integer term
+    /// is one integer, CellWindings); a
     /// cell the caps do not meet, the range of -w_caps, to which the caps'
     /// crossing count at q is added. A cell with no range gets a plan
     /// where it pays: the loops far from it collapsed into the range of
@@ -244,6 +263,11 @@ public:
     /// As `inside`, asking the surface (given at construction) for the
     /// integer term only where the grid does not answer alone.
     bool inside(const glm::vec3& q) const;
+    /// The label where q's cell answers without the integer term (a range
+    /// of the whole winding number clear of 1/2): 1 inside, 0 outside; -1
+    /// where it does not (then `inside(winding, q)`). Fills q's cell on its
+    /// first visit, as `inside` does.
+    inline int insideAlone(const glm::vec3& q) const;
 
     /// `winding + B(q)` within `bound` of the per-edge sum's value, refined
     /// as `inside` does until it lies farther than `margin` (>= 1) times
@@ -342,6 +366,9 @@ private:
         std::vector<std::uint8_t> met;
         /// 1 where a cap may meet the cell.
         std::vector<std::uint8_t> capMet;
+        /// The integer term over each cell where the caller knew it to be
+        /// one integer (CellWindings), else kUnknown; empty without.
+        std::vector<std::int32_t> constantWinding;
         /// A planned cell's near nodes (whole loops, or groups of them),
         /// then the loops they hold, ascending: nearCount[cell] of the
         /// first, nearLoops[cell] of the second.
@@ -356,17 +383,22 @@ private:
         /// of the curve and its sweep.
         std::vector<double> lowestEdge;
         std::unique_ptr<std::atomic<std::uint8_t>[]> state;
+        /// A cell of state 4: 1 where its range puts every value inside,
+        /// 0 outside, kUndecided where it straddles 1/2 (set before the
+        /// state is published).
+        std::unique_ptr<std::uint8_t[]> alone;
         std::unique_ptr<double[]> lo, hi;
     };
-    void buildRangeGrid(const Box& domain);
+    void buildRangeGrid(const Box& domain, const CellWindings* windings);
     /// The cell's state, filling it on the first visit.
     std::uint8_t rangeOf(std::size_t cell, const glm::uvec3& at) const;
     /// inside(), asking `windingAt()` for the integer term only where the
     /// cell's range does not answer without it.
     template <class Winding>
     bool insideBy(const glm::vec3& q, const Winding& windingAt) const;
+    static constexpr std::uint8_t kUndecided = 2;
     /// The cell q lies in; false outside the grid.
-    bool cellOf(const glm::vec3& q, std::size_t& cell, glm::uvec3& at) const;
+    inline bool cellOf(const glm::vec3& q, std::size_t& cell, glm::uvec3& at) const;
     double exact(int winding, const glm::vec3& q) const;
     static void finish(Node& node);
     static double firstOrder(const Node& n, const glm::dvec3& y, double d2, double d);
@@ -427,5 +459,33 @@ private:
     std::vector<glm::vec3> treeEdges_; ///< edges_ in the tree's order
     std::vector<EdgeNode> edgeNodes_; ///< a tree over edges_, for reach(); [0] is the root
 };
+
+// Inline: asked once a query (a sprite's batch asks insideAlone of every point).
+
+bool BoundaryCaps::cellOf(const glm::vec3& q, std::size_t& cell, glm::uvec3& at) const {
+    const RangeGrid& g = ranges_;
+    if (!g.state) return false;
+    for (int a = 0; a < 3; ++a) {
+        // By the reciprocal: its extra rounding (a few ulps of the index)
+        // is far inside the slack the cells are widened by.
+        const double x = g.size[a] > 0.0 ? (double(q[a]) - double(g.box.lo[a])) * g.inverse[a]
+                                         : (q[a] == g.box.lo[a] ? 0.0 : -1.0);
+        if (!(x >= 0.0 && x < double(g.dims[a]))) return false;
+        at[a] = std::uint32_t(x);
+    }
+    cell = (std::size_t(at.z) * g.dims.y + at.y) * g.dims.x + at.x;
+    return true;
+}
+
+int BoundaryCaps::insideAlone(const glm::vec3& q) const {
+    std::size_t cell;
+    glm::uvec3 at;
+    if (!cellOf(q, cell, at)) return -1;
+    std::uint8_t state = ranges_.state[cell].load(std::memory_order_acquire);
+    if (state == 0) state = rangeOf(cell, at);
+    if (state != 4) return -1;
+    const std::uint8_t label = ranges_.alone[cell];
+    return label == kUndecided ? -1 : int(label);
+}
 
 } // namespace vds::detail

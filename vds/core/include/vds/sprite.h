@@ -95,6 +95,8 @@ enum class SolidStatus : std::uint8_t {
     Open = 1,   ///< baked with a warning: boundary edges, or orientation conflicts
 };
 
+struct Sprite;
+
 namespace detail {
 class BoundaryCaps;
 /// A sprite's derived data for Rule::GeneralizedWinding (its boundary loops
@@ -119,10 +121,12 @@ public:
     }
     ~BoundaryCapsCache() { reset(); }
     void reset() noexcept;
-    /// The caps of `edges` (2 points an edge) for the integer term along
-    /// `axis`, built by the first caller; `domain`: where the queries lie
-    /// (the sprite's box), for its grid of bounds.
-    const BoundaryCaps& get(const std::vector<glm::vec3>& edges, Axis axis, const Box* domain = nullptr) const;
+    /// The caps of the sprite's boundary edges for the integer term along
+    /// its axis, built by the first caller, with the sprite's box as the
+    /// domain of their grid of bounds and its columns telling the cells
+    /// over which their count is one integer (SpriteColumns, antipodal.cpp),
+    /// found on `threads` threads (0: all cores).
+    const BoundaryCaps& get(const Sprite& sprite, unsigned threads = 1) const;
 
 private:
     mutable std::atomic<const BoundaryCaps*> caps_{nullptr};
