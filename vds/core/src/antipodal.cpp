@@ -210,7 +210,7 @@ private:
 void SpriteColumns::constantWindings(const CellLattice& cells, std::vector<std::int32_t>& windings) const {
     const SpriteGrid& g = sprite_.grid;
     const glm::ivec3 p = axisPermutation(g.axis);
-    constexpr std::uint32_t kMostLayers = 32; // a bit a layer of cells along the axis
+    constexpr std::uint32_t kMostLayers = 32; // four bits a layer in two words
     const std::uint32_t layers = cells.dims[p.z];
     if (layers == 0 || layers > kMostLayers || !(g.texelSize > 0.0f)) return;
     const double boxLo = g.box.lo[p.z], depth = double(g.box.hi[p.z]) - boxLo;
@@ -223,50 +223,46 @@ void SpriteColumns::constantWindings(const CellLattice& cells, std::vector<std::
     // floor((d - first + 2 margin) / step) at most (twice the margin: room
     // for the rounding of these quotients, taken by the reciprocal); a
     // layer holding none of a column's crossings has the column's count at
-    // every depth in it.
+    // every depth in it, and the crossings before it counted.
     const double zLo = cells.lo[p.z], zHi = zLo + double(layers) * cells.size[p.z];
     const double margin =
         1e-6 * (std::fabs(zLo) + std::fabs(zHi) + std::fabs(boxLo) + std::fabs(double(g.box.hi[p.z])) + depth) / depth;
     const double first = (zLo - boxLo) / depth, inverse = depth / cells.size[p.z];
     // Twice the margin in layers, and room for the rounding of x below.
     const double reach = 2.0 * margin * inverse + 1e-9;
-    const std::uint64_t all = (std::uint64_t(1) << layers) - 1u;
-    // Layers [a, b) as bits.
-    const auto bits = [&](std::int64_t a, std::int64_t b) -> std::uint64_t {
-        a = std::clamp<std::int64_t>(a, 0, layers);
-        b = std::clamp<std::int64_t>(b, 0, layers);
-        if (a >= b) return 0;
-        return ((std::uint64_t(1) << b) - 1u) & ~((std::uint64_t(1) << a) - 1u);
-    };
-    // floor((d - first) / step), clamped to [-1, layers] (no libm floor:
-    // this runs once a crossing of the sprite).
-    const auto layerOf = [&](double d) -> std::int64_t {
+    const auto layerOf = [&](double d) -> std::int64_t { // floor((d - first) / step) in [-1, layers]
         const double x = (d - first) * inverse;
         if (!(x >= 0.0)) return -1;
         if (x >= double(layers)) return std::int64_t(layers);
         return std::int64_t(x);
     };
-    // A column's count as runs over the layers: from layer start[r] on
-    // (up to the next run), the count value[r]; the layers a crossing may
-    // lie in are left out (spoilt) whatever the runs say there.
-    struct Runs {
-        std::int64_t start[kMostLayers + 1];
-        std::int32_t value[kMostLayers + 1];
-        int size = 0;
+    // A column's counts, layer by layer, four bits a layer (the count plus
+    // 8) in two words: a crossing adds its sign to every layer after the
+    // ones it may lie in, `after[t]` being a 1 in the nibbles of layers t
+    // on, so that comparing columns is an exclusive or. Counts beyond +-7
+    // do not fit: such a footprint vouches for no layer.
+    struct Nibbles {
+        std::uint64_t low = 0, high = 0; // layers 0-15, 16-31
+        Nibbles operator^(const Nibbles& o) const { return {low ^ o.low, high ^ o.high}; }
+        Nibbles& operator|=(const Nibbles& o) {
+            low |= o.low;
+            high |= o.high;
+            return *this;
+        }
+        unsigned at(std::uint32_t k) const { return unsigned(((k < 16 ? low >> (4 * k) : high >> (4 * (k - 16)))) & 0xfu); }
     };
-    const auto runsOf = [&](const float* c, const float* end, Runs& runs, std::uint64_t& spoilt) {
-        runs.size = 1;
-        runs.start[0] = 0;
-        runs.value[0] = 0;
-        std::int32_t count = 0;
-        for (; c != end; ++c) {
+    Nibbles after[kMostLayers + 1];
+    for (std::uint32_t t = 0; t <= layers; ++t)
+        for (std::uint32_t k = t; k < layers; ++k) (k < 16 ? after[t].low : after[t].high) |= std::uint64_t(1) << (4 * (k % 16));
+    Nibbles zero; // every layer counting 0
+    for (std::uint32_t k = 0; k < layers; ++k) (k < 16 ? zero.low : zero.high) |= std::uint64_t(8) << (4 * (k % 16));
+    // Counts of one column into `counts`; layers a crossing may lie in into
+    // `spoilt` (a nibble 0xf each); false where a count does not fit.
+    const auto count = [&](const float* c, const float* last, Nibbles& counts, Nibbles& spoilt) {
+        counts = zero;
+        int running = 0;
+        for (; c != last; ++c) {
             const double d = std::fabs(double(*c));
-            if (std::isnan(d)) { // columnWinding stops there: no layer vouched for
-                spoilt = all;
-                return;
-            }
-            // The layer d lies in, and its neighbour where d lies within
-            // twice the margin of their face.
             const double x = (d - first) * inverse;
             std::int64_t from, to;
             if (x >= 0.0 && x < double(layers)) {
@@ -274,38 +270,31 @@ void SpriteColumns::constantWindings(const CellLattice& cells, std::vector<std::
                 const double fraction = x - double(k);
                 from = k - (fraction < reach ? 1 : 0);
                 to = k + (fraction > 1.0 - reach ? 1 : 0);
-            } else {
+            } else if (x < 0.0 || x >= double(layers)) {
                 from = layerOf(d - 2.0 * margin);
                 to = layerOf(d + 2.0 * margin);
+            } else {
+                return false; // not a number: columnWinding stops there
             }
-            spoilt |= bits(from, to + 1);
-            count += crossingEnters(*c) ? 1 : -1;
-            // Layers past `to` count this crossing.
-            if (to + 1 >= std::int64_t(layers)) break; // the rest lie behind every layer
-            if (runs.start[runs.size - 1] == to + 1) {
-                runs.value[runs.size - 1] = count;
-            } else if (runs.size < int(kMostLayers + 1)) {
-                runs.start[runs.size] = to + 1;
-                runs.value[runs.size] = count;
-                ++runs.size;
+            from = std::max<std::int64_t>(from, 0);
+            const std::int64_t next = std::min<std::int64_t>(to + 1, layers); // counts it from here on
+            if (from < next) {
+                const Nibbles ones = after[from] ^ after[next];
+                spoilt |= Nibbles{ones.low * 0xfu, ones.high * 0xfu};
+            }
+            const bool enters = crossingEnters(*c);
+            running += enters ? 1 : -1;
+            if (running > 7 || running < -7) return false;
+            if (next >= std::int64_t(layers)) break; // it and the rest lie behind every layer
+            if (enters) {
+                counts.low += after[next].low;
+                counts.high += after[next].high;
+            } else {
+                counts.low -= after[next].low;
+                counts.high -= after[next].high;
             }
         }
-    };
-    // The layers where two run lists differ.
-    const auto differ = [&](const Runs& a, const Runs& b) {
-        std::uint64_t out = 0;
-        int i = 0, j = 0;
-        std::int64_t at = 0;
-        while (at < std::int64_t(layers)) {
-            const std::int64_t nextA = i + 1 < a.size ? a.start[i + 1] : std::int64_t(layers);
-            const std::int64_t nextB = j + 1 < b.size ? b.start[j + 1] : std::int64_t(layers);
-            const std::int64_t next = std::min(nextA, nextB);
-            if (a.value[i] != b.value[j]) out |= bits(at, next);
-            at = next;
-            if (nextA == next) ++i;
-            if (nextB == next) ++j;
-        }
-        return out;
+        return true;
     };
     const double texel = g.texelSize;
     const std::uint32_t extent[2] = {g.width, g.height};
@@ -314,61 +303,53 @@ void SpriteColumns::constantWindings(const CellLattice& cells, std::vector<std::
     // own cells.
     const std::size_t footprints = std::size_t(cells.dims[p.x]) * cells.dims[p.y];
     parallelFor(threads_, footprints, 8, [&](std::size_t begin, std::size_t end) {
-        Runs reference, runs;
         for (std::size_t f = begin; f < end; ++f) {
             const std::uint32_t i = std::uint32_t(f % cells.dims[p.x]), j = std::uint32_t(f / cells.dims[p.x]);
             // The texels whose centres may lie in the footprint (a texel
             // beyond it each way); beside the texture if those run past it.
             const std::uint32_t at[2] = {i, j};
             std::int64_t lowest[2], highest[2];
-            bool zero = false; // some query there counts 0 at every depth
+            bool empty = false; // some query there counts 0 at every depth
+            bool fits = true;
             for (int u = 0; u < 2; ++u) {
                 const double lo = cells.lo[axes[u]] + double(at[u]) * cells.size[axes[u]];
                 const double hi = lo + cells.size[axes[u]];
                 const double a = std::floor((lo - double(g.box.lo[axes[u]])) / texel) - 1.0;
                 const double b = std::floor((hi - double(g.box.lo[axes[u]])) / texel) + 1.0;
-                if (!(a >= -1e9 && b <= 1e9)) return; // not finite, or absurd: this chunk vouches for none
-                zero = zero || a < 0.0 || b >= double(extent[u]);
-                lowest[u] = std::max<std::int64_t>(0, std::int64_t(a));
-                highest[u] = std::min<std::int64_t>(std::int64_t(extent[u]) - 1, std::int64_t(b));
+                if (!(a >= -1e9 && b <= 1e9)) fits = false; // not finite, or absurd
+                empty = empty || a < 0.0 || b >= double(extent[u]);
+                lowest[u] = fits ? std::max<std::int64_t>(0, std::int64_t(a)) : 0;
+                highest[u] = fits ? std::min<std::int64_t>(std::int64_t(extent[u]) - 1, std::int64_t(b)) : -1;
             }
-            std::uint64_t spoilt = 0;
+            if (!fits) continue;
+            Nibbles reference = zero, counts, spoilt;
             bool counted = false;
-            for (std::int64_t t = lowest[1]; t <= highest[1] && spoilt != all; ++t)
-                for (std::int64_t s = lowest[0]; s <= highest[0] && spoilt != all; ++s) {
+            for (std::int64_t t = lowest[1]; t <= highest[1] && fits; ++t)
+                for (std::int64_t s = lowest[0]; s <= highest[0] && fits; ++s) {
                     const std::size_t column = std::size_t(t) * g.width + std::size_t(s);
                     const float* c = sprite_.crossings.data() + sprite_.offsets[column];
                     const float* last = sprite_.crossings.data() + sprite_.offsets[column + 1];
                     if (c == last) {
-                        zero = true;
+                        empty = true;
                         continue;
                     }
                     if (!counted) {
-                        runsOf(c, last, reference, spoilt);
+                        fits = count(c, last, reference, spoilt);
                         counted = true;
                         continue;
                     }
-                    runsOf(c, last, runs, spoilt);
-                    spoilt |= differ(reference, runs);
+                    fits = count(c, last, counts, spoilt);
+                    spoilt |= counts ^ reference;
                 }
-            if (!counted) {
-                reference.size = 1;
-                reference.start[0] = 0;
-                reference.value[0] = 0;
-            }
-            for (int r = 0; r < reference.size; ++r) {
-                const std::int64_t next = r + 1 < reference.size ? reference.start[r + 1] : std::int64_t(layers);
-                // Where a column counts 0 everywhere (empty, or beside the
-                // texture), only a count of 0 is shared.
-                if (zero && reference.value[r] != 0) spoilt |= bits(reference.start[r], next);
-                for (std::int64_t k = reference.start[r]; k < next; ++k) {
-                    if ((spoilt >> k) & 1u) continue;
-                    glm::uvec3 cell;
-                    cell[p.x] = i;
-                    cell[p.y] = j;
-                    cell[p.z] = std::uint32_t(k);
-                    windings[cells.index(cell)] = reference.value[r];
-                }
+            if (!fits) continue;
+            if (empty) spoilt |= reference ^ zero; // where a column counts 0 everywhere, only 0 is shared
+            for (std::uint32_t k = 0; k < layers; ++k) {
+                if (spoilt.at(k) != 0) continue;
+                glm::uvec3 cell;
+                cell[p.x] = i;
+                cell[p.y] = j;
+                cell[p.z] = k;
+                windings[cells.index(cell)] = std::int32_t(reference.at(k)) - 8;
             }
         }
     });
