@@ -333,13 +333,10 @@ void SpriteColumns::constantWindings(const CellLattice& cells, std::vector<std::
                         empty = true;
                         continue;
                     }
-                    if (!counted) {
-                        fits = count(c, last, reference, spoilt);
-                        counted = true;
-                        continue;
-                    }
-                    fits = count(c, last, counts, spoilt);
-                    spoilt |= counts ^ reference;
+                    // The first column is the reference; the rest compare with it.
+                    fits = count(c, last, counted ? counts : reference, spoilt);
+                    if (counted) spoilt |= counts ^ reference;
+                    counted = true;
                 }
             if (!fits) continue;
             if (empty) spoilt |= reference ^ zero; // where a column counts 0 everywhere, only 0 is shared
