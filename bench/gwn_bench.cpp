@@ -18,9 +18,11 @@
 // Antipodal split); inside where w > 1/2 + 1e-9 (closer to 1/2 is a tie). Each method labels every
 // point once (wrong labels counted against the yardstick), again, and then
 // each |w - 1/2| band on its own, its points repeated up to 20,000 where
-// fewer, timed (wall clock, `--threads` threads;
-// the sprite's bake not counted, the caps' build and the cells of their
-// range grid the points land in counted in the first call, "all").
+// fewer, timed (wall clock, `--threads` threads). One-time builds are
+// timed apart, the same way for both ("build", ms): the exact classifier's
+// construction (its triangles' grid, its caps and their range grid), and
+// the sprite's caps (by a call on one point; the bake not counted); the
+// first call ("all") counts the cells of the range grid the points land in.
 // Occupancy: `--dims` cubed cells of the padded box by the mesh sweep, its
 // labels checked against the exact classifier at the cell centres.
 //
@@ -121,7 +123,8 @@ int bandOf(double w) {
 struct Row {
     std::string mesh, method;
     std::size_t wrong = 0;
-    double all = 0.0;   ///< the first call: one-time builds (the caps, their range grid) counted
+    double build = -1.0; ///< ms: the one-time build before the first call (none: -1)
+    double all = 0.0;   ///< the first call: the range grid's cells it fills counted, builds not
     double again = 0.0; ///< the same points again
     double band[kBandCount] = {};
 };
@@ -215,11 +218,13 @@ int main(int argc, char** argv) {
         std::printf("%zu uniform points in the padded box, %u thread(s); rates in million points (cells) per "
                     "second; bands by the yardstick's |w - 1/2|\n\n",
                     pointCount, threads);
-        std::printf("| mesh | boundary edges | method | wrong | all | again | < 0.001 | < 0.02 | < 0.1 | >= 0.1 |\n"
-                    "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
+        std::printf("| mesh | boundary edges | method | wrong | build ms | all | again | < 0.001 | < 0.02 | < 0.1 | >= 0.1 |\n"
+                    "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
         for (const auto& [name, mesh] : inputs) {
             if (name.find(only) == std::string::npos) continue;
+            auto built = Clock::now();
             const vds::ExactClassifier exact(mesh, vds::Axis::Z);
+            const double exactBuild = seconds(built) * 1e3;
             const std::vector<glm::vec3> edges = vds::meshBoundaryEdges(mesh);
             std::mt19937 rng(1);
             const std::vector<glm::vec3> points = uniformPoints(vds::meshBounds(mesh), pointCount, rng);
@@ -242,19 +247,29 @@ int main(int argc, char** argv) {
             rows.push_back(measure(name, "exact GWN", points, w, bands, [&](const auto& p, auto& l) {
                 exact.classify({p.data(), p.size()}, l.data(), gwn);
             }));
+            rows.back().build = exactBuild;
             vds::BakeOptions o;
             o.resolution = resolution;
             const vds::Sprite sprite = vds::bakeCpu(mesh, o);
+            // Its caps, built by the first call on it: one point.
+            std::uint8_t one = 0;
+            built = Clock::now();
+            vds::classify(sprite, vds::PointsView(points.data(), 1), &one, gwn);
+            const double spriteBuild = seconds(built) * 1e3;
             rows.push_back(measure(name, "sprite GWN @" + std::to_string(resolution), points, w, bands,
                                    [&](const auto& p, auto& l) {
                                        vds::classify(sprite, vds::PointsView(p.data(), p.size()), l.data(), gwn);
                                    }));
+            rows.back().build = spriteBuild;
             // (A sprite's labels may differ from the yardstick's within a
             // texel of the surface: its points sit at texel centres.)
-            for (const Row& r : rows)
-                std::printf("| %s | %zu | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f |\n", r.mesh.c_str(),
-                            edges.size() / 2, r.method.c_str(), r.wrong, r.all, r.again, r.band[0], r.band[1],
+            for (const Row& r : rows) {
+                char build[32] = "";
+                if (r.build >= 0.0) std::snprintf(build, sizeof build, "%.1f", r.build);
+                std::printf("| %s | %zu | %s | %zu | %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f |\n", r.mesh.c_str(),
+                            edges.size() / 2, r.method.c_str(), r.wrong, build, r.all, r.again, r.band[0], r.band[1],
                             r.band[2], r.band[3]);
+            }
             // Occupancy by the mesh sweep, checked against the exact
             // classifier at the cell centres.
             const vds::Grid grid = vds::cubicGrid(
@@ -273,9 +288,9 @@ int main(int argc, char** argv) {
             exact.classify({centres.data(), centres.size()}, expected.data(), {vds::Rule::GeneralizedWinding, 0});
             std::size_t differ = 0;
             for (std::size_t k = 0; k < cells.size(); ++k) differ += cells[k] != expected[k];
-            std::printf("| %s | %zu | occupancy GWN %ux%ux%u | %zu (vs exact) | %.3f | | | | | |\n", name.c_str(),
+            std::printf("| %s | %zu | occupancy GWN %ux%ux%u | %zu (vs exact) | | %.3f | | | | | |\n", name.c_str(),
                         edges.size() / 2, grid.dims.x, grid.dims.y, grid.dims.z, differ, occupancyRate);
-            std::printf("| %s | | points per band | | %zu | | %zu | %zu | %zu | %zu |\n", name.c_str(), points.size(),
+            std::printf("| %s | | points per band | | | %zu | | %zu | %zu | %zu | %zu |\n", name.c_str(), points.size(),
                         counts[0], counts[1], counts[2], counts[3]);
             std::fflush(stdout);
         }
