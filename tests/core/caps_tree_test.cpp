@@ -15,6 +15,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <vds/bake.h>
@@ -394,7 +395,8 @@ TEST(CapsTree, SpriteCellsWhereEveryColumnCountsAlikeLabelAsThePerEdgeSum) {
     // caps equal those by the per-edge sum (BoundaryEvaluation::Exact) on
     // points in, beside, in front of and behind the box, close to the
     // walls (where columns either side count differently) and to the
-    // boundary curve, the cells found on one thread and on all.
+    // boundary curve, the cells found on one thread and on all; and on the
+    // sprite placed in the world by a rotation, scale and translation.
     struct SpriteCase {
         std::string name;
         TriangleMesh mesh;
@@ -446,6 +448,23 @@ TEST(CapsTree, SpriteCellsWhereEveryColumnCountsAlikeLabelAsThePerEdgeSum) {
                 // The cells really answered alone.
                 EXPECT_GT(sprite.boundaryCaps.get(sprite).rangedCells().winding, 100u) << c.name;
             }
+            // Placed in the world: the points come through the placement,
+            // the cells stay in the bake's coordinates.
+            Sprite placed = baked;
+            const glm::mat4 model = glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, -1.0f, 0.5f)) *
+                                    glm::rotate(glm::mat4(1.0f), 0.7f, glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f))) *
+                                    glm::scale(glm::mat4(1.0f), glm::vec3(2.0f));
+            placed.transform(model);
+            std::vector<glm::vec3> world(at.size());
+            for (std::size_t k = 0; k < at.size(); ++k) world[k] = glm::vec3(model * glm::vec4(at[k], 1.0f));
+            classify(placed, {world.data(), world.size()}, expected.data(),
+                     {Rule::GeneralizedWinding, 1, QueryLayout::Auto, BoundaryEvaluation::Exact});
+            classify(placed, {world.data(), world.size()}, labels.data(),
+                     {Rule::GeneralizedWinding, 0, QueryLayout::Auto, BoundaryEvaluation::Caps});
+            for (std::size_t k = 0; k < at.size(); ++k)
+                ASSERT_EQ(labels[k], expected[k]) << c.name << " placed, at " << resolution << ": " << at[k].x << " "
+                                                  << at[k].y << " " << at[k].z;
+            EXPECT_GT(placed.boundaryCaps.get(placed).rangedCells().winding, 100u) << c.name;
         }
 }
 
