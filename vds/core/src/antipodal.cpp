@@ -135,54 +135,59 @@ double boundaryTermExact(const glm::vec3* edges, std::size_t edgeCount, int axis
 
 // ---------------------------------------------------------------- sprites
 
-glm::vec3 columnPoint(const SpriteGrid& grid, std::ptrdiff_t column, float r) {
-    return grid.texelCentre(std::uint32_t(std::size_t(column) % grid.width),
-                            std::uint32_t(std::size_t(column) / grid.width), r);
-}
-
 namespace {
 
-/// The texel column of texture point `t` whatever its depth; -1 outside the
-/// texture across the axis (or not finite).
-std::ptrdiff_t columnAcross(const SpriteGrid& grid, const glm::vec3& t) {
-    const float fs = std::floor(t.x * float(grid.width));
-    const float ft = std::floor(t.y * float(grid.height));
-    if (!(fs >= 0.0f && fs < float(grid.width) && ft >= 0.0f && ft < float(grid.height))) return -1;
-    return std::ptrdiff_t(ft) * std::ptrdiff_t(grid.width) + std::ptrdiff_t(fs);
-}
-
-/// gwnSample's point alone (it reads no memory): false for a point that
-/// is not finite.
-bool gwnPoint(const SpriteGrid& grid, const glm::vec3& t, std::ptrdiff_t column, glm::vec3& point) {
-    if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z))) return false;
-    if (column >= 0) {
-        point = columnPoint(grid, column, t.z);
+/// Where a GWN query on a sprite takes its two terms, the grid's constants
+/// taken once (the batch asks it of every point). The generalized winding
+/// number of an open mesh need not vanish outside the sprite's box (just
+/// beyond a large opening it exceeds 1/2), so queries are answered
+/// everywhere. Within the texture across the axis, in front of or behind
+/// the box too, the texel's column counts (none or all of its crossings in
+/// front there) and B is taken at the texel's centre at the point's depth
+/// (`SpriteGrid::texelCentre`, rounded as the CPU baker's ray is); beside
+/// the texture the count is 0 (no ray there meets the mesh) and B is taken
+/// at the point itself.
+struct ColumnPoints {
+    explicit ColumnPoints(const SpriteGrid& grid)
+        : p(axisPermutation(grid.axis)), lo(grid.box.lo), width(float(grid.width)), height(float(grid.height)),
+          depth(grid.box.hi[p.z] - grid.box.lo[p.z]), texel(grid.texelSize), columns(std::ptrdiff_t(grid.width)) {}
+    /// Texture point `t` -> its column (-1 beside the texture) and the
+    /// point B is taken at (mesh coordinates); reads no memory. False for
+    /// a point that is not finite.
+    bool place(const glm::vec3& t, std::ptrdiff_t& column, glm::vec3& q) const {
+        if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z))) return false;
+        const float fs = std::floor(t.x * width), ft = std::floor(t.y * height);
+        q[p.z] = lo[p.z] + t.z * depth;
+        if (fs >= 0.0f && fs < width && ft >= 0.0f && ft < height) {
+            column = std::ptrdiff_t(ft) * columns + std::ptrdiff_t(fs);
+            q[p.x] = lo[p.x] + (fs + 0.5f) * texel;
+            q[p.y] = lo[p.y] + (ft + 0.5f) * texel;
+        } else {
+            column = -1;
+            q[p.x] = lo[p.x] + t.x * width * texel;
+            q[p.y] = lo[p.y] + t.y * height * texel;
+        }
         return true;
     }
-    const glm::ivec3 p = axisPermutation(grid.axis);
-    point[p.x] = grid.box.lo[p.x] + t.x * float(grid.width) * grid.texelSize;
-    point[p.y] = grid.box.lo[p.y] + t.y * float(grid.height) * grid.texelSize;
-    point[p.z] = grid.box.lo[p.z] + t.z * (grid.box.hi[p.z] - grid.box.lo[p.z]);
-    return true;
+    glm::ivec3 p;
+    glm::vec3 lo;
+    float width, height, depth, texel;
+    std::ptrdiff_t columns;
+};
+
+/// The integer term of a placed point (ColumnPoints::place).
+int columnCount(const Sprite& sprite, const glm::vec3& t, std::ptrdiff_t column) {
+    return column >= 0 ? columnWinding(sprite.crossings.data() + sprite.offsets[std::size_t(column)],
+                                       sprite.crossings.data() + sprite.offsets[std::size_t(column) + 1], t.z)
+                       : 0;
 }
 
-/// gwnSample's integer term alone, for a finite point.
-int gwnWinding(const std::uint32_t* offsets, const float* crossings, const glm::vec3& t, std::ptrdiff_t column) {
-    return column >= 0 ? columnWinding(crossings + offsets[column], crossings + offsets[column + 1], t.z) : 0;
-}
-
-/// The generalized winding number of an open mesh need not vanish outside
-/// the sprite's box (just beyond a large opening it exceeds 1/2), so GWN
-/// queries are answered everywhere: `winding` and `point` get the integer
-/// term and the point (mesh coordinates) the boundary term is taken at. In
-/// front of or behind the box, the texel's column with none or all of its
-/// crossings in front, at its centre as inside the box; beside the box, no
-/// crossing (no ray there meets the mesh) at the point itself. False for a
-/// point that is not finite.
-bool gwnSample(const SpriteGrid& grid, const std::uint32_t* offsets, const float* crossings, const glm::vec3& t,
-               std::ptrdiff_t column, int& winding, glm::vec3& point) {
-    if (!gwnPoint(grid, t, column, point)) return false;
-    winding = gwnWinding(offsets, crossings, t, column);
+/// Both terms' inputs at texture point `t`: false for a point that is not
+/// finite.
+bool gwnSample(const Sprite& sprite, const glm::vec3& t, int& winding, glm::vec3& point) {
+    std::ptrdiff_t column;
+    if (!ColumnPoints(sprite.grid).place(t, column, point)) return false;
+    winding = columnCount(sprite, t, column);
     return true;
 }
 
@@ -371,10 +376,7 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
     const SpriteGrid& sg = sprite.grid;
     const std::uint32_t* offsets = sprite.offsets.data();
     const float* crossings = sprite.crossings.data();
-    const glm::ivec3 perm = axisPermutation(sg.axis);
-    const float width = float(sg.width), height = float(sg.height);
-    const float depth = sg.box.hi[perm.z] - sg.box.lo[perm.z];
-    const glm::vec3 lo = sg.box.lo;
+    const ColumnPoints place(sg);
     parallelFor(options.threads, count, 1024, [&](std::size_t begin, std::size_t end) {
         // In batches, so that the cache misses of many points overlap: find
         // a batch's points (no memory read), label those whose cell of the
@@ -390,24 +392,10 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
             for (std::size_t i = 0; i < n; ++i) {
                 glm::vec3 p;
                 std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
-                const glm::vec3 t = sg.toTexture(p);
-                texture[i] = t;
-                // columnAcross and gwnPoint, their constants taken once.
-                const float fs = std::floor(t.x * width), ft = std::floor(t.y * height);
-                if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z))) {
+                texture[i] = sg.toTexture(p);
+                if (!place.place(texture[i], columns[i], points[i])) {
                     labels[b0 + i] = 0;
                     continue;
-                }
-                glm::vec3& q = points[i];
-                q[perm.z] = lo[perm.z] + t.z * depth;
-                if (fs >= 0.0f && fs < width && ft >= 0.0f && ft < height) {
-                    columns[i] = std::ptrdiff_t(ft) * std::ptrdiff_t(sg.width) + std::ptrdiff_t(fs);
-                    q[perm.x] = lo[perm.x] + (fs + 0.5f) * sg.texelSize; // texelCentre
-                    q[perm.y] = lo[perm.y] + (ft + 0.5f) * sg.texelSize;
-                } else {
-                    columns[i] = -1;
-                    q[perm.x] = lo[perm.x] + t.x * width * sg.texelSize;
-                    q[perm.y] = lo[perm.y] + t.y * height * sg.texelSize;
                 }
                 const int alone = caps ? caps->insideAlone(points[i]) : -1;
                 if (alone >= 0) {
@@ -421,7 +409,7 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
                 if (columns[pending[w]] >= 0) __builtin_prefetch(crossings + offsets[columns[pending[w]]]);
             for (std::size_t w = 0; w < waiting; ++w) {
                 const std::size_t i = pending[w];
-                const int winding = gwnWinding(offsets, crossings, texture[i], columns[i]);
+                const int winding = columnCount(sprite, texture[i], columns[i]);
                 const glm::vec3& q = points[i];
                 labels[b0 + i] = (caps ? caps->inside(winding, q)
                                        : generalizedWindingInside(double(winding) +
@@ -451,7 +439,7 @@ bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world) {
     const glm::vec3 t = sg.toTexture(world);
     int winding = 0;
     glm::vec3 q;
-    if (!gwnSample(sg, sprite.offsets.data(), sprite.crossings.data(), t, columnAcross(sg, t), winding, q)) return false;
+    if (!gwnSample(sprite, t, winding, q)) return false;
     return sprite.boundaryCaps.get(sprite).inside(winding, q);
 }
 
@@ -472,7 +460,7 @@ double Sprite::generalizedWinding(const glm::vec3& world) const {
     }
     int winding = 0;
     glm::vec3 q;
-    if (!detail::gwnSample(grid, offsets.data(), crossings.data(), t, detail::columnAcross(grid, t), winding, q))
+    if (!detail::gwnSample(*this, t, winding, q))
         return 0.0;
     return boundaryCaps.get(*this).generalizedWinding(winding, q, detail::kGeneralizedWindingTolerance);
 }

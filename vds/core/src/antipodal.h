@@ -122,11 +122,6 @@ inline int columnWinding(const float* begin, const float* end, float r) {
     return winding;
 }
 
-/// The point the column's count belongs to: the centre of texel `column` at
-/// texture depth r, in the mesh coordinates of the bake, rounded to float as
-/// the CPU baker's ray is (`SpriteGrid::texelCentre`).
-glm::vec3 columnPoint(const SpriteGrid& grid, std::ptrdiff_t column, float r);
-
 /// Throws `InvalidArgument` when `sprite` cannot answer `rule`: the
 /// generalized winding number of an open sprite read from a version-1 file,
 /// which has no boundary edges.
