@@ -840,10 +840,8 @@ bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt) const 
     if (cellOf(q, cell, at)) {
         std::uint8_t state = ranges_.state[cell].load(std::memory_order_acquire);
         if (state == 0) state = rangeOf(cell, at);
-        if (state == 4) { // the whole winding number's range: no integer term asked
-            const int side = sideOf(ranges_.lo[cell], ranges_.hi[cell]);
-            if (side != 0) return side > 0;
-        }
+        if (state == 4 && ranges_.alone[cell] != kUndecided) // the whole winding number's range: no integer term asked
+            return ranges_.alone[cell] != 0;
         const int winding = windingAt();
         if (state == 1 || state == 5) {
             const double shift = double(state == 1 ? winding : winding + projected_->winding(q));
