@@ -79,6 +79,78 @@ double exactTerm(const std::vector<glm::vec3>& edges, const glm::vec3& q) {
     return boundaryTermExact(edges.data(), edges.size() / 2, 2, glm::dvec3(q));
 }
 
+// The per-edge sum as the library takes it (EdgeAngles: products of each
+// edge's den + i det, a block of edges at a time, the turns counted, one
+// atan2) against each edge's own atan2 (edgeSolidAngle) summed: on a helix
+// winding six times around q's line (the products turn many times, both
+// ways, as the helix's edges run up and then back down), on random edges
+// in every count from 1 to 40 (short and partial blocks), on edges with
+// det = 0 (q on an edge's sweep, an end on q's ray, an edge along it),
+// and taken in pieces as the tree's leaves take them.
+TEST(PerEdgeSum, ProductsSumTheEdgesOwnAngles) {
+    const auto byAtan2 = [](const std::vector<glm::vec3>& edges, const glm::dvec3& q) {
+        double sum = 0.0;
+        for (std::size_t k = 0; k < edges.size(); k += 2)
+            sum += edgeSolidAngle(2, glm::dvec3(edges[k]), glm::dvec3(edges[k + 1]), q);
+        return sum;
+    };
+    const auto byProducts = [](const std::vector<glm::vec3>& edges, const glm::dvec3& q, std::size_t piece) {
+        EdgeAngles sum;
+        for (std::size_t first = 0; first < edges.size() / 2; first += piece)
+            sum.add(&edges[2 * first], std::min(piece, edges.size() / 2 - first), 2, q);
+        return sum.angle();
+    };
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::size_t checked = 0;
+    for (const double turn : {1.0, -1.0}) { // six turns up, counterclockwise and clockwise
+        std::vector<glm::vec3> helix;
+        const auto at = [turn](int j) {
+            const double phi = turn * 2.0 * kPi * j / 50.0;
+            return glm::vec3(float(std::cos(phi)), float(std::sin(phi)), float(-1.0 + j / 150.0));
+        };
+        for (int k = 0; k < 300; ++k) {
+            helix.push_back(at(k));
+            helix.push_back(at(k + 1));
+        }
+        double largest = 0.0;
+        for (int trial = 0; trial < 100; ++trial) {
+            const glm::dvec3 q(0.2 * u(rng), 0.2 * u(rng), 0.5 * u(rng));
+            const double expected = byAtan2(helix, q);
+            largest = std::max(largest, std::fabs(expected));
+            for (const std::size_t piece : {std::size_t(300), std::size_t(16), std::size_t(7), std::size_t(1)})
+                ASSERT_NEAR(byProducts(helix, q, piece), expected, 1e-11) << "helix, pieces of " << piece;
+            ++checked;
+        }
+        EXPECT_GT(largest, 4.0 * kPi) << turn; // the edges really do sum past two turns
+    }
+    for (std::size_t count = 1; count <= 40; ++count)
+        for (int trial = 0; trial < 20; ++trial) {
+            std::vector<glm::vec3> edges;
+            for (std::size_t k = 0; k < 2 * count; ++k) edges.push_back({u(rng), u(rng), u(rng)});
+            const glm::dvec3 q(u(rng), u(rng), u(rng));
+            ASSERT_NEAR(byProducts(edges, q, count), byAtan2(edges, q), 1e-12) << count << " edges";
+            ASSERT_NEAR(byProducts(edges, q, 3), byAtan2(edges, q), 1e-12) << count << " edges, pieces of 3";
+            ++checked;
+        }
+    // det = 0: q under an edge (on its sweep), q's ray through an end, an
+    // edge along q's line; among ordinary edges, in one block and apart.
+    const glm::dvec3 q(0.25, 0.25, 0.0);
+    std::vector<glm::vec3> edges = {{0.0f, 0.0f, -1.0f}, {0.5f, 0.5f, -0.5f}, {0.25f, 0.25f, -2.0f},
+                                    {1.0f, 0.0f, 0.5f},  {0.25f, 0.25f, 1.0f}, {0.25f, 0.25f, -1.0f}};
+    for (int k = 0; k < 13; ++k) {
+        edges.push_back({u(rng), u(rng), u(rng)});
+        edges.push_back({u(rng), u(rng), u(rng)});
+    }
+    for (const std::size_t piece : {std::size_t(16), std::size_t(2), std::size_t(1)}) {
+        const double expected = byAtan2(edges, q);
+        ASSERT_TRUE(std::isfinite(expected));
+        ASSERT_NEAR(byProducts(edges, q, piece), expected, 1e-12) << "det = 0, pieces of " << piece;
+        ++checked;
+    }
+    EXPECT_EQ(checked, 200u + 40u * 20u + 3u);
+}
+
 TEST(CapsTree, ExpansionErrsByNoMoreThanItsBound) {
     for (const Case& c : cases()) {
         const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));

@@ -113,24 +113,104 @@ double edgeSolidAngle(int axis, const glm::dvec3& a, const glm::dvec3& b, const 
     return 2.0 * std::atan2(det, den);
 }
 
-double boundaryTermExact(const glm::vec3* edges, std::size_t edgeCount, int axis, const glm::dvec3& q) {
-    // Two sums a sign, alternating, so that consecutive multiplies do not
-    // wait on each other; the edges edgeSolidAngle treats apart (det = 0,
-    // an end on q's ray) summed as it gives them.
-    AngleSum sums[4];
-    double apart = 0.0;
-    for (std::size_t k = 0; k < edgeCount; ++k) {
-        const glm::dvec3 a(edges[2 * k]), b(edges[2 * k + 1]);
-        double x, y;
-        if (!edgeAngleFactor(axis, a, b, q, x, y)) {
-            apart += edgeSolidAngle(axis, a, b, q);
+namespace {
+constexpr std::size_t kEdgeBlock = 16;
+} // namespace
+
+void EdgeAngles::add(const glm::vec3* edges, std::size_t count, int axis, const glm::dvec3& q) {
+    const int s = (axis + 1) % 3, t = (axis + 2) % 3;
+    alignas(64) double us[kEdgeBlock], ut[kEdgeBlock], ua[kEdgeBlock], vs[kEdgeBlock], vt[kEdgeBlock],
+        va[kEdgeBlock], xs[kEdgeBlock], ys[kEdgeBlock], dets[kEdgeBlock];
+    for (std::size_t first = 0; first < count; first += kEdgeBlock) {
+        const std::size_t n = std::min(kEdgeBlock, count - first);
+        for (std::size_t j = 0; j < n; ++j) {
+            const glm::vec3& a = edges[2 * (first + j)];
+            const glm::vec3& b = edges[2 * (first + j) + 1];
+            // Float ends and point: the differences are exact in double.
+            us[j] = double(a[s]) - q[s];
+            ut[j] = double(a[t]) - q[t];
+            ua[j] = double(a[axis]) - q[axis];
+            vs[j] = double(b[s]) - q[s];
+            vt[j] = double(b[t]) - q[t];
+            va[j] = double(b[axis]) - q[axis];
+        }
+        for (std::size_t j = 0; j < n; ++j) {
+            // edgeAngleFactor's den + i det, both times du dv > 0 (the same
+            // angle): towardsApex(u) = nu / du is lu + ua (ua >= 0) or
+            // rho_u^2 / (lu - ua) = rho_u^2 / (lu + |ua|) (ua < 0).
+            const double ru = us[j] * us[j] + ut[j] * ut[j], rv = vs[j] * vs[j] + vt[j] * vt[j];
+            const double lu = std::sqrt(ru + ua[j] * ua[j]), lv = std::sqrt(rv + va[j] * va[j]);
+            const double mu = lu + std::fabs(ua[j]), mv = lv + std::fabs(va[j]);
+            double nu = ru, du = mu, nv = rv, dv = mv;
+            if (ua[j] >= 0.0) {
+                nu = mu;
+                du = 1.0;
+            }
+            if (va[j] >= 0.0) {
+                nv = mv;
+                dv = 1.0;
+            }
+            const double det = us[j] * vt[j] - ut[j] * vs[j], scale = du * dv;
+            const double den = nu * nv + (us[j] * vs[j] + ut[j] * vt[j]) * scale, across = det * scale;
+            // Scaled to |x| + |y| = 1 (the angle is unchanged), so that the
+            // products stay within (1/sqrt 2)^n of 1.
+            const double inv = 1.0 / (std::fabs(den) + std::fabs(across));
+            xs[j] = den * inv;
+            ys[j] = across * inv;
+            dets[j] = det;
+        }
+        bool whole = n == kEdgeBlock;
+        for (std::size_t j = 0; j < n; ++j) whole &= dets[j] != 0.0;
+        if (whole) {
+            for (std::size_t j = 0; j < kEdgeBlock; j += 4) {
+                products_[0].add(xs[j], ys[j]);
+                products_[1].add(xs[j + 1], ys[j + 1]);
+                products_[2].add(xs[j + 2], ys[j + 2]);
+                products_[3].add(xs[j + 3], ys[j + 3]);
+            }
+        } else {
+            for (std::size_t j = 0; j < n; ++j) {
+                if (dets[j] != 0.0) {
+                    products_[j & 3].add(xs[j], ys[j]);
+                } else {
+                    const std::size_t k = first + j;
+                    apart_ += edgeSolidAngle(axis, glm::dvec3(edges[2 * k]), glm::dvec3(edges[2 * k + 1]), q);
+                }
+            }
+        }
+        // Back to size 1 (the angles are unchanged) before a product of up
+        // to 64 factors, each at least 1/sqrt 2 in size, could underflow.
+        if (++blocks_ == 16) {
+            for (Product& p : products_) p.rescale();
+            blocks_ = 0;
+        }
+    }
+}
+
+double EdgeAngles::angle() const {
+    // The four products multiplied into one (each rescaled first; a
+    // product on the real axis, which add() cannot take, by its own
+    // atan2), then one atan2. Each edge adds 2 atan2(det, den).
+    Product all = products_[0];
+    double rest = 0.0;
+    for (int k = 1; k < 4; ++k) {
+        Product p = products_[k];
+        all.turns += p.turns;
+        if (p.im == 0.0) {
+            rest += std::atan2(p.im, p.re);
             continue;
         }
-        sums[(y > 0.0 ? 0 : 2) + (k & 1)].add(x, std::fabs(y));
+        p.rescale();
+        all.rescale();
+        all.add(p.re, p.im);
     }
-    // Each edge adds 2 atan2(det, den).
-    const double angles = 2.0 * (sums[0].angle() + sums[1].angle() - sums[2].angle() - sums[3].angle());
-    return (angles + apart) / kFourPi;
+    return 2.0 * (std::atan2(all.im, all.re) + 2.0 * kPi * all.turns + rest) + apart_;
+}
+
+double boundaryTermExact(const glm::vec3* edges, std::size_t edgeCount, int axis, const glm::dvec3& q) {
+    EdgeAngles sum;
+    sum.add(edges, edgeCount, axis, q);
+    return sum.angle() / kFourPi;
 }
 
 // ---------------------------------------------------------------- sprites
