@@ -53,12 +53,14 @@
 // (the identity above, with no crossing). The fan is taken by its
 // expansion to first order, whose remainder bound is, the same way (second
 // derivative 3! / |y|^4 at most), S (D + 2e) / (4 pi D^3 e^2). From the
-// coarsest cut whose nodes each err by at most 1/4, the node with the
-// largest bound is opened (its children, or a leaf's edges summed exactly;
-// within 0.1 of the threshold, the children to second order) until the
-// value lies farther from the label's threshold (1/2 plus the tie,
-// antipodal.h) than the summed bounds; past a budget of the per-edge
-// sum's work, the per-edge sum decides. So labels equal the per-edge sum's,
+// coarsest cut whose nodes each err by at most 1/4, the nodes with the
+// largest bounds (at least half the largest) are opened a round at a time
+// (their children, or the edges of a node holding at most 16 summed
+// exactly; within 0.1 of the threshold, the children to second order)
+// until the value lies farther from the label's threshold (1/2 plus the
+// tie, antipodal.h) than the summed bounds; past a budget of the per-edge
+// sum's work, or where the work the bounds still ask for is predicted to
+// pass it, the per-edge sum decides. So labels equal the per-edge sum's,
 // and a point near a large loop costs a few chains near it and the chords
 // of the rest, where the caps' fans, meeting across the opening, would
 // cost the loop's every edge.
@@ -333,6 +335,10 @@ public:
         /// One whole loop: its index in loops(); else (a group of loops, or
         /// part of one) kNoLoop.
         std::uint32_t loop;
+        /// Every edge under the node: [edgeFirst, edgeFirst + edgeCount)
+        /// of the chain tree's edges (the loops in the tree's order),
+        /// summed at once where the node is to be opened and holds few.
+        std::uint32_t edgeFirst, edgeCount;
     };
     static constexpr std::uint32_t kNoLoop = 0xffffffffu;
     /// [0] is the root; empty where the edges do not close into loops.
@@ -453,8 +459,11 @@ private:
     std::uint32_t buildEdges(std::uint32_t first, std::uint32_t last);
     void buildChains();
     std::uint32_t buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first, std::uint32_t last);
-    std::uint32_t buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count);
+    std::uint32_t buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count, std::uint32_t treeFirst);
     std::vector<ChainNode> chains_;
+    /// loopEdges_ with the loops in the chain tree's order, so that every
+    /// chain node's edges lie together (ChainNode::edgeFirst).
+    std::vector<glm::vec3> chainEdges_;
     RangeGrid ranges_;
     std::vector<glm::vec3> treeEdges_; ///< edges_ in the tree's order
     std::vector<EdgeNode> edgeNodes_; ///< a tree over edges_, for reach(); [0] is the root
