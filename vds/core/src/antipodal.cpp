@@ -117,16 +117,6 @@ namespace {
 constexpr std::size_t kEdgeBlock = 16;
 } // namespace
 
-// On x86-64 with GCC, EdgeAngles::add is built twice, for AVX2 (four edges
-// an instruction) and for the baseline (two), and the loader picks the one
-// the machine runs (1.2x on the soup's and the non-manifold shell's edges
-// on this VM). The same IEEE operations either way (no fused multiply-add:
-// -ffp-contract=off), so the same values.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define VDS_EDGE_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define VDS_EDGE_CLONES
-#endif
 
 VDS_EDGE_CLONES void EdgeAngles::add(const glm::vec3* edges, std::size_t count, int axis, const glm::dvec3& q) {
     const int s = (axis + 1) % 3, t = (axis + 2) % 3;
@@ -192,7 +182,7 @@ VDS_EDGE_CLONES void EdgeAngles::add(const glm::vec3* edges, std::size_t count, 
         // Back to size 1 (the angles are unchanged) before a product of up
         // to 64 factors, each at least 1/sqrt 2 in size, could underflow.
         if (++blocks_ == 16) {
-            for (Product& p : products_) p.rescale();
+            for (AngleProduct& p : products_) p.rescale();
             blocks_ = 0;
         }
     }
@@ -202,10 +192,10 @@ double EdgeAngles::angle() const {
     // The four products multiplied into one (each rescaled first; a
     // product on the real axis, which add() cannot take, by its own
     // atan2), then one atan2. Each edge adds 2 atan2(det, den).
-    Product all = products_[0];
+    AngleProduct all = products_[0];
     double rest = 0.0;
     for (int k = 1; k < 4; ++k) {
-        Product p = products_[k];
+        AngleProduct p = products_[k];
         all.turns += p.turns;
         if (p.im == 0.0) {
             rest += std::atan2(p.im, p.re);

@@ -43,28 +43,45 @@ double solidAngle(const glm::dvec3& u, const glm::dvec3& v, const glm::dvec3& w)
 /// boundary still gets a consistent sum; an edge along the axis adds 0.
 double edgeSolidAngle(int axis, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& q);
 
-/// A sum of angles each in (0, pi), given as the arguments of complex
-/// numbers x + i y (y > 0, |x| + |y| about 1), without an atan2 each: the argument of their
-/// product plus the turns it makes. From Im >= 0 to Im < 0 a step in (0, pi)
-/// passes the negative real axis, never the positive one (that would take
-/// more than pi), so one side of the step lies left of the imaginary axis;
-/// both right of it is the rounding of a tiny step at angle +0. Each
-/// multiply errs by some 1e-16 relative, so n angles sum to within some
-/// n * 1e-16 of their atan2s' sum.
-struct AngleSum {
+// On x86-64 with GCC, the loops that find many edges' angles at once
+// (EdgeAngles::add, the column sweep's) are built twice, for AVX2 (four
+// edges an instruction) and for the baseline (two), and the loader picks
+// the one the machine runs (1.2x on the soup's and the non-manifold
+// shell's edges on our VM). The same IEEE operations either way (no fused
+// multiply-add: -ffp-contract=off), so the same values.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define VDS_EDGE_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define VDS_EDGE_CLONES
+#endif
+
+/// A running product re + i im of factors x + i y, each |x| + |y| = 1
+/// (an angle in (-pi, pi), the argument of x + i y, without an atan2
+/// each): its argument atan2(im, re) plus 2 pi turns is the angles' sum. A
+/// step with y > 0 (an angle in (0, pi)) that takes the product from
+/// Im >= 0 to Im < 0 crossed the negative real axis (a step of less than pi
+/// crosses from above only there; both right of the imaginary axis is the
+/// rounding of a step at +0); y < 0 alike, from below; y = 0, x = 1 leaves
+/// it as it is. "Im >= 0" is its sign bit clear, as atan2 reads +0 and -0.
+/// No branch on the factor. Each multiply errs by some 1e-16 relative, so
+/// n angles sum to within some n * 1e-16 of their atan2s' sum; rescale()
+/// (the angle unchanged) before some 64 factors, each at least 1/sqrt 2
+/// in size, could underflow the product.
+struct AngleProduct {
     double re = 1.0, im = 0.0;
     int turns = 0;
-    unsigned count = 0;
     void add(double x, double y) {
         const double r = re * x - im * y, i = re * y + im * x;
-        if (im >= 0.0 && i < 0.0 && (re < 0.0 || r < 0.0)) ++turns;
+        const bool left = (re < 0.0) | (r < 0.0);
+        const bool above = !std::signbit(im), after = !std::signbit(i);
+        turns += int((y > 0.0) & above & !after & left) - int((y < 0.0) & !above & after & left);
         re = r;
         im = i;
-        if (++count % 64 == 0) { // back to size 1 (the angle is unchanged) before the product underflows
-            const double size = std::fabs(re) + std::fabs(im);
-            re /= size;
-            im /= size;
-        }
+    }
+    void rescale() {
+        const double size = std::fabs(re) + std::fabs(im);
+        re /= size;
+        im /= size;
     }
     double angle() const { return std::atan2(im, re) + 2.0 * 3.14159265358979323846 * turns; }
 };
@@ -104,7 +121,7 @@ inline bool edgeAngleFactor(int axis, const glm::dvec3& a, const glm::dvec3& b, 
 /// instruction; the products then wait only on each other. An edge with
 /// det = 0 (q on its sweep, an end on q's ray) is taken by edgeSolidAngle.
 /// Each multiply errs by some 1e-16 relative, so n edges sum to within
-/// some n * 1e-16 of their atan2s' sum, as AngleSum's do.
+/// some n * 1e-16 of their atan2s' sum.
 class EdgeAngles {
 public:
     /// Adds the angles of edges 0 .. count - 1 of `edges` (2 points each,
@@ -114,31 +131,7 @@ public:
     double angle() const;
 
 private:
-    /// A running product re + i im of unit-ish factors, its argument
-    /// atan2(im, re) + 2 pi turns. A step (x, y), y > 0 an angle in
-    /// (0, pi), that takes the product from Im >= 0 to Im < 0 crossed the
-    /// negative real axis (a step of less than pi crosses from above only
-    /// there; both right of the imaginary axis is the rounding of a step
-    /// at +0); y < 0 alike, from below. "Im >= 0" is its sign bit clear,
-    /// as atan2 reads +0 and -0.
-    struct Product {
-        double re = 1.0, im = 0.0;
-        int turns = 0;
-        void add(double x, double y) {
-            const double r = re * x - im * y, i = re * y + im * x;
-            const bool left = (re < 0.0) | (r < 0.0);
-            const bool above = !std::signbit(im), after = !std::signbit(i);
-            turns += int((y > 0.0) & above & !after & left) - int((y < 0.0) & !above & after & left);
-            re = r;
-            im = i;
-        }
-        void rescale() {
-            const double size = std::fabs(re) + std::fabs(im);
-            re /= size;
-            im /= size;
-        }
-    };
-    Product products_[4];
+    AngleProduct products_[4];
     double apart_ = 0.0;  ///< the edges with det = 0, by edgeSolidAngle
     unsigned blocks_ = 0; ///< blocks taken since the products were last rescaled
 };
@@ -146,7 +139,7 @@ private:
 /// The boundary term at `q` by the per-edge sum: `edges` holds 2 *
 /// `edgeCount` points (mesh coordinates), `axis` the index (0..2) of the
 /// view axis. O(edgeCount): each edge's angle as `edgeSolidAngle` gives
-/// it, summed by `AngleSum` where its det is not 0 (to some 1e-16 an edge).
+/// it, summed by `EdgeAngles` (to some 1e-16 an edge).
 double boundaryTermExact(const glm::vec3* edges, std::size_t edgeCount, int axis, const glm::dvec3& q);
 
 

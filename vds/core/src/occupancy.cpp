@@ -83,7 +83,8 @@ public:
     /// meets an edge's projection (no bracket).
     bool reset(const std::vector<glm::vec3>& edges, const detail::BoundaryCaps* caps, double x, double y,
                double height) {
-        terms_.clear();
+        ups_.clear();
+        downs_.clear();
         far_.clear();
         error_ = 0.0;
         drift_ = 0.0;
@@ -142,30 +143,23 @@ public:
     ///
     /// Without an atan2 per edge: the angles of one sign are summed as the
     /// argument of the product of the complex numbers den + i |det|, each
-    /// in (0, pi), counting the turns where the running product crosses
-    /// the negative real axis (from Im >= 0 to Im < 0, Re < 0: a step of
-    /// less than pi can cross the real axis from above only there). The
+    /// in (0, pi) (AngleProduct, its turns counted; the column's edges
+    /// of each sign are kept apart, as det's sign is the column's). The
+    /// factors are found a block of edges at a time, with no branch on the
+    /// edge (columnFactors). The
     /// products err by some 1e-16 an edge relative, so the sums stay well
     /// within kBracketSlack.
     bool at(double z, Split& split) const {
         // Two products a sign, alternating, so that consecutive multiplies
         // do not wait on each other.
-        detail::AngleSum sums[4];
-        for (std::size_t k = 0; k < terms_.size(); ++k) {
-            const Term& t = terms_[k];
-            const double gu = apex(t.ux, t.uy, t.az - z), gv = apex(t.vx, t.vy, t.bz - z);
-            const double product = gu * gv, den = product + t.across, size = std::fabs(den) + std::fabs(t.det);
-            if (t.across < 0.0 && size < 1e-6 * (product - t.across)) return false;
-            // Scaled to |x| + |y| = 1 (the angle is unchanged), so that the
-            // products stay within (1/sqrt 2)^n of 1.
-            sums[(t.det > 0.0 ? 0 : 2) + (k & 1)].add(den / size, std::fabs(t.det) / size);
-        }
+        detail::AngleProduct up[2], down[2];
+        if (!product(ups_, z, up) || !product(downs_, z, down)) return false;
         double fans = 0.0;
         const glm::dvec3 q(x_, y_, z);
         for (const detail::BoundaryCaps::Node* n : far_) fans += detail::BoundaryCaps::firstOrderSolidAngle(*n, q);
         // Each edge adds 2 atan2(det, den); over 4 pi.
-        split.up = (sums[0].angle() + sums[1].angle()) / (2.0 * kPi);
-        split.down = -(sums[2].angle() + sums[3].angle()) / (2.0 * kPi);
+        split.up = (up[0].angle() + up[1].angle()) / (2.0 * kPi);
+        split.down = -(down[0].angle() + down[1].angle()) / (2.0 * kPi);
         split.smooth = -fans / kFourPi;
         return true;
     }
@@ -184,30 +178,99 @@ private:
     /// non-manifold shell's and the soup's grids 2-3x slower than 1, which
     /// cuts long runs in halves instead; 1e-2 on the bound was no faster.)
     static constexpr double kFarDrift = 1.0;
-    struct Term {
-        double ux, uy, vx, vy, az, bz, det, across;
+    static constexpr std::size_t kBlock = 16;
+    /// The column's edges, a field a vector (so that a block of them loads
+    /// as vectors): ends a, b less the column's (x, y), their depths, the
+    /// cross product det (the edge's turn about the column, never 0) and
+    /// dot product `across` of their (x, y) parts.
+    struct Terms {
+        std::vector<double> ux, uy, vx, vy, az, bz, det, across;
+        std::size_t size() const { return ux.size(); }
+        void clear() {
+            for (std::vector<double>* v : {&ux, &uy, &vx, &vy, &az, &bz, &det, &across}) v->clear();
+        }
     };
-    /// Adds edge a -> b; false where its projection meets the column.
-    bool addEdge(const glm::dvec3& a, const glm::dvec3& b) {
-        Term t;
-        t.ux = a.x - x_;
-        t.uy = a.y - y_;
-        t.vx = b.x - x_;
-        t.vy = b.y - y_;
-        t.az = a.z;
-        t.bz = b.z;
-        t.det = t.ux * t.vy - t.uy * t.vx;
-        t.across = t.ux * t.vx + t.uy * t.vy;
-        if (t.det == 0.0) return t.across > 0.0; // else adds 0 all along the column
-        terms_.push_back(t);
+    /// Edges first .. first + n - 1 of `terms` at depth z: each edge's den +
+    /// i det (edgeAngleFactor's, both times the positive du dv that
+    /// apex's division would take) scaled to |x| + |y| = 1. False where
+    /// some edge's denominator cancels to within 1e-6 of its parts.
+    VDS_EDGE_CLONES static bool columnFactors(const Terms& terms, std::size_t first, std::size_t n, double z,
+                                              double* __restrict xs, double* __restrict ys) {
+        // Whether each edge's denominator cancels, as a double a lane (an
+        // int reduction of double compares would keep the loop scalar).
+        alignas(64) double cancels[kBlock];
+        const double *__restrict ux = terms.ux.data() + first, *uy = terms.uy.data() + first, *vx = terms.vx.data() + first,
+                     *vy = terms.vy.data() + first, *az = terms.az.data() + first, *bz = terms.bz.data() + first,
+                     *det = terms.det.data() + first, *across = terms.across.data() + first;
+        for (std::size_t j = 0; j < n; ++j) {
+            // apex(w) = |w| + w_z = nw / dw: w_z >= 0: (|w| + w_z) / 1, else
+            // rho^2 / (|w| + |w_z|).
+            const double uz = az[j] - z, vz = bz[j] - z;
+            const double ru = ux[j] * ux[j] + uy[j] * uy[j], rv = vx[j] * vx[j] + vy[j] * vy[j];
+            const double mu = std::sqrt(ru + uz * uz) + std::fabs(uz), mv = std::sqrt(rv + vz * vz) + std::fabs(vz);
+            double nu = ru, du = mu, nv = rv, dv = mv;
+            if (uz >= 0.0) {
+                nu = mu;
+                du = 1.0;
+            }
+            if (vz >= 0.0) {
+                nv = mv;
+                dv = 1.0;
+            }
+            const double scale = du * dv, product = nu * nv, along = across[j] * scale;
+            const double den = product + along, turn = det[j] * scale, size = std::fabs(den) + std::fabs(turn);
+            cancels[j] = across[j] < 0.0 && size < 1e-6 * (product - along) ? 1.0 : 0.0;
+            const double inv = 1.0 / size;
+            xs[j] = den * inv;
+            ys[j] = turn * inv;
+        }
+        for (std::size_t j = 0; j < n; ++j)
+            if (cancels[j] != 0.0) return false;
         return true;
     }
-    /// |w| + w_z, without cancellation where w_z is close to -|w|.
-    static double apex(double wx, double wy, double wz) {
-        const double rho2 = wx * wx + wy * wy, length = std::sqrt(rho2 + wz * wz);
-        return wz >= 0.0 ? length + wz : rho2 / (length - wz);
+    /// The angles of `terms` (all of one sign: det's, |det| taken) at depth
+    /// z multiplied into `sums` (two products, alternating, so that
+    /// consecutive multiplies do not wait on each other); false where some
+    /// edge's denominator cancels (see columnFactors).
+    static bool product(const Terms& terms, double z, detail::AngleProduct (&sums)[2]) {
+        alignas(64) double xs[kBlock], ys[kBlock];
+        const std::size_t count = terms.size();
+        for (std::size_t first = 0; first < count; first += kBlock) {
+            const std::size_t n = std::min(kBlock, count - first);
+            if (!columnFactors(terms, first, n, z, xs, ys)) return false;
+            std::size_t j = 0;
+            for (; j + 1 < n; j += 2) {
+                sums[0].add(xs[j], std::fabs(ys[j]));
+                sums[1].add(xs[j + 1], std::fabs(ys[j + 1]));
+            }
+            if (j < n) sums[0].add(xs[j], std::fabs(ys[j]));
+            // At most 32 factors a product between rescales.
+            if ((first / kBlock) % 4 == 3) {
+                sums[0].rescale();
+                sums[1].rescale();
+            }
+        }
+        return true;
     }
-    std::vector<Term> terms_;
+    /// Adds edge a -> b; false where its projection meets the column.
+    bool addEdge(const glm::dvec3& a, const glm::dvec3& b) {
+        const double ux = a.x - x_, uy = a.y - y_, vx = b.x - x_, vy = b.y - y_;
+        const double det = ux * vy - uy * vx, across = ux * vx + uy * vy;
+        if (det == 0.0) return across > 0.0; // else adds 0 all along the column
+        // The sign of det, so of the edge's angle, is the column's: the
+        // edges of each sign kept apart.
+        Terms& terms = det > 0.0 ? ups_ : downs_;
+        terms.ux.push_back(ux);
+        terms.uy.push_back(uy);
+        terms.vx.push_back(vx);
+        terms.vy.push_back(vy);
+        terms.az.push_back(a.z);
+        terms.bz.push_back(b.z);
+        terms.det.push_back(det);
+        terms.across.push_back(across);
+        return true;
+    }
+    Terms ups_, downs_; ///< the column's edges with det > 0, det < 0
     std::vector<const detail::BoundaryCaps::Node*> far_;
     double error_ = 0.0, drift_ = 0.0, x_ = 0.0, y_ = 0.0;
 };
