@@ -280,20 +280,27 @@ bool gwnSample(const Sprite& sprite, const glm::vec3& t, int& winding, glm::vec3
 /// depths (a margin for the rounding of depth to float), each counts the
 /// same in front at every depth of the cell; where they all count alike,
 /// and beside the texture (if the cell reaches past it) that is 0, the
-/// integer term is that one count over the cell. Reads the sprite during
-/// constantWindings() only.
+/// integer term is that one count over the cell. In the boundary's sweep
+/// the columns count apart (across the sweep a crossing ends at the
+/// boundary), but the caps' crossings of the same columns at the point B
+/// is taken at make up the difference: where neither the mesh's crossings
+/// nor the caps' lie within the cell's depths and every column's sum is
+/// alike (and the cell is inside the texture), the closed count is that
+/// sum. Reads the sprite during constantWindings() only.
 class SpriteColumns final : public CellWindings {
 public:
     /// `threads`: over the cells' columns along the axis (0: all cores).
     SpriteColumns(const Sprite& sprite, unsigned threads) : sprite_(sprite), threads_(threads) {}
-    void constantWindings(const CellLattice& cells, std::vector<std::int32_t>& windings) const override;
+    void constantWindings(const CellLattice& cells, const ProjectedMesh* caps, std::vector<std::int32_t>& windings,
+                          std::vector<std::int32_t>& closed) const override;
 
 private:
     const Sprite& sprite_;
     unsigned threads_;
 };
 
-void SpriteColumns::constantWindings(const CellLattice& cells, std::vector<std::int32_t>& windings) const {
+void SpriteColumns::constantWindings(const CellLattice& cells, const ProjectedMesh* caps,
+                                     std::vector<std::int32_t>& windings, std::vector<std::int32_t>& closed) const {
     const SpriteGrid& g = sprite_.grid;
     const glm::ivec3 p = axisPermutation(g.axis);
     constexpr std::uint32_t kMostLayers = 32; // four bits a layer in two words
@@ -344,9 +351,10 @@ void SpriteColumns::constantWindings(const CellLattice& cells, std::vector<std::
     for (std::uint32_t k = 0; k < layers; ++k) (k < 16 ? zero.low : zero.high) |= std::uint64_t(8) << (4 * (k % 16));
     // Counts of one column into `counts`; layers a crossing may lie in into
     // `spoilt` (a nibble 0xf each); false where a count does not fit.
-    const auto count = [&](const float* c, const float* last, Nibbles& counts, Nibbles& spoilt) {
+    const auto count = [&](const float* c, const float* last, Nibbles& counts, Nibbles& spoilt, int& peak) {
         counts = zero;
         int running = 0;
+        peak = 0;
         for (; c != last; ++c) {
             const double d = std::fabs(double(*c));
             const double x = (d - first) * inverse;
@@ -371,6 +379,7 @@ void SpriteColumns::constantWindings(const CellLattice& cells, std::vector<std::
             const bool enters = crossingEnters(*c);
             running += enters ? 1 : -1;
             if (running > 7 || running < -7) return false;
+            peak = std::max(peak, std::abs(running));
             if (next >= std::int64_t(layers)) break; // it and the rest lie behind every layer
             if (enters) {
                 counts.low += after[next].low;
@@ -378,6 +387,67 @@ void SpriteColumns::constantWindings(const CellLattice& cells, std::vector<std::
             } else {
                 counts.low -= after[next].low;
                 counts.high -= after[next].high;
+            }
+        }
+        return true;
+    };
+    // The caps' crossings of column (s, t) added to its counts, as the
+    // query's count takes them (ProjectedMesh::winding at the point B is
+    // taken at: the texel centre as ColumnPoints places it, the query's
+    // depth): a cap triangle that claims the column counts at the depths
+    // past its farthest vertex, none before its nearest; between, its
+    // layers are spoilt. False where a count may not fit (the column's
+    // peak count and the caps' crossings beyond +-7).
+    const ColumnPoints place(g);
+    // Footprints some cap's box (two texels wider each way) overlaps: no
+    // cap claims a column of the others (and the boundary's sweep, inside
+    // the caps' projection, never passes there).
+    std::vector<std::uint8_t> underCaps(std::size_t(cells.dims[p.x]) * cells.dims[p.y], 0);
+    if (caps)
+        for (std::size_t k = 0; k < caps->crossable; ++k) {
+            const Triangle& tri = caps->tris[k];
+            std::int64_t range[2][2];
+            bool finite = true;
+            for (int u = 0; u < 2; ++u) {
+                const int a = u == 0 ? p.x : p.y;
+                const double lo = std::min({tri.v[0][u], tri.v[1][u], tri.v[2][u]}) - 2.0 * double(g.texelSize);
+                const double hi = std::max({tri.v[0][u], tri.v[1][u], tri.v[2][u]}) + 2.0 * double(g.texelSize);
+                const double from = std::floor((lo - cells.lo[a]) / cells.size[a]), to = std::floor((hi - cells.lo[a]) / cells.size[a]);
+                finite = finite && from >= -1e18 && to <= 1e18; // not NaN, not absurd
+                range[u][0] = finite ? std::int64_t(std::max(from, 0.0)) : 0;
+                range[u][1] = finite ? std::int64_t(std::min(to, double(cells.dims[a]) - 1.0)) : -1;
+            }
+            if (!finite) continue;
+            for (std::int64_t j = range[1][0]; j <= range[1][1]; ++j)
+                for (std::int64_t i = range[0][0]; i <= range[0][1]; ++i)
+                    underCaps[std::size_t(j) * cells.dims[p.x] + std::size_t(i)] = 1;
+        }
+    const auto addCaps = [&](std::int64_t s, std::int64_t t, const Nibbles& counts, int peak, Nibbles& capped,
+                             Nibbles& spoilt) {
+        capped = counts;
+        float q[3] = {place.lo[p.x] + (float(s) + 0.5f) * place.texel, place.lo[p.y] + (float(t) + 0.5f) * place.texel,
+                      std::numeric_limits<float>::infinity()};
+        const CellGrid::Found found = caps->grid.find(q);
+        for (const CellEntry* e = found.begin; e != found.end; ++e) {
+            if (!CellGrid::mayHold(*e, found.sub)) continue;
+            const Triangle& tri = caps->tris[e->triangle];
+            if (!claims(tri, q)) continue;
+            if (++peak > 7) return false;
+            const double nearest = std::min({tri.v[0][2], tri.v[1][2], tri.v[2][2]});
+            const double farthest = std::max({tri.v[0][2], tri.v[1][2], tri.v[2][2]});
+            const std::int64_t from = std::max<std::int64_t>(layerOf((nearest - boxLo) / depth - 2.0 * margin), 0);
+            const std::int64_t next = std::min<std::int64_t>(layerOf((farthest - boxLo) / depth + 2.0 * margin) + 1, layers);
+            if (from < next) {
+                const Nibbles ones = after[from] ^ after[next];
+                spoilt |= Nibbles{ones.low * 0xfu, ones.high * 0xfu};
+            }
+            if (next >= std::int64_t(layers)) continue;
+            if (tri.flags & kEntering) {
+                capped.low += after[next].low;
+                capped.high += after[next].high;
+            } else {
+                capped.low -= after[next].low;
+                capped.high -= after[next].high;
             }
         }
         return true;
@@ -408,31 +478,54 @@ void SpriteColumns::constantWindings(const CellLattice& cells, std::vector<std::
                 highest[u] = fits ? std::min<std::int64_t>(std::int64_t(extent[u]) - 1, std::int64_t(b)) : -1;
             }
             if (!fits) continue;
-            Nibbles reference = zero, counts, spoilt;
-            bool counted = false;
+            const bool beside = empty; // the footprint reaches past the texture
+            // Per column: its counts, and with the caps' crossings added
+            // (`capped`); layers a crossing of the mesh may lie in
+            // (`within`), layers some column counts apart in (`apart`),
+            // the same with the caps (`cappedWithin`, `cappedApart`).
+            Nibbles reference = zero, counts, within, apart;
+            Nibbles cappedReference = zero, capped, cappedWithin, cappedApart;
+            bool counted = false, closes = caps != nullptr && !beside && underCaps[f] != 0;
             for (std::int64_t t = lowest[1]; t <= highest[1] && fits; ++t)
                 for (std::int64_t s = lowest[0]; s <= highest[0] && fits; ++s) {
                     const std::size_t column = std::size_t(t) * g.width + std::size_t(s);
                     const float* c = sprite_.crossings.data() + sprite_.offsets[column];
                     const float* last = sprite_.crossings.data() + sprite_.offsets[column + 1];
+                    int peak = 0;
                     if (c == last) {
-                        empty = true;
-                        continue;
+                        empty = true; // counts 0 at every depth: compared below
+                        if (!closes) continue;
+                        counts = zero;
+                    } else {
+                        fits = count(c, last, counts, within, peak);
+                        if (!fits) break;
                     }
+                    if (closes) closes = addCaps(s, t, counts, peak, capped, cappedWithin);
                     // The first column is the reference; the rest compare with it.
-                    fits = count(c, last, counted ? counts : reference, spoilt);
-                    if (counted) spoilt |= counts ^ reference;
-                    counted = true;
+                    if (counted) {
+                        apart |= counts ^ reference;
+                        cappedApart |= capped ^ cappedReference;
+                    } else {
+                        reference = counts;
+                        cappedReference = capped;
+                        counted = true;
+                    }
                 }
             if (!fits) continue;
-            if (empty) spoilt |= reference ^ zero; // where a column counts 0 everywhere, only 0 is shared
+            // Where a column counts 0 everywhere, only 0 is shared (beside
+            // the texture, the count is 0).
+            if (empty) apart |= reference ^ zero;
+            const Nibbles spoilt{within.low | apart.low, within.high | apart.high};
             for (std::uint32_t k = 0; k < layers; ++k) {
-                if (spoilt.at(k) != 0) continue;
                 glm::uvec3 cell;
                 cell[p.x] = i;
                 cell[p.y] = j;
                 cell[p.z] = k;
-                windings[cells.index(cell)] = std::int32_t(reference.at(k)) - 8;
+                if (spoilt.at(k) == 0) windings[cells.index(cell)] = std::int32_t(reference.at(k)) - 8;
+                // The closed count: no crossing of the mesh or the caps
+                // within the layer, and every column's sum alike.
+                if (closes && within.at(k) == 0 && cappedWithin.at(k) == 0 && cappedApart.at(k) == 0)
+                    closed[cells.index(cell)] = std::int32_t(cappedReference.at(k)) - 8;
             }
         }
     });

@@ -236,9 +236,9 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
     buildReach();
     if (!closed_ || tris.empty()) return;
     buildChains();
-    if (domain) buildRangeGrid(*domain, surface ? nullptr : windings);
     projected_.emplace(MeshView(capPositions_.data(), capPositions_.size(), capTriangles_.data(), capTriangles_.size()),
                        axis);
+    if (domain) buildRangeGrid(*domain, surface ? nullptr : windings);
     std::vector<std::uint32_t> order(fine.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = std::uint32_t(k);
     nodes_.reserve(2 * fine.size() / kLeafTriangles + 2);
@@ -752,7 +752,8 @@ void BoundaryCaps::buildRangeGrid(const Box& domain, const CellWindings* winding
     }
     if (windings) {
         g.constantWinding.assign(cells, CellWindings::kUnknown);
-        windings->constantWindings(CellLattice{lo, g.size, g.dims}, g.constantWinding);
+        g.closedWinding.assign(cells, CellWindings::kUnknown);
+        windings->constantWindings(CellLattice{lo, g.size, g.dims}, &*projected_, g.constantWinding, g.closedWinding);
     }
     g.capMet.assign(cells, 0);
     for (const glm::uvec3& c : capTriangles_)
@@ -812,6 +813,14 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
             } else if (!clearOfSweep) {
                 base -= double(projected_->winding(c));
                 result = 5;
+                if (!g.closedWinding.empty() && g.closedWinding[cell] != CellWindings::kUnknown) {
+                    // -w_caps's range (the caps keep out of the cell), and
+                    // an integer term plus caps' crossing count the caller
+                    // knows is one integer over the cell.
+                    base += double(g.closedWinding[cell]);
+                    result = 4;
+                    ++g.closedCells;
+                }
             } else if (!g.constantWinding.empty() && g.constantWinding[cell] != CellWindings::kUnknown) {
                 // B's range, and an integer term the caller knows is one
                 // integer over the cell.
@@ -847,6 +856,7 @@ BoundaryCaps::RangedCells BoundaryCaps::rangedCells() const {
         ranged.capped += state == 5;
         ranged.planned += state == 6;
     }
+    ranged.closed = g.closedCells.load(std::memory_order_relaxed);
     return ranged;
 }
 

@@ -147,8 +147,14 @@ public:
     static constexpr std::int32_t kUnknown = std::numeric_limits<std::int32_t>::min();
     virtual ~CellWindings() = default;
     /// Sets windings[cells.index(at)] = n for every cell over which the
-    /// integer term is known to be n; leaves the rest (kUnknown).
-    virtual void constantWindings(const CellLattice& cells, std::vector<std::int32_t>& windings) const = 0;
+    /// integer term is known to be n; leaves the rest (kUnknown). And
+    /// closed[cells.index(at)] = n for every cell over which the integer
+    /// term plus `caps`' crossing count (ProjectedMesh::winding) at the
+    /// point B is taken at is known to be n: the crossing count of the
+    /// closed surface the caps make of the mesh, one integer where that
+    /// surface keeps out of the cell, across the boundary's sweep too.
+    virtual void constantWindings(const CellLattice& cells, const ProjectedMesh* caps,
+                                  std::vector<std::int32_t>& windings, std::vector<std::int32_t>& closed) const = 0;
 };
 
 /// Marks the cells triangle (a, b, c) may meet: those its box overlaps
@@ -289,6 +295,9 @@ public:
         /// Cells with no range but a plan: the loops near the cell, the
         /// rest's -w_caps by its range over the cell (see decide).
         std::size_t planned = 0;
+        /// Of `winding`: cells in the boundary's sweep, by the closed
+        /// surface's crossing count (CellWindings).
+        std::size_t closed = 0;
     };
     RangedCells rangedCells() const;
 
@@ -375,6 +384,10 @@ private:
         /// The integer term over each cell where the caller knew it to be
         /// one integer (CellWindings), else kUnknown; empty without.
         std::vector<std::int32_t> constantWinding;
+        /// CellWindings' closed counts: in the sweep, where the caps keep
+        /// out of a cell, n - w_caps is the whole winding number.
+        std::vector<std::int32_t> closedWinding;
+        mutable std::atomic<std::size_t> closedCells{0}; ///< state 4 by closedWinding
         /// A planned cell's near nodes (whole loops, or groups of them),
         /// then the loops they hold, ascending: nearCount[cell] of the
         /// first, nearLoops[cell] of the second.
