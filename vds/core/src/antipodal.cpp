@@ -391,66 +391,144 @@ void SpriteColumns::constantWindings(const CellLattice& cells, const ProjectedMe
         }
         return true;
     };
-    // The caps' crossings of column (s, t) added to its counts, as the
-    // query's count takes them (ProjectedMesh::winding at the point B is
-    // taken at: the texel centre as ColumnPoints places it, the query's
-    // depth): a cap triangle that claims the column counts at the depths
-    // past its farthest vertex, none before its nearest; between, its
-    // layers are spoilt. False where a count may not fit (the column's
-    // peak count and the caps' crossings beyond +-7).
-    const ColumnPoints place(g);
-    // Footprints some cap's box (two texels wider each way) overlaps: no
-    // cap claims a column of the others (and the boundary's sweep, inside
-    // the caps' projection, never passes there).
-    std::vector<std::uint8_t> underCaps(std::size_t(cells.dims[p.x]) * cells.dims[p.y], 0);
-    if (caps)
-        for (std::size_t k = 0; k < caps->crossable; ++k) {
-            const Triangle& tri = caps->tris[k];
+    // Footprints some boundary edge's box (two texels wider each way)
+    // overlaps: the boundary's sweep passes through no other (the caps'
+    // grid asks for the closed count in the sweep only).
+    const std::size_t footprintCount = std::size_t(cells.dims[p.x]) * cells.dims[p.y];
+    // The footprints, as (i, j) ranges, a box in (s, t) two texels wider
+    // each way overlaps; false for a box that is not finite.
+    const auto overlapped = [&](const float* lo, const float* hi, std::int64_t (&range)[2][2]) {
+        for (int u = 0; u < 2; ++u) {
+            const int axis = u == 0 ? p.x : p.y;
+            const double from = std::floor((double(lo[u]) - 2.0 * double(g.texelSize) - cells.lo[axis]) / cells.size[axis]);
+            const double to = std::floor((double(hi[u]) + 2.0 * double(g.texelSize) - cells.lo[axis]) / cells.size[axis]);
+            if (!(from >= -1e18 && to <= 1e18)) return false; // not NaN, not absurd
+            range[u][0] = std::int64_t(std::max(from, 0.0));
+            range[u][1] = std::int64_t(std::min(to, double(cells.dims[axis]) - 1.0));
+        }
+        return true;
+    };
+    std::vector<std::uint8_t> swept(footprintCount, 0);
+    // The caps' triangles whose box overlaps each swept footprint:
+    // `capsIn` from capsFirst[f] to capsFirst[f + 1].
+    std::vector<std::uint32_t> capsFirst, capsIn;
+    if (caps) {
+        for (std::size_t e = 0; e + 1 < sprite_.boundaryEdges.size(); e += 2) {
+            const glm::vec3 &a = sprite_.boundaryEdges[e], &b = sprite_.boundaryEdges[e + 1];
+            const float lo[2] = {std::min(a[p.x], b[p.x]), std::min(a[p.y], b[p.y])};
+            const float hi[2] = {std::max(a[p.x], b[p.x]), std::max(a[p.y], b[p.y])};
             std::int64_t range[2][2];
-            bool finite = true;
-            for (int u = 0; u < 2; ++u) {
-                const int a = u == 0 ? p.x : p.y;
-                const double lo = std::min({tri.v[0][u], tri.v[1][u], tri.v[2][u]}) - 2.0 * double(g.texelSize);
-                const double hi = std::max({tri.v[0][u], tri.v[1][u], tri.v[2][u]}) + 2.0 * double(g.texelSize);
-                const double from = std::floor((lo - cells.lo[a]) / cells.size[a]), to = std::floor((hi - cells.lo[a]) / cells.size[a]);
-                finite = finite && from >= -1e18 && to <= 1e18; // not NaN, not absurd
-                range[u][0] = finite ? std::int64_t(std::max(from, 0.0)) : 0;
-                range[u][1] = finite ? std::int64_t(std::min(to, double(cells.dims[a]) - 1.0)) : -1;
-            }
-            if (!finite) continue;
+            if (!overlapped(lo, hi, range)) continue;
             for (std::int64_t j = range[1][0]; j <= range[1][1]; ++j)
                 for (std::int64_t i = range[0][0]; i <= range[0][1]; ++i)
-                    underCaps[std::size_t(j) * cells.dims[p.x] + std::size_t(i)] = 1;
+                    swept[std::size_t(j) * cells.dims[p.x] + std::size_t(i)] = 1;
         }
-    const auto addCaps = [&](std::int64_t s, std::int64_t t, const Nibbles& counts, int peak, Nibbles& capped,
-                             Nibbles& spoilt) {
-        capped = counts;
-        float q[3] = {place.lo[p.x] + (float(s) + 0.5f) * place.texel, place.lo[p.y] + (float(t) + 0.5f) * place.texel,
-                      std::numeric_limits<float>::infinity()};
-        const CellGrid::Found found = caps->grid.find(q);
-        for (const CellEntry* e = found.begin; e != found.end; ++e) {
-            if (!CellGrid::mayHold(*e, found.sub)) continue;
-            const Triangle& tri = caps->tris[e->triangle];
-            if (!claims(tri, q)) continue;
-            if (++peak > 7) return false;
+        capsFirst.assign(footprintCount + 1, 0);
+        for (int pass = 0; pass < 2; ++pass) {
+            std::vector<std::uint32_t> next;
+            if (pass == 1) {
+                for (std::size_t f = 0; f < footprintCount; ++f) capsFirst[f + 1] += capsFirst[f];
+                capsIn.resize(capsFirst[footprintCount]);
+                next.assign(capsFirst.begin(), capsFirst.end() - 1);
+            }
+            for (std::size_t k = 0; k < caps->crossable; ++k) {
+                const Triangle& tri = caps->tris[k];
+                const float lo[2] = {std::min({tri.v[0][0], tri.v[1][0], tri.v[2][0]}), std::min({tri.v[0][1], tri.v[1][1], tri.v[2][1]})};
+                const float hi[2] = {std::max({tri.v[0][0], tri.v[1][0], tri.v[2][0]}), std::max({tri.v[0][1], tri.v[1][1], tri.v[2][1]})};
+                std::int64_t range[2][2];
+                if (!overlapped(lo, hi, range)) continue;
+                for (std::int64_t j = range[1][0]; j <= range[1][1]; ++j)
+                    for (std::int64_t i = range[0][0]; i <= range[0][1]; ++i) {
+                        const std::size_t f = std::size_t(j) * cells.dims[p.x] + std::size_t(i);
+                        if (!swept[f]) continue;
+                        if (pass == 0) ++capsFirst[f + 1];
+                        else capsIn[next[f]++] = std::uint32_t(k);
+                    }
+            }
+        }
+    }
+    // The caps' crossings of each column of a footprint, as the query's
+    // count takes them (ProjectedMesh::winding at the point B is taken at:
+    // the texel centre as ColumnPoints places it, at the query's depth): a
+    // cap triangle that claims the column counts at the depths past its
+    // farthest vertex, none before its nearest; between, its layers are
+    // spoilt. Per column: the change to its counts (`delta`, nibble by
+    // nibble; added to the counts in any order it gives the same word),
+    // the layers spoilt, and the crossings (for the fit: the column's peak
+    // count plus these within +-7).
+    struct CapColumn {
+        Nibbles delta, spoilt;
+        int crossings = 0;
+    };
+    const ColumnPoints place(g);
+    const auto capColumns = [&](std::size_t f, const std::int64_t (&lowest)[2], const std::int64_t (&highest)[2],
+                                std::vector<CapColumn>& out) {
+        const std::int64_t across = highest[0] - lowest[0] + 1;
+        out.assign(std::size_t(across * (highest[1] - lowest[1] + 1)), CapColumn{});
+        for (std::uint32_t c = capsFirst[f]; c < capsFirst[f + 1]; ++c) {
+            const Triangle& tri = caps->tris[capsIn[c]];
             const double nearest = std::min({tri.v[0][2], tri.v[1][2], tri.v[2][2]});
             const double farthest = std::max({tri.v[0][2], tri.v[1][2], tri.v[2][2]});
             const std::int64_t from = std::max<std::int64_t>(layerOf((nearest - boxLo) / depth - 2.0 * margin), 0);
             const std::int64_t next = std::min<std::int64_t>(layerOf((farthest - boxLo) / depth + 2.0 * margin) + 1, layers);
+            Nibbles spoils;
             if (from < next) {
                 const Nibbles ones = after[from] ^ after[next];
-                spoilt |= Nibbles{ones.low * 0xfu, ones.high * 0xfu};
+                spoils = {ones.low * 0xfu, ones.high * 0xfu};
             }
-            if (next >= std::int64_t(layers)) continue;
-            if (tri.flags & kEntering) {
-                capped.low += after[next].low;
-                capped.high += after[next].high;
-            } else {
-                capped.low -= after[next].low;
-                capped.high -= after[next].high;
+            const Nibbles step = next < std::int64_t(layers) ? after[next] : Nibbles{};
+            const bool enters = (tri.flags & kEntering) != 0;
+            // The footprint's columns within the triangle's box.
+            std::int64_t range[2][2];
+            for (int u = 0; u < 2; ++u) {
+                const float lo = std::min({tri.v[0][u], tri.v[1][u], tri.v[2][u]});
+                const float hi = std::max({tri.v[0][u], tri.v[1][u], tri.v[2][u]});
+                const int axis = u == 0 ? p.x : p.y;
+                range[u][0] = std::max<std::int64_t>(lowest[u], std::int64_t(std::floor((double(lo) - double(place.lo[axis])) / double(place.texel))) - 1);
+                range[u][1] = std::min<std::int64_t>(highest[u], std::int64_t(std::floor((double(hi) - double(place.lo[axis])) / double(place.texel))) + 1);
+            }
+            for (std::int64_t t = range[1][0]; t <= range[1][1]; ++t) {
+                // The row's columns near the triangle: where its centre line
+                // meets the triangle (its edges' crossings of the line, in
+                // double), a column more each way for the rounding; the
+                // claims test decides.
+                const float rowT = place.lo[p.y] + (float(t) + 0.5f) * place.texel;
+                double left = std::numeric_limits<double>::infinity(), right = -left;
+                for (int e = 0; e < 3; ++e) {
+                    const float* a = tri.v[e];
+                    const float* b = tri.v[(e + 1) % 3];
+                    if ((a[1] < rowT && b[1] < rowT) || (a[1] > rowT && b[1] > rowT)) continue;
+                    if (a[1] == b[1]) { // along the line
+                        left = std::min({left, double(a[0]), double(b[0])});
+                        right = std::max({right, double(a[0]), double(b[0])});
+                        continue;
+                    }
+                    const double x = double(a[0]) + (double(rowT) - double(a[1])) / (double(b[1]) - double(a[1])) *
+                                                        (double(b[0]) - double(a[0]));
+                    left = std::min(left, x);
+                    right = std::max(right, x);
+                }
+                if (!(left <= right)) continue;
+                const std::int64_t s0 = std::max<std::int64_t>(
+                    range[0][0], std::int64_t(std::floor((left - double(place.lo[p.x])) / double(place.texel) - 0.5)) - 1);
+                const std::int64_t s1 = std::min<std::int64_t>(
+                    range[0][1], std::int64_t(std::floor((right - double(place.lo[p.x])) / double(place.texel) - 0.5)) + 1);
+                for (std::int64_t s = s0; s <= s1; ++s) {
+                    const float q[2] = {place.lo[p.x] + (float(s) + 0.5f) * place.texel, rowT};
+                    if (!claims(tri, q)) continue;
+                    CapColumn& column = out[std::size_t((t - lowest[1]) * across + (s - lowest[0]))];
+                    ++column.crossings;
+                    column.spoilt |= spoils;
+                    if (enters) {
+                        column.delta.low += step.low;
+                        column.delta.high += step.high;
+                    } else {
+                        column.delta.low -= step.low;
+                        column.delta.high -= step.high;
+                    }
+                }
             }
         }
-        return true;
     };
     const double texel = g.texelSize;
     const std::uint32_t extent[2] = {g.width, g.height};
@@ -485,7 +563,9 @@ void SpriteColumns::constantWindings(const CellLattice& cells, const ProjectedMe
             // the same with the caps (`cappedWithin`, `cappedApart`).
             Nibbles reference = zero, counts, within, apart;
             Nibbles cappedReference = zero, capped, cappedWithin, cappedApart;
-            bool counted = false, closes = caps != nullptr && !beside && underCaps[f] != 0;
+            bool counted = false, closes = caps != nullptr && !beside && swept[f] != 0;
+            thread_local std::vector<CapColumn> capColumn;
+            if (closes) capColumns(f, lowest, highest, capColumn);
             for (std::int64_t t = lowest[1]; t <= highest[1] && fits; ++t)
                 for (std::int64_t s = lowest[0]; s <= highest[0] && fits; ++s) {
                     const std::size_t column = std::size_t(t) * g.width + std::size_t(s);
@@ -500,7 +580,13 @@ void SpriteColumns::constantWindings(const CellLattice& cells, const ProjectedMe
                         fits = count(c, last, counts, within, peak);
                         if (!fits) break;
                     }
-                    if (closes) closes = addCaps(s, t, counts, peak, capped, cappedWithin);
+                    if (closes) {
+                        const CapColumn& capsThere =
+                            capColumn[std::size_t((t - lowest[1]) * (highest[0] - lowest[0] + 1) + (s - lowest[0]))];
+                        closes = peak + capsThere.crossings <= 7;
+                        capped = {counts.low + capsThere.delta.low, counts.high + capsThere.delta.high};
+                        cappedWithin |= capsThere.spoilt;
+                    }
                     // The first column is the reference; the rest compare with it.
                     if (counted) {
                         apart |= counts ^ reference;
