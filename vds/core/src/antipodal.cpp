@@ -136,8 +136,8 @@ VDS_EDGE_CLONES void EdgeAngles::add(const glm::vec3* edges, std::size_t count, 
             va[j] = double(b[axis]) - q[axis];
         }
         for (std::size_t j = 0; j < n; ++j) {
-            // edgeAngleFactor's den + i det, both times du dv > 0 (the same
-            // angle): towardsApex(u) = nu / du is lu + ua (ua >= 0) or
+            // den + i det, both times du dv > 0 (the same angle):
+            // |u| + u_r = nu / du is lu + ua (ua >= 0) or
             // rho_u^2 / (lu - ua) = rho_u^2 / (lu + |ua|) (ua < 0).
             const double ru = us[j] * us[j] + ut[j] * ut[j], rv = vs[j] * vs[j] + vt[j] * vt[j];
             const double lu = std::sqrt(ru + ua[j] * ua[j]), lv = std::sqrt(rv + va[j] * va[j]);

@@ -86,37 +86,15 @@ struct AngleProduct {
     double angle() const { return std::atan2(im, re) + 2.0 * 3.14159265358979323846 * turns; }
 };
 
-/// One edge's angle (+axis, a - q, b - q) as the complex number den + i det
-/// of Van Oosterom & Strackee's formula (the angle is twice its argument),
-/// scaled to |x| + |y| = 1 so that products of many stay in range: the
-/// per-edge sum's form. False, where det = 0 (q on the edge's sweep, or an
-/// end on q's ray): take `edgeSolidAngle` there.
-inline bool edgeAngleFactor(int axis, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& q, double& x,
-                            double& y) {
-    const int s = (axis + 1) % 3, t = (axis + 2) % 3;
-    const glm::dvec3 u = a - q, v = b - q;
-    const double det = u[s] * v[t] - u[t] * v[s];
-    if (det == 0.0) return false;
-    // Van Oosterom & Strackee's denominator |u||v| + u.v + u_r |v| + v_r |u|
-    // is (|u| + u_r)(|v| + v_r) + u_s v_s + u_t v_t; near q's ray (u_r close
-    // to -|u|) the factor |u| + u_r is taken as the equal rho^2 / (|u| - u_r),
-    // which does not cancel (see edgeSolidAngle).
-    const auto towardsApex = [&](const glm::dvec3& w) {
-        const double length = glm::length(w);
-        return w[axis] >= 0.0 ? length + w[axis] : (w[s] * w[s] + w[t] * w[t]) / (length - w[axis]);
-    };
-    const double den = towardsApex(u) * towardsApex(v) + u[s] * v[s] + u[t] * v[t];
-    const double size = std::fabs(den) + std::fabs(det);
-    x = den / size;
-    y = det / size;
-    return true;
-}
-
 /// A sum of edge angles (+axis, a - q, b - q) as the per-edge sum takes
-/// them: each edge's den + i det (edgeAngleFactor) multiplied into one of
-/// four running products, their turns counted, one atan2 at the end. The
+/// them: each edge's angle is twice the argument of den + i det, Van
+/// Oosterom & Strackee's (edgeSolidAngle: den = (|u| + u_r)(|v| + v_r) +
+/// u_s v_s + u_t v_t, the factor |u| + u_r taken as rho^2 / (|u| - u_r)
+/// where u_r < 0, so that it does not cancel), scaled to |x| + |y| = 1 so
+/// that products of many stay in range, and multiplied into one of four
+/// running products, their turns counted, one atan2 at the end. The
 /// factors are found a block of edges at a time with no branch on the
-/// edge (towardsApex's two forms selected, its division folded into the
+/// edge (|u| + u_r's two forms selected, the division folded into the
 /// scale both parts share), so that the compiler takes several edges per
 /// instruction; the products then wait only on each other. An edge with
 /// det = 0 (q on its sweep, an end on q's ray) is taken by edgeSolidAngle.

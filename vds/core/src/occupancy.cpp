@@ -191,7 +191,7 @@ private:
         }
     };
     /// Edges first .. first + n - 1 of `terms` at depth z: each edge's den +
-    /// i det (edgeAngleFactor's, both times the positive du dv that
+    /// i det (EdgeAngles' factor, both times the positive du dv that
     /// apex's division would take) scaled to |x| + |y| = 1. False where
     /// some edge's denominator cancels to within 1e-6 of its parts.
     VDS_EDGE_CLONES static bool columnFactors(const Terms& terms, std::size_t first, std::size_t n, double z,
