@@ -638,44 +638,70 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
     const float* crossings = sprite.crossings.data();
     const ColumnPoints place(sg);
     parallelFor(options.threads, count, 1024, [&](std::size_t begin, std::size_t end) {
-        // In batches, so that the cache misses of many points overlap: find
-        // a batch's points (no memory read), label those whose cell of the
-        // caps answers alone, prefetch the rest's offsets, then their
-        // crossings, then label them.
+        // In batches, three in flight, so that each cache miss has a whole
+        // batch's work to arrive: find batch k's points (no memory read),
+        // label those whose cell of the caps answers alone and prefetch the
+        // rest's offsets; read batch k - 1's offsets and prefetch their
+        // crossings; count batch k - 2's crossings and label them.
         constexpr std::size_t kBatch = 32;
-        glm::vec3 texture[kBatch], points[kBatch];
-        std::ptrdiff_t columns[kBatch];
-        std::size_t pending[kBatch];
-        for (std::size_t b0 = begin; b0 < end; b0 += kBatch) {
-            const std::size_t n = std::min(kBatch, end - b0);
+        struct Pending {
+            std::size_t index;    ///< of the point
+            std::ptrdiff_t column; ///< -1 beside the texture
+            float depth;          ///< texture depth
+            glm::vec3 point;      ///< where B is taken
+            const float *first, *last; ///< the column's crossings (stage 2)
+        };
+        struct Batch {
+            Pending pending[kBatch];
             std::size_t waiting = 0;
-            for (std::size_t i = 0; i < n; ++i) {
-                glm::vec3 p;
-                std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
-                texture[i] = sg.toTexture(p);
-                if (!place.place(texture[i], columns[i], points[i])) {
-                    labels[b0 + i] = 0;
-                    continue;
+        };
+        Batch ring[3];
+        const std::size_t batches = (end - begin + kBatch - 1) / kBatch;
+        for (std::size_t k = 0; k < batches + 2; ++k) {
+            if (k < batches) { // stage 1
+                Batch& batch = ring[k % 3];
+                batch.waiting = 0;
+                const std::size_t b0 = begin + k * kBatch, n = std::min(kBatch, end - b0);
+                for (std::size_t i = 0; i < n; ++i) {
+                    glm::vec3 p, t, q;
+                    std::ptrdiff_t column;
+                    std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
+                    t = sg.toTexture(p);
+                    if (!place.place(t, column, q)) {
+                        labels[b0 + i] = 0;
+                        continue;
+                    }
+                    const int alone = caps ? caps->insideAlone(q) : -1;
+                    if (alone >= 0) {
+                        labels[b0 + i] = std::uint8_t(alone);
+                        continue;
+                    }
+                    batch.pending[batch.waiting++] = {b0 + i, column, t.z, q, nullptr, nullptr};
+                    if (column >= 0) __builtin_prefetch(offsets + column);
                 }
-                const int alone = caps ? caps->insideAlone(points[i]) : -1;
-                if (alone >= 0) {
-                    labels[b0 + i] = std::uint8_t(alone);
-                    continue;
-                }
-                pending[waiting++] = i;
-                if (columns[i] >= 0) __builtin_prefetch(offsets + columns[i]);
             }
-            for (std::size_t w = 0; w < waiting; ++w)
-                if (columns[pending[w]] >= 0) __builtin_prefetch(crossings + offsets[columns[pending[w]]]);
-            for (std::size_t w = 0; w < waiting; ++w) {
-                const std::size_t i = pending[w];
-                const int winding = columnCount(sprite, texture[i], columns[i]);
-                const glm::vec3& q = points[i];
-                labels[b0 + i] = (caps ? caps->inside(winding, q)
-                                       : generalizedWindingInside(double(winding) +
-                                                                  boundaryTermExact(edges, edgeCount, axis, glm::dvec3(q))))
-                                     ? 1
-                                     : 0;
+            if (k >= 1 && k - 1 < batches) { // stage 2
+                Batch& batch = ring[(k - 1) % 3];
+                for (std::size_t w = 0; w < batch.waiting; ++w) {
+                    Pending& at = batch.pending[w];
+                    if (at.column < 0) continue;
+                    at.first = crossings + offsets[at.column];
+                    at.last = crossings + offsets[at.column + 1];
+                    __builtin_prefetch(at.first);
+                }
+            }
+            if (k >= 2) { // stage 3
+                const Batch& batch = ring[(k - 2) % 3];
+                for (std::size_t w = 0; w < batch.waiting; ++w) {
+                    const Pending& at = batch.pending[w];
+                    const int winding = at.column >= 0 ? columnWinding(at.first, at.last, at.depth) : 0;
+                    labels[at.index] =
+                        (caps ? caps->inside(winding, at.point)
+                              : generalizedWindingInside(double(winding) +
+                                                         boundaryTermExact(edges, edgeCount, axis, glm::dvec3(at.point))))
+                            ? 1
+                            : 0;
+                }
             }
         }
     });
