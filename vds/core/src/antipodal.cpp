@@ -115,25 +115,40 @@ double edgeSolidAngle(int axis, const glm::dvec3& a, const glm::dvec3& b, const 
 
 namespace {
 constexpr std::size_t kEdgeBlock = 16;
+
+/// Edges [first, first + n)'s ends less q, by coordinate (s, t, then the
+/// axis: S, T, A), into a block's arrays. The coordinates known when
+/// compiled, so that the compiler loads several edges an instruction;
+/// inlined into each build of EdgeAngles::add, for its instructions.
+template <int S, int T, int A>
+__attribute__((always_inline)) inline void edgeEnds(const glm::vec3* edges, std::size_t first, std::size_t n,
+                                                    const glm::dvec3& q, double* us, double* ut, double* ua, double* vs,
+                                                    double* vt, double* va) {
+    const double qs = q[S], qt = q[T], qa = q[A];
+    for (std::size_t j = 0; j < n; ++j) {
+        const glm::vec3& a = edges[2 * (first + j)];
+        const glm::vec3& b = edges[2 * (first + j) + 1];
+        // Float ends and point: the differences are exact in double.
+        us[j] = double(a[S]) - qs;
+        ut[j] = double(a[T]) - qt;
+        ua[j] = double(a[A]) - qa;
+        vs[j] = double(b[S]) - qs;
+        vt[j] = double(b[T]) - qt;
+        va[j] = double(b[A]) - qa;
+    }
+}
 } // namespace
 
 
 VDS_EDGE_CLONES void EdgeAngles::add(const glm::vec3* edges, std::size_t count, int axis, const glm::dvec3& q) {
-    const int s = (axis + 1) % 3, t = (axis + 2) % 3;
     alignas(64) double us[kEdgeBlock], ut[kEdgeBlock], ua[kEdgeBlock], vs[kEdgeBlock], vt[kEdgeBlock],
         va[kEdgeBlock], xs[kEdgeBlock], ys[kEdgeBlock], dets[kEdgeBlock];
     for (std::size_t first = 0; first < count; first += kEdgeBlock) {
         const std::size_t n = std::min(kEdgeBlock, count - first);
-        for (std::size_t j = 0; j < n; ++j) {
-            const glm::vec3& a = edges[2 * (first + j)];
-            const glm::vec3& b = edges[2 * (first + j) + 1];
-            // Float ends and point: the differences are exact in double.
-            us[j] = double(a[s]) - q[s];
-            ut[j] = double(a[t]) - q[t];
-            ua[j] = double(a[axis]) - q[axis];
-            vs[j] = double(b[s]) - q[s];
-            vt[j] = double(b[t]) - q[t];
-            va[j] = double(b[axis]) - q[axis];
+        switch (axis) {
+        case 0: edgeEnds<1, 2, 0>(edges, first, n, q, us, ut, ua, vs, vt, va); break;
+        case 1: edgeEnds<2, 0, 1>(edges, first, n, q, us, ut, ua, vs, vt, va); break;
+        default: edgeEnds<0, 1, 2>(edges, first, n, q, us, ut, ua, vs, vt, va); break;
         }
         for (std::size_t j = 0; j < n; ++j) {
             // den + i det, both times du dv > 0 (the same angle):
@@ -163,11 +178,40 @@ VDS_EDGE_CLONES void EdgeAngles::add(const glm::vec3* edges, std::size_t count, 
         bool whole = n == kEdgeBlock;
         for (std::size_t j = 0; j < n; ++j) whole &= dets[j] != 0.0;
         if (whole) {
-            for (std::size_t j = 0; j < kEdgeBlock; j += 4) {
-                products_[0].add(xs[j], ys[j]);
-                products_[1].add(xs[j + 1], ys[j + 1]);
-                products_[2].add(xs[j + 2], ys[j + 2]);
-                products_[3].add(xs[j + 3], ys[j + 3]);
+            // The four products side by side, lane l taking edges l, l + 4,
+            // ...: AngleProduct::add's steps, each lane's exactly, in two
+            // vectors of two lanes (GCC's vectors: SSE2's width, which the
+            // AVX2 build takes as one of four).
+            typedef double Lanes __attribute__((vector_size(16)));
+            typedef std::int64_t Masks __attribute__((vector_size(16)));
+            Lanes re[2] = {{products_[0].re, products_[1].re}, {products_[2].re, products_[3].re}};
+            Lanes im[2] = {{products_[0].im, products_[1].im}, {products_[2].im, products_[3].im}};
+            Masks turns[2] = {{0, 0}, {0, 0}};
+            const Lanes zero = {0.0, 0.0};
+            const Masks none = {0, 0};
+            for (std::size_t j = 0; j < kEdgeBlock; j += 4)
+                for (int h = 0; h < 2; ++h) {
+                    Lanes x, y;
+                    std::memcpy(&x, xs + j + 2 * h, sizeof x);
+                    std::memcpy(&y, ys + j + 2 * h, sizeof y);
+                    const Lanes r = re[h] * x - im[h] * y, i = re[h] * y + im[h] * x;
+                    Masks imBits, iBits;
+                    std::memcpy(&imBits, &im[h], sizeof imBits);
+                    std::memcpy(&iBits, &i, sizeof iBits);
+                    // Masks are -1 (true) or 0: left, above = !signbit(im),
+                    // after = !signbit(i); a turn up where y > 0, above, not
+                    // after, left; down where y < 0, not above, after, left.
+                    const Masks left = (re[h] < zero) | (r < zero);
+                    const Masks above = imBits >= none, after = iBits >= none;
+                    turns[h] -= (y > zero) & above & ~after & left; // -(-1): +1
+                    turns[h] += (y < zero) & ~above & after & left;
+                    re[h] = r;
+                    im[h] = i;
+                }
+            for (int l = 0; l < 4; ++l) {
+                products_[l].re = re[l / 2][l % 2];
+                products_[l].im = im[l / 2][l % 2];
+                products_[l].turns += int(turns[l / 2][l % 2]);
             }
         } else {
             for (std::size_t j = 0; j < n; ++j) {
