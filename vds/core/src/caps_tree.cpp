@@ -50,10 +50,14 @@ constexpr double kOpenFraction = 0.5;
 /// slow the non-manifold shell's bulk.
 constexpr std::uint32_t kDirectEdges = 16;
 /// decide() gives up for the per-edge sum where this times its predicted
-/// work passes the budget (see there). Measured (0, 1, 1.5, 2): 1.5 keeps
-/// every band of |w - 1/2| on the bench's meshes within about 20x the
-/// bulk's cost; 0 (never) leaves the soup's and the non-manifold shell's
-/// points within 0.001 at 30x, 2 slows the bunny's near its holes.
+/// work passes the budget (see there). Measured (0, 1, 1.5, 2, 3, with the
+/// predicted work rising as the cube root, the square root and the 2/3
+/// power of the shrink needed): 1.5 with the square root keeps every band
+/// of |w - 1/2| on the bench's meshes within about 19x the bulk's cost,
+/// and the soup's points within 0.001 of 1/2 at 1.7x their rate by the
+/// cube root (which left them at half the per-edge sum's rate); 0 (never)
+/// leaves the soup's and the non-manifold shell's points within 0.001 at
+/// 30x, 2 and 3 slow the bunny's and the teapot's near 1/2.
 constexpr double kGiveUp = 1.5;
 
 struct Moments {
@@ -1277,11 +1281,13 @@ bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const 
                 // decides.
                 if (std::fabs(value) <= margin * farBound + kRoundingSlack) break;
                 // The bound must shrink by margin * bound / |value|, which
-                // takes about the work so far times its cube root (a
-                // node's first-order bound falls as its radius cubed, the
-                // nodes of a cut rise as the radius falls): where that
-                // passes the budget, the per-edge sum is the cheaper.
-                if (kGiveUp * work * std::cbrt(margin * bound / std::fabs(value)) > budget) break;
+                // takes about the work so far times its square root (a
+                // node's first-order bound falls as its radius cubed, but
+                // the cut's nodes rise faster than the radius falls, and a
+                // taken node costs about three edges of the per-edge sum):
+                // where that passes the budget, the per-edge sum is the
+                // cheaper.
+                if (kGiveUp * work * std::sqrt(margin * bound / std::fabs(value)) > budget) break;
             }
             if (taken.empty() || work > budget) break;
             // Close to the threshold, the nodes opened from here are taken
