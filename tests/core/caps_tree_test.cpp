@@ -471,7 +471,16 @@ TEST(CapsTree, SpriteCellsWhereEveryColumnCountsAlikeLabelAsThePerEdgeSum) {
         TriangleMesh mesh;
         Axis axis;
     };
+    // A box without its floor, seen along z: its walls lie on the texture's
+    // edges, so the cells along them reach past the texture, and its rim's
+    // sweep runs up them. A point just beyond a wall counts 0 and has B at
+    // itself, where the columns inside (the floor's cap in front: 1) would
+    // put it inside: its cell's closed count does not answer for it.
+    const TriangleMesh openBox =
+        solids::without(solids::box({-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}).mesh,
+                        [](const glm::vec3& centroid) { return centroid.z < -0.49f; });
     const std::vector<SpriteCase> all = {
+        {"box open below, walls on the texture's edges", openBox, Axis::Z},
         {"open cylinder along its walls", openCylinder(48), Axis::Z},
         {"open cylinder across", openCylinder(48), Axis::X},
         {"cup, one large opening", cases()[0].mesh, Axis::Z},
@@ -495,6 +504,13 @@ TEST(CapsTree, SpriteCellsWhereEveryColumnCountsAlikeLabelAsThePerEdgeSum) {
             for (int k = 0; k < 3000; ++k) { // beside a cylinder's wall
                 const float phi = angle(rng), r = 0.5f + near(rng);
                 at.push_back({r * std::cos(phi), r * std::sin(phi), height(rng)});
+            }
+            for (int k = 0; k < 3000; ++k) { // just beyond a box's wall (and just inside it)
+                const float across = 0.5f + 3.0f * near(rng), along = 0.9f * u(rng) * 0.5f;
+                const int wall = k % 4;
+                const float x = wall < 2 ? (wall == 0 ? across : -across) : along;
+                const float y = wall < 2 ? along : (wall == 2 ? across : -across);
+                at.push_back({x, y, height(rng)});
             }
             for (std::size_t e = 0; e + 1 < baked.boundaryEdges.size(); e += 2)
                 for (int k = 0; k < 4; ++k)

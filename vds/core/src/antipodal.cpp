@@ -329,8 +329,10 @@ bool gwnSample(const Sprite& sprite, const glm::vec3& t, int& winding, glm::vec3
 /// boundary), but the caps' crossings of the same columns at the point B
 /// is taken at make up the difference: where neither the mesh's crossings
 /// nor the caps' lie within the cell's depths and every column's sum is
-/// alike (and the cell is inside the texture), the closed count is that
-/// sum. Reads the sprite during constantWindings() only.
+/// alike, the closed count is that sum, for the queries placed in a
+/// column: those beside the texture in such a cell ask insideApart (their
+/// count is 0 and B is taken at the point itself, which no column's sum
+/// speaks of). Reads the sprite during constantWindings() only.
 class SpriteColumns final : public CellWindings {
 public:
     /// `threads`: over the cells' columns along the axis (0: all cores).
@@ -600,14 +602,16 @@ void SpriteColumns::constantWindings(const CellLattice& cells, const ProjectedMe
                 highest[u] = fits ? std::min<std::int64_t>(std::int64_t(extent[u]) - 1, std::int64_t(b)) : -1;
             }
             if (!fits) continue;
-            const bool beside = empty; // the footprint reaches past the texture
             // Per column: its counts, and with the caps' crossings added
             // (`capped`); layers a crossing of the mesh may lie in
             // (`within`), layers some column counts apart in (`apart`),
             // the same with the caps (`cappedWithin`, `cappedApart`).
             Nibbles reference = zero, counts, within, apart;
             Nibbles cappedReference = zero, capped, cappedWithin, cappedApart;
-            bool counted = false, closes = caps != nullptr && !beside && swept[f] != 0;
+            // Beside the texture too: the closed counts speak of the queries
+            // placed in a column (a query beside it asks insideApart).
+            bool counted = false,
+                 closes = caps != nullptr && swept[f] != 0 && lowest[0] <= highest[0] && lowest[1] <= highest[1];
             thread_local std::vector<CapColumn> capColumn;
             if (closes) capColumns(f, lowest, highest, capColumn);
             for (std::int64_t t = lowest[1]; t <= highest[1] && fits; ++t)
@@ -715,7 +719,7 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
                         labels[b0 + i] = 0;
                         continue;
                     }
-                    const int alone = caps ? caps->insideAlone(q) : -1;
+                    const int alone = caps ? caps->insideAlone(q, column < 0) : -1;
                     if (alone >= 0) {
                         labels[b0 + i] = std::uint8_t(alone);
                         continue;
@@ -740,7 +744,7 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
                     const Pending& at = batch.pending[w];
                     const int winding = at.column >= 0 ? columnWinding(at.first, at.last, at.depth) : 0;
                     labels[at.index] =
-                        (caps ? caps->inside(winding, at.point)
+                        (caps ? (at.column >= 0 ? caps->inside(winding, at.point) : caps->insideApart(winding, at.point))
                               : generalizedWindingInside(double(winding) +
                                                          boundaryTermExact(edges, edgeCount, axis, glm::dvec3(at.point))))
                             ? 1
@@ -767,10 +771,11 @@ bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world) {
     requireBoundaryKnown(sprite, Rule::GeneralizedWinding);
     const SpriteGrid& sg = sprite.grid;
     const glm::vec3 t = sg.toTexture(world);
-    int winding = 0;
+    std::ptrdiff_t column;
     glm::vec3 q;
-    if (!gwnSample(sprite, t, winding, q)) return false;
-    return sprite.boundaryCaps.get(sprite).inside(winding, q);
+    if (!ColumnPoints(sg).place(t, column, q)) return false;
+    const BoundaryCaps& caps = sprite.boundaryCaps.get(sprite);
+    return column >= 0 ? caps.inside(columnCount(sprite, t, column), q) : caps.insideApart(0, q);
 }
 
 } // namespace vds::detail

@@ -811,6 +811,7 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
             // number's, then B's, then -w_caps.
             double base = e.term;
             result = 1;
+            std::uint8_t byClosed = 0;
             if (clearOfSurface) {
                 base += double(surface_->winding(c));
                 result = 4;
@@ -823,6 +824,7 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
                     // knows is one integer over the cell.
                     base += double(g.closedWinding[cell]);
                     result = 4;
+                    byClosed = kByClosed;
                     ++g.closedCells;
                 }
             } else if (!g.constantWinding.empty() && g.constantWinding[cell] != CellWindings::kUnknown) {
@@ -835,7 +837,7 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
             g.hi[cell] = base + e.bound + drift;
             if (result == 4) {
                 const int side = sideOf(g.lo[cell], g.hi[cell]);
-                g.alone[cell] = side == 0 ? kUndecided : std::uint8_t(side > 0);
+                g.alone[cell] = std::uint8_t((side == 0 ? kUndecided : std::uint8_t(side > 0)) | byClosed);
             }
         }
     }
@@ -865,17 +867,21 @@ BoundaryCaps::RangedCells BoundaryCaps::rangedCells() const {
 }
 
 template <class Winding>
-bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt) const {
+bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt, bool apart) const {
     std::size_t cell;
     glm::uvec3 at;
     if (cellOf(q, cell, at)) {
         std::uint8_t state = ranges_.state[cell].load(std::memory_order_acquire);
         if (state == 0) state = rangeOf(cell, at);
-        if (state == 4 && ranges_.alone[cell] != kUndecided) // the whole winding number's range: no integer term asked
-            return ranges_.alone[cell] != 0;
+        // A closed count's range, for a query apart from it: -w_caps's range
+        // (the count taken off), as state 5.
+        const bool closedApart = state == 4 && apart && (ranges_.alone[cell] & kByClosed);
+        if (state == 4 && !closedApart && (ranges_.alone[cell] & ~kByClosed) != kUndecided)
+            return (ranges_.alone[cell] & ~kByClosed) != 0; // the whole winding number's range: no integer term asked
         const int winding = windingAt();
-        if (state == 1 || state == 5) {
-            const double shift = double(state == 1 ? winding : winding + projected_->winding(q));
+        if (state == 1 || state == 5 || closedApart) {
+            double shift = double(state == 1 ? winding : winding + projected_->winding(q));
+            if (closedApart) shift -= double(ranges_.closedWinding[cell]);
             const int side = sideOf(shift + ranges_.lo[cell], shift + ranges_.hi[cell]);
             if (side != 0) return side > 0;
         }
@@ -893,11 +899,15 @@ bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt) const 
 }
 
 bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
-    return insideBy(q, [winding] { return winding; });
+    return insideBy(q, [winding] { return winding; }, false);
+}
+
+bool BoundaryCaps::insideApart(int winding, const glm::vec3& q) const {
+    return insideBy(q, [winding] { return winding; }, true);
 }
 
 bool BoundaryCaps::inside(const glm::vec3& q) const {
-    return insideBy(q, [&] { return surface_->winding(q); });
+    return insideBy(q, [&] { return surface_->winding(q); }, false);
 }
 
 void ProjectedSurface::markCells(const CellLattice& cells, std::vector<std::uint8_t>& met) const {

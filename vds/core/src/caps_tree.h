@@ -152,7 +152,9 @@ public:
     /// term plus `caps`' crossing count (ProjectedMesh::winding) at the
     /// point B is taken at is known to be n: the crossing count of the
     /// closed surface the caps make of the mesh, one integer where that
-    /// surface keeps out of the cell, across the boundary's sweep too.
+    /// surface keeps out of the cell, across the boundary's sweep too: for
+    /// the queries that ask inside() (those that ask insideApart are not
+    /// held to it).
     virtual void constantWindings(const CellLattice& cells, const ProjectedMesh* caps,
                                   std::vector<std::int32_t>& windings, std::vector<std::int32_t>& closed) const = 0;
 };
@@ -268,14 +270,21 @@ public:
     /// their caps' -w over the cell (plus their crossing count at q), the
     /// few near ones refined from each query as decide() does.
     bool inside(int winding, const glm::vec3& q) const;
+    /// As `inside(winding, q)`, for a query whose integer term is not the
+    /// one CellWindings' closed counts speak of (a sprite's point beside its
+    /// texture, where the count is 0 and B is taken at the point itself):
+    /// a cell whose range came from a closed count is taken as the range
+    /// of -w_caps it holds, plus the caps' crossing count at q.
+    bool insideApart(int winding, const glm::vec3& q) const;
     /// As `inside`, asking the surface (given at construction) for the
     /// integer term only where the grid does not answer alone.
     bool inside(const glm::vec3& q) const;
     /// The label where q's cell answers without the integer term (a range
     /// of the whole winding number clear of 1/2): 1 inside, 0 outside; -1
     /// where it does not (then `inside(winding, q)`). Fills q's cell on its
-    /// first visit, as `inside` does.
-    inline int insideAlone(const glm::vec3& q) const;
+    /// first visit, as `inside` does. `apart`: a query as insideApart's
+    /// (then a cell whose range came from a closed count answers -1).
+    inline int insideAlone(const glm::vec3& q, bool apart = false) const;
 
     /// `winding + B(q)` within `bound` of the per-edge sum's value, refined
     /// as `inside` does until it lies farther than `margin` (>= 1) times
@@ -403,8 +412,9 @@ private:
         std::vector<double> lowestEdge;
         std::unique_ptr<std::atomic<std::uint8_t>[]> state;
         /// A cell of state 4: 1 where its range puts every value inside,
-        /// 0 outside, kUndecided where it straddles 1/2 (set before the
-        /// state is published).
+        /// 0 outside, kUndecided where it straddles 1/2, plus kByClosed
+        /// where the range came from a closed count (set before the state
+        /// is published).
         std::unique_ptr<std::uint8_t[]> alone;
         std::unique_ptr<double[]> lo, hi;
     };
@@ -414,8 +424,9 @@ private:
     /// inside(), asking `windingAt()` for the integer term only where the
     /// cell's range does not answer without it.
     template <class Winding>
-    bool insideBy(const glm::vec3& q, const Winding& windingAt) const;
+    bool insideBy(const glm::vec3& q, const Winding& windingAt, bool apart) const;
     static constexpr std::uint8_t kUndecided = 2;
+    static constexpr std::uint8_t kByClosed = 4;
     /// The cell q lies in; false outside the grid.
     inline bool cellOf(const glm::vec3& q, std::size_t& cell, glm::uvec3& at) const;
     double exact(int winding, const glm::vec3& q) const;
@@ -499,7 +510,7 @@ bool BoundaryCaps::cellOf(const glm::vec3& q, std::size_t& cell, glm::uvec3& at)
     return true;
 }
 
-int BoundaryCaps::insideAlone(const glm::vec3& q) const {
+int BoundaryCaps::insideAlone(const glm::vec3& q, bool apart) const {
     std::size_t cell;
     glm::uvec3 at;
     if (!cellOf(q, cell, at)) return -1;
@@ -507,7 +518,8 @@ int BoundaryCaps::insideAlone(const glm::vec3& q) const {
     if (state == 0) state = rangeOf(cell, at);
     if (state != 4) return -1;
     const std::uint8_t label = ranges_.alone[cell];
-    return label == kUndecided ? -1 : int(label);
+    if (apart && (label & kByClosed)) return -1;
+    return (label & ~kByClosed) == kUndecided ? -1 : int(label & ~kByClosed);
 }
 
 } // namespace vds::detail
