@@ -178,41 +178,15 @@ VDS_EDGE_CLONES void EdgeAngles::add(const glm::vec3* edges, std::size_t count, 
         bool whole = n == kEdgeBlock;
         for (std::size_t j = 0; j < n; ++j) whole &= dets[j] != 0.0;
         if (whole) {
-            // The four products side by side, lane l taking edges l, l + 4,
-            // ...: AngleProduct::add's steps, each lane's exactly, in two
-            // vectors of two lanes (GCC's vectors: SSE2's width, which the
-            // AVX2 build takes as one of four).
-            typedef double Lanes __attribute__((vector_size(16)));
-            typedef std::int64_t Masks __attribute__((vector_size(16)));
-            Lanes re[2] = {{products_[0].re, products_[1].re}, {products_[2].re, products_[3].re}};
-            Lanes im[2] = {{products_[0].im, products_[1].im}, {products_[2].im, products_[3].im}};
-            Masks turns[2] = {{0, 0}, {0, 0}};
-            const Lanes zero = {0.0, 0.0};
-            const Masks none = {0, 0};
-            for (std::size_t j = 0; j < kEdgeBlock; j += 4)
-                for (int h = 0; h < 2; ++h) {
-                    Lanes x, y;
-                    std::memcpy(&x, xs + j + 2 * h, sizeof x);
-                    std::memcpy(&y, ys + j + 2 * h, sizeof y);
-                    const Lanes r = re[h] * x - im[h] * y, i = re[h] * y + im[h] * x;
-                    Masks imBits, iBits;
-                    std::memcpy(&imBits, &im[h], sizeof imBits);
-                    std::memcpy(&iBits, &i, sizeof iBits);
-                    // Masks are -1 (true) or 0: left, above = !signbit(im),
-                    // after = !signbit(i); a turn up where y > 0, above, not
-                    // after, left; down where y < 0, not above, after, left.
-                    const Masks left = (re[h] < zero) | (r < zero);
-                    const Masks above = imBits >= none, after = iBits >= none;
-                    turns[h] -= (y > zero) & above & ~after & left; // -(-1): +1
-                    turns[h] += (y < zero) & ~above & after & left;
-                    re[h] = r;
-                    im[h] = i;
-                }
-            for (int l = 0; l < 4; ++l) {
-                products_[l].re = re[l / 2][l % 2];
-                products_[l].im = im[l / 2][l % 2];
-                products_[l].turns += int(turns[l / 2][l % 2]);
+            // The four products side by side (AngleLanes: products 0 and 1,
+            // 2 and 3), lane l taking edges l, l + 4, ...
+            AngleLanes low(products_[0], products_[1]), high(products_[2], products_[3]);
+            for (std::size_t j = 0; j < kEdgeBlock; j += 4) {
+                low.add(xs + j, ys + j);
+                high.add(xs + j + 2, ys + j + 2);
             }
+            low.store(products_[0], products_[1]);
+            high.store(products_[2], products_[3]);
         } else {
             for (std::size_t j = 0; j < n; ++j) {
                 if (dets[j] != 0.0) {

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -84,6 +85,49 @@ struct AngleProduct {
         im /= size;
     }
     double angle() const { return std::atan2(im, re) + 2.0 * 3.14159265358979323846 * turns; }
+};
+
+/// Two AngleProducts side by side, a lane each (GCC's vectors: SSE2's
+/// width, which an AVX2 build merges two at a time), each lane's steps
+/// exactly AngleProduct::add's, so the same values. Inlined into the
+/// builds of the loops that use it (VDS_EDGE_CLONES), for their
+/// instructions.
+struct AngleLanes {
+    typedef double Lanes __attribute__((vector_size(16)));
+    typedef std::int64_t Masks __attribute__((vector_size(16)));
+    Lanes re, im;
+    Masks turns;
+    AngleLanes(const AngleProduct& a, const AngleProduct& b) : re{a.re, b.re}, im{a.im, b.im}, turns{0, 0} {}
+    /// Factor x[l] + i y[l] into lane l.
+    __attribute__((always_inline)) void add(const double* x2, const double* y2) {
+        Lanes x, y;
+        std::memcpy(&x, x2, sizeof x);
+        std::memcpy(&y, y2, sizeof y);
+        const Lanes zero = {0.0, 0.0};
+        const Masks none = {0, 0};
+        const Lanes r = re * x - im * y, i = re * y + im * x;
+        Masks imBits, iBits;
+        std::memcpy(&imBits, &im, sizeof imBits);
+        std::memcpy(&iBits, &i, sizeof iBits);
+        // Masks are -1 (true) or 0: left, above = !signbit(im), after =
+        // !signbit(i); a turn up where y > 0, above, not after, left; down
+        // where y < 0, not above, after, left.
+        const Masks left = (re < zero) | (r < zero);
+        const Masks above = imBits >= none, after = iBits >= none;
+        turns -= (y > zero) & above & ~after & left; // -(-1): +1
+        turns += (y < zero) & ~above & after & left;
+        re = r;
+        im = i;
+    }
+    /// Back into the products (their turns added to).
+    void store(AngleProduct& a, AngleProduct& b) const {
+        a.re = re[0];
+        a.im = im[0];
+        a.turns += int(turns[0]);
+        b.re = re[1];
+        b.im = im[1];
+        b.turns += int(turns[1]);
+    }
 };
 
 /// A sum of edge angles (+axis, a - q, b - q) as the per-edge sum takes
