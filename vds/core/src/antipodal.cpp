@@ -688,7 +688,7 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
                     glm::vec3 p, t, q;
                     std::ptrdiff_t column;
                     std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
-                    t = sg.toTexture(p);
+                    t = textureOf(sg, p);
                     if (!place.place(t, column, q)) {
                         labels[b0 + i] = 0;
                         continue;

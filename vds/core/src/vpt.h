@@ -18,6 +18,17 @@ void classifySpriteFloats(const Sprite& sprite, const float* xyz, std::size_t co
                           std::uint8_t* labels, const ClassifyOptions& options);
 
 
+/// SpriteGrid::toTexture, inline for the batches that ask it of every
+/// point (vds_core is built with -ffp-contract=off: every caller rounds
+/// alike, as the GLSL include does).
+inline glm::vec3 textureOf(const SpriteGrid& grid, const glm::vec3& world) {
+    const glm::vec3 d(world.x - grid.position.x, world.y - grid.position.y, world.z - grid.position.z);
+    const glm::mat3& m = grid.matrix;
+    return {(m[0][0] * d.x + m[1][0] * d.y) + m[2][0] * d.z,
+            (m[0][1] * d.x + m[1][1] * d.y) + m[2][1] * d.z,
+            (m[0][2] * d.x + m[1][2] * d.y) + m[2][2] * d.z};
+}
+
 // The column a texture-space point falls in, or -1 outside the box.
 inline std::ptrdiff_t columnOf(const SpriteGrid& grid, const glm::vec3& t) {
     if (!(t.z >= 0.0f && t.z <= 1.0f)) return -1;
