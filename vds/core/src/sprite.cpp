@@ -25,13 +25,7 @@
 
 namespace vds {
 
-glm::vec3 SpriteGrid::toTexture(const glm::vec3& world) const {
-    const glm::vec3 d(world.x - position.x, world.y - position.y, world.z - position.z);
-    const glm::mat3& m = matrix;
-    return {(m[0][0] * d.x + m[1][0] * d.y) + m[2][0] * d.z,
-            (m[0][1] * d.x + m[1][1] * d.y) + m[2][1] * d.z,
-            (m[0][2] * d.x + m[1][2] * d.y) + m[2][2] * d.z};
-}
+glm::vec3 SpriteGrid::toTexture(const glm::vec3& world) const { return detail::textureOf(*this, world); }
 
 SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution) {
     if (resolution == 0 || resolution > kMaxResolution)
