@@ -667,10 +667,10 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
         // crossings; count batch k - 2's crossings and label them.
         constexpr std::size_t kBatch = 32;
         struct Pending {
-            std::size_t index;    ///< of the point
-            std::ptrdiff_t column; ///< -1 beside the texture
-            float depth;          ///< texture depth
-            glm::vec3 point;      ///< where B is taken
+            std::size_t index;         ///< of the point
+            std::ptrdiff_t column;     ///< -1 beside the texture
+            float depth;               ///< texture depth
+            glm::vec3 point;           ///< where B is taken
             const float *first, *last; ///< the column's crossings (stage 2)
         };
         struct Batch {
