@@ -1171,7 +1171,53 @@ bool BoundaryCaps::decidePlanned(int winding, const glm::vec3& q, std::size_t ce
     int far = 0;
     for (const auto& [loop, crossing] : crossed)
         if (!std::binary_search(loops, loopsEnd, loop)) far += crossing;
+    // Where every near node is summed whole when not taken (a loop of few
+    // edges: a soup's), most planned queries decide on the first cut: that
+    // round alone first, in one pass.
+    bool small = true;
+    for (std::uint32_t k = 0; k < count; ++k) small &= chains_[near[k]].edgeCount <= kDirectEdges;
+    if (small && firstCut(winding + far, q, near, count, g.lo[cell], g.hi[cell], out)) return true;
     return refine(winding + far, q, 1.0, near, count, g.lo[cell], g.hi[cell], out);
+}
+
+bool BoundaryCaps::firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount,
+                            double farLo, double farHi, Estimate& out) const {
+    const glm::dvec3 p(q);
+    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
+    double angles = 0.0, bound = 0.5 * (farHi - farLo), work = 0.0;
+    EdgeAngles leafSum;
+    bool leaves = false;
+    for (std::size_t r = 0; r < rootCount; ++r) {
+        // refine()'s open() on a root, its first step: the same tests and
+        // terms (not `fine`: the first cut is first order).
+        const ChainNode& n = chains_[roots[r]];
+        const glm::dvec3 y = n.centre - p;
+        const double d2 = glm::dot(y, y);
+        const double reach = n.radius * (1.0 + 1e-12);
+        const bool misses = y[s] * y[s] + y[t] * y[t] > reach * reach || p[a] < n.centre[a] - reach;
+        if (misses && d2 > reach * reach) {
+            const double d = std::sqrt(d2), e = d - reach;
+            const double b = n.errorScale * firstOrderFactor(d, e);
+            if (b <= kMaxTakenBound) {
+                work += n.chord ? 2.0 : 1.0;
+                double value = -firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
+                if (n.chord) value += edgeSolidAngle(a, n.from, n.to, p);
+                angles += value;
+                bound += b;
+                continue;
+            }
+        }
+        if (n.count == 0 && n.edgeCount > kDirectEdges) return false; // refine splits it
+        work += double(n.edgeCount);
+        leafSum.add(&chainEdges_[2 * std::size_t(n.edgeFirst)], n.edgeCount, a, p);
+        leaves = true;
+    }
+    // As refine() finds its first value (margin 1).
+    const double offset = double(winding) - 0.5 - kGeneralizedWindingTie + 0.5 * (farLo + farHi);
+    const double value = offset + (angles + (leaves ? leafSum.angle() : 0.0)) / kFourPi;
+    if (!(std::fabs(value) > bound + kRoundingSlack)) return false;
+    out = {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack, work};
+    return true;
 }
 
 BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, double margin) const {

@@ -457,6 +457,13 @@ private:
     /// decide() from a planned cell's near loops; false where that does
     /// not decide (the far range is as wide as the rest of the distance).
     bool decidePlanned(int winding, const glm::vec3& q, std::size_t cell, Estimate& out) const;
+    /// refine()'s first round over chain nodes `roots`, each taken by its
+    /// first-order term or its edges summed (as refine's first cut takes
+    /// them, in the same order: the same value and bound), in one pass with
+    /// no stack; true where that decides (then `out` is refine's answer),
+    /// false where it does not or a root would be split.
+    bool firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount, double farLo,
+                  double farHi, Estimate& out) const;
     /// The decide-or-refine of decide(), from the chain nodes `roots`
     /// (whole loops, or the root) with `farCrossings` + [farLo, farHi]
     /// standing for the rest; false where it runs out of nodes with the
