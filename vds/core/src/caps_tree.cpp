@@ -1180,10 +1180,26 @@ bool BoundaryCaps::decidePlanned(int winding, const glm::vec3& q, std::size_t ce
     return refine(winding + far, q, 1.0, near, count, g.lo[cell], g.hi[cell], out);
 }
 
+bool BoundaryCaps::takeNode(const ChainNode& n, const glm::dvec3& p, bool fine, double& bound, double& value) const {
+    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
+    const glm::dvec3 y = n.centre - p;
+    const double d2 = glm::dot(y, y);
+    const double reach = n.radius * (1.0 + 1e-12);
+    // q's ray towards -axis misses the ball: the fan's crossing count is 0
+    const bool misses = y[s] * y[s] + y[t] * y[t] > reach * reach || p[a] < n.centre[a] - reach;
+    if (!misses || !(d2 > reach * reach)) return false;
+    const double d = std::sqrt(d2), e = d - reach;
+    bound = fine ? n.errorScale * remainderFactor(d, e, reach) : n.errorScale * firstOrderFactor(d, e);
+    if (!(bound <= kMaxTakenBound)) return false;
+    value = fine ? -expansion(n, y, d2, d) : -firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
+    if (n.chord) value += edgeSolidAngle(a, n.from, n.to, p);
+    return true;
+}
+
 bool BoundaryCaps::firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount,
                             double farLo, double farHi, Estimate& out) const {
     const glm::dvec3 p(q);
-    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
+    const int a = axisIndex_;
     double angles = 0.0, bound = 0.5 * (farHi - farLo), work = 0.0;
     EdgeAngles leafSum;
     bool leaves = false;
@@ -1191,21 +1207,12 @@ bool BoundaryCaps::firstCut(int winding, const glm::vec3& q, const std::uint32_t
         // refine()'s open() on a root, its first step: the same tests and
         // terms (not `fine`: the first cut is first order).
         const ChainNode& n = chains_[roots[r]];
-        const glm::dvec3 y = n.centre - p;
-        const double d2 = glm::dot(y, y);
-        const double reach = n.radius * (1.0 + 1e-12);
-        const bool misses = y[s] * y[s] + y[t] * y[t] > reach * reach || p[a] < n.centre[a] - reach;
-        if (misses && d2 > reach * reach) {
-            const double d = std::sqrt(d2), e = d - reach;
-            const double b = n.errorScale * firstOrderFactor(d, e);
-            if (b <= kMaxTakenBound) {
-                work += n.chord ? 2.0 : 1.0;
-                double value = -firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
-                if (n.chord) value += edgeSolidAngle(a, n.from, n.to, p);
-                angles += value;
-                bound += b;
-                continue;
-            }
+        double b, value;
+        if (takeNode(n, p, false, b, value)) {
+            work += n.chord ? 2.0 : 1.0;
+            angles += value;
+            bound += b;
+            continue;
         }
         if (n.count == 0 && n.edgeCount > kDirectEdges) return false; // refine splits it
         work += double(n.edgeCount);
@@ -1244,7 +1251,7 @@ bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const 
     // node whose bound is at least kOpenFraction of the largest, until the
     // value lies farther from 1/2 than the summed bounds.
     const glm::dvec3 p(q);
-    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
+    const int a = axisIndex_;
     // The per-edge angles' sum, in radians: of the taken nodes, and of the
     // leaves' edges (as the per-edge sum takes them, EdgeAngles: one atan2
     // when a label is tried, not one an edge).
@@ -1273,23 +1280,13 @@ bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const 
             const std::uint32_t i = stack.back();
             stack.pop_back();
             const ChainNode& n = chains_[i];
-            const glm::dvec3 y = n.centre - p;
-            const double d2 = glm::dot(y, y);
-            const double reach = n.radius * (1.0 + 1e-12);
-            // q's ray towards -axis misses the ball: the fan's crossing count is 0
-            const bool misses = y[s] * y[s] + y[t] * y[t] > reach * reach || p[a] < n.centre[a] - reach;
-            if (misses && d2 > reach * reach && !(expand && i == index)) {
-                const double d = std::sqrt(d2), e = d - reach;
-                const double b = fine ? n.errorScale * remainderFactor(d, e, reach) : n.errorScale * firstOrderFactor(d, e);
-                if (b <= kMaxTakenBound) {
-                    work += n.chord ? 2.0 : 1.0;
-                    double value = fine ? -expansion(n, y, d2, d) : -firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
-                    if (n.chord) value += edgeSolidAngle(a, n.from, n.to, p);
-                    angles += value;
-                    bound += b;
-                    taken.push_back({b, value, i});
-                    continue;
-                }
+            double b, value;
+            if (!(expand && i == index) && takeNode(n, p, fine, b, value)) {
+                work += n.chord ? 2.0 : 1.0;
+                angles += value;
+                bound += b;
+                taken.push_back({b, value, i});
+                continue;
             }
             if (n.count == 0 && n.edgeCount > kDirectEdges) {
                 stack.push_back(n.left);

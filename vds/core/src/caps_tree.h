@@ -464,6 +464,11 @@ private:
     /// false where it does not or a root would be split.
     bool firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount, double farLo,
                   double farHi, Estimate& out) const;
+    /// refine()'s step on one chain node at p: where q's ray misses its
+    /// ball and its bound (first order, or the remainder where `fine`) is
+    /// at most kMaxTakenBound, that bound and its edges' angle (its chord's
+    /// less its fan's, by the expansion); false where it must be opened.
+    inline bool takeNode(const ChainNode& n, const glm::dvec3& p, bool fine, double& bound, double& value) const;
     /// The decide-or-refine of decide(), from the chain nodes `roots`
     /// (whole loops, or the root) with `farCrossings` + [farLo, farHi]
     /// standing for the rest; false where it runs out of nodes with the
