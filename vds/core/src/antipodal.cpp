@@ -255,18 +255,30 @@ struct ColumnPoints {
     /// a point that is not finite.
     bool place(const glm::vec3& t, std::ptrdiff_t& column, glm::vec3& q) const {
         if (!(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z))) return false;
-        const float fs = std::floor(t.x * width), ft = std::floor(t.y * height);
+        // Without branches (whether a point lies within the texture is a
+        // coin toss for points around the mesh) and without std::floor
+        // (a dozen instructions each without SSE4.1): within the texture
+        // the texel index is the truncation, clamped first so that the
+        // conversion is defined for any finite point.
+        const float xs = t.x * width, ys = t.y * height;
+        const bool in = (xs >= 0.0f) & (xs < width) & (ys >= 0.0f) & (ys < height);
+        const std::ptrdiff_t s = std::ptrdiff_t(std::fmin(std::fmax(xs, 0.0f), width));
+        const std::ptrdiff_t r = std::ptrdiff_t(std::fmin(std::fmax(ys, 0.0f), height));
+        column = (r * columns + s) | (std::ptrdiff_t(in) - 1); // -1 beside
         q[p.z] = lo[p.z] + t.z * depth;
-        if (fs >= 0.0f && fs < width && ft >= 0.0f && ft < height) {
-            column = std::ptrdiff_t(ft) * columns + std::ptrdiff_t(fs);
-            q[p.x] = lo[p.x] + (fs + 0.5f) * texel;
-            q[p.y] = lo[p.y] + (ft + 0.5f) * texel;
-        } else {
-            column = -1;
-            q[p.x] = lo[p.x] + t.x * width * texel;
-            q[p.y] = lo[p.y] + t.y * height * texel;
-        }
+        q[p.x] = lo[p.x] + pick(in, float(s) + 0.5f, xs) * texel;
+        q[p.y] = lo[p.y] + pick(in, float(r) + 0.5f, ys) * texel;
         return true;
+    }
+    /// `in ? a : b` by bits, so that the compiler keeps it free of branches.
+    static float pick(bool in, float a, float b) {
+        std::uint32_t ua, ub;
+        std::memcpy(&ua, &a, sizeof ua);
+        std::memcpy(&ub, &b, sizeof ub);
+        const std::uint32_t mask = 0u - std::uint32_t(in), bits = (ua & mask) | (ub & ~mask);
+        float picked;
+        std::memcpy(&picked, &bits, sizeof picked);
+        return picked;
     }
     glm::ivec3 p;
     glm::vec3 lo;
@@ -684,22 +696,32 @@ void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::siz
                 Batch& batch = ring[k % 3];
                 batch.waiting = 0;
                 const std::size_t b0 = begin + k * kBatch, n = std::min(kBatch, end - b0);
+                // Every point placed first, then every cell asked: two
+                // short loops whose iterations overlap, where one long
+                // chain of dependent steps a point did not.
+                glm::vec3 q[kBatch];
+                float depth[kBatch];
+                std::ptrdiff_t column[kBatch];
+                bool finite[kBatch];
                 for (std::size_t i = 0; i < n; ++i) {
-                    glm::vec3 p, t, q;
-                    std::ptrdiff_t column;
+                    glm::vec3 p;
                     std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
-                    t = textureOf(sg, p);
-                    if (!place.place(t, column, q)) {
+                    const glm::vec3 t = textureOf(sg, p);
+                    finite[i] = place.place(t, column[i], q[i]);
+                    depth[i] = t.z;
+                }
+                for (std::size_t i = 0; i < n; ++i) {
+                    if (!finite[i]) {
                         labels[b0 + i] = 0;
                         continue;
                     }
-                    const int alone = caps ? caps->insideAlone(q, column < 0) : -1;
+                    const int alone = caps ? caps->insideAlone(q[i], column[i] < 0) : -1;
                     if (alone >= 0) {
                         labels[b0 + i] = std::uint8_t(alone);
                         continue;
                     }
-                    batch.pending[batch.waiting++] = {b0 + i, column, t.z, q, nullptr, nullptr};
-                    if (column >= 0) __builtin_prefetch(offsets + column);
+                    batch.pending[batch.waiting++] = {b0 + i, column[i], depth[i], q[i], nullptr, nullptr};
+                    if (column[i] >= 0) __builtin_prefetch(offsets + column[i]);
                 }
             }
             if (k >= 1 && k - 1 < batches) { // stage 2
