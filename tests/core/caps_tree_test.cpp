@@ -396,6 +396,49 @@ TEST(CapsTree, RangesOfTheWholeWindingNumberLabelAsThePerEdgeSum) {
     }
 }
 
+TEST(CapsTree, BusyCellsAnswerFromTheirFineCellsAsThePerEdgeSum) {
+    // A coarse cell without a range that many queries land in hands them
+    // to the fine grid's cells (their own ranges and plans, filled on
+    // their first visits): the same labels as the crossing count plus the
+    // per-edge sum. Many queries in a few cells: points packed in small
+    // cubes beside the boundary curve, each cube's asked several times.
+    std::vector<Case> all = cases();
+    all.push_back({"soup", solids::looseTriangles(80, 0.2f, 23)});
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> within(-0.01f, 0.01f);
+    std::size_t inside = 0, asked = 0;
+    for (const Case& c : all) {
+        const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
+        const ProjectedMesh projected(MeshView(c.mesh), Axis::Z);
+        const ProjectedSurface surface(projected);
+        const Box domain{glm::vec3(-1.0f), glm::vec3(1.0f)};
+        const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z, &domain, &surface);
+        std::vector<glm::vec3> at;
+        std::vector<bool> expected;
+        const std::size_t edgeCount = edges.size() / 2, spots = 6;
+        for (std::size_t k = 0; k < spots; ++k) {
+            const std::size_t e = 2 * (k * edgeCount / spots);
+            const glm::vec3 spot = 0.5f * (edges[e] + edges[e + 1]) + glm::vec3(0.0f, 0.0f, 0.03f * float(k % 3));
+            for (int i = 0; i < 1000; ++i) {
+                const glm::vec3 q = spot + glm::vec3(within(rng), within(rng), within(rng));
+                at.push_back(q);
+                expected.push_back(generalizedWindingInside(double(projected.winding(q)) + exactTerm(edges, q)));
+            }
+        }
+        for (int round = 0; round < 6; ++round)
+            for (std::size_t i = 0; i < at.size(); ++i) {
+                ASSERT_EQ(caps.inside(at[i]), expected[i])
+                    << c.name << " round " << round << " at " << at[i].x << " " << at[i].y << " " << at[i].z;
+                inside += expected[i];
+                ++asked;
+            }
+        const BoundaryCaps::RangedCells fine = caps.rangedCells(true);
+        EXPECT_GT(fine.all() + fine.planned, 0u) << c.name; // the fine grid really answered
+    }
+    EXPECT_GT(inside, asked / 20); // labels of both kinds
+    EXPECT_LT(inside, asked - asked / 20);
+}
+
 TEST(CapsTree, ColumnSweepsLabelEveryCellAsThePerEdgeSum) {
     // Both ways of the exact grid sweep, forced: cell by cell (decide and
     // reach) and by brackets over each column's cut of the chain tree

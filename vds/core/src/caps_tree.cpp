@@ -670,8 +670,12 @@ double BoundaryCaps::generalizedWinding(int winding, const glm::vec3& q, double 
 // ------------------------------------------------------------ range grid
 
 namespace {
-/// Cells of the range grid along its longest side.
+/// Cells of the range grid along its longest side, and of the fine grid.
 constexpr double kRangeCells = 24.0;
+constexpr double kFineCells = 2.0 * kRangeCells;
+/// Queries without a range a coarse cell takes before it hands them to
+/// its fine cells.
+constexpr unsigned kBusyVisits = 1024;
 /// The node tolerance of the estimate at a cell's centre (estimate()):
 /// coarse, as a range serves only where it keeps clear of 1/2. Measured
 /// (exact classifier, first call, 200,000 points, this project's VM):
@@ -711,13 +715,23 @@ void BoundaryCaps::buildRangeGrid(const Box& domain, const CellWindings* winding
     const double side = std::max({double(domain.hi.x) - domain.lo.x, double(domain.hi.y) - domain.lo.y,
                                   double(domain.hi.z) - domain.lo.z});
     if (!(side > 0.0) || !std::isfinite(side)) return;
-    RangeGrid& g = ranges_;
-    g.box = {glm::vec3(glm::dvec3(domain.lo) - 0.25 * side), glm::vec3(glm::dvec3(domain.hi) + 0.25 * side)};
+    const Box box{glm::vec3(glm::dvec3(domain.lo) - 0.25 * side), glm::vec3(glm::dvec3(domain.hi) + 0.25 * side)};
+    buildGrid(ranges_, box, kRangeCells, windings);
+    if (ranges_.state) {
+        buildGrid(fine_, box, kFineCells, windings);
+        const std::size_t cells = std::size_t(ranges_.dims.x) * ranges_.dims.y * ranges_.dims.z;
+        ranges_.visits.reset(new std::atomic<std::uint16_t>[cells]);
+        for (std::size_t c = 0; c < cells; ++c) ranges_.visits[c].store(0, std::memory_order_relaxed);
+    }
+}
+
+void BoundaryCaps::buildGrid(RangeGrid& g, const Box& box, double cellsAlong, const CellWindings* windings) {
+    g.box = box;
     const glm::dvec3 lo(g.box.lo), hi(g.box.hi), extent = hi - lo;
     const double longest = std::max({extent.x, extent.y, extent.z});
     if (!(longest > 0.0) || !std::isfinite(longest) || !(extent.x >= 0.0 && extent.y >= 0.0 && extent.z >= 0.0)) return;
     for (int a = 0; a < 3; ++a) {
-        g.dims[a] = std::uint32_t(std::clamp(std::ceil(extent[a] / longest * kRangeCells), 1.0, kRangeCells));
+        g.dims[a] = std::uint32_t(std::clamp(std::ceil(extent[a] / longest * cellsAlong), 1.0, cellsAlong));
         g.size[a] = extent[a] / double(g.dims[a]);
         g.inverse[a] = g.size[a] > 0.0 ? 1.0 / g.size[a] : 0.0;
     }
@@ -775,8 +789,7 @@ void BoundaryCaps::buildRangeGrid(const Box& domain, const CellWindings* winding
     g.hi.reset(new double[cells]);
 }
 
-std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const {
-    const RangeGrid& g = ranges_;
+std::uint8_t BoundaryCaps::rangeOf(const RangeGrid& g, std::size_t cell, const glm::uvec3& at, bool within) const {
     std::uint8_t state = g.state[cell].load(std::memory_order_acquire);
     if (state != 0) return state;
     // One thread fills the cell (state 3 while it does); the others go on
@@ -845,14 +858,14 @@ std::uint8_t BoundaryCaps::rangeOf(std::size_t cell, const glm::uvec3& at) const
         const glm::dvec3 centre = lo + (glm::dvec3(at) + 0.5) * g.size;
         const glm::vec3 c(centre);
         const double half = 0.5 * glm::length(g.size) + glm::length(glm::dvec3(c) - centre) + 2.0 * slack;
-        if (plan(cell, c, half)) result = 6;
+        if (plan(g, cell, c, half, within)) result = 6;
     }
     g.state[cell].store(result, std::memory_order_release);
     return result;
 }
 
-BoundaryCaps::RangedCells BoundaryCaps::rangedCells() const {
-    const RangeGrid& g = ranges_;
+BoundaryCaps::RangedCells BoundaryCaps::rangedCells(bool fine) const {
+    const RangeGrid& g = fine ? fine_ : ranges_;
     RangedCells ranged;
     if (!g.state) return ranged;
     for (std::size_t c = 0, n = std::size_t(g.dims.x) * g.dims.y * g.dims.z; c < n; ++c) {
@@ -866,36 +879,58 @@ BoundaryCaps::RangedCells BoundaryCaps::rangedCells() const {
     return ranged;
 }
 
+bool BoundaryCaps::busy(std::size_t cell) const {
+    std::atomic<std::uint16_t>& visits = ranges_.visits[cell];
+    if (visits.load(std::memory_order_relaxed) >= kBusyVisits) return true;
+    return unsigned(visits.fetch_add(1, std::memory_order_relaxed)) + 1 >= kBusyVisits;
+}
+
 template <class Winding>
 bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt, bool apart) const {
     std::size_t cell;
     glm::uvec3 at;
-    if (cellOf(q, cell, at)) {
-        std::uint8_t state = ranges_.state[cell].load(std::memory_order_acquire);
-        if (state == 0) state = rangeOf(cell, at);
-        // A closed count's range, for a query apart from it: -w_caps's range
-        // (the count taken off), as state 5.
-        const bool closedApart = state == 4 && apart && (ranges_.alone[cell] & kByClosed);
-        if (state == 4 && !closedApart && (ranges_.alone[cell] & ~kByClosed) != kUndecided)
-            return (ranges_.alone[cell] & ~kByClosed) != 0; // the whole winding number's range: no integer term asked
-        const int winding = windingAt();
-        if (state == 1 || state == 5 || closedApart) {
-            double shift = double(state == 1 ? winding : winding + projected_->winding(q));
-            if (closedApart) shift -= double(ranges_.closedWinding[cell]);
-            const int side = sideOf(shift + ranges_.lo[cell], shift + ranges_.hi[cell]);
-            if (side != 0) return side > 0;
+    if (!cellOf(ranges_, q, cell, at)) return generalizedWindingInside(decide(windingAt(), q, 1.0).term);
+    std::uint8_t state = ranges_.state[cell].load(std::memory_order_acquire);
+    if (state == 0) state = rangeOf(ranges_, cell, at);
+    if ((state == 2 || state == 6) && busy(cell)) {
+        // The fine cell, where it has a range or a plan (or the coarse one
+        // has none either).
+        std::size_t fineCell;
+        glm::uvec3 fineAt;
+        if (cellOf(fine_, q, fineCell, fineAt)) {
+            std::uint8_t fineState = fine_.state[fineCell].load(std::memory_order_acquire);
+            if (fineState == 0) fineState = rangeOf(fine_, fineCell, fineAt, state == 6);
+            if ((fineState != 2 && fineState != 3) || state == 2)
+                return insideIn(fine_, fineCell, fineState, q, windingAt, apart);
         }
-        if (state == 6) {
-            Estimate planned;
-            if (decidePlanned(winding, q, cell, planned)) return generalizedWindingInside(planned.term);
-            // Undecided: the query lies within the far range's width of 1/2.
-            // A cell whose queries keep doing so does better from the root.
-            if (unsigned(ranges_.planMisses[cell].fetch_add(1, std::memory_order_relaxed)) + 1 >= kPlanMisses)
-                ranges_.state[cell].store(2, std::memory_order_relaxed);
-        }
-        return generalizedWindingInside(decide(winding, q, 1.0).term);
     }
-    return generalizedWindingInside(decide(windingAt(), q, 1.0).term);
+    return insideIn(ranges_, cell, state, q, windingAt, apart);
+}
+
+template <class Winding>
+bool BoundaryCaps::insideIn(const RangeGrid& g, std::size_t cell, std::uint8_t state, const glm::vec3& q,
+                            const Winding& windingAt, bool apart) const {
+    // A closed count's range, for a query apart from it: -w_caps's range
+    // (the count taken off), as state 5.
+    const bool closedApart = state == 4 && apart && (g.alone[cell] & kByClosed);
+    if (state == 4 && !closedApart && (g.alone[cell] & ~kByClosed) != kUndecided)
+        return (g.alone[cell] & ~kByClosed) != 0; // the whole winding number's range: no integer term asked
+    const int winding = windingAt();
+    if (state == 1 || state == 5 || closedApart) {
+        double shift = double(state == 1 ? winding : winding + projected_->winding(q));
+        if (closedApart) shift -= double(g.closedWinding[cell]);
+        const int side = sideOf(shift + g.lo[cell], shift + g.hi[cell]);
+        if (side != 0) return side > 0;
+    }
+    if (state == 6) {
+        Estimate planned;
+        if (decidePlanned(g, winding, q, cell, planned)) return generalizedWindingInside(planned.term);
+        // Undecided: the query lies within the far range's width of 1/2.
+        // A cell whose queries keep doing so does better from the root.
+        if (unsigned(g.planMisses[cell].fetch_add(1, std::memory_order_relaxed)) + 1 >= kPlanMisses)
+            g.state[cell].store(2, std::memory_order_relaxed);
+    }
+    return generalizedWindingInside(decide(winding, q, 1.0).term);
 }
 
 bool BoundaryCaps::inside(int winding, const glm::vec3& q) const {
@@ -1092,7 +1127,7 @@ void BoundaryCaps::capCrossings(const glm::vec3& q, std::vector<std::pair<std::u
                           [&](const Triangle& t, int crossing) { out.emplace_back(capLoopOf_[t.index], crossing); });
 }
 
-bool BoundaryCaps::plan(std::size_t cell, const glm::vec3& c, double half) const {
+bool BoundaryCaps::plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c, double half, bool within) const {
     // A cut of the tree of loops for the cell: a node of whole loops far
     // enough from it (its ball at least kPlanReach cell half diagonals and
     // two radii beyond) is far, its caps' -w taken at the cell's centre by
@@ -1144,10 +1179,14 @@ bool BoundaryCaps::plan(std::size_t cell, const glm::vec3& c, double half) const
         }
     }
     // Worth it where the near loops are fewer than the tree from its root
-    // takes at the centre (nodes and edges).
-    if (double(near.size()) > kPlanShare * decide(0, c, 1.0).work) return false;
+    // takes at the centre (nodes and edges). Within a planned cell that
+    // test was passed: a fine cell's near loops lie within the coarse
+    // cell's reach (its centre within half the coarse half diagonal), so
+    // they are fewer, and the decide() at the centre (some 2 us of the
+    // soup's) is not asked again.
+    if (!within && double(near.size()) > kPlanShare * decide(0, c, 1.0).work) return false;
     std::sort(loops.begin(), loops.end());
-    const RangeGrid& g = ranges_; // the filling thread owns the cell (state 3)
+    // The filling thread owns the cell (state 3).
     width = width * (1.0 + 1e-9) + kRoundingSlack;
     g.lo[cell] = value - width;
     g.hi[cell] = value + width;
@@ -1159,8 +1198,8 @@ bool BoundaryCaps::plan(std::size_t cell, const glm::vec3& c, double half) const
     return true;
 }
 
-bool BoundaryCaps::decidePlanned(int winding, const glm::vec3& q, std::size_t cell, Estimate& out) const {
-    const RangeGrid& g = ranges_;
+bool BoundaryCaps::decidePlanned(const RangeGrid& g, int winding, const glm::vec3& q, std::size_t cell,
+                                 Estimate& out) const {
     const std::uint32_t* near = g.near[cell].get();
     const std::uint32_t count = g.nearCount[cell];
     const std::uint32_t* loops = near + count;
