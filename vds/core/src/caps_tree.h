@@ -403,8 +403,9 @@ private:
         /// first, nearLoops[cell] of the second.
         std::unique_ptr<std::unique_ptr<std::uint32_t[]>[]> near;
         std::unique_ptr<std::uint32_t[]> nearCount, nearLoops;
-        /// A planned cell's queries the plan did not decide: past a few,
-        /// the cell goes back to state 2 (its queries lie close to 1/2).
+        /// A planned cell's score of queries the plan did not decide, less
+        /// those it did: past a few, the cell goes back to state 2 (most of
+        /// its queries lie close to 1/2).
         std::unique_ptr<std::atomic<std::uint8_t>[]> planMisses;
         /// Per column of cells along the axis: the lowest height along the
         /// axis of a boundary edge whose projection's box meets the
