@@ -728,7 +728,65 @@ void BoundaryCaps::buildRangeGrid(const Box& domain, const CellWindings* winding
         const std::size_t cells = std::size_t(ranges_.dims.x) * ranges_.dims.y * ranges_.dims.z;
         ranges_.visits.reset(new std::atomic<std::uint16_t>[cells]);
         for (std::size_t c = 0; c < cells; ++c) ranges_.visits[c].store(0, std::memory_order_relaxed);
+        ranges_.blockDims = (ranges_.dims + 1u) / 2u;
+        const std::size_t blocks = std::size_t(ranges_.blockDims.x) * ranges_.blockDims.y * ranges_.blockDims.z;
+        ranges_.blockTried.reset(new std::atomic<std::uint8_t>[blocks]);
+        for (std::size_t b = 0; b < blocks; ++b) ranges_.blockTried[b].store(0, std::memory_order_relaxed);
     }
+}
+
+bool BoundaryCaps::blockRange(const RangeGrid& g, std::size_t cell, const glm::uvec3& at) const {
+    const glm::uvec3 first = at / 2u * 2u, last = glm::min(first + 1u, g.dims - 1u);
+    const std::size_t block = (std::size_t(first.z / 2) * g.blockDims.y + first.y / 2) * g.blockDims.x + first.x / 2;
+    if (g.blockTried[block].exchange(1, std::memory_order_relaxed) != 0) return false;
+    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
+    const glm::dvec3 lo(g.box.lo), hi(g.box.hi);
+    const double slack = 1e-7 * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    const auto index = [&](const glm::uvec3& c) { return (std::size_t(c.z) * g.dims.y + c.y) * g.dims.x + c.x; };
+    // One integer term over the block: no cell meets the surface, or every
+    // one is clear of the sweep with the same known integer term.
+    const bool bySurface = !g.met.empty();
+    std::int32_t known = CellWindings::kUnknown;
+    glm::uvec3 c;
+    for (c.z = first.z; c.z <= last.z; ++c.z)
+        for (c.y = first.y; c.y <= last.y; ++c.y)
+            for (c.x = first.x; c.x <= last.x; ++c.x) {
+                const std::size_t k = index(c);
+                if (bySurface) {
+                    if (g.met[k] != 0) return false;
+                    continue;
+                }
+                const double top = lo[a] + double(c[a] + 1) * g.size[a] + 2.0 * slack;
+                if (!(top < g.lowestEdge[std::size_t(c[t]) * g.dims[s] + c[s]])) return false;
+                if (g.constantWinding.empty() || g.constantWinding[k] == CellWindings::kUnknown) return false;
+                if (known != CellWindings::kUnknown && g.constantWinding[k] != known) return false;
+                known = g.constantWinding[k];
+            }
+    const glm::dvec3 centre = lo + 0.5 * (glm::dvec3(first) + glm::dvec3(last + 1u)) * g.size;
+    const glm::vec3 q(centre);
+    const double half = 0.5 * glm::length(glm::dvec3(last + 1u - first) * g.size) + glm::length(glm::dvec3(q) - centre) +
+                        2.0 * slack;
+    const double drift = driftWithin(q, half * (1.0 + 1e-9), 0.5);
+    if (!std::isfinite(drift)) return false;
+    const Estimate e = estimate(q, kRangeTolerance);
+    if (!(e.bound + drift < 0.5)) return false;
+    const double base = e.term + double(bySurface ? surface_->winding(q) : known);
+    const double rangeLo = base - e.bound - drift, rangeHi = base + e.bound + drift;
+    const int side = sideOf(rangeLo, rangeHi);
+    if (side == 0) return false;
+    // Every cell of the block not yet filled (this one is the caller's).
+    for (c.z = first.z; c.z <= last.z; ++c.z)
+        for (c.y = first.y; c.y <= last.y; ++c.y)
+            for (c.x = first.x; c.x <= last.x; ++c.x) {
+                const std::size_t k = index(c);
+                std::uint8_t zero = 0;
+                if (k != cell && !g.state[k].compare_exchange_strong(zero, 3, std::memory_order_acquire)) continue;
+                g.lo[k] = rangeLo;
+                g.hi[k] = rangeHi;
+                g.alone[k] = std::uint8_t(side > 0);
+                if (k != cell) g.state[k].store(4, std::memory_order_release);
+            }
+    return true;
 }
 
 void BoundaryCaps::buildGrid(RangeGrid& g, const Box& box, double cellsAlong, const CellWindings* windings) {
@@ -815,7 +873,9 @@ std::uint8_t BoundaryCaps::rangeOf(const RangeGrid& g, std::size_t cell, const g
     // Clear of the caps: w_caps is smooth over the cell, and B is the caps'
     // crossing count (an integer, asked at the query) less w_caps.
     const bool clearOfCaps = g.capMet[cell] == 0;
-    if (clearOfSweep || clearOfSurface || clearOfCaps) {
+    if (g.blockTried && blockRange(g, cell, at)) {
+        result = 4;
+    } else if (clearOfSweep || clearOfSurface || clearOfCaps) {
         const glm::dvec3 centre = lo + (glm::dvec3(at) + 0.5) * g.size;
         const glm::vec3 c(centre);
         // Every point of the widened cell lies within this of c.

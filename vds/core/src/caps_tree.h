@@ -423,12 +423,24 @@ private:
         /// (states 2 and 6), up to kBusyVisits; from then on they ask the
         /// fine grid's cell.
         std::unique_ptr<std::atomic<std::uint16_t>[]> visits;
+        /// The coarse grid's: per block of 2 x 2 x 2 cells, 1 once a cell
+        /// of it tried the block's range (blockRange).
+        std::unique_ptr<std::atomic<std::uint8_t>[]> blockTried;
+        glm::uvec3 blockDims{0};
     };
     void buildRangeGrid(const Box& domain, const CellWindings* windings);
     void buildGrid(RangeGrid& g, const Box& box, double cellsAlong, const CellWindings* windings);
     /// The cell's state, filling it on the first visit; `within`: a fine
     /// cell within a planned coarse one (plan()).
     std::uint8_t rangeOf(const RangeGrid& g, std::size_t cell, const glm::uvec3& at, bool within = false) const;
+    /// On a coarse cell's fill (the caller owns `cell`, state 3), once a
+    /// block: where no cell of its block of 2 x 2 x 2 meets the surface
+    /// (or, without one, every cell is clear of the boundary's sweep and
+    /// the caller knew one integer term for them all), the range of the
+    /// whole winding number over the block, clear of 1/2, for every cell
+    /// of it not yet filled: one fill for eight far from the surface.
+    /// True where `cell` got it (then state 4 is the caller's to publish).
+    bool blockRange(const RangeGrid& g, std::size_t cell, const glm::uvec3& at) const;
     /// Whether a coarse cell without a range has had queries enough to
     /// ask the fine grid (counting this one).
     bool busy(std::size_t cell) const;
