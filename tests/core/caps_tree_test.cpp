@@ -79,6 +79,26 @@ double exactTerm(const std::vector<glm::vec3>& edges, const glm::vec3& q) {
     return boundaryTermExact(edges.data(), edges.size() / 2, 2, glm::dvec3(q));
 }
 
+// The cases and a soup of loose triangles.
+std::vector<Case> casesAndSoup() {
+    std::vector<Case> all = cases();
+    all.push_back({"soup", solids::looseTriangles(80, 0.2f, 23)});
+    return all;
+}
+
+// A mesh's caps given its surface, as the exact classifier builds them,
+// over the domain [-1, 1]^3.
+struct CapsWithSurface {
+    explicit CapsWithSurface(const TriangleMesh& mesh)
+        : edges(boundaryEdges(MeshView(mesh))), projected(MeshView(mesh), Axis::Z), surface(projected),
+          caps(edges.data(), edges.size() / 2, Axis::Z, &domain, &surface) {}
+    Box domain{glm::vec3(-1.0f), glm::vec3(1.0f)};
+    std::vector<glm::vec3> edges;
+    ProjectedMesh projected;
+    ProjectedSurface surface;
+    BoundaryCaps caps;
+};
+
 // The per-edge sum as the library takes it (EdgeAngles: products of each
 // edge's den + i det, a block of edges at a time, the turns counted, one
 // atan2) against each edge's own atan2 (edgeSolidAngle) summed: on a helix
@@ -366,15 +386,12 @@ TEST(CapsTree, RangesOfTheWholeWindingNumberLabelAsThePerEdgeSum) {
     // without the crossing count. The same labels as the crossing count
     // plus the per-edge sum: uniform points, points just off the triangles
     // on both sides, and beside and above the boundary curve.
-    std::vector<Case> all = cases();
-    all.push_back({"soup", solids::looseTriangles(80, 0.2f, 23)});
     std::mt19937 rng(23);
-    for (const Case& c : all) {
-        const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
-        const ProjectedMesh projected(MeshView(c.mesh), Axis::Z);
-        const ProjectedSurface surface(projected);
-        const Box domain{glm::vec3(-1.0f), glm::vec3(1.0f)};
-        const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z, &domain, &surface);
+    for (const Case& c : casesAndSoup()) {
+        const CapsWithSurface built(c.mesh);
+        const std::vector<glm::vec3>& edges = built.edges;
+        const ProjectedMesh& projected = built.projected;
+        const BoundaryCaps& caps = built.caps;
         std::vector<glm::vec3> at = points(4000, 29);
         std::normal_distribution<float> near(0.0f, 0.01f);
         for (const auto& t : c.mesh.triangles) {
@@ -402,17 +419,14 @@ TEST(CapsTree, BusyCellsAnswerFromTheirFineCellsAsThePerEdgeSum) {
     // their first visits): the same labels as the crossing count plus the
     // per-edge sum. Many queries in a few cells: points packed in small
     // cubes beside the boundary curve, each cube's asked several times.
-    std::vector<Case> all = cases();
-    all.push_back({"soup", solids::looseTriangles(80, 0.2f, 23)});
     std::mt19937 rng(31);
     std::uniform_real_distribution<float> within(-0.01f, 0.01f);
     std::size_t inside = 0, asked = 0;
-    for (const Case& c : all) {
-        const std::vector<glm::vec3> edges = boundaryEdges(MeshView(c.mesh));
-        const ProjectedMesh projected(MeshView(c.mesh), Axis::Z);
-        const ProjectedSurface surface(projected);
-        const Box domain{glm::vec3(-1.0f), glm::vec3(1.0f)};
-        const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z, &domain, &surface);
+    for (const Case& c : casesAndSoup()) {
+        const CapsWithSurface built(c.mesh);
+        const std::vector<glm::vec3>& edges = built.edges;
+        const ProjectedMesh& projected = built.projected;
+        const BoundaryCaps& caps = built.caps;
         std::vector<glm::vec3> at;
         std::vector<bool> expected;
         const std::size_t edgeCount = edges.size() / 2, spots = 6;
