@@ -597,6 +597,32 @@ TEST(VoxelizeGeneralizedWinding, EqualsTheExactClassifierAtCellCentres) {
     }
 }
 
+TEST(GeneralizedWinding, ExactMemoryCountsTheBoundarysCaps) {
+    // The generalized winding number's queries read the boundary's caps and
+    // the plans their grid fills as queries arrive: memoryBytes() counts
+    // them, so it grows as the plans are filled (a closed mesh has none).
+    for (const OpenCase& c : openCases()) {
+        const ExactClassifier exact(c.mesh, Axis::Z);
+        const std::size_t before = exact.memoryBytes();
+        const Box box = meshBounds(c.mesh);
+        std::mt19937 rng(41);
+        std::uniform_real_distribution<float> u(0.0f, 1.0f);
+        std::vector<glm::vec3> points(20000);
+        for (glm::vec3& p : points) p = box.lo + glm::vec3(u(rng), u(rng), u(rng)) * (box.hi - box.lo);
+        std::vector<std::uint8_t> labels(points.size());
+        exact.classify({points.data(), points.size()}, labels.data(), {Rule::GeneralizedWinding, 1});
+        EXPECT_GT(exact.memoryBytes(), before) << c.name;
+    }
+    const TriangleMesh closed = solids::sphere(glm::vec3(0.0f), 1.0f, 32).mesh;
+    const ExactClassifier exact(closed, Axis::Z);
+    const std::size_t before = exact.memoryBytes();
+    const glm::vec3 p(0.1f, 0.2f, 0.3f);
+    std::uint8_t label = 0;
+    exact.classify({&p, 1}, &label, {Rule::GeneralizedWinding, 1});
+    EXPECT_EQ(label, 1);
+    EXPECT_EQ(exact.memoryBytes(), before);
+}
+
 TEST(OccupancyGeneralizedWinding, EqualsTheSpritesClassify) {
     const TriangleMesh cup = sphereCup();
     const Sprite sprite = bakeAt(cup, Axis::Z, 64);

@@ -722,9 +722,12 @@ void BoundaryCaps::buildRangeGrid(const Box& domain, const CellWindings* winding
                                   double(domain.hi.z) - domain.lo.z});
     if (!(side > 0.0) || !std::isfinite(side)) return;
     const Box box{glm::vec3(glm::dvec3(domain.lo) - 0.25 * side), glm::vec3(glm::dvec3(domain.hi) + 0.25 * side)};
-    buildGrid(ranges_, box, kRangeCells, windings);
+    buildGrid(ranges_, box, kRangeCells, windings, true);
     if (ranges_.state) {
-        buildGrid(fine_, box, kFineCells, windings);
+        // The fine grid's cells only when a cell first turns busy
+        // (fineCells): what the windings and the surface say of each is
+        // asked now (the windings are not kept).
+        buildGrid(fine_, box, kFineCells, windings, false);
         const std::size_t cells = std::size_t(ranges_.dims.x) * ranges_.dims.y * ranges_.dims.z;
         ranges_.visits.reset(new std::atomic<std::uint16_t>[cells]);
         for (std::size_t c = 0; c < cells; ++c) ranges_.visits[c].store(0, std::memory_order_relaxed);
@@ -789,7 +792,8 @@ bool BoundaryCaps::blockRange(const RangeGrid& g, std::size_t cell, const glm::u
     return true;
 }
 
-void BoundaryCaps::buildGrid(RangeGrid& g, const Box& box, double cellsAlong, const CellWindings* windings) {
+void BoundaryCaps::buildGrid(RangeGrid& g, const Box& box, double cellsAlong, const CellWindings* windings,
+                             bool cellsNow) {
     g.box = box;
     const glm::dvec3 lo(g.box.lo), hi(g.box.hi), extent = hi - lo;
     const double longest = std::max({extent.x, extent.y, extent.z});
@@ -841,6 +845,11 @@ void BoundaryCaps::buildGrid(RangeGrid& g, const Box& box, double cellsAlong, co
     for (const glm::uvec3& c : capTriangles_)
         markTriangleCells(CellLattice{lo, g.size, g.dims}, glm::dvec3(capPositions_[c.x]), glm::dvec3(capPositions_[c.y]),
                           glm::dvec3(capPositions_[c.z]), 2.0 * slack, g.capMet);
+    if (cellsNow) allocateCells(g);
+}
+
+void BoundaryCaps::allocateCells(RangeGrid& g) {
+    const std::size_t cells = std::size_t(g.dims.x) * g.dims.y * g.dims.z;
     g.state.reset(new std::atomic<std::uint8_t>[cells]);
     g.near.reset(new std::unique_ptr<std::uint32_t[]>[cells]);
     g.nearCount.reset(new std::uint32_t[cells]());
@@ -933,7 +942,7 @@ std::uint8_t BoundaryCaps::rangeOf(const RangeGrid& g, std::size_t cell, const g
 BoundaryCaps::RangedCells BoundaryCaps::rangedCells(bool fine) const {
     const RangeGrid& g = fine ? fine_ : ranges_;
     RangedCells ranged;
-    if (!g.state) return ranged;
+    if (fine ? !fineReady_.load(std::memory_order_acquire) : !g.state) return ranged;
     for (std::size_t c = 0, n = std::size_t(g.dims.x) * g.dims.y * g.dims.z; c < n; ++c) {
         const std::uint8_t state = g.state[c].load(std::memory_order_acquire);
         ranged.boundary += state == 1;
@@ -943,6 +952,36 @@ BoundaryCaps::RangedCells BoundaryCaps::rangedCells(bool fine) const {
     }
     ranged.closed = g.closedCells.load(std::memory_order_relaxed);
     return ranged;
+}
+
+std::size_t BoundaryCaps::memoryBytes() const {
+    const auto held = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+    std::size_t total = held(edges_) + held(loopEdges_) + held(loops_) + held(capPositions_) + held(capTriangles_) +
+                        held(capLoopOf_) + held(chains_) + held(chainEdges_) + held(treeEdges_) + held(edgeNodes_) +
+                        held(leafTris_) + held(nodes_) + (projected_ ? projected_->memoryBytes() : 0);
+    for (const RangeGrid* g : {&ranges_, static_cast<const RangeGrid*>(&fine_)}) {
+        total += held(g->met) + held(g->capMet) + held(g->constantWinding) + held(g->closedWinding) + held(g->lowestEdge);
+        if (g == &fine_ ? !fineReady_.load(std::memory_order_acquire) : !g->state) continue;
+        const std::size_t cells = std::size_t(g->dims.x) * g->dims.y * g->dims.z;
+        // state, alone, planMisses; near, nearCount, nearLoops; lo, hi
+        total += cells * (3 + sizeof(std::unique_ptr<std::uint32_t[]>) + 2 * sizeof(std::uint32_t) + 2 * sizeof(double));
+        if (g->visits) total += cells * sizeof(std::uint16_t);
+        if (g->blockTried) total += std::size_t(g->blockDims.x) * g->blockDims.y * g->blockDims.z;
+        for (std::size_t c = 0; c < cells; ++c) // plans published so far
+            if (g->state[c].load(std::memory_order_acquire) == 6)
+                total += (std::size_t(g->nearCount[c]) + g->nearLoops[c]) * sizeof(std::uint32_t);
+    }
+    return total;
+}
+
+bool BoundaryCaps::fineCells() const {
+    if (fineReady_.load(std::memory_order_acquire)) return true;
+    if (fine_.capMet.empty()) return false; // no fine grid (no grid at all)
+    std::call_once(fineOnce_, [this] {
+        allocateCells(fine_);
+        fineReady_.store(true, std::memory_order_release);
+    });
+    return true;
 }
 
 bool BoundaryCaps::busy(std::size_t cell) const {
@@ -958,7 +997,7 @@ bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt, bool a
     if (!cellOf(ranges_, q, cell, at)) return generalizedWindingInside(decide(windingAt(), q, 1.0).term);
     std::uint8_t state = ranges_.state[cell].load(std::memory_order_acquire);
     if (state == 0) state = rangeOf(ranges_, cell, at);
-    if ((state == 2 || state == 6) && busy(cell)) {
+    if ((state == 2 || state == 6) && busy(cell) && fineCells()) {
         // The fine cell, where it has a range or a plan (or the coarse one
         // has none either).
         std::size_t fineCell;

@@ -73,6 +73,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -310,6 +311,9 @@ public:
     };
     /// The coarse grid's cells; `fine`: the fine grid's (busy cells').
     RangedCells rangedCells(bool fine = false) const;
+    /// Bytes held: the loops, caps, trees and both grids of bounds (the
+    /// plans filled so far included).
+    std::size_t memoryBytes() const;
 
     /// False when the edges do not close into loops (not a mesh's boundary):
     /// every query then takes the per-edge sum.
@@ -429,7 +433,12 @@ private:
         glm::uvec3 blockDims{0};
     };
     void buildRangeGrid(const Box& domain, const CellWindings* windings);
-    void buildGrid(RangeGrid& g, const Box& box, double cellsAlong, const CellWindings* windings);
+    /// `cellsNow`: allocate its cells' states and ranges too (allocateCells).
+    void buildGrid(RangeGrid& g, const Box& box, double cellsAlong, const CellWindings* windings, bool cellsNow);
+    static void allocateCells(RangeGrid& g);
+    /// The fine grid's cells, allocated on the first call (once, whichever
+    /// thread comes first); false where there is no fine grid.
+    bool fineCells() const;
     /// The cell's state, filling it on the first visit; `within`: a fine
     /// cell within a planned coarse one (plan()).
     std::uint8_t rangeOf(const RangeGrid& g, std::size_t cell, const glm::uvec3& at, bool within = false) const;
@@ -533,7 +542,10 @@ private:
     /// hold fewer near loops (a soup's 21 against 4) and whose ranges,
     /// narrower, keep clear of 1/2 more often. Only those fine cells are
     /// filled: a fill costs a few queries' work.
-    RangeGrid ranges_, fine_;
+    RangeGrid ranges_;
+    mutable RangeGrid fine_; ///< its cells allocated by fineCells()
+    mutable std::once_flag fineOnce_;
+    mutable std::atomic<bool> fineReady_{false};
     std::vector<glm::vec3> treeEdges_; ///< edges_ in the tree's order
     std::vector<EdgeNode> edgeNodes_; ///< a tree over edges_, for reach(); [0] is the root
 };

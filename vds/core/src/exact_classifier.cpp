@@ -122,7 +122,10 @@ bool detail::ExactAccess::containsBruteForce(const ExactClassifier& exact, const
 
 std::size_t ExactClassifier::memoryBytes() const {
     assert(impl_ && "use of a moved-from ExactClassifier");
-    return impl_->memoryBytes() + impl_->boundary.size() * sizeof(BoundaryEdge);
+    const Impl& impl = *impl_;
+    // The boundary's caps too: the generalized winding number's queries read them.
+    return impl.memoryBytes() + impl.boundary.size() * sizeof(BoundaryEdge) +
+           impl.boundaryEnds.size() * sizeof(glm::vec3) + (impl.caps ? impl.caps->memoryBytes() : 0);
 }
 
 std::string ExactClassifier::summary() const {
