@@ -1292,8 +1292,8 @@ bool BoundaryCaps::plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c
     // takes at the centre (nodes and edges). Within a planned cell that
     // test was passed: a fine cell's near loops lie within the coarse
     // cell's reach (its centre within half the coarse half diagonal), so
-    // they are fewer, and the decide() at the centre (some 2 us of the
-    // soup's) is not asked again.
+    // they are no more than the coarse cell's, and the decide() at the
+    // centre (some 2 us of the soup's) is not asked again.
     if (!within && double(near.size()) > kPlanShare * decide(0, c, 1.0).work) return false;
     std::sort(loops.begin(), loops.end());
     // The filling thread owns the cell (state 3).

@@ -538,9 +538,10 @@ private:
     std::vector<glm::vec3> chainEdges_;
     /// The grid of bounds, and one of cells half as wide along each side
     /// over the same box: a coarse cell without a range (states 2 and 6)
-    /// that many queries land in hands them to its fine cells, whose plans
-    /// hold fewer near loops (a soup's 21 against 4) and whose ranges,
-    /// narrower, keep clear of 1/2 more often. Only those fine cells are
+    /// that many queries land in hands them to its fine cells, whose
+    /// ranges and far ranges, taken over half the width, keep clear of 1/2
+    /// more often (the near loops a plan keeps are about as many: a soup's
+    /// small loops are near by their own size). Only those fine cells are
     /// filled: a fill costs a few queries' work.
     RangeGrid ranges_;
     mutable RangeGrid fine_; ///< its cells allocated by fineCells()
