@@ -738,13 +738,40 @@ void BoundaryCaps::buildRangeGrid(const Box& domain, const CellWindings* winding
     }
 }
 
+BoundaryCaps::CellsBall BoundaryCaps::ballOf(const RangeGrid& g, const glm::uvec3& first, const glm::uvec3& last) {
+    const glm::dvec3 lo(g.box.lo), hi(g.box.hi);
+    const double slack = 1e-7 * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    const glm::dvec3 centre = lo + 0.5 * (glm::dvec3(first) + glm::dvec3(last + 1u)) * g.size;
+    const glm::vec3 c(centre);
+    // Every point of the widened cells lies within this of c.
+    return {c, 0.5 * glm::length(glm::dvec3(last + 1u - first) * g.size) + glm::length(glm::dvec3(c) - centre) +
+                   2.0 * slack};
+}
+
+bool BoundaryCaps::clearOfSweep(const RangeGrid& g, const glm::uvec3& at) const {
+    // Every edge whose projection may meet the cell's column lies above
+    // the cell (its top widened against rounding).
+    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
+    const glm::dvec3 lo(g.box.lo), hi(g.box.hi);
+    const double slack = 1e-7 * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    const double top = lo[a] + double(at[a] + 1) * g.size[a] + 2.0 * slack;
+    return top < g.lowestEdge[std::size_t(at[t]) * g.dims[s] + at[s]];
+}
+
+bool BoundaryCaps::rangeOver(const CellsBall& ball, Estimate& e, double& drift) const {
+    // Coarse will do: a range serves only where it keeps clear of 1/2.
+    // The drift first (not finished past half a unit): where it alone
+    // spans a unit, no estimate helps.
+    drift = driftWithin(ball.centre, ball.half * (1.0 + 1e-9), 0.5);
+    if (!std::isfinite(drift)) return false;
+    e = estimate(ball.centre, kRangeTolerance);
+    return e.bound + drift < 0.5;
+}
+
 bool BoundaryCaps::blockRange(const RangeGrid& g, std::size_t cell, const glm::uvec3& at) const {
     const glm::uvec3 first = at / 2u * 2u, last = glm::min(first + 1u, g.dims - 1u);
     const std::size_t block = (std::size_t(first.z / 2) * g.blockDims.y + first.y / 2) * g.blockDims.x + first.x / 2;
     if (g.blockTried[block].exchange(1, std::memory_order_relaxed) != 0) return false;
-    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
-    const glm::dvec3 lo(g.box.lo), hi(g.box.hi);
-    const double slack = 1e-7 * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     const auto index = [&](const glm::uvec3& c) { return (std::size_t(c.z) * g.dims.y + c.y) * g.dims.x + c.x; };
     // One integer term over the block: no cell meets the surface, or every
     // one is clear of the sweep with the same known integer term.
@@ -759,21 +786,16 @@ bool BoundaryCaps::blockRange(const RangeGrid& g, std::size_t cell, const glm::u
                     if (g.met[k] != 0) return false;
                     continue;
                 }
-                const double top = lo[a] + double(c[a] + 1) * g.size[a] + 2.0 * slack;
-                if (!(top < g.lowestEdge[std::size_t(c[t]) * g.dims[s] + c[s]])) return false;
+                if (!clearOfSweep(g, c)) return false;
                 if (g.constantWinding.empty() || g.constantWinding[k] == CellWindings::kUnknown) return false;
                 if (known != CellWindings::kUnknown && g.constantWinding[k] != known) return false;
                 known = g.constantWinding[k];
             }
-    const glm::dvec3 centre = lo + 0.5 * (glm::dvec3(first) + glm::dvec3(last + 1u)) * g.size;
-    const glm::vec3 q(centre);
-    const double half = 0.5 * glm::length(glm::dvec3(last + 1u - first) * g.size) + glm::length(glm::dvec3(q) - centre) +
-                        2.0 * slack;
-    const double drift = driftWithin(q, half * (1.0 + 1e-9), 0.5);
-    if (!std::isfinite(drift)) return false;
-    const Estimate e = estimate(q, kRangeTolerance);
-    if (!(e.bound + drift < 0.5)) return false;
-    const double base = e.term + double(bySurface ? surface_->winding(q) : known);
+    const CellsBall ball = ballOf(g, first, last);
+    Estimate e;
+    double drift;
+    if (!rangeOver(ball, e, drift)) return false;
+    const double base = e.term + double(bySurface ? surface_->winding(ball.centre) : known);
     const double rangeLo = base - e.bound - drift, rangeHi = base + e.bound + drift;
     const int side = sideOf(rangeLo, rangeHi);
     if (side == 0) return false;
@@ -868,33 +890,23 @@ std::uint8_t BoundaryCaps::rangeOf(const RangeGrid& g, std::size_t cell, const g
     // One thread fills the cell (state 3 while it does); the others go on
     // by the tree meanwhile.
     if (!g.state[cell].compare_exchange_strong(state, 3, std::memory_order_acquire)) return state;
-    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
-    const glm::dvec3 lo(g.box.lo), hi(g.box.hi);
-    const double slack = 1e-7 * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     std::uint8_t result = 2;
-    // Clear of the boundary curve and its sweep along +axis: every edge
-    // whose projection may meet the cell's column lies above the cell.
-    const double top = lo[a] + double(at[a] + 1) * g.size[a] + 2.0 * slack;
-    const bool clearOfSweep = top < g.lowestEdge[std::size_t(at[t]) * g.dims[s] + at[s]];
+    // Clear of the boundary curve and its sweep along +axis.
+    const bool clearOfSweep = this->clearOfSweep(g, at);
     // Clear of the surface: the whole winding number is smooth over the
     // cell (the boundary curve too lies on the surface).
     const bool clearOfSurface = !g.met.empty() && g.met[cell] == 0;
     // Clear of the caps: w_caps is smooth over the cell, and B is the caps'
     // crossing count (an integer, asked at the query) less w_caps.
     const bool clearOfCaps = g.capMet[cell] == 0;
+    const CellsBall ball = ballOf(g, at, at);
     if (g.blockTried && blockRange(g, cell, at)) {
         result = 4;
     } else if (clearOfSweep || clearOfSurface || clearOfCaps) {
-        const glm::dvec3 centre = lo + (glm::dvec3(at) + 0.5) * g.size;
-        const glm::vec3 c(centre);
-        // Every point of the widened cell lies within this of c.
-        const double half = 0.5 * glm::length(g.size) + glm::length(glm::dvec3(c) - centre) + 2.0 * slack;
-        // Coarse will do: a range serves only where it keeps clear of 1/2.
-        // The drift first (not finished past half a unit): where it alone
-        // spans a unit, no estimate helps.
-        const double drift = driftWithin(c, half * (1.0 + 1e-9), 0.5);
-        const Estimate e = std::isfinite(drift) ? estimate(c, kRangeTolerance) : Estimate{0.0, drift};
-        if (std::isfinite(drift) && e.bound + drift < 0.5) {
+        const glm::vec3 c = ball.centre;
+        Estimate e;
+        double drift;
+        if (rangeOver(ball, e, drift)) {
             // The cheapest range to ask at a query: the whole winding
             // number's, then B's, then -w_caps.
             double base = e.term;
@@ -929,12 +941,7 @@ std::uint8_t BoundaryCaps::rangeOf(const RangeGrid& g, std::size_t cell, const g
             }
         }
     }
-    if (result == 2) {
-        const glm::dvec3 centre = lo + (glm::dvec3(at) + 0.5) * g.size;
-        const glm::vec3 c(centre);
-        const double half = 0.5 * glm::length(g.size) + glm::length(glm::dvec3(c) - centre) + 2.0 * slack;
-        if (plan(g, cell, c, half, within)) result = 6;
-    }
+    if (result == 2 && plan(g, cell, ball.centre, ball.half, within)) result = 6;
     g.state[cell].store(result, std::memory_order_release);
     return result;
 }

@@ -442,6 +442,20 @@ private:
     /// The cell's state, filling it on the first visit; `within`: a fine
     /// cell within a planned coarse one (plan()).
     std::uint8_t rangeOf(const RangeGrid& g, std::size_t cell, const glm::uvec3& at, bool within = false) const;
+    /// A ball about the box of cells [first, last] of `g`: its centre (a
+    /// float point, as queries are) and a radius holding every point of
+    /// those cells, widened against the rounding of a point's cell index.
+    struct CellsBall {
+        glm::vec3 centre;
+        double half;
+    };
+    static CellsBall ballOf(const RangeGrid& g, const glm::uvec3& first, const glm::uvec3& last);
+    /// Clear of the boundary curve and its sweep along +axis: every edge
+    /// whose projection may meet the cell's column lies above the cell.
+    bool clearOfSweep(const RangeGrid& g, const glm::uvec3& at) const;
+    /// B over the ball: `e` at its centre, to be widened by `drift`; false
+    /// where the two span half a unit or more (no range clear of 1/2).
+    bool rangeOver(const CellsBall& ball, Estimate& e, double& drift) const;
     /// On a coarse cell's fill (the caller owns `cell`, state 3), once a
     /// block: where no cell of its block of 2 x 2 x 2 meets the surface
     /// (or, without one, every cell is clear of the boundary's sweep and
