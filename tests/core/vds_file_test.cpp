@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,9 +20,11 @@
 #include <iterator>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <vds/error.h>
+#include <vds/npy.h>
 #include <vds/sprite.h>
 
 namespace fs = std::filesystem;
@@ -327,6 +333,78 @@ TEST_F(VdsFileTest, FailedRenameLeavesNoTemporary) {
     fs::create_directories(dir_ / "taken.vds" / "inside");
     EXPECT_THROW(vds::writeSprite(specialSprite(), path("taken.vds")), vds::IoError);
     EXPECT_EQ(entries(dir_), std::vector<std::string>{"taken.vds"});
+}
+
+// A symlink is written through: the file it names is replaced atomically
+// (the temporary beside that file), the link itself kept.
+TEST_F(VdsFileTest, SymlinkIsWrittenThroughAndKept) {
+    const vds::Sprite small = specialSprite();
+    vds::writeSprite(small, path("fresh.vds"));
+    const std::string fresh = readBytes(path("fresh.vds"));
+    fs::create_directories(dir_ / "real");
+    writeBytes(dir_ / "real" / "target.vds", "old contents");
+    fs::create_symlink("real/target.vds", dir_ / "link.vds");   // relative
+    fs::create_symlink(dir_ / "link.vds", dir_ / "chain.vds");   // absolute, to a link
+    vds::writeSprite(small, path("chain.vds"));
+    EXPECT_TRUE(fs::is_symlink(dir_ / "chain.vds"));
+    EXPECT_TRUE(fs::is_symlink(dir_ / "link.vds"));
+    EXPECT_EQ(readBytes(dir_ / "real" / "target.vds"), fresh);
+    EXPECT_EQ(entries(dir_ / "real"), std::vector<std::string>{"target.vds"}); // no temporary left
+    // A dangling link makes the file it names, as a shell's '>' does.
+    fs::create_symlink("real/new.vds", dir_ / "dangling.vds");
+    vds::writeSprite(small, path("dangling.vds"));
+    EXPECT_TRUE(fs::is_symlink(dir_ / "dangling.vds"));
+    EXPECT_EQ(readBytes(dir_ / "real" / "new.vds"), fresh);
+}
+
+TEST_F(VdsFileTest, SymlinkLoopAndDirectoryAreRefused) {
+    fs::create_symlink("b.vds", dir_ / "a.vds");
+    fs::create_symlink("a.vds", dir_ / "b.vds");
+    EXPECT_THROW(vds::writeSprite(specialSprite(), path("a.vds")), vds::IoError);
+    fs::create_directories(dir_ / "empty.vds");
+    try {
+        vds::writeNpy(path("empty.vds"), "|b1", {1}, "\1", 1);
+        ADD_FAILURE() << "a directory was written";
+    } catch (const vds::IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(fs::is_directory(dir_ / "empty.vds"));
+    EXPECT_EQ(entries(dir_), (std::vector<std::string>{"a.vds", "b.vds", "empty.vds"}));
+}
+
+// A FIFO is written to, never replaced: a reader on it gets the bytes.
+TEST_F(VdsFileTest, FifoIsWrittenDirectly) {
+    const vds::Sprite small = specialSprite();
+    const std::vector<char> expected = vds::encodeSprite(small);
+    ASSERT_EQ(::mkfifo(path("pipe").c_str(), 0600), 0);
+    std::string got;
+    std::thread reader([&] { got = readBytes(dir_ / "pipe"); });
+    vds::writeSprite(small, path("pipe"));
+    reader.join();
+    EXPECT_EQ(got, std::string(expected.begin(), expected.end()));
+    EXPECT_TRUE(fs::is_fifo(dir_ / "pipe"));
+    EXPECT_EQ(entries(dir_), std::vector<std::string>{"pipe"});
+}
+
+// A device is written to in place: a null device (made here, not /dev's)
+// stays a device; a socket cannot be opened and stays a socket.
+TEST_F(VdsFileTest, DeviceAndSocketAreNeverReplaced) {
+    if (::mknod(path("null").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0) {
+        vds::writeSprite(specialSprite(), path("null"));
+        vds::writeNpy(path("null"), "|b1", {1}, "\1", 1);
+        EXPECT_TRUE(fs::is_character_file(dir_ / "null"));
+    }
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+    ASSERT_GE(fd, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    const std::string socketPath = path("socket");
+    ASSERT_LT(socketPath.size(), sizeof address.sun_path);
+    std::memcpy(address.sun_path, socketPath.c_str(), socketPath.size() + 1);
+    ASSERT_EQ(::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address), 0);
+    EXPECT_THROW(vds::writeSprite(specialSprite(), socketPath), vds::IoError);
+    EXPECT_TRUE(fs::is_socket(dir_ / "socket"));
+    ::close(fd);
 }
 
 TEST_F(VdsFileTest, InconsistentSpriteIsNotWritten) {
