@@ -127,7 +127,9 @@ TEST(ValidateMesh, AnEdgeOfThreeTrianglesLeavesInsideUndefined) {
     EXPECT_EQ(r.nonManifoldEdges, 4u);
     EXPECT_EQ(r.oddNonManifoldEdges, 4u);
     EXPECT_FALSE(r.closed());
-    EXPECT_NE(r.summary().find("open (4 edges shared by an odd number of triangles)"), std::string::npos)
+    EXPECT_NE(r.summary().find("open (4 edges shared by an odd number of triangles; 4 edges in the generalized "
+                               "winding number's boundary)"),
+              std::string::npos)
         << r.summary();
     EXPECT_THROW(requireInsideDefined(r, "theta.obj", Rule::Parity), InvalidMesh);
 }
@@ -150,10 +152,13 @@ TEST(ValidateMesh, CountsDuplicateTrianglesIsolatedVerticesAndOrientationConflic
     EXPECT_EQ(f.inconsistentEdges, 3u);
     EXPECT_TRUE(f.closed());
     EXPECT_FALSE(f.oriented());
-    EXPECT_EQ(f.summary(), "closed, 3 inconsistently oriented edges, 12 triangles, 8 vertices");
+    EXPECT_TRUE(f.misoriented());
+    EXPECT_EQ(f.windingBoundaryEdges, 6u); // each conflicting edge used twice the same way
+    EXPECT_STREQ(f.status(), "mis-oriented");
+    EXPECT_EQ(f.summary(), "closed but mis-oriented (3 inconsistently oriented edges; 6 edges in the generalized "
+                           "winding number's boundary), 12 triangles, 8 vertices");
     EXPECT_NO_THROW(requireInsideDefined(f, "flipped.obj", Rule::Parity));
-    EXPECT_EQ(insideWarning(f, Rule::Parity),
-              "3 inconsistently oriented edges; inside is still defined by the parity rule");
+    EXPECT_EQ(insideWarning(f, Rule::Parity), misorientedMessage(f, "the mesh"));
     try {
         requireInsideDefined(f, "flipped.obj", Rule::Winding);
         FAIL() << "winding accepted with orientation conflicts";
@@ -205,13 +210,19 @@ TEST(ValidateMesh, OpenMeshesHaveNoInsideAndTheMessageSaysWhatAnswers) {
             requireInsideDefined(validateMesh(open), "open.obj", rule);
             FAIL() << "open mesh accepted";
         } catch (const InvalidMesh& e) {
-            EXPECT_EQ(std::string(e.what()), std::string("open.obj is open (3 boundary edges): inside is not defined "
-                                                         "by the ") +
-                                                 toString(rule) +
-                                                 " rule; the generalized winding number answers for it (--rule "
-                                                 "generalized-winding), and answering anyway (--allow-open) counts "
-                                                 "crossings as for a surface, not a solid");
+            const std::string expected = std::string("open.obj is open (3 boundary edges): inside is not defined "
+                                                     "by the ") +
+                                         toString(rule) +
+                                         " rule; the generalized winding number answers for it (--rule "
+                                         "generalized-winding)";
+            EXPECT_EQ(std::string(e.what()), expected);
             EXPECT_EQ(openMeshMessage(validateMesh(open), "open.obj", rule), e.what());
+            // A flag is named only by a caller that has it.
+            EXPECT_EQ(openMeshMessage(validateMesh(open), "open.obj", rule, {"--rule generalized-winding", "--allow-open"}),
+                      expected + ", and answering anyway (--allow-open) counts crossings as for a surface, not a solid");
+            EXPECT_EQ(openMeshMessage(validateMesh(open), "open.obj", rule, {"", ""}),
+                      std::string("open.obj is open (3 boundary edges): inside is not defined by the ") +
+                          toString(rule) + " rule; the generalized winding number answers for it");
         }
     }
     EXPECT_THROW(requireInsideDefined(validateMesh(TriangleMesh{}), "empty.obj", Rule::Parity), InvalidMesh);
@@ -331,6 +342,7 @@ MeshReport referenceReport(const TriangleMesh& m) {
         r.nonManifoldEdges += u.first > 2;
         r.oddNonManifoldEdges += u.first > 2 && u.first % 2 == 1;
         r.inconsistentEdges += u.first % 2 == 0 && 2 * u.second != u.first;
+        r.windingBoundaryEdges += std::size_t(std::abs(2 * u.second - u.first));
     }
     for (std::size_t i = 0; i < m.positions.size(); ++i) r.isolatedVertices += used.count(id[i]) == 0;
     return r;
@@ -380,6 +392,7 @@ TEST(ValidateMesh, CountsAgreeWithAnObviousReferenceOnAnyNumberOfThreads) {
         EXPECT_EQ(got.nonManifoldEdges, want.nonManifoldEdges);
         EXPECT_EQ(got.oddNonManifoldEdges, want.oddNonManifoldEdges);
         EXPECT_EQ(got.inconsistentEdges, want.inconsistentEdges);
+        EXPECT_EQ(got.windingBoundaryEdges, want.windingBoundaryEdges);
         EXPECT_EQ(got.duplicateTriangles, want.duplicateTriangles);
         EXPECT_EQ(got.degenerateTriangles, want.degenerateTriangles);
         EXPECT_EQ(got.isolatedVertices, want.isolatedVertices);
@@ -391,6 +404,95 @@ TEST(ValidateMesh, CountsAgreeWithAnObviousReferenceOnAnyNumberOfThreads) {
         EXPECT_EQ(bounds.hi, one.hi);
     }
     EXPECT_TRUE(validateMesh(torus, 2).oriented());
+}
+
+} // namespace
+} // namespace vds
+
+namespace vds {
+namespace {
+
+/// Two closed boxes, the second turned inside out (every triangle reversed):
+/// closed and consistently oriented edge by edge, yet its second body faces
+/// inward (the multibody case).
+TriangleMesh oneBodyInsideOut() {
+    const TriangleMesh outward = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    TriangleMesh inward = solids::box({2, 0, 0}, {3, 1, 1}).mesh;
+    for (glm::uvec3& t : inward.triangles) std::swap(t.y, t.z);
+    return solids::merge(outward, inward);
+}
+
+// One account: the counts, the word, what each rule answers (asked of the
+// exact classifier, independently of the validation) and the sprite's status.
+TEST(MeshAccount, AClosedMeshWithOneBodyInsideOutIsToldAsMisoriented) {
+    const TriangleMesh m = oneBodyInsideOut();
+    const MeshReport r = validateMesh(m);
+    EXPECT_TRUE(r.closed());
+    EXPECT_TRUE(r.oriented()); // no edge is at fault: only the part's volume tells
+    EXPECT_EQ(r.insideOutParts, 1u);
+    EXPECT_EQ(r.windingBoundaryEdges, 0u);
+    EXPECT_TRUE(r.misoriented());
+    EXPECT_STREQ(r.status(), "mis-oriented");
+    EXPECT_EQ(r.summary(), "closed but mis-oriented (1 inside-out part), 24 triangles, 16 vertices");
+    const std::string message = misorientedMessage(r, "multibody.stl");
+    for (const char* says : {"multibody.stl is closed but mis-oriented (1 inside-out part)", "the parity rule",
+                             "the winding rule counts an inside-out part inside too",
+                             "the generalized winding number, an integer here, is read as the winding rule",
+                             "flip the inward-facing triangles"})
+        EXPECT_NE(message.find(says), std::string::npos) << says << "\n" << message;
+    EXPECT_EQ(insideWarning(r, Rule::GeneralizedWinding), message.substr(0, 0) + misorientedMessage(r, "the mesh"));
+
+    // What the message says each rule answers, from the exact classifier.
+    const ExactClassifier exact(m);
+    EXPECT_EQ(exact.boundaryEdgeCount(), r.windingBoundaryEdges);
+    const glm::vec3 inOutward(0.5f, 0.5f, 0.5f), inInward(2.5f, 0.5f, 0.5f);
+    EXPECT_TRUE(exact.contains(inInward, Rule::Parity));
+    EXPECT_TRUE(exact.contains(inInward, Rule::Winding));
+    EXPECT_TRUE(exact.contains(inInward, Rule::GeneralizedWinding)); // read as the winding rule
+    EXPECT_NEAR(exact.generalizedWinding(inInward), -1.0, 1e-9);
+    EXPECT_TRUE(exact.contains(inOutward, Rule::GeneralizedWinding));
+
+    // The sprite's status says the same word, from its file's fields.
+    BakeOptions options;
+    options.resolution = 16;
+    options.method = BakeMethod::Cpu;
+    const Sprite s = bakeCpu(m, options);
+    EXPECT_EQ(s.status, SolidStatus::Open);
+    EXPECT_STREQ(statusWord(s.status, s.validation), "mis-oriented");
+    EXPECT_EQ(s.validation, r.summary());
+}
+
+// The closed box with one triangle reversed: three conflicting edges, each
+// counted twice by the generalized winding number's boundary, as the exact
+// classifier and the sprite count it; an open box's counts agree the same way.
+TEST(MeshAccount, EveryCountOfOneMeshAgrees) {
+    auto flipped = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    std::swap(flipped.triangles[0].y, flipped.triangles[0].z);
+    auto open = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    open.triangles.pop_back();
+    for (const TriangleMesh& m : {flipped, open}) {
+        const MeshReport r = validateMesh(m);
+        const ExactClassifier exact(m);
+        EXPECT_EQ(exact.boundaryEdgeCount(), r.windingBoundaryEdges);
+        EXPECT_NE(exact.summary().find(windingBoundaryText(r.windingBoundaryEdges)), std::string::npos) << exact.summary();
+        BakeOptions options;
+        options.resolution = 16;
+        options.method = BakeMethod::Cpu;
+        const Sprite s = bakeCpu(m, options);
+        EXPECT_EQ(s.boundaryEdges.size() / 2, r.windingBoundaryEdges);
+        EXPECT_STREQ(statusWord(s.status, s.validation), r.status());
+    }
+    EXPECT_STREQ(validateMesh(open).status(), "open");
+    EXPECT_EQ(validateMesh(open).windingBoundaryEdges, 3u);
+    EXPECT_EQ(validateMesh(flipped).windingBoundaryEdges, 6u);
+    // With a boundary (conflicting edges), the generalized winding number is the continuous value above 1/2.
+    const MeshReport f = validateMesh(flipped);
+    EXPECT_NE(misorientedMessage(f, "").find("the winding rule does not define inside"), std::string::npos);
+    EXPECT_NE(misorientedMessage(f, "").find("the generalized winding number sees an inside-out part as outside"),
+              std::string::npos);
+    const TriangleMesh box = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    EXPECT_STREQ(validateMesh(box).status(), "closed");
+    EXPECT_EQ(validateMesh(box).insideOutParts, 0u);
 }
 
 } // namespace

@@ -33,9 +33,13 @@ void bake(BakeArgs& a) {
     } else {
         a.options.axis = vds::parseAxis(a.axis);
     }
-    if (!report.oriented())
-        std::fprintf(stderr, "vds bake: warning: %s (%s)\n", vds::openMeshMessage(report, a.mesh, vds::Rule::Parity).c_str(),
-                     report.summary().c_str());
+    if (vds::solidStatus(report) != vds::SolidStatus::Closed) {
+        // The sprite answers by the generalized winding number through classify's --rule.
+        const std::string warning = report.closed() ? vds::misorientedMessage(report, a.mesh)
+                                                    : vds::openMeshMessage(report, a.mesh, vds::Rule::Parity,
+                                                                           {"vds classify --rule generalized-winding", ""});
+        std::fprintf(stderr, "vds bake: warning: %s (%s)\n", warning.c_str(), report.summary().c_str());
+    }
     if (a.options.method == vds::BakeMethod::Auto) {
         std::string why;
         a.options.method = vds::chooseBakeMethod(&why);

@@ -147,8 +147,10 @@ void checkMesh(const ClassifyArgs& a, const vds::TriangleMesh& mesh) {
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, a.mesh);
     vds::requireVolume(report, a.mesh);
-    if (!a.allowOpen && !vds::methodInfo(a.method).needsClosedMesh) vds::requireInsideDefined(report, a.mesh, a.options.rule);
-    const std::string warning = vds::insideWarning(report, a.options.rule);
+    const vds::MeshFlags flags{"--rule generalized-winding", "--allow-open"};
+    if (!a.allowOpen && !vds::methodInfo(a.method).needsClosedMesh)
+        vds::requireInsideDefined(report, a.mesh, a.options.rule, flags);
+    const std::string warning = vds::insideWarning(report, a.options.rule, flags);
     if (!warning.empty()) std::fprintf(stderr, "vds classify: warning: %s: %s\n", a.mesh.c_str(), warning.c_str());
 }
 
@@ -179,7 +181,7 @@ void classify(ClassifyArgs& a) {
                                                             "(vds classify SPRITE.vds POINTS -o LABELS)");
         }
         // The generalized winding number answers open meshes: no warning then.
-        if (sprite.status == vds::SolidStatus::Open && a.options.rule != vds::Rule::GeneralizedWinding)
+        if (sprite.status != vds::SolidStatus::Closed && a.options.rule != vds::Rule::GeneralizedWinding)
             std::fprintf(stderr, "vds classify: warning: %s\n",
                          vds::openSpriteMessage(sprite.validation, a.options.rule).c_str());
         classifier = vds::makeClassifier(std::move(sprite), a.method);

@@ -3,6 +3,7 @@
 
 #include <glm/matrix.hpp>
 
+#include <vds/mesh.h>
 #include <vds/vds_file.h>
 
 #include "cli.h"
@@ -24,8 +25,9 @@ void info(InfoArgs& a) {
     std::printf("format version:    %d\n", vds::Sprite::kFormatVersion);
     std::printf("source mesh:       %s, %ju triangles\n", s.sourceName.empty() ? "(unnamed)" : s.sourceName.c_str(),
                 std::uintmax_t(s.sourceTriangles));
-    std::printf("validation:        %s%s\n", s.validation.c_str(),
-                s.status == vds::SolidStatus::Open ? "  [NOT A SOLID: answers are a surface's]" : "");
+    std::printf("status:            %s%s\n", vds::statusWord(s.status, s.validation),
+                s.status != vds::SolidStatus::Closed ? "  [NOT A SOLID: the rules' answers differ]" : "");
+    std::printf("validation:        %s\n", s.validation.c_str());
     std::printf("view axis:         %s\n", vds::toString(g.axis));
     std::printf("resolution:        %u x %u texels, texel size %g\n", g.width, g.height, double(g.texelSize));
     std::printf("depth complexity:  %u\n", s.depthComplexity);

@@ -43,14 +43,17 @@ void voxelize(VoxelizeArgs& a) {
     if (fromSprite) {
         sprite = vds::readSprite(a.input);
         bounds = sprite.grid.box;
+        if (sprite.status != vds::SolidStatus::Closed && a.options.rule != vds::Rule::GeneralizedWinding)
+            std::fprintf(stderr, "vds voxelize: warning: %s\n",
+                         vds::openSpriteMessage(sprite.validation, a.options.rule).c_str());
     } else {
         mesh = vds::loadMesh(a.input);
         const vds::MeshReport report = vds::validateMesh(mesh);
         vds::requireUsable(report, a.input);
         vds::requireVolume(report, a.input);
         bounds = report.bounds;
-        const std::string open = vds::openMeshMessage(report, a.input, a.options.rule);
-        if (!open.empty()) std::fprintf(stderr, "vds voxelize: warning: %s\n", open.c_str());
+        const std::string warning = vds::insideWarning(report, a.options.rule);
+        if (!warning.empty()) std::fprintf(stderr, "vds voxelize: warning: %s: %s\n", a.input.c_str(), warning.c_str());
     }
     phase("load", secondsSince(start));
     vds::Grid grid;
@@ -138,7 +141,8 @@ void addVoxelize(CLI::App& app) {
     c->add_option("--box", a->box, "the grid's box instead of the input's bounds")
         ->expected(6)
         ->type_name("X0 Y0 Z0 X1 Y1 Z1");
-    addEnum(*c, "--rule", a->options.rule, "parity, non-zero winding, or generalized winding (closed meshes)");
+    addEnum(*c, "--rule", a->options.rule,
+            "parity, non-zero winding, or the generalized winding number (open meshes and soups too)");
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
     c->add_flag("--packed", a->packed, "eight cells to a byte");
     c->add_flag("--verbose", a->verbose, "print the time of each phase");

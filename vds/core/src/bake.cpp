@@ -40,7 +40,7 @@ Sprite assembleSprite(const BakeSetup& setup, const BakeOptions& options, MeshVi
     s.depthComplexity = most;
     s.sourceName = options.sourceName;
     s.sourceTriangles = mesh.triangleCount;
-    s.status = setup.report.oriented() ? SolidStatus::Closed : SolidStatus::Open;
+    s.status = solidStatus(setup.report);
     s.validation = setup.report.summary();
     s.boundaryEdges = std::move(edges);
     s.checkConsistent();

@@ -15,6 +15,7 @@
 // jumps by one and the boundary term by minus one, so the sum is the smooth
 // GWN. The solid angle is Van Oosterom & Strackee's formula in double.
 #include <vds/exact.h>
+#include <vds/mesh.h>
 
 #include <algorithm>
 #include <cassert>
@@ -131,7 +132,7 @@ std::size_t ExactClassifier::memoryBytes() const {
 std::string ExactClassifier::summary() const {
     assert(impl_ && "use of a moved-from ExactClassifier");
     return "exact on " + std::to_string(impl_->tris.size()) + " triangles along " + toString(impl_->axis) +
-           (impl_->boundary.empty() ? "" : ", " + std::to_string(impl_->boundary.size()) + " boundary edges");
+           (impl_->boundary.empty() ? "" : ", " + windingBoundaryText(impl_->boundary.size()));
 }
 
 void ExactClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <numeric>
 #include <sstream>
 #include <thread>
 
@@ -110,7 +111,7 @@ struct Found {
     std::size_t badIndices = 0, degenerate = 0;
     bool anyBounds = false;
     Box bounds; ///< of the positions `include`d
-    std::size_t boundary = 0, nonManifold = 0, oddNonManifold = 0, inconsistent = 0, duplicates = 0;
+    std::size_t boundary = 0, nonManifold = 0, oddNonManifold = 0, inconsistent = 0, duplicates = 0, unpaired = 0;
 
     void include(const glm::vec3& lo, const glm::vec3& hi) {
         bounds.lo = anyBounds ? glm::min(bounds.lo, lo) : lo;
@@ -128,7 +129,8 @@ struct Found {
 /// a handful of items, is sorted in place and read in runs. `Index` holds a
 /// vertex index shifted left by one and any position in the arrays of items.
 template <class Index>
-void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>& weld, unsigned threads) {
+void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>& weld, unsigned threads,
+                  const std::vector<std::uint32_t>& part, std::atomic<std::uint8_t>* openPart) {
     const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
     std::unique_ptr<std::atomic<std::uint8_t>[]> used(new std::atomic<std::uint8_t>[nv]());
     // Per thread and vertex: how many edge uses (corner sets) the thread
@@ -245,6 +247,8 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
                 if (uses > 2) ++f.nonManifold;
                 if (uses > 2 && uses % 2 == 1) ++f.oddNonManifold;
                 if (uses % 2 == 0 && 2 * forward != uses) ++f.inconsistent;
+                f.unpaired += 2 * forward > uses ? 2 * forward - uses : uses - 2 * forward;
+                if (uses % 2 == 1) openPart[part[v]].store(1, std::memory_order_relaxed);
                 i = j;
             }
             const std::size_t firstSet = v == 0 ? 0 : std::size_t(cornerEnd[v - 1]);
@@ -263,8 +267,58 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
         r.nonManifoldEdges += f.nonManifold;
         r.oddNonManifoldEdges += f.oddNonManifold;
         r.inconsistentEdges += f.inconsistent;
+        r.windingBoundaryEdges += f.unpaired;
         r.duplicateTriangles += f.duplicates;
     }
+}
+
+/// For each welded vertex, the part it belongs to (vertices joined by
+/// triangles), named by one of its vertices: union-find, halving paths.
+std::vector<std::uint32_t> connectedParts(MeshView mesh, const std::vector<std::uint32_t>& weld) {
+    std::vector<std::uint32_t> parent(mesh.positionCount);
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto root = [&](std::uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
+        const glm::uvec3 tri = mesh.triangles[t];
+        if (tri.x >= mesh.positionCount || tri.y >= mesh.positionCount || tri.z >= mesh.positionCount) continue;
+        const std::uint32_t a = root(weld[tri.x]), b = root(weld[tri.y]), c = root(weld[tri.z]);
+        const std::uint32_t low = std::min({a, b, c});
+        parent[a] = parent[b] = parent[c] = low;
+    }
+    for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = root(std::uint32_t(v));
+    return parent;
+}
+
+/// Closed parts (no edge at fault: `openPart` unset) whose signed volume is
+/// negative, beyond rounding: the sum of its triangles' signed volumes,
+/// about the box's centre, below -1e-6 of the sum of their magnitudes (a
+/// flat closed part, volume 0, is not inside out).
+std::size_t countInsideOutParts(MeshView mesh, const std::vector<std::uint32_t>& weld,
+                                const std::vector<std::uint32_t>& part, const std::atomic<std::uint8_t>* openPart,
+                                const Box& bounds) {
+    constexpr double kRounding = 1e-6;
+    const glm::dvec3 centre = (glm::dvec3(bounds.lo) + glm::dvec3(bounds.hi)) * 0.5;
+    std::vector<double> volume(mesh.positionCount, 0.0), magnitude(mesh.positionCount, 0.0);
+    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
+        const glm::uvec3 tri = mesh.triangles[t];
+        if (tri.x >= mesh.positionCount || tri.y >= mesh.positionCount || tri.z >= mesh.positionCount) continue;
+        const glm::dvec3 a = glm::dvec3(mesh.positions[tri.x]) - centre, b = glm::dvec3(mesh.positions[tri.y]) - centre,
+                         c = glm::dvec3(mesh.positions[tri.z]) - centre;
+        const double v = glm::dot(a, glm::cross(b, c));
+        if (!std::isfinite(v)) continue;
+        const std::uint32_t p = part[weld[tri.x]];
+        volume[p] += v;
+        magnitude[p] += std::abs(v);
+    }
+    std::size_t count = 0;
+    for (std::size_t p = 0; p < part.size(); ++p)
+        if (part[p] == p && magnitude[p] > 0.0 && !openPart[p].load(std::memory_order_relaxed) &&
+            volume[p] < -kRounding * magnitude[p])
+            ++count;
+    return count;
 }
 
 } // namespace
@@ -276,15 +330,21 @@ std::string MeshReport::summary() const {
     std::ostringstream s;
     if (nonFiniteVertices) s << "non-finite: " << nonFiniteVertices << " vertices with NaN or infinite coordinates, ";
     if (badIndices) s << "invalid: " << badIndices << " indices out of range, ";
-    s << (closed() ? "closed" : "open");
-    if (!closed()) {
+    std::vector<std::string> faults;
+    if (boundaryEdges) faults.push_back(counted(boundaryEdges, "boundary edge"));
+    if (oddNonManifoldEdges) faults.push_back(counted(oddNonManifoldEdges, "edge") + " shared by an odd number of triangles");
+    if (closed() && inconsistentEdges) faults.push_back(counted(inconsistentEdges, "inconsistently oriented edge"));
+    if (insideOutParts) faults.push_back(counted(insideOutParts, "inside-out part"));
+    s << (!closed() ? "open" : misoriented() ? "closed but mis-oriented" : "closed");
+    if (!faults.empty()) {
         s << " (";
-        if (boundaryEdges) s << counted(boundaryEdges, "boundary edge") << (oddNonManifoldEdges ? ", " : "");
-        if (oddNonManifoldEdges) s << counted(oddNonManifoldEdges, "edge") << " shared by an odd number of triangles";
+        for (std::size_t k = 0; k < faults.size(); ++k) s << (k ? ", " : "") << faults[k];
+        // The generalized winding number's count, where it is not the boundary edges' own.
+        if (windingBoundaryEdges != boundaryEdges) s << "; " << windingBoundaryText(windingBoundaryEdges);
         s << ")";
     }
     if (nonManifoldEdges) s << ", " << counted(nonManifoldEdges, "non-manifold edge");
-    if (inconsistentEdges) s << ", " << counted(inconsistentEdges, "inconsistently oriented edge");
+    if (!closed() && inconsistentEdges) s << ", " << counted(inconsistentEdges, "inconsistently oriented edge");
     s << ", " << counted(triangleCount, "triangle") << ", " << counted(vertexCount, "vertex", "vertices");
     if (degenerateTriangles) s << ", " << counted(degenerateTriangles, "degenerate triangle");
     if (duplicateTriangles) s << ", " << counted(duplicateTriangles, "duplicate triangle");
@@ -307,11 +367,14 @@ MeshReport validateMesh(MeshView mesh, unsigned threads) {
     for (std::size_t i = 0; i < nv; ++i)
         if (!finite(mesh.positions[i])) ++r.nonFiniteVertices;
     const std::vector<std::uint32_t> weld = weldByPosition(mesh.positions, nv);
+    const std::vector<std::uint32_t> part = connectedParts(mesh, weld);
+    std::unique_ptr<std::atomic<std::uint8_t>[]> openPart(new std::atomic<std::uint8_t>[nv]());
     // 32-bit items while vertex indices fit in 31 bits and the edge uses in 32.
     if (nv < (std::size_t(1) << 31) && 3 * nt < (std::size_t(1) << 32))
-        countByEdges<std::uint32_t>(r, mesh, weld, threads);
+        countByEdges<std::uint32_t>(r, mesh, weld, threads, part, openPart.get());
     else
-        countByEdges<std::uint64_t>(r, mesh, weld, threads);
+        countByEdges<std::uint64_t>(r, mesh, weld, threads, part, openPart.get());
+    r.insideOutParts = countInsideOutParts(mesh, weld, part, openPart.get(), r.bounds);
     return r;
 }
 
@@ -331,31 +394,79 @@ bool MeshReport::flat() const {
     return false;
 }
 
-std::string openMeshMessage(const MeshReport& report, const std::string& meshName, Rule rule) {
+namespace {
+
+/// "open (3 boundary edges, 1 edge shared by an odd number of triangles)".
+std::string openFaults(const MeshReport& report) {
+    std::string why;
+    if (report.boundaryEdges) why = counted(report.boundaryEdges, "boundary edge");
+    if (report.oddNonManifoldEdges)
+        why += (why.empty() ? "" : ", ") + counted(report.oddNonManifoldEdges, "edge") +
+               " shared by an odd number of triangles";
+    return "open (" + why + ")";
+}
+
+/// " (--rule generalized-winding)", or nothing where the caller has no such flag.
+std::string flagText(const std::string& flag) { return flag.empty() ? std::string() : " (" + flag + ")"; }
+
+std::string named(const std::string& meshName) { return meshName.empty() ? std::string("mesh") : meshName; }
+
+} // namespace
+
+std::string windingBoundaryText(std::size_t edges) {
+    return counted(edges, "edge") + " in the generalized winding number's boundary";
+}
+
+SolidStatus solidStatus(const MeshReport& report) {
+    return report.closed() && !report.misoriented() ? SolidStatus::Closed : SolidStatus::Open;
+}
+
+const char* statusWord(SolidStatus status, const std::string& validation) {
+    if (status == SolidStatus::Closed) return "closed";
+    return validation.rfind("closed", 0) == 0 ? "mis-oriented" : "open";
+}
+
+std::string openMeshMessage(const MeshReport& report, const std::string& meshName, Rule rule, const MeshFlags& flags) {
     if (rule == Rule::GeneralizedWinding) return {}; // defined for every usable mesh
-    const std::string who = meshName.empty() ? std::string("mesh") : meshName;
-    if (!report.closed()) {
-        std::string why;
-        if (report.boundaryEdges) why = counted(report.boundaryEdges, "boundary edge");
-        if (report.oddNonManifoldEdges)
-            why += (why.empty() ? "" : ", ") + counted(report.oddNonManifoldEdges, "edge") +
-                   " shared by an odd number of triangles";
-        return who + " is open (" + why + "): inside is not defined by the " + toString(rule) +
-               " rule; the generalized winding number answers for it (--rule generalized-winding), and answering "
-               "anyway (--allow-open) counts crossings as for a surface, not a solid";
-    }
+    const std::string gwn = "the generalized winding number answers for it" + flagText(flags.generalizedWinding);
+    if (!report.closed())
+        return named(meshName) + " is " + openFaults(report) + ": inside is not defined by the " + toString(rule) +
+               " rule; " + gwn +
+               (flags.allowOpen.empty() ? std::string()
+                                        : ", and answering anyway" + flagText(flags.allowOpen) +
+                                              " counts crossings as for a surface, not a solid");
     if (rule == Rule::Winding && !report.oriented())
-        return who + " has " + counted(report.inconsistentEdges, "inconsistently oriented edge") +
-               ": inside is not defined by the winding rule; the parity rule and the generalized winding number "
-               "(--rule generalized-winding) answer for it";
+        return named(meshName) + " has " + counted(report.inconsistentEdges, "inconsistently oriented edge") +
+               ": inside is not defined by the winding rule; the parity rule and the generalized winding number" +
+               flagText(flags.generalizedWinding) + " answer for it";
     return {};
 }
 
-std::string openSpriteMessage(const std::string& validation, Rule rule) {
+std::string openSpriteMessage(const std::string& validation, Rule rule, const MeshFlags& flags) {
     if (rule == Rule::GeneralizedWinding) return {};
-    return "the sprite was baked from a mesh that bounds no solid (" + validation + "): its " + toString(rule) +
-           " answers count crossings as for a surface; the generalized winding number answers for it "
-           "(--rule generalized-winding)";
+    const bool closed = validation.rfind("closed", 0) == 0; // closed but mis-oriented
+    return "the sprite was baked from a mesh that " + std::string(closed ? "is mis-oriented" : "bounds no solid") + " (" +
+           validation + "): its " + toString(rule) +
+           " answers count crossings as for a surface; the generalized winding number answers for it" +
+           flagText(flags.generalizedWinding);
+}
+
+std::string misorientedMessage(const MeshReport& report, const std::string& meshName) {
+    if (!report.misoriented()) return {};
+    std::string what;
+    if (report.inconsistentEdges) what = counted(report.inconsistentEdges, "inconsistently oriented edge");
+    if (report.insideOutParts)
+        what += (what.empty() ? "" : ", ") + counted(report.insideOutParts, "inside-out part");
+    const std::string winding = report.inconsistentEdges
+                                    ? "the winding rule does not define inside (its counts depend on the ray)"
+                                    : "the winding rule counts an inside-out part inside too (winding number -1)";
+    // Without a boundary the generalized winding number is the integer count, read as the winding rule reads it.
+    const std::string gwn = report.windingBoundaryEdges
+                                ? "the generalized winding number sees an inside-out part as outside (near -1)"
+                                : "the generalized winding number, an integer here, is read as the winding rule";
+    return named(meshName) + " is closed but mis-oriented (" + what +
+           "): the parity rule counts crossings and calls a part inside whichever way it faces; " + winding + "; " +
+           gwn + "; flip the inward-facing triangles (normals outward) for every rule to agree";
 }
 
 void requireVolume(const MeshReport& report, const std::string& meshName) {
@@ -369,18 +480,20 @@ void requireVolume(const MeshReport& report, const std::string& meshName) {
                       "its generalized winding number still measures points off the sheet (between -1/2 and 1/2)");
 }
 
-void requireInsideDefined(const MeshReport& report, const std::string& meshName, Rule rule) {
+void requireInsideDefined(const MeshReport& report, const std::string& meshName, Rule rule, const MeshFlags& flags) {
     requireUsable(report, meshName);
-    const std::string message = openMeshMessage(report, meshName, rule);
+    const std::string message = openMeshMessage(report, meshName, rule, flags);
     if (!message.empty()) throw InvalidMesh(message);
 }
 
-std::string insideWarning(const MeshReport& report, Rule rule) {
+std::string insideWarning(const MeshReport& report, Rule rule, const MeshFlags& flags) {
+    const std::string open = openMeshMessage(report, "the mesh", rule, flags);
+    if (!open.empty()) return open + "; answered anyway";
     std::string what;
     if (report.nonManifoldEdges)
         what = counted(report.nonManifoldEdges, "non-manifold edge") + " (more than two triangles on an edge)";
-    if (rule == Rule::Parity && report.inconsistentEdges)
-        what += (what.empty() ? "" : ", ") + counted(report.inconsistentEdges, "inconsistently oriented edge");
+    if (report.misoriented())
+        return (what.empty() ? "" : what + "; ") + misorientedMessage(report, "the mesh");
     if (what.empty()) return what;
     return what + "; inside is still defined by the " + toString(rule) + " rule";
 }

@@ -194,7 +194,9 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
     const MeshReport validation = validateMesh(mesh);
     requireUsable(validation, options.meshName);
     requireVolume(validation, options.meshName);
-    requireInsideDefined(validation, options.meshName, gwn ? Rule::GeneralizedWinding : Rule::Winding);
+    // An open mesh is told by the parity rule (the weaker), a closed one by the winding rule.
+    requireInsideDefined(validation, options.meshName,
+                         gwn ? Rule::GeneralizedWinding : validation.closed() ? Rule::Winding : Rule::Parity);
     const bool voxels = !gwn || validation.closed(); // the voxel builders need a closed mesh
     if (options.resolutions.empty()) throw InvalidArgument("compare needs at least one resolution");
     for (std::uint32_t r : options.resolutions)

@@ -86,7 +86,7 @@ GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlContex
     out.grid = v.grid;
     out.crossings = lists.crossings();
     out.depthComplexity = lists.depthComplexity();
-    out.status = v.report.oriented() ? SolidStatus::Closed : SolidStatus::Open; // as bakeCpu marks it
+    out.status = solidStatus(v.report); // as bakeCpu marks it
     out.validation = v.report.summary();
     Texture texture;
     if (parts != GpuSpriteParts::ColumnsOnly) {

@@ -15,6 +15,7 @@
 namespace vds {
 
 enum class Rule : std::uint8_t; // how crossings decide inside; defined in <vds/sprite.h>
+enum class SolidStatus : std::uint8_t; // what a sprite's answers are; defined in <vds/sprite.h>
 
 /// An owning indexed triangle mesh. Triangles are counter-clockwise seen from
 /// outside (outward normals by the right-hand rule), indices into `positions`.
@@ -69,6 +70,17 @@ struct MeshReport {
     std::size_t nonManifoldEdges = 0;    ///< edges used by three or more triangles
     std::size_t oddNonManifoldEdges = 0; ///< of those, edges used by 3, 5, ... triangles: open like boundary edges
     std::size_t inconsistentEdges = 0;   ///< edges used an even number of times, more often in one direction: orientation conflicts
+    /// Closed connected parts (vertices joined by triangles, no edge at
+    /// fault) whose triangles face inward: a negative signed volume. The
+    /// parity and winding rules count such a part inside (its winding
+    /// number is -1), the generalized winding number outside.
+    std::size_t insideOutParts = 0;
+    /// The generalized winding number's boundary: edge uses that do not
+    /// cancel, an edge counted by how many more times it is used one way than
+    /// the other (boundary edges once, an inconsistently oriented edge twice).
+    /// The count of `ExactClassifier::boundaryEdgeCount()` and of a sprite's
+    /// `boundaryEdges`.
+    std::size_t windingBoundaryEdges = 0;
     std::size_t degenerateTriangles = 0; ///< repeated vertex or zero area
     std::size_t duplicateTriangles = 0;  ///< triangles on the same three vertices as an earlier one, either orientation
     std::size_t isolatedVertices = 0;    ///< vertices no triangle uses (nor any vertex at the same position)
@@ -84,6 +96,12 @@ struct MeshReport {
     /// True when closed and every edge is used as often in each direction:
     /// the winding rule defines inside too.
     bool oriented() const { return closed() && inconsistentEdges == 0; }
+    /// True when closed but the rules disagree: orientation conflicts, or a
+    /// part turned inside out.
+    bool misoriented() const { return closed() && (inconsistentEdges > 0 || insideOutParts > 0); }
+    /// The one word for the mesh (CLI, Python, a sprite's status):
+    /// "closed" (every rule answers alike), "mis-oriented" or "open".
+    const char* status() const { return !closed() ? "open" : misoriented() ? "mis-oriented" : "closed"; }
     /// True when every edge is used by at most two triangles.
     bool manifold() const { return nonManifoldEdges == 0; }
     /// True when the box of the mesh has no extent along some axis: a flat
@@ -91,7 +109,9 @@ struct MeshReport {
     bool flat() const;
     /// True when nothing at all would stop a bake (finite, non-empty, valid indices).
     bool usable() const { return triangleCount > 0 && nonFiniteVertices == 0 && badIndices == 0; }
-    /// One line, e.g. "closed, 5856 triangles, 2930 vertices" or "open (12
+    /// One line, e.g. "closed, 5856 triangles, 2930 vertices", "closed but
+    /// mis-oriented (12 inconsistently oriented edges, 1 inside-out part; 24
+    /// edges in the generalized winding number's boundary), ..." or "open (12
     /// boundary edges), ..., 3 duplicate triangles, 1 isolated vertex, 2 faces
     /// of fewer than 3 vertices skipped"; every count that is not zero is named.
     std::string summary() const;
@@ -107,30 +127,58 @@ MeshReport validateMesh(MeshView mesh, unsigned threads = 0);
 /// Throws `InvalidMesh` with a one-line reason if `report` is not `usable()`.
 void requireUsable(const MeshReport& report, const std::string& meshName);
 
+/// How a caller spells the flags its messages name: asking for the
+/// generalized winding number, and answering a mesh that bounds no solid
+/// anyway. Empty: the caller has no such flag, and no message names one.
+struct MeshFlags {
+    std::string generalizedWinding = "--rule generalized-winding";
+    std::string allowOpen; ///< e.g. "--allow-open" (vds classify); empty: answering anyway is not offered
+};
+
 /// Throws `InvalidMesh` unless the mesh is usable and `rule` defines inside
 /// for it (see `MeshReport`): `closed()` for `Rule::Parity`, `oriented()`
-/// for `Rule::Winding`, any usable mesh for `Rule::GeneralizedWinding`. The one-line message names the mesh, the edges
-/// at fault and their counts, and says what still answers: a sprite, whose
-/// parity or winding rule classifies points of any usable mesh.
-void requireInsideDefined(const MeshReport& report, const std::string& meshName, Rule rule);
+/// for `Rule::Winding`, any usable mesh for `Rule::GeneralizedWinding`. The
+/// one-line message is `openMeshMessage`'s.
+void requireInsideDefined(const MeshReport& report, const std::string& meshName, Rule rule,
+                          const MeshFlags& flags = {});
 /// The one wording (CLI, Python, C++) for a mesh whose inside `rule` does
 /// not define (open; or inconsistently oriented, for the winding rule):
 /// what the mesh is, the rule that answers for it (generalized-winding),
-/// and what answering anyway (--allow-open) gives. Empty where `rule`
-/// defines inside.
-std::string openMeshMessage(const MeshReport& report, const std::string& meshName, Rule rule);
+/// and, where `flags.allowOpen` names a flag, what answering anyway gives.
+/// Empty where `rule` defines inside.
+std::string openMeshMessage(const MeshReport& report, const std::string& meshName, Rule rule,
+                            const MeshFlags& flags = {});
 /// The same for a sprite baked from such a mesh (its `Sprite::validation`
 /// summary), asked by `rule`; empty for Rule::GeneralizedWinding.
-std::string openSpriteMessage(const std::string& validation, Rule rule);
+std::string openSpriteMessage(const std::string& validation, Rule rule, const MeshFlags& flags = {});
+/// The one wording for a closed but mis-oriented mesh (`misoriented()`):
+/// what is wrong, what each rule answers (parity and winding count
+/// crossings, the generalized winding number sees an inside-out part as
+/// outside) and the fix. Empty for any other mesh.
+std::string misorientedMessage(const MeshReport& report, const std::string& meshName);
 /// Throws `InvalidMesh` with the one wording for a flat mesh (`flat()`):
 /// it bounds no volume, what can still be asked of it. Every command that
 /// needs a volume (bake, classify, voxelize, compare) calls it first.
 void requireVolume(const MeshReport& report, const std::string& meshName);
 
-/// What a caller should warn about in a mesh that `requireInsideDefined`
-/// accepts for `rule`: non-manifold edges (named with their count) and, for
-/// the parity rule, orientation conflicts. Empty when there is nothing to say.
-std::string insideWarning(const MeshReport& report, Rule rule);
+/// What a caller should warn about in a mesh asked by `rule`: where `rule`
+/// does not define inside (a caller answering anyway), `openMeshMessage`'s
+/// text; else non-manifold edges (named with their count) and a closed
+/// mesh's mis-orientation (`misorientedMessage`). Empty when there is
+/// nothing to say.
+std::string insideWarning(const MeshReport& report, Rule rule, const MeshFlags& flags = {});
+
+/// "24 edges in the generalized winding number's boundary": the words for
+/// `MeshReport::windingBoundaryEdges` wherever that count is shown.
+std::string windingBoundaryText(std::size_t edges);
+
+/// The sprite's status for `MeshReport::status()`: Closed only where every
+/// rule answers alike (`closed()` and not `misoriented()`).
+SolidStatus solidStatus(const MeshReport& report);
+/// A sprite's word for its mesh, `MeshReport::status()`'s, from its status
+/// and validation summary (`Sprite::status`, `Sprite::validation`; files
+/// of every version): "closed", "mis-oriented" or "open".
+const char* statusWord(SolidStatus status, const std::string& validation);
 
 /// Bounding box of the vertices referenced by triangles.
 Box meshBounds(MeshView mesh);

@@ -1,0 +1,105 @@
+// The vds tool's outputs and messages as a new user meets them: what -o lands
+// on (a symlink, a FIFO, a directory), one account of a mis-oriented or open
+// mesh in every command, flags named only where they exist.
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include "../support/run_program.h"
+
+#include <vds/mesh.h>
+#include <vds/vds_file.h>
+
+#include "solids.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using vds::test::Result;
+using vds::test::run;
+
+void writeObj(const fs::path& path, const vds::TriangleMesh& mesh) {
+    std::ofstream out(path);
+    for (const auto& v : mesh.positions) out << "v " << v.x << ' ' << v.y << ' ' << v.z << '\n';
+    for (const auto& t : mesh.triangles) out << "f " << t.x + 1 << ' ' << t.y + 1 << ' ' << t.z + 1 << '\n';
+}
+
+std::string readFile(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+std::size_t lines(const std::string& text) { return std::size_t(std::count(text.begin(), text.end(), '\n')); }
+
+class CliOutputs : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("vds_cli_outputs_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        writeObj(dir / "box.obj", vds::solids::box({-1, -1, -1}, {1, 0.5f, 2}).mesh);
+        std::ofstream pts(dir / "points.txt");
+        pts << "0 0 0\n0.9 0.4 1.9\n1.1 0 0\n0 0.6 0\n";
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string p(const std::string& name) const { return (dir / name).string(); }
+    Result vds(const std::string& args) const { return run(std::string(VDS_TOOL) + " " + args); }
+    fs::path dir;
+};
+
+// -o through a symlink writes the file it names and keeps the link; the same
+// for text labels, .npy grids and sprites.
+TEST_F(CliOutputs, SymlinkOutputsAreWrittenThrough) {
+    fs::create_directories(dir / "real");
+    for (const char* name : {"labels.txt", "grid.npy", "box.vds"}) {
+        std::ofstream(dir / "real" / name) << "old";
+        fs::create_symlink(std::string("real/") + name, dir / name);
+    }
+    Result r = vds("classify --method exact --mesh " + p("box.obj") + " " + p("points.txt") + " -o " + p("labels.txt") +
+                   " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(readFile(dir / "real" / "labels.txt"), "1\n1\n0\n0\n");
+    r = vds("voxelize " + p("box.obj") + " --dims 4 -o " + p("grid.npy") + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = vds("bake " + p("box.obj") + " -o " + p("box.vds") + " --resolution 16 --method cpu --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NO_THROW(vds::readSprite(p("real/box.vds")));
+    for (const char* name : {"labels.txt", "grid.npy", "box.vds"}) {
+        EXPECT_TRUE(fs::is_symlink(dir / name)) << name;
+        EXPECT_NE(readFile(dir / "real" / name), "old") << name;
+    }
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "real"), fs::directory_iterator()), 3); // no temporaries
+}
+
+// -o on a FIFO writes into it (a reader waiting on it gets the labels); the
+// FIFO stays a FIFO. A directory is refused with one line.
+TEST_F(CliOutputs, FifoIsWrittenAndDirectoryRefused) {
+    ASSERT_EQ(::mkfifo(p("pipe").c_str(), 0600), 0);
+    std::string got;
+    std::thread reader([&] { got = readFile(dir / "pipe"); });
+    const Result r = vds("classify --method exact --mesh " + p("box.obj") + " " + p("points.txt") + " -o " + p("pipe") +
+                         " --quiet");
+    reader.join();
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(got, "1\n1\n0\n0\n");
+    EXPECT_TRUE(fs::is_fifo(dir / "pipe"));
+
+    fs::create_directories(dir / "out.npy");
+    const Result d = vds("voxelize " + p("box.obj") + " --dims 4 -o " + p("out.npy") + " --quiet");
+    EXPECT_EQ(d.code, 1) << d.output;
+    EXPECT_NE(d.output.find("out.npy: is a directory"), std::string::npos) << d.output;
+    EXPECT_EQ(lines(d.output), 1u) << d.output;
+    EXPECT_TRUE(fs::is_directory(dir / "out.npy"));
+}
+
+} // namespace
