@@ -493,6 +493,10 @@ TEST(MeshAccount, EveryCountOfOneMeshAgrees) {
     const TriangleMesh box = solids::box({0, 0, 0}, {1, 1, 1}).mesh;
     EXPECT_STREQ(validateMesh(box).status(), "closed");
     EXPECT_EQ(validateMesh(box).insideOutParts, 0u);
+    // A reversed sphere inside an outward one is a cavity (winding 0 inside it), not an inside-out part.
+    const MeshReport shell = validateMesh(solids::shell({0, 0, 0}, 1.0f, 0.6f, 24).mesh);
+    EXPECT_EQ(shell.insideOutParts, 0u);
+    EXPECT_STREQ(shell.status(), "closed");
 }
 
 } // namespace

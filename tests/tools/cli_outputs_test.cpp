@@ -15,6 +15,7 @@
 #include "../support/run_program.h"
 
 #include <vds/mesh.h>
+#include <vds/mesh_io.h>
 #include <vds/vds_file.h>
 
 #include "solids.h"
@@ -100,6 +101,69 @@ TEST_F(CliOutputs, FifoIsWrittenAndDirectoryRefused) {
     EXPECT_NE(d.output.find("out.npy: is a directory"), std::string::npos) << d.output;
     EXPECT_EQ(lines(d.output), 1u) << d.output;
     EXPECT_TRUE(fs::is_directory(dir / "out.npy"));
+}
+
+/// Two closed boxes, the second inside out, and one triangle of the first
+/// reversed: closed, 3 conflicting edges and an inside-out part (the multibody case).
+vds::TriangleMesh multibody() {
+    vds::TriangleMesh a = vds::solids::box({0, 0, 0}, {1, 1, 1}).mesh, b = vds::solids::box({2, 0, 0}, {3, 1, 1}).mesh;
+    for (glm::uvec3& t : b.triangles) std::swap(t.y, t.z);
+    std::swap(a.triangles[0].y, a.triangles[0].z);
+    return vds::solids::merge(a, b);
+}
+
+// A closed but mis-oriented mesh: bake says so with what each rule answers,
+// info and bake say the same word, and the exact classifier's count is the
+// validation's.
+TEST_F(CliOutputs, MisorientedMeshIsToldWithWhatEachRuleAnswers) {
+    writeObj(dir / "multibody.obj", multibody());
+    const vds::MeshReport report = vds::validateMesh(multibody());
+    ASSERT_STREQ(report.status(), "mis-oriented");
+    Result r = vds("bake " + p("multibody.obj") + " -o " + p("m.vds") + " --resolution 16 --method cpu --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(lines(r.output), 2u) << r.output; // the warning and "wrote"
+    for (const char* says : {"warning: ", "multibody.obj is closed but mis-oriented (3 inconsistently oriented edges, "
+                                          "1 inside-out part)",
+                             "the parity rule", "the winding rule does not define inside",
+                             "the generalized winding number sees an inside-out part as outside", "flip"})
+        EXPECT_NE(r.output.find(says), std::string::npos) << says << "\n" << r.output;
+    EXPECT_NE(r.output.find(report.summary()), std::string::npos) << r.output;
+    r = vds("info " + p("m.vds"));
+    EXPECT_NE(r.output.find("status:            mis-oriented"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(report.summary()), std::string::npos) << r.output;
+    r = vds("classify --method exact --rule generalized-winding --mesh " + p("multibody.obj") + " " + p("points.txt") +
+            " -o " + p("l.txt") + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find(vds::windingBoundaryText(report.windingBoundaryEdges)), std::string::npos) << r.output;
+    EXPECT_NE(report.summary().find(vds::windingBoundaryText(report.windingBoundaryEdges)), std::string::npos);
+}
+
+// A message names a flag only where the command has it: --allow-open in
+// classify's, which accepts it; bake, voxelize, eval and compare name none.
+TEST_F(CliOutputs, FlagsAreNamedOnlyWhereTheyExist) {
+    auto box = vds::solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    box.triangles.pop_back();
+    writeObj(dir / "open.obj", box);
+    const std::string open = p("open.obj");
+    for (const std::string& command :
+         {"bake " + open + " -o " + p("o.vds") + " --resolution 8 --method cpu", "voxelize " + open + " --dims 4 -o " + p("o.npy"),
+          "eval " + open + " --resolutions 8 --points 10 --surface-points 10", "compare " + open + " --resolutions 8"}) {
+        const Result r = vds(command + " --quiet");
+        EXPECT_NE(r.output.find("open (3 boundary edges)"), std::string::npos) << command << "\n" << r.output;
+        EXPECT_EQ(r.output.find("--allow-open"), std::string::npos) << command << "\n" << r.output;
+        EXPECT_EQ(r.output.find("winding rule"), r.output.find("not defined by the winding rule")) << r.output;
+    }
+    // compare's default (parity) is named as the rule that does not answer.
+    Result r = vds("compare " + open + " --resolutions 8 --quiet");
+    EXPECT_NE(r.output.find("not defined by the parity rule"), std::string::npos) << r.output;
+    r = vds("classify --mesh " + open + " " + p("points.txt") + " -o " + p("l.txt") + " --quiet");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("(--allow-open)"), std::string::npos) << r.output;
+    r = vds("classify --allow-open --mesh " + open + " " + p("points.txt") + " -o " + p("l.txt") + " --quiet");
+    EXPECT_EQ(r.code, 0) << r.output;
+    // The warning for answering anyway says so, not that parity defines inside.
+    EXPECT_NE(r.output.find("answered anyway"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("still defined"), std::string::npos) << r.output;
 }
 
 } // namespace

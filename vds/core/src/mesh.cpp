@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <numeric>
 #include <sstream>
 #include <thread>
@@ -13,6 +14,7 @@
 
 #include <vds/detail/parallel.h>
 #include <vds/error.h>
+#include <vds/exact.h>
 #include <vds/sprite.h>
 
 namespace vds {
@@ -292,32 +294,60 @@ std::vector<std::uint32_t> connectedParts(MeshView mesh, const std::vector<std::
     return parent;
 }
 
-/// Closed parts (no edge at fault: `openPart` unset) whose signed volume is
-/// negative, beyond rounding: the sum of its triangles' signed volumes,
-/// about the box's centre, below -1e-6 of the sum of their magnitudes (a
-/// flat closed part, volume 0, is not inside out).
+/// Set while `countInsideOutParts` builds its exact classifier, whose own
+/// validation of the mesh then skips the parts (it would recurse).
+thread_local bool probingParts = false;
+
+/// Closed parts (no edge at fault: `openPart` unset) turned inside out. A
+/// part whose signed volume is negative beyond rounding (below -1e-6 of the
+/// sum of its triangles' magnitudes, about the box's centre: a flat part is
+/// not) encloses a region on its triangles' front side; it is inside out
+/// where the mesh's winding number there is negative, and a cavity (a
+/// reversed sphere inside an outward one: winding 0) where it is not. The
+/// point asked lies off the centroid of the part's largest triangle, a
+/// thousandth of its size along its normal.
 std::size_t countInsideOutParts(MeshView mesh, const std::vector<std::uint32_t>& weld,
                                 const std::vector<std::uint32_t>& part, const std::atomic<std::uint8_t>* openPart,
                                 const Box& bounds) {
-    constexpr double kRounding = 1e-6;
+    constexpr double kRounding = 1e-6, kOffset = 1e-3;
+    if (probingParts) return 0;
     const glm::dvec3 centre = (glm::dvec3(bounds.lo) + glm::dvec3(bounds.hi)) * 0.5;
-    std::vector<double> volume(mesh.positionCount, 0.0), magnitude(mesh.positionCount, 0.0);
+    std::vector<double> volume(mesh.positionCount, 0.0), magnitude(mesh.positionCount, 0.0), largest(mesh.positionCount, 0.0);
+    std::vector<std::size_t> largestTriangle(mesh.positionCount, 0);
     for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
         const glm::uvec3 tri = mesh.triangles[t];
         if (tri.x >= mesh.positionCount || tri.y >= mesh.positionCount || tri.z >= mesh.positionCount) continue;
         const glm::dvec3 a = glm::dvec3(mesh.positions[tri.x]) - centre, b = glm::dvec3(mesh.positions[tri.y]) - centre,
                          c = glm::dvec3(mesh.positions[tri.z]) - centre;
-        const double v = glm::dot(a, glm::cross(b, c));
-        if (!std::isfinite(v)) continue;
+        const double v = glm::dot(a, glm::cross(b, c)), area = glm::length(glm::cross(b - a, c - a));
+        if (!std::isfinite(v) || !std::isfinite(area)) continue;
         const std::uint32_t p = part[weld[tri.x]];
         volume[p] += v;
         magnitude[p] += std::abs(v);
+        if (area > largest[p]) largest[p] = area, largestTriangle[p] = t;
     }
-    std::size_t count = 0;
+    std::vector<std::size_t> candidates;
     for (std::size_t p = 0; p < part.size(); ++p)
         if (part[p] == p && magnitude[p] > 0.0 && !openPart[p].load(std::memory_order_relaxed) &&
             volume[p] < -kRounding * magnitude[p])
-            ++count;
+            candidates.push_back(largestTriangle[p]);
+    if (candidates.empty()) return 0;
+    probingParts = true;
+    std::optional<ExactClassifier> exact;
+    try {
+        exact.emplace(mesh);
+    } catch (const Error&) { // not usable: validation says why
+    }
+    probingParts = false;
+    if (!exact) return 0;
+    std::size_t count = 0;
+    for (std::size_t t : candidates) {
+        const glm::uvec3 tri = mesh.triangles[t];
+        const glm::dvec3 a(mesh.positions[tri.x]), b(mesh.positions[tri.y]), c(mesh.positions[tri.z]);
+        const glm::dvec3 n = glm::cross(b - a, c - a);
+        const glm::dvec3 q = (a + b + c) / 3.0 + n / glm::length(n) * (kOffset * std::sqrt(glm::length(n)));
+        count += exact->winding(glm::vec3(q)) < 0;
+    }
     return count;
 }
 
