@@ -196,9 +196,10 @@ std::string reprText(const py::handle& value) {
 } // namespace
 
 unsigned threadCount(const py::object& threads, const char* what) {
-    return unsigned(integerIn(threads, 0, 65536, [&] {
-        throw InvalidArgument(std::string(what) + " must be 0 (one per hardware thread) or a positive count, not " +
-                              reprText(threads));
+    // As the command line's --threads: any whole number that fits 32 bits (the work caps it).
+    return unsigned(integerIn(threads, 0, 0xffffffffLL, [&] {
+        throw InvalidArgument(std::string(what) + " must be a whole number 0..4294967295 (0: one per hardware "
+                              "thread), not " + reprText(threads));
     }));
 }
 

@@ -50,8 +50,8 @@ def signed_volume(V, F):
 def gl_or_skip():
     """Skips a GL test where no context can be had, unless VDS_REQUIRE_GL=1
     (as tests/run_tests.sh sets), where that is a failure."""
-    ok, reason = vds.gl_available()
-    if not ok:
+    if not vds.gl_available():
+        reason = vds.gl_unavailable_reason()
         if os.environ.get("VDS_REQUIRE_GL") == "1":
             pytest.fail("no GL: " + reason)
         pytest.skip("no GL: " + reason)

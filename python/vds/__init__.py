@@ -24,8 +24,13 @@ Coordinates are the mesh's own units. Errors: every exception vds raises is a
 float32/float64, faces not integers; an InvalidArgument and a TypeError),
 ``InvalidMesh`` (a ValueError), ``IoError`` (an OSError), ``FormatError`` (a
 ValueError), ``GlUnavailable`` and ``GlError`` (RuntimeErrors),
-``OutOfMemory`` (a MemoryError). A mesh that bounds no solid by the rule
-asked gets a ``vds.MeshWarning`` with the command-line tool's text.
+``OutOfMemory`` (a MemoryError); an argument of the wrong type where vds
+checks it (points, faces, a grid) is a ``DTypeError``. A mesh that bounds no
+solid by the rule asked (open, or closed but mis-oriented) gets a
+``vds.MeshWarning`` with the command-line tool's text in Python's words,
+pointing at the caller's line. ``vds.gl_available()`` is True where GL work
+can run (``vds.gl_unavailable_reason()`` says why not). Grid, Sprite,
+Classifier and ExactClassifier pickle (a classifier as what rebuilds it).
 GL work runs on one thread of the module's, for every Python thread in turn;
 a process forked while it runs cannot use GL (``GlUnavailable`` says so): use
 multiprocessing's "spawn" start method.
@@ -52,10 +57,12 @@ from ._vds import (  # noqa: F401  (the public API)
     _gpu_resident,
     _mesh_copies,
     _methods,
+    __version__,
     _release_gl,
     bake,
     from_bytes,
     gl_available,
+    gl_unavailable_reason,
     load_mesh,
     occupancy,
     read,
@@ -65,7 +72,7 @@ from ._vds import (  # noqa: F401  (the public API)
 __all__ = [
     "Classifier", "DTypeError", "Error", "ExactClassifier", "FormatError", "GlError", "GlUnavailable", "Grid",
     "InvalidArgument", "InvalidMesh", "IoError", "MeshWarning", "MethodInfo", "OutOfMemory", "Sprite", "bake",
-    "exact_contains", "from_bytes", "gl_available", "load_mesh", "methods", "occupancy", "read", "validate_mesh",
+    "exact_contains", "from_bytes", "gl_available", "gl_unavailable_reason", "load_mesh", "methods", "occupancy", "read", "validate_mesh",
     "winding_numbers",
 ]
 
@@ -92,7 +99,9 @@ def winding_numbers(V, F, points):
     """Generalized winding numbers of points (N, 3) w.r.t. the mesh (V, F):
     a (N,) float64 array, 1 inside a closed outward-oriented mesh, 0 outside,
     fractional near holes of an open one (exact integer part, Antipodal
-    boundary term in double)."""
+    boundary term in double). ``exact_contains(..., rule="generalized-winding")``
+    is True exactly where this is above 1/2 by more than 1e-9 (a point on a
+    sheet, at 1/2, is outside for both)."""
     return ExactClassifier(V, F).winding_numbers(points)
 
 

@@ -170,10 +170,10 @@ double boundaryTermExact(const glm::vec3* edges, std::size_t edgeCount, int axis
 /// told from 1/2; and 1/2 is what a flat sheet's points have (seen from its
 /// plane a flat sheet subtends a half sphere on one side and nothing on the
 /// other; the tie rule takes one side): they lie on the surface, not inside.
-constexpr double kGeneralizedWindingTie = 1e-9;
+using vds::kGeneralizedWindingTie; // <vds/rule.h>: one predicate, public for callers that show the values
 
 /// The label of a generalized winding number computed by the per-edge sum.
-inline bool generalizedWindingInside(double value) { return value > 0.5 + kGeneralizedWindingTie; }
+using vds::generalizedWindingInside;
 
 /// Signed count of a column's crossings strictly in front of depth r.
 inline int columnWinding(const float* begin, const float* end, float r) {

@@ -35,6 +35,12 @@ template <> struct EnumNames<Rule> {
 Rule parseRule(const std::string& s);
 const char* toString(Rule r);
 
+/// Generalized winding numbers within this of 1/2 are ties (rounding cannot
+/// tell them from 1/2; a flat sheet's own points have exactly 1/2) and outside.
+constexpr double kGeneralizedWindingTie = 1e-9;
+/// The label of a generalized winding number (Rule::GeneralizedWinding): above 1/2, ties outside.
+constexpr bool generalizedWindingInside(double value) { return value > 0.5 + kGeneralizedWindingTie; }
+
 /// Inside or outside by `rule`, from the signed count of crossings in front
 /// of a point (its parity is the count's): for a mesh that bounds a solid
 /// the generalized winding number is this count, so it reads as Winding.
