@@ -23,4 +23,4 @@ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS
       -DVDS_BUILD_TESTS=ON -DVDS_SANITIZE=ON -DVDS_WERROR=ON -DVDS_PYTHON=OFF "${launcher[@]}"
 cmake --build build-sanitize -j "$(nproc)"
 export VDS_REQUIRE_GL="${VDS_REQUIRE_GL:-1}"
-ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)" --timeout 600 -LE build
+ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)" --timeout 600 -LE rebuild
