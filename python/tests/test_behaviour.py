@@ -161,3 +161,12 @@ def test_docstrings_say_what_the_code_does():
     expected = vds.winding_numbers(V, F, near_hole)[0]
     assert abs(expected) > 0.05
     assert sprite.winding_numbers(near_hole)[0] == pytest.approx(expected, abs=1e-3)
+
+
+def test_an_edge_on_sheet_is_refused_like_the_others():
+    # The tilted plane x = y has extent along every axis; along z a sprite sees it edge-on.
+    V = np.array([[0, 0, 0], [1, 1, 0], [0, 0, 1], [1, 1, 1]], float)
+    F = np.array([[0, 1, 2], [2, 1, 3]], np.int32)
+    for axis in ("x", "z", "auto"):
+        with pytest.raises(vds.InvalidMesh, match=r"is flat \(all its triangles lie in one plane\)"):
+            vds.bake(V, F, resolution=16, axis=axis, method="cpu")

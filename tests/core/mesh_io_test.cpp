@@ -430,8 +430,16 @@ TEST(LoadMesh, AbsurdDeclaredCountsAreRefusedBeforeAnythingIsAllocated) {
     EXPECT_EQ(parseError("ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
                          "property float y\nproperty float z\nend_header\n0123456789ab",
                          MeshFormat::Ply),
-              "m:3: element 'vertex' declares 4000000000 instances of at least 12 bytes, more than the 12 bytes after "
-              "the header hold");
+              "m:3: element 'vertex' declares 4000000000 instances of at least 12 bytes each, 48000000000 bytes, more "
+              "than the 12 bytes the file holds for them (12 after the header): truncated, or the count is wrong");
+    // A later element: what is left once the elements before take their least is what it is compared with.
+    EXPECT_EQ(parseError("ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\n"
+                         "property float y\nproperty float z\nelement face 20\nproperty list uchar int vertex_indices\n"
+                         "end_header\n0123456789ab0123",
+                         MeshFormat::Ply),
+              "m:7: element 'face' declares 20 instances of at least 1 byte each, 20 bytes, more than the 4 bytes "
+              "the file holds for them (16 after the header, less 12 that the elements before take at least): "
+              "truncated, or the count is wrong");
     EXPECT_NE(parseError("ply\nformat ascii 1.0\nelement face 1000000000000\nproperty list uchar int vertex_indices\n"
                          "end_header\n3 0 1 2\n",
                          MeshFormat::Ply)

@@ -501,3 +501,35 @@ TEST(MeshAccount, EveryCountOfOneMeshAgrees) {
 
 } // namespace
 } // namespace vds
+
+namespace vds {
+namespace {
+
+// A sheet in the tilted plane x = y has extent along every axis, yet bounds
+// no volume: seen along z it is edge-on (a sprite of 0 layers). It is
+// refused as the axis-aligned sheets are; a thin solid box is not.
+TEST(MeshAccount, AnEdgeOnSheetIsFlatLikeTheOthers) {
+    TriangleMesh sheet;
+    sheet.positions = {{0, 0, 0}, {1, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+    sheet.triangles = {{0, 1, 2}, {2, 1, 3}};
+    const MeshReport r = validateMesh(sheet);
+    EXPECT_TRUE(r.coplanar);
+    EXPECT_TRUE(r.flat());
+    try {
+        requireVolume(r, "tilted.obj");
+        ADD_FAILURE() << "an edge-on sheet was taken for a volume";
+    } catch (const InvalidMesh& e) {
+        EXPECT_NE(std::string(e.what()).find("tilted.obj is flat (all its triangles lie in one plane)"), std::string::npos)
+            << e.what();
+    }
+    BakeOptions options;
+    options.resolution = 16;
+    options.axis = Axis::Z;
+    EXPECT_THROW(bakeCpu(sheet, options), InvalidMesh);
+    const MeshReport thin = validateMesh(solids::box({0, 0, 0}, {1, 1, 1e-3f}).mesh);
+    EXPECT_FALSE(thin.coplanar);
+    EXPECT_FALSE(thin.flat());
+}
+
+} // namespace
+} // namespace vds

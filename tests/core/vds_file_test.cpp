@@ -407,6 +407,20 @@ TEST_F(VdsFileTest, DeviceAndSocketAreNeverReplaced) {
     ::close(fd);
 }
 
+// Bytes after the last chunk: appended data, or two sprites joined, are
+// refused with one line saying how many (they were read as the first sprite).
+TEST_F(VdsFileTest, TrailingBytesAreRefused) {
+    const std::vector<char> bytes = vds::encodeSprite(specialSprite());
+    const std::string one(bytes.begin(), bytes.end());
+    EXPECT_EQ(readDamaged(one), "");
+    const std::string appended = readDamaged(one + "x");
+    EXPECT_NE(appended.find("1 byte follows the sprite's last chunk (" + std::to_string(one.size()) + " bytes)"),
+              std::string::npos)
+        << appended;
+    EXPECT_NE(readDamaged(one + one).find(std::to_string(one.size()) + " bytes follow"), std::string::npos);
+    EXPECT_THROW(vds::decodeSprite(bytes.data(), bytes.size() - 1), vds::FormatError); // and one short, as before
+}
+
 TEST_F(VdsFileTest, InconsistentSpriteIsNotWritten) {
     vds::Sprite s = specialSprite();
     s.depthComplexity += 1;

@@ -166,4 +166,35 @@ TEST_F(CliOutputs, FlagsAreNamedOnlyWhereTheyExist) {
     EXPECT_EQ(r.output.find("still defined"), std::string::npos) << r.output;
 }
 
+// An edge-on sheet (the tilted plane x = y, seen along z) is refused as flat,
+// as an axis-aligned one is; option values get the nearest name suggested and
+// the method list holds only what the CLI takes.
+TEST_F(CliOutputs, EdgeOnSheetsAndOptionValuesAreToldClearly) {
+    {
+        std::ofstream out(dir / "tilted.obj");
+        out << "v 0 0 0\nv 1 1 0\nv 0 0 1\nv 1 1 1\nf 1 2 3\nf 3 2 4\n";
+    }
+    Result r = vds("bake " + p("tilted.obj") + " -o " + p("t.vds") + " --axis z --method cpu --quiet");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("tilted.obj is flat (all its triangles lie in one plane)"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "t.vds"));
+
+    r = vds("classify --method exakt --mesh " + p("box.obj") + " " + p("points.txt") + " -o " + p("l.txt"));
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("unknown method 'exakt'"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(did you mean 'exact'?)"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("custom"), std::string::npos) << r.output; // the CLI refuses it: not offered
+    EXPECT_EQ(lines(r.output), 1u) << r.output;
+    r = vds("voxelize " + p("box.obj") + " --dims 4 -o " + p("g.npy") + " --rule paraty");
+    EXPECT_NE(r.output.find("(did you mean 'parity'?)"), std::string::npos) << r.output;
+    r = vds("classify --output-format txt --mesh " + p("box.obj") + " " + p("points.txt") + " -o " + p("l.txt"));
+    EXPECT_NE(r.output.find("(did you mean 'text'?)"), std::string::npos) << r.output;
+    r = vds("classify --help");
+    EXPECT_EQ(r.output.find("custom"), std::string::npos) << r.output;
+    // voxelize's help: the generalized winding number is the rule for open meshes, not "closed meshes".
+    r = vds("voxelize --help");
+    EXPECT_EQ(r.output.find("(closed meshes)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("open meshes"), std::string::npos) << r.output;
+}
+
 } // namespace

@@ -5,6 +5,7 @@
 // bad file, bad mesh, no GL...), 2 the command line is wrong (a CLI::ParseError).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -50,24 +51,32 @@ std::string joinChoices(const std::vector<std::string>& names);
 CLI::Option* addChoice(CLI::App& command, const std::string& name, std::string& value,
                        const std::vector<std::string>& names, const std::string& help);
 
-/// `--name` choosing a value of `E` by the names in `EnumNames<E>`; the help
-/// lists them and shows the current value as the default.
-template <class E> CLI::Option* addEnum(CLI::App& command, const std::string& name, E& value, const std::string& help) {
-    // A name becomes the enum's number, which CLI11 then stores in `value`;
-    // an unknown name gets the library's message, which lists the names.
+/// " (did you mean 'X'?)" for the candidate nearest `word` where it is near
+/// enough to be a typo (at most a third of its letters off), else "".
+std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates);
+
+/// The one message for a value of an option that is none of `names`:
+/// "unknown KIND 'exakt' (expected a, b or c) (did you mean 'exact'?)".
+std::string unknownValue(const std::string& kind, const std::string& text, const std::vector<std::string>& names);
+
+/// `--name` choosing a value of `E` by `names` (default: every name in
+/// `EnumNames<E>`); the help lists them and shows the current value as the
+/// default; an unknown name is told with the nearest one.
+template <class E>
+CLI::Option* addEnum(CLI::App& command, const std::string& name, E& value, const std::string& help,
+                     const std::vector<std::string>& names = vds::enumNames<E>()) {
+    // A name becomes the enum's number, which CLI11 then stores in `value`.
     const CLI::Validator byName(
-        [](std::string& text) -> std::string {
-            try {
-                text = std::to_string(unsigned(vds::parseEnum<E>(text)));
-                return {};
-            } catch (const vds::InvalidArgument& e) {
-                return e.what();
-            }
+        [names](std::string& text) -> std::string {
+            if (std::find(names.begin(), names.end(), text) == names.end())
+                return unknownValue(vds::EnumNames<E>::kind, text, names);
+            text = std::to_string(unsigned(vds::parseEnum<E>(text)));
+            return {};
         },
         "");
     return command.add_option(name, value, help)
         ->transform(byName)
-        ->type_name(joinChoices(vds::enumNames<E>()))
+        ->type_name(joinChoices(names))
         ->default_str(vds::enumName(value));
 }
 

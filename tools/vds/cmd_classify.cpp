@@ -243,8 +243,7 @@ void addClassify(CLI::App& app) {
     std::vector<std::string> builtIn;
     for (const vds::MethodInfo* m = vds::methodTable(); m != vds::methodTable() + vds::kMethodCount; ++m)
         if (m->builtIn()) builtIn.push_back(m->name);
-    a->methodGiven = addEnum(*c, "--method", a->method, "how to answer (see below); default sprite")
-                         ->type_name(joinChoices(builtIn));
+    a->methodGiven = addEnum(*c, "--method", a->method, "how to answer (see below); default sprite", builtIn);
     addEnum(*c, "--rule", a->options.rule,
             "the paper's parity, non-zero winding, or the generalized winding number (open meshes)");
     c->add_flag("--gpu", a->gpu, "the method's GPU form (sprite -> sprite-gpu, slicemap -> slicemap-gpu, ...)");

@@ -43,9 +43,13 @@ std::string joinChoices(const std::vector<std::string>& names) {
 
 CLI::Option* addChoice(CLI::App& command, const std::string& name, std::string& value,
                        const std::vector<std::string>& names, const std::string& help) {
-    return command.add_option(name, value, help)
-        ->check(CLI::IsMember(names).description(""))
-        ->type_name(joinChoices(names));
+    const CLI::Validator member(
+        [names, name](std::string& text) -> std::string {
+            if (std::find(names.begin(), names.end(), text) != names.end()) return {};
+            return unknownValue(name.substr(name.find_first_not_of('-')), text, names);
+        },
+        "");
+    return command.add_option(name, value, help)->check(member)->type_name(joinChoices(names));
 }
 
 CLI::Option* addResolution(CLI::App& command, std::uint32_t& resolution, const std::string& help) {
@@ -109,6 +113,22 @@ std::string nearest(const std::string& word, const std::vector<std::string>& can
     }
     return best;
 }
+
+} // namespace
+
+std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates) {
+    const std::string best = nearest(word, candidates);
+    return best.empty() ? std::string() : " (did you mean '" + best + "'?)";
+}
+
+std::string unknownValue(const std::string& kind, const std::string& text, const std::vector<std::string>& names) {
+    std::string expected;
+    for (std::size_t k = 0; k < names.size(); ++k)
+        expected += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+    return "unknown " + kind + " '" + text + "' (expected " + expected + ")" + didYouMean(text, names);
+}
+
+namespace {
 
 // " (did you mean 'X'?)" for the arguments CLI11 did not expect: a
 // misspelled subcommand, or a misspelled option of the chosen command.

@@ -294,6 +294,36 @@ std::vector<std::uint32_t> connectedParts(MeshView mesh, const std::vector<std::
     return parent;
 }
 
+/// Whether every vertex the (valid) triangles use lies within 1e-6 of the
+/// box's diagonal of the plane of the largest triangle (`MeshReport::coplanar`).
+bool allInOnePlane(MeshView mesh, const Box& bounds) {
+    constexpr double kPlaneTolerance = 1e-6;
+    const auto valid = [&](const glm::uvec3& t) {
+        return t.x < mesh.positionCount && t.y < mesh.positionCount && t.z < mesh.positionCount;
+    };
+    glm::dvec3 normal(0.0), origin(0.0);
+    double largest = 0.0;
+    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
+        const glm::uvec3 tri = mesh.triangles[t];
+        if (!valid(tri)) continue;
+        const glm::dvec3 a(mesh.positions[tri.x]), b(mesh.positions[tri.y]), c(mesh.positions[tri.z]);
+        const glm::dvec3 n = glm::cross(b - a, c - a);
+        const double area = glm::length(n);
+        if (std::isfinite(area) && area > largest) largest = area, normal = n / area, origin = a;
+    }
+    if (largest == 0.0) return true; // every triangle degenerate: no plane, no volume
+    const double reach = kPlaneTolerance * glm::length(glm::dvec3(bounds.hi) - glm::dvec3(bounds.lo));
+    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
+        const glm::uvec3 tri = mesh.triangles[t];
+        if (!valid(tri)) continue;
+        for (int k = 0; k < 3; ++k) {
+            const double off = glm::dot(glm::dvec3(mesh.positions[tri[k]]) - origin, normal);
+            if (!(std::abs(off) <= reach)) return false;
+        }
+    }
+    return true;
+}
+
 /// Set while `countInsideOutParts` builds its exact classifier, whose own
 /// validation of the mesh then skips the parts (it would recurse).
 thread_local bool probingParts = false;
@@ -405,6 +435,7 @@ MeshReport validateMesh(MeshView mesh, unsigned threads) {
     else
         countByEdges<std::uint64_t>(r, mesh, weld, threads, part, openPart.get());
     r.insideOutParts = countInsideOutParts(mesh, weld, part, openPart.get(), r.bounds);
+    r.coplanar = allInOnePlane(mesh, r.bounds);
     return r;
 }
 
@@ -421,7 +452,7 @@ void requireUsable(const MeshReport& report, const std::string& meshName) {
 bool MeshReport::flat() const {
     for (int a = 0; a < 3; ++a)
         if (!(bounds.hi[a] > bounds.lo[a])) return true;
-    return false;
+    return coplanar;
 }
 
 namespace {
@@ -505,7 +536,8 @@ void requireVolume(const MeshReport& report, const std::string& meshName) {
     std::string axes;
     for (int a = 0; a < 3; ++a)
         if (!(report.bounds.hi[a] > report.bounds.lo[a])) axes += std::string(axes.empty() ? "" : " and ") + "xyz"[a];
-    throw InvalidMesh(who + " is flat (no extent along " + axes +
+    const std::string how = axes.empty() ? "all its triangles lie in one plane" : "no extent along " + axes;
+    throw InvalidMesh(who + " is flat (" + how +
                       "): it bounds no volume, so no point is inside it by any rule and nothing is baked or written; "
                       "its generalized winding number still measures points off the sheet (between -1/2 and 1/2)");
 }

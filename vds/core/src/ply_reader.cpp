@@ -250,11 +250,20 @@ private:
             const std::uint64_t each = minimumBytes(e);
             if (each == 0) continue;
             const Element& element = elements_[e];
-            if (element.count > room / each)
+            if (element.count > room / each) {
+                // What was compared: this element's least size against what is left for it.
+                const std::uint64_t before = after - std::min(after, room);
+                const std::string least = element.count > UINT64_MAX / each
+                                              ? std::string("more than 2^64")
+                                              : std::to_string(element.count * each);
                 failAtLine(name_, element.line,
                            "element " + quoted(element.name) + " declares " + std::to_string(element.count) +
-                               " instances of at least " + std::to_string(each) + " bytes, more than the " +
-                               std::to_string(after) + " bytes after the header hold");
+                               " instances of at least " + std::to_string(each) + (each == 1 ? " byte" : " bytes") +
+                               " each, " + least + " bytes, more than the " + std::to_string(std::min(after, room)) +
+                               " bytes the file holds for them (" + std::to_string(after) + " after the header" +
+                               (before ? ", less " + std::to_string(before) + " that the elements before take at least" : "") +
+                               "): truncated, or the count is wrong");
+            }
             room -= element.count * each;
         }
     }

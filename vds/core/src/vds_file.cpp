@@ -255,6 +255,8 @@ public:
     std::uint64_t tellg() override { return position_; }
     void seekg(std::uint64_t pos) override { position_ = pos; }
     void clear() override {}
+    /// The end of the farthest bytes read: the file's size once every chunk was read.
+    std::uint64_t farthest() const { return farthest_; }
 
 private:
     // OpenEXR's memory-mapped reads hand out char* but only read through it.
@@ -263,12 +265,14 @@ private:
             throw Iex::InputExc("unexpected end of file");
         char* p = const_cast<char*>(data_) + position_;
         position_ += std::uint64_t(n);
+        farthest_ = std::max(farthest_, position_);
         return p;
     }
 
     const char* data_;
     std::size_t size_;
     std::uint64_t position_ = 0;
+    std::uint64_t farthest_ = 0;
 };
 
 // ---------------------------------------------------------------- files
@@ -728,6 +732,11 @@ Sprite decodeBytes(const char* data, std::size_t size, const std::string& path) 
     Imf::DeepScanLineInputFile file(stream);
     readOffsets(file, fileSize, path, sprite);
     readCrossings(file, path, sprite);
+    // Bytes no chunk holds: appended data, or two sprites joined (read as the first, silently, before).
+    if (const std::uint64_t extra = fileSize - stream.farthest(); extra > 0)
+        formatFail(path, std::to_string(extra) + (extra == 1 ? " byte follows" : " bytes follow") +
+                             " the sprite's last chunk (" +
+                             std::to_string(stream.farthest()) + " bytes): data appended, or files joined");
 
     if (spriteChecksum(sprite, formatVersion) != storedChecksum) formatFail(path, "checksum mismatch (corrupt or edited file)");
     try {

@@ -88,6 +88,10 @@ struct MeshReport {
     std::size_t badIndices = 0;          ///< triangles with an index >= vertex count
     std::size_t skippedFaces = 0;        ///< faces of fewer than 3 vertices the file held (`TriangleMesh::skippedFaces`)
     Box bounds;                          ///< of the vertices used by triangles (finite ones)
+    /// Every vertex the triangles use lies within 1e-6 of the box's diagonal
+    /// of the plane of the largest triangle (rounding's reach for float
+    /// positions on a tilted plane).
+    bool coplanar = false;
 
     /// True when every edge is used by an even number of triangles: the parity
     /// rule defines inside. Non-manifold edges used by 4, 6, ... triangles are
@@ -104,8 +108,10 @@ struct MeshReport {
     const char* status() const { return !closed() ? "open" : misoriented() ? "mis-oriented" : "closed"; }
     /// True when every edge is used by at most two triangles.
     bool manifold() const { return nonManifoldEdges == 0; }
-    /// True when the box of the mesh has no extent along some axis: a flat
-    /// sheet, which bounds no volume (nothing is inside it by any rule).
+    /// True when the mesh is a flat sheet, which bounds no volume (nothing is
+    /// inside it by any rule): its box has no extent along some axis, or all
+    /// its triangles lie in one tilted plane (`coplanar`), which a sprite sees
+    /// edge-on from some direction.
     bool flat() const;
     /// True when nothing at all would stop a bake (finite, non-empty, valid indices).
     bool usable() const { return triangleCount > 0 && nonFiniteVertices == 0 && badIndices == 0; }
