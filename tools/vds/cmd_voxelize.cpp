@@ -29,6 +29,18 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// "vds: labelled 32 of 256 x layers (12%) in 1.3 s": a line per slab once
+/// the sweep has run past a second (a quick one says nothing).
+void reportSweep(const std::function<void(const std::string&)>& progress, std::uint32_t done, std::uint32_t total,
+                 double seconds) {
+    constexpr double kQuietSeconds = 1.0;
+    if (seconds < kQuietSeconds || done == total) return;
+    char line[96];
+    std::snprintf(line, sizeof line, "labelled %u of %u x layers (%u%%) in %.1f s", done, total,
+                  unsigned(100.0 * done / total), seconds);
+    progress(line);
+}
+
 void voxelize(VoxelizeArgs& a) {
     if ((a.dims == 0) == a.dimsXyz.empty()) throw CLI::ValidationError("give --dims N or --dims-xyz NX NY NZ");
     const auto progress = progressPrinter(a.quiet);
@@ -78,14 +90,18 @@ void voxelize(VoxelizeArgs& a) {
     // cells), packing each slab's rows as it goes: the unpacked grid is never
     // held whole. Slabs have the whole grid's cell centres (Grid::slabX), so
     // the labels are the same as in one call.
+    // Unpacked, the grid goes in kProgressSlabs slabs, so that a sweep past a
+    // second (the generalized winding number of a messy scan) reports progress.
     const std::size_t layer = std::size_t(grid.dims.y) * grid.dims.z;
+    constexpr std::uint32_t kProgressSlabs = 16;
     const std::uint32_t slab =
-        a.packed ? std::uint32_t(std::clamp<std::size_t>((std::size_t(1) << 26) / layer, 1, grid.dims.x)) : grid.dims.x;
+        a.packed ? std::uint32_t(std::clamp<std::size_t>((std::size_t(1) << 26) / layer, 1, grid.dims.x))
+                 : std::max<std::uint32_t>(1, (grid.dims.x + kProgressSlabs - 1) / kProgressSlabs);
     const std::size_t rowBytes = (std::size_t(grid.dims.z) + 7) / 8, rows = std::size_t(grid.dims.x) * grid.dims.y;
     std::vector<std::uint8_t> cells, bits;
     start = std::chrono::steady_clock::now();
     try {
-        cells.resize(std::size_t(slab) * layer);
+        cells.resize(a.packed ? std::size_t(slab) * layer : grid.cellCount());
         if (a.packed) bits.resize(rows * rowBytes);
     } catch (const std::bad_alloc&) {
         throw vds::OutOfMemory("not enough memory for " + std::to_string(grid.cellCount()) + " cells");
@@ -95,12 +111,15 @@ void voxelize(VoxelizeArgs& a) {
     std::size_t inside = 0;
     for (std::uint32_t i0 = 0; i0 < grid.dims.x; i0 += slab) {
         const std::uint32_t i1 = std::min(grid.dims.x, i0 + slab);
-        label(slab == grid.dims.x ? grid : grid.slabX(i0, i1), cells.data());
+        // Unpacked, each slab lands in its place in the whole grid; packed, at the start of the slab buffer.
+        std::uint8_t* slabCells = cells.data() + (a.packed ? 0 : std::size_t(i0) * layer);
+        label(slab == grid.dims.x ? grid : grid.slabX(i0, i1), slabCells);
         const std::size_t count = std::size_t(i1 - i0) * layer;
-        for (std::size_t c = 0; c < count; ++c) inside += cells[c];
+        for (std::size_t c = 0; c < count; ++c) inside += slabCells[c];
+        reportSweep(progress, i1, grid.dims.x, secondsSince(start));
         if (a.packed) // numpy.packbits(cells, axis=-1): each z row packed on its own
             for (std::size_t r = 0; r < std::size_t(i1 - i0) * grid.dims.y; ++r)
-                vds::packLabels(cells.data() + r * grid.dims.z, grid.dims.z,
+                vds::packLabels(slabCells + r * grid.dims.z, grid.dims.z,
                                 bits.data() + (std::size_t(i0) * grid.dims.y + r) * rowBytes);
     }
     const double sweep = secondsSince(start);
