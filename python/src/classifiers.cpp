@@ -286,9 +286,8 @@ py::list methodTable() {
     return methods;
 }
 
-} // namespace
-
-void bindClassifiers(py::module_& m) {
+/// vds.Classifier.
+void bindClassifier(py::module_& m) {
     py::class_<PyClassifier>(m, "Classifier", R"doc(
 One way of answering "inside?" made ready for one solid: any method of
 `vds.methods()` by its name, as the command line's `--method`.
@@ -353,6 +352,10 @@ sweep columns; the other methods classify the centres.)doc")
         .def(py::pickle([](const PyClassifier& c) { return c.state(); },
                         [](const py::tuple& t) { return std::unique_ptr<PyClassifier>(classifierFromState(t)); }));
 
+}
+
+/// vds.ExactClassifier.
+void bindExact(py::module_& m) {
     py::class_<PyExact>(m, "ExactClassifier", R"doc(
 The exact classifier on a mesh's triangles (exact predicates, no sprite).
 
@@ -377,6 +380,13 @@ Classifier(V, F, "exact").)doc")
                             return std::make_unique<PyExact>(t[0], t[1], t[2].cast<std::string>());
                         }));
 
+}
+
+} // namespace
+
+void bindClassifiers(py::module_& m) {
+    bindClassifier(m);
+    bindExact(m);
     m.def("_methods", &methodTable, "The method table as dicts (vds.methods() wraps them).");
 }
 

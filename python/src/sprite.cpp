@@ -186,14 +186,13 @@ glm::mat4 matrixFrom(const py::object& object) {
 
 } // namespace
 
-void bindSprite(py::module_& m) {
-    py::class_<PySprite, std::shared_ptr<PySprite>>(m, "Sprite", R"doc(
-A volumetric depth sprite: a closed mesh baked into layered depth columns.
+namespace {
 
-Made by `vds.bake`, `vds.read` or `vds.from_bytes`. Answers inside/outside
-for points in the mesh's coordinates (after any `transform`). Classifying is
-thread safe; `transform` must not run while another thread classifies.
-Pickles as its .vds file bytes.)doc")
+using SpriteClass = py::class_<PySprite, std::shared_ptr<PySprite>>;
+
+/// Its queries and writers: contains, occupancy, winding_numbers, transform, save, to_bytes.
+void defineSpriteQueries(SpriteClass& sprite) {
+    sprite
         .def("contains", &spriteContains, py::arg("points"), py::arg("rule") = "parity", py::arg("gpu") = false,
              py::arg("threads") = 0, (std::string(R"doc(
 Inside tests of points.
@@ -242,7 +241,12 @@ re-baking: a sprite of solid S answers for matrix(S) afterwards.)doc")
                  vds::writeSprite(s, p);
              }, py::arg("path"), "Writes the sprite as a .vds file (path: str, bytes or os.PathLike), atomically "
                                  "(temporary file, then rename).")
-        .def("to_bytes", &spriteBytes, "The bytes of the sprite's .vds file (what `save` writes).")
+        .def("to_bytes", &spriteBytes, "The bytes of the sprite's .vds file (what `save` writes).");
+}
+
+/// Its properties, repr and pickling.
+void defineSpriteProperties(SpriteClass& sprite) {
+    sprite
         .def_property_readonly("resolution", [](const PySprite& s) { return std::max(s.width(), s.height()); },
                                "texels on the longer side of the view (the bake's resolution)")
         .def_property_readonly("width", &vds::Sprite::width, "texel columns along s")
@@ -278,7 +282,10 @@ re-baking: a sprite of solid S answers for matrix(S) afterwards.)doc")
         })
         .def(py::pickle([](const PySprite& s) { return spriteBytes(s); },
                         [](const py::bytes& b) { return spriteFromBytes(b, "<pickle>"); }));
+}
 
+/// The functions that make a Sprite: bake, read, from_bytes.
+void bindSpriteMakers(py::module_& m) {
     m.def("bake", &bakeMesh, py::arg("V"), py::arg("F"), py::arg("resolution") = 1024, py::arg("axis") = "auto",
           py::arg("method") = "auto", py::arg("name") = "", R"doc(
 Bakes a triangle mesh into a Sprite.
@@ -307,6 +314,21 @@ context can be had. Releases the GIL.)doc");
           "read (a directory included), vds.FormatError (a ValueError) if it is not a valid .vds file.");
     m.def("from_bytes", &spriteFromBytes, py::arg("data"), py::arg("name") = "<memory>",
           "The Sprite whose .vds file bytes are `data` (see Sprite.to_bytes). Raises vds.FormatError for bad bytes.");
+}
+
+} // namespace
+
+void bindSprite(py::module_& m) {
+    SpriteClass sprite(m, "Sprite", R"doc(
+A volumetric depth sprite: a closed mesh baked into layered depth columns.
+
+Made by `vds.bake`, `vds.read` or `vds.from_bytes`. Answers inside/outside
+for points in the mesh's coordinates (after any `transform`). Classifying is
+thread safe; `transform` must not run while another thread classifies.
+Pickles as its .vds file bytes.)doc");
+    defineSpriteQueries(sprite);
+    defineSpriteProperties(sprite);
+    bindSpriteMakers(m);
 }
 
 } // namespace vds::python

@@ -41,6 +41,26 @@ void reportSweep(const std::function<void(const std::string&)>& progress, std::u
     progress(line);
 }
 
+/// Reads the sprite INPUT names, warns where its answers are a surface's; its box.
+vds::Box loadSprite(const VoxelizeArgs& a, vds::Sprite& sprite) {
+    sprite = vds::readSprite(a.input);
+    if (sprite.status != vds::SolidStatus::Closed && a.options.rule != vds::Rule::GeneralizedWinding)
+        std::fprintf(stderr, "vds voxelize: warning: %s\n", vds::openSpriteMessage(sprite.validation, a.options.rule).c_str());
+    return sprite.grid.box;
+}
+
+/// Reads the mesh INPUT names, refuses one with no volume, warns as the rule
+/// asks (it is answered anyway); its bounds.
+vds::Box loadMesh(const VoxelizeArgs& a, vds::TriangleMesh& mesh) {
+    mesh = vds::loadMesh(a.input);
+    const vds::MeshReport report = vds::validateMesh(mesh);
+    vds::requireUsable(report, a.input);
+    vds::requireVolume(report, a.input);
+    const std::string warning = vds::insideWarning(report, a.options.rule);
+    if (!warning.empty()) std::fprintf(stderr, "vds voxelize: warning: %s: %s\n", a.input.c_str(), warning.c_str());
+    return report.bounds;
+}
+
 void voxelize(VoxelizeArgs& a) {
     if ((a.dims == 0) == a.dimsXyz.empty()) throw CLI::ValidationError("give --dims N or --dims-xyz NX NY NZ");
     const auto progress = progressPrinter(a.quiet);
@@ -51,22 +71,7 @@ void voxelize(VoxelizeArgs& a) {
     const bool fromSprite = a.input.size() > 4 && a.input.compare(a.input.size() - 4, 4, ".vds") == 0;
     vds::TriangleMesh mesh;
     vds::Sprite sprite;
-    vds::Box bounds;
-    if (fromSprite) {
-        sprite = vds::readSprite(a.input);
-        bounds = sprite.grid.box;
-        if (sprite.status != vds::SolidStatus::Closed && a.options.rule != vds::Rule::GeneralizedWinding)
-            std::fprintf(stderr, "vds voxelize: warning: %s\n",
-                         vds::openSpriteMessage(sprite.validation, a.options.rule).c_str());
-    } else {
-        mesh = vds::loadMesh(a.input);
-        const vds::MeshReport report = vds::validateMesh(mesh);
-        vds::requireUsable(report, a.input);
-        vds::requireVolume(report, a.input);
-        bounds = report.bounds;
-        const std::string warning = vds::insideWarning(report, a.options.rule);
-        if (!warning.empty()) std::fprintf(stderr, "vds voxelize: warning: %s: %s\n", a.input.c_str(), warning.c_str());
-    }
+    const vds::Box bounds = fromSprite ? loadSprite(a, sprite) : loadMesh(a, mesh);
     phase("load", secondsSince(start));
     vds::Grid grid;
     grid.box = bounds;
