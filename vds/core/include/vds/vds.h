@@ -77,15 +77,22 @@
 //     copied otherwise (<vds/interop/adapted_mesh.h>); header-only, bring
 //     your own Eigen or OpenMesh. Python takes numpy arrays.
 //   MeshReport validateMesh(mesh)
-//     counts boundary, non-manifold and flipped edges, degenerate
-//     triangles, non-finite vertices, bad indices; `closed()` says whether
-//     the mesh bounds a solid by parity, `oriented()` by winding,
-//     `summary()` says it in one line. `requireUsable(report, name)` and
-//     `requireInsideDefined(report, name, rule)` throw InvalidMesh where a
+//     the one account of a mesh: boundary, non-manifold, odd and flipped
+//     edges, inside-out parts, the generalized winding number's boundary
+//     (`windingBoundaryText(n)` its words), degenerate triangles, non-finite
+//     vertices, bad indices; `closed()` says whether the mesh bounds a solid
+//     by parity, `oriented()` by winding, `misoriented()` whether the rules
+//     disagree on a closed mesh, `status()` the one word ("closed",
+//     "mis-oriented", "open"; `solidStatus(report)` a sprite's, and
+//     `statusWord(status, validation)` a sprite's word back), `summary()`
+//     says it in one line. `requireUsable(report, name)` and
+//     `requireInsideDefined(report, name, rule, flags)` throw InvalidMesh where a
 //     mesh cannot be used or its inside is not defined by a rule;
-//     `insideWarning(report, rule)` is the one-line warning otherwise;
-//     `openMeshMessage(report, name, rule)` and `openSpriteMessage` are the
-//     one wording for a mesh or sprite that bounds no solid by a rule;
+//     `insideWarning(report, rule, flags)` is the one-line warning otherwise;
+//     `openMeshMessage(report, name, rule, flags)`, `openSpriteMessage` and
+//     `misorientedMessage(report, name)` are the one wording for a mesh or
+//     sprite that bounds no solid by a rule (`MeshFlags`: the flags a
+//     caller has, named only where it has them);
 //     `flat()` / `requireVolume(report, name)` the one for a flat sheet,
 //     which bounds no volume (bake, classify, voxelize, compare refuse it).
 //   Box meshBounds(mesh)    the axis-aligned bounds.
@@ -121,7 +128,9 @@
 //   Rules (<vds/rule.h>): Rule::Parity (odd crossings in front: the paper's
 //     test), Rule::Winding (entering +1, leaving -1, non-zero inside),
 //     Rule::GeneralizedWinding (the generalized winding number above 1/2:
-//     open and messy meshes). `insideByRule(winding, rule)`.
+//     open and messy meshes). `insideByRule(winding, rule)`;
+//     `generalizedWindingInside(w)` labels a generalized winding number
+//     (above 1/2 by more than `kGeneralizedWindingTie`: ties are outside).
 //
 // ---- 3. Bake a sprite -------------------------------------------------------
 //
