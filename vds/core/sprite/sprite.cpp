@@ -17,7 +17,6 @@
 #include <glm/matrix.hpp>
 
 #include <vds/error.h>
-#include <vds/occupancy.h>
 #include <vds/detail/parallel.h>
 
 #include "sprite/sprite_winding.h"
@@ -286,10 +285,6 @@ std::string SpriteClassifier::summary() const {
 void SpriteClassifier::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes,
                                       std::uint8_t* labels, const ClassifyOptions& options) const {
     detail::classifySpriteFloats(sprite_, xyz, count, strideBytes, labels, options);
-}
-
-void SpriteClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
-    vds::occupancy(sprite_, grid, cells, options);
 }
 
 void detail::classifySpriteFloats(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
