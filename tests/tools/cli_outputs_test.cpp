@@ -2,6 +2,7 @@
 // on (a symlink, a FIFO, a directory), one account of a mis-oriented or open
 // mesh in every command, flags named only where they exist.
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -94,6 +95,16 @@ TEST_F(CliOutputs, FifoIsWrittenAndDirectoryRefused) {
     EXPECT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(got, "1\n1\n0\n0\n");
     EXPECT_TRUE(fs::is_fifo(dir / "pipe"));
+
+    // A full device of the test's own (where devices can be made): written
+    // to, so the write fails and says so; the device stays a device.
+    if (::mknod(p("full").c_str(), S_IFCHR | 0666, makedev(1, 7)) == 0) {
+        const Result f = vds("classify --method exact --mesh " + p("box.obj") + " " + p("points.txt") + " -o " +
+                             p("full") + " --quiet");
+        EXPECT_EQ(f.code, 1) << f.output;
+        EXPECT_NE(f.output.find("full: cannot write"), std::string::npos) << f.output;
+        EXPECT_TRUE(fs::is_character_file(dir / "full"));
+    }
 
     fs::create_directories(dir / "out.npy");
     const Result d = vds("voxelize " + p("box.obj") + " --dims 4 -o " + p("out.npy") + " --quiet");
