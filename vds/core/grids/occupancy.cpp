@@ -20,6 +20,7 @@
 #include <vds/error.h>
 #include <vds/detail/parallel.h>
 #include <vds/detail/sweep_plan.h>
+#include <vds/detail/tree_walk.h>
 
 #include "winding/caps_tree.h"
 #include "sprite/sprite_winding.h"
@@ -98,11 +99,8 @@ public:
         }
         const std::vector<detail::BoundaryCaps::ChainNode>& nodes = caps->chains();
         const std::vector<glm::vec3>& loopEdges = caps->loopEdges();
-        std::uint32_t stack[64];
-        int top = 0;
-        stack[top++] = 0;
-        while (top > 0) {
-            const detail::BoundaryCaps::ChainNode& n = nodes[stack[--top]];
+        const bool bracketed = detail::walkTree(0, [&](std::uint32_t index, detail::TreeStack& stack) {
+            const detail::BoundaryCaps::ChainNode& n = nodes[index];
             const double dx = n.centre.x - x, dy = n.centre.y - y;
             const double rho = std::sqrt(dx * dx + dy * dy), e = rho - n.radius * (1.0 + 1e-12);
             if (e > 0.0) {
@@ -118,18 +116,19 @@ public:
                     far_.push_back(&n);
                     error_ += bound;
                     drift_ += drift;
-                    if (n.chord && !addEdge(n.from, n.to)) return false;
-                    continue;
+                    return !n.chord || addEdge(n.from, n.to);
                 }
             }
             if (n.count == 0) {
-                stack[top++] = n.left;
-                stack[top++] = n.right;
-                continue;
+                stack.push(n.left);
+                stack.push(n.right);
+                return true;
             }
             for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
                 if (!addEdge(glm::dvec3(loopEdges[2 * k]), glm::dvec3(loopEdges[2 * k + 1]))) return false;
-        }
+            return true;
+        });
+        if (!bracketed) return false;
         // The expansions' bounds, and rounding: the fans' float sums.
         error_ = error_ * (1.0 + 1e-9) + 1e-12 * double(far_.size());
         return true;

@@ -16,6 +16,7 @@
 
 #include "winding/antipodal.h"
 #include <vds/detail/boundary_loops.h>
+#include <vds/detail/tree_walk.h>
 
 namespace vds::detail {
 
@@ -389,11 +390,8 @@ BoundaryCaps::Estimate BoundaryCaps::estimate(const glm::vec3& q, double nodeTol
     if (nodes_.empty()) return {0.0, 0.0};
     const glm::dvec3 p(q);
     double integral = 0.0, bound = 0.0;
-    std::uint32_t stack[64];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const Node& n = nodes_[stack[--top]];
+    const bool offCaps = walkTree(0, [&](std::uint32_t index, TreeStack& stack) {
+        const Node& n = nodes_[index];
         const glm::dvec3 y = n.centre - p;
         const double d2 = glm::dot(y, y);
         const double d = std::sqrt(d2), e = d - n.radius;
@@ -404,16 +402,18 @@ BoundaryCaps::Estimate BoundaryCaps::estimate(const glm::vec3& q, double nodeTol
         if (e > 0.0 && b * d2 <= nodeTolerance * n.area) {
             integral += expansion(n, y, d2, d);
             bound += b;
-            continue;
+            return true;
         }
         if (n.count == 0) {
-            stack[top++] = n.left;
-            stack[top++] = n.right;
-            continue;
+            stack.push(n.left);
+            stack.push(n.right);
+            return true;
         }
         for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
-            if (!addCapTriangle(leafTris_[k], p, integral)) return {0.0, std::numeric_limits<double>::infinity()};
-    }
+            if (!addCapTriangle(leafTris_[k], p, integral)) return false;
+        return true;
+    });
+    if (!offCaps) return {0.0, std::numeric_limits<double>::infinity()};
     const int crossings = projected_->winding(q);
     return {double(crossings) - integral / kFourPi, bound + kRoundingSlack};
 }
@@ -526,11 +526,8 @@ BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q, double steepest) con
     if (edgeNodes_.empty()) return r;
     const glm::dvec3 p(q);
     double sum = 0.0; // of length / distance^2
-    std::uint32_t stack[64];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const EdgeNode& n = edgeNodes_[stack[--top]];
+    const bool certain = walkTree(0, [&](std::uint32_t index, TreeStack& stack) {
+        const EdgeNode& n = edgeNodes_[index];
         const double d = glm::length(n.centre - p), e = d - n.radius;
         // A cluster at least three radii away: every edge, and for whole
         // loops every cap, at distance e or more (the sum then exceeds its
@@ -540,17 +537,16 @@ BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q, double steepest) con
         if (e >= 2.0 * n.radius && e > 0.0) {
             r.gap = std::min(r.gap, e);
             sum += n.wholeLoops ? std::min(n.length / (e * e), 2.0 * n.capArea / (e * e * e)) : n.length / (e * e);
-            if (sum > limit) return Reach{};
-            continue;
+            return !(sum > limit);
         }
         if (n.loopNode) { // the loop's own edges
-            stack[top++] = n.left;
-            continue;
+            stack.push(n.left);
+            return true;
         }
         if (n.count == 0) {
-            stack[top++] = n.left;
-            stack[top++] = n.right;
-            continue;
+            stack.push(n.left);
+            stack.push(n.right);
+            return true;
         }
         for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
             const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
@@ -558,12 +554,13 @@ BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q, double steepest) con
             const double length2 = glm::dot(ab, ab);
             const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
             const double distance = glm::length(a + t * ab - p);
-            if (!(distance > 0.0)) return Reach{}; // on the curve: no move is certain
+            if (!(distance > 0.0)) return false; // on the curve: no move is certain
             r.gap = std::min(r.gap, distance);
             sum += std::sqrt(length2) / (distance * distance);
         }
-        if (sum > limit) return Reach{};
-    }
+        return !(sum > limit);
+    });
+    if (!certain) return Reach{};
     // A little slack on the distances: they are rounded.
     r.gap *= 1.0 - 1e-9;
     r.steepness = sum / kFourPi * (1.0 + 1e-9);
@@ -600,11 +597,8 @@ double BoundaryCaps::driftWithin(const glm::vec3& q, double length, double limit
         }
         return true;
     };
-    std::uint32_t stack[64];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const EdgeNode& n = edgeNodes_[stack[--top]];
+    const bool finite = walkTree(0, [&](std::uint32_t index, TreeStack& stack) {
+        const EdgeNode& n = edgeNodes_[index];
         // e: q's distance to the node's ball (which holds its edges, and
         // for whole loops its caps); a move reaches within e - length.
         const double d = glm::length(n.centre - p), e = d - n.radius, near = e - length;
@@ -615,25 +609,22 @@ double BoundaryCaps::driftWithin(const glm::vec3& q, double length, double limit
             moved += term(near);
             at += term(e);
             gap = std::min(gap, e);
-            if (over()) return kInfinity;
-            continue;
+            return !over();
         }
         if (n.loopNode) {
             // The loop's edges one by one, or where that sums to more, its
             // cap's bound (its ball clear of every move: near > 0).
             double loopMoved = 0.0, loopAt = 0.0, loopGap = kInfinity;
-            std::uint32_t inner[64];
-            int depth = 0;
-            inner[depth++] = n.left;
-            while (depth > 0) {
-                const EdgeNode& m = edgeNodes_[inner[--depth]];
+            const bool clear = walkTree(n.left, [&](std::uint32_t inner, TreeStack& innerStack) {
+                const EdgeNode& m = edgeNodes_[inner];
                 if (m.count == 0) {
-                    inner[depth++] = m.left;
-                    inner[depth++] = m.right;
-                    continue;
+                    innerStack.push(m.left);
+                    innerStack.push(m.right);
+                    return true;
                 }
-                if (!addEdges(m, loopMoved, loopAt, loopGap)) return kInfinity;
-            }
+                return addEdges(m, loopMoved, loopAt, loopGap);
+            });
+            if (!clear) return false;
             if (near > 0.0) {
                 loopMoved = std::min(loopMoved, 2.0 * n.capArea / (near * near * near));
                 loopAt = std::min(loopAt, 2.0 * n.capArea / (e * e * e));
@@ -642,16 +633,16 @@ double BoundaryCaps::driftWithin(const glm::vec3& q, double length, double limit
             moved += loopMoved;
             at += loopAt;
             gap = std::min(gap, loopGap);
-            if (over()) return kInfinity;
-            continue;
+            return !over();
         }
         if (n.count == 0) {
-            stack[top++] = n.left;
-            stack[top++] = n.right;
-            continue;
+            stack.push(n.left);
+            stack.push(n.right);
+            return true;
         }
-        if (!addEdges(n, moved, at, gap) || over()) return kInfinity;
-    }
+        return addEdges(n, moved, at, gap) && !over();
+    });
+    if (!finite) return kInfinity;
     const double shrink = 1.0 - length / gap;
     const double byReach = shrink > 0.0 ? at / (shrink * shrink * shrink) : kInfinity;
     // A little slack: the distances are rounded.
@@ -1257,11 +1248,7 @@ bool BoundaryCaps::plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c
     const glm::dvec3 p(c);
     std::vector<std::uint32_t> near, loops;
     double value = 0.0, width = 0.0;
-    std::uint32_t stack[64];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const std::uint32_t i = stack[--top];
+    const bool fits = walkTree(0, [&](std::uint32_t i, TreeStack& stack) {
         const ChainNode& n = chains_[i];
         const glm::dvec3 y = n.centre - p;
         const double d2 = glm::dot(y, y), d = std::sqrt(d2);
@@ -1270,31 +1257,29 @@ bool BoundaryCaps::plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c
             value -= expansion(n, y, d2, d) / kFourPi;
             width += n.errorScale * remainderFactor(d, d - radius, radius) +
                      2.0 * n.area * half / (kFourPi * gap * gap * gap);
-            if (width > kPlanWidth) return false;
-            continue;
+            return !(width > kPlanWidth);
         }
         if (n.loop != kNoLoop || n.chord) {
             near.push_back(i);
-            if (near.size() > kPlanNear) return false;
-            continue;
+            return !(near.size() > kPlanNear);
         }
-        stack[top++] = n.left;
-        stack[top++] = n.right;
-    }
+        stack.push(n.left);
+        stack.push(n.right);
+        return true;
+    });
+    if (!fits) return false;
     // The loops the near nodes hold.
-    for (const std::uint32_t i : near) {
-        top = 0;
-        stack[top++] = i;
-        while (top > 0) {
-            const ChainNode& n = chains_[stack[--top]];
+    for (const std::uint32_t i : near)
+        walkTree(i, [&](std::uint32_t index, TreeStack& stack) {
+            const ChainNode& n = chains_[index];
             if (n.loop != kNoLoop) {
                 loops.push_back(n.loop);
             } else {
-                stack[top++] = n.left;
-                stack[top++] = n.right;
+                stack.push(n.left);
+                stack.push(n.right);
             }
-        }
-    }
+            return true;
+        });
     // Worth it where the near loops are fewer than the tree from its root
     // takes at the centre (nodes and edges). Within a planned cell that
     // test was passed: a fine cell's near loops lie within the coarse
@@ -1400,7 +1385,6 @@ bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const 
         std::uint32_t node;
     };
     thread_local std::vector<Taken> taken, opening;
-    thread_local std::vector<std::uint32_t> stack;
     taken.clear();
     // Decide-or-refine: start from the coarsest cut whose nodes each err by
     // at most kMaxTakenBound, then open, a round at a time, every taken
@@ -1429,12 +1413,8 @@ bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const 
     // whose edges are summed exactly. False once the work exceeds the
     // budget. `expand`: not by its own expansion (a node taken before).
     const auto open = [&](std::uint32_t index, bool expand) {
-        stack.clear();
-        stack.push_back(index);
-        while (!stack.empty()) {
+        return walkTree(index, [&](std::uint32_t i, TreeStack& stack) {
             if (work > budget) return false;
-            const std::uint32_t i = stack.back();
-            stack.pop_back();
             const ChainNode& n = chains_[i];
             double b, value;
             if (!(expand && i == index) && takeNode(n, p, fine, b, value)) {
@@ -1442,18 +1422,18 @@ bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const 
                 angles += value;
                 bound += b;
                 taken.push_back({b, value, i});
-                continue;
+                return true;
             }
             if (n.count == 0 && n.edgeCount > kDirectEdges) {
-                stack.push_back(n.left);
-                stack.push_back(n.right);
-                continue;
+                stack.push(n.left);
+                stack.push(n.right);
+                return true;
             }
             work += double(n.edgeCount);
             leafSum.add(&chainEdges_[2 * std::size_t(n.edgeFirst)], n.edgeCount, a, p);
             leavesChanged = true;
-        }
-        return true;
+            return true;
+        });
     };
     // value - (1/2 + tie) = offset + angles / 4 pi; the estimate lies
     // within bound + kRoundingSlack of the per-edge sum, so a value farther
@@ -1571,28 +1551,39 @@ PackedBoundary packBoundary(const std::vector<glm::vec3>& edges, Axis axis) {
         boxHi = glm::max(boxHi, glm::dvec3(v));
     }
     const double diagonal = glm::length(boxHi - boxLo);
-    const auto visit = [&](const auto& self, std::uint32_t index) -> void {
-        const BoundaryCaps::ChainNode& node = chains[index];
-        const bool group = !node.chord && node.count == 0 && !chains[node.left].chord;
-        const double e = diagonal - node.radius;
-        if (group && (e <= 0.0 || node.errorScale * remainderFactor(diagonal, e, node.radius) > kBoundaryNodeTolerance)) {
-            self(self, node.left);
-            self(self, node.right);
-            return;
-        }
-        const std::size_t at = placed.size();
-        placed.push_back({index, 0, std::uint32_t(ordered.size() / 2), 0});
-        if (node.count != 0) {
-            ordered.insert(ordered.end(), loopEdges.begin() + 2 * std::ptrdiff_t(node.first),
-                           loopEdges.begin() + 2 * std::ptrdiff_t(node.first + node.count));
-        } else {
-            self(self, node.left);
-            self(self, node.right);
-        }
+    // A walk in preorder, the left child first; an entry marked kClose
+    // closes placed[entry & ~kClose] once its subtree is placed.
+    constexpr std::uint32_t kClose = 0x80000000u;
+    const auto close = [&](std::uint32_t at) {
         placed[at].skip = std::uint32_t(placed.size());
         placed[at].count = std::uint32_t(ordered.size() / 2) - placed[at].first;
     };
-    visit(visit, 0); // the tree is balanced: the recursion is about log2(edges) deep
+    walkTree(0, [&](std::uint32_t entry, TreeStack& stack) {
+        if (entry & kClose) {
+            close(entry & ~kClose);
+            return true;
+        }
+        const BoundaryCaps::ChainNode& node = chains[entry];
+        const bool group = !node.chord && node.count == 0 && !chains[node.left].chord;
+        const double e = diagonal - node.radius;
+        if (group && (e <= 0.0 || node.errorScale * remainderFactor(diagonal, e, node.radius) > kBoundaryNodeTolerance)) {
+            stack.push(node.right);
+            stack.push(node.left);
+            return true;
+        }
+        const std::uint32_t at = std::uint32_t(placed.size());
+        placed.push_back({entry, 0, std::uint32_t(ordered.size() / 2), 0});
+        if (node.count != 0) {
+            ordered.insert(ordered.end(), loopEdges.begin() + 2 * std::ptrdiff_t(node.first),
+                           loopEdges.begin() + 2 * std::ptrdiff_t(node.first + node.count));
+            close(at);
+            return true;
+        }
+        stack.push(at | kClose);
+        stack.push(node.right);
+        stack.push(node.left);
+        return true;
+    });
     for (const glm::vec3& v : ordered) packed.data.emplace_back(permuted(glm::dvec3(v)), 0.0f);
     packed.nodeCount = std::uint32_t(placed.size());
     const auto pairIndex = [](int j, int k) {
