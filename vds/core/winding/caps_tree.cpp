@@ -795,12 +795,14 @@ bool BoundaryCaps::blockRange(const RangeGrid& g, std::size_t cell, const glm::u
         for (c.y = first.y; c.y <= last.y; ++c.y)
             for (c.x = first.x; c.x <= last.x; ++c.x) {
                 const std::size_t k = index(c);
-                std::uint8_t zero = 0;
-                if (k != cell && !g.state[k].compare_exchange_strong(zero, 3, std::memory_order_acquire)) continue;
+                CellState unvisited = CellState::Unvisited;
+                if (k != cell &&
+                    !g.state[k].compare_exchange_strong(unvisited, CellState::Filling, std::memory_order_acquire))
+                    continue;
                 g.lo[k] = rangeLo;
                 g.hi[k] = rangeHi;
-                g.alone[k] = std::uint8_t(side > 0);
-                if (k != cell) g.state[k].store(4, std::memory_order_release);
+                g.alone[k] = {side > 0 ? CellLabel::Inside : CellLabel::Outside, false};
+                if (k != cell) g.state[k].store(CellState::WindingRange, std::memory_order_release);
             }
     return true;
 }
@@ -863,25 +865,25 @@ void BoundaryCaps::buildGrid(RangeGrid& g, const Box& box, double cellsAlong, co
 
 void BoundaryCaps::allocateCells(RangeGrid& g) {
     const std::size_t cells = std::size_t(g.dims.x) * g.dims.y * g.dims.z;
-    g.state.reset(new std::atomic<std::uint8_t>[cells]);
+    g.state.reset(new std::atomic<CellState>[cells]);
     g.near.reset(new std::unique_ptr<std::uint32_t[]>[cells]);
     g.nearCount.reset(new std::uint32_t[cells]());
     g.nearLoops.reset(new std::uint32_t[cells]());
     g.planMisses.reset(new std::atomic<std::uint8_t>[cells]);
     for (std::size_t c = 0; c < cells; ++c) g.planMisses[c].store(0, std::memory_order_relaxed);
-    for (std::size_t c = 0; c < cells; ++c) g.state[c].store(0, std::memory_order_relaxed);
-    g.alone.reset(new std::uint8_t[cells]);
+    for (std::size_t c = 0; c < cells; ++c) g.state[c].store(CellState::Unvisited, std::memory_order_relaxed);
+    g.alone.reset(new CellVerdict[cells]);
     g.lo.reset(new double[cells]);
     g.hi.reset(new double[cells]);
 }
 
-std::uint8_t BoundaryCaps::rangeOf(const RangeGrid& g, std::size_t cell, const glm::uvec3& at, bool within) const {
-    std::uint8_t state = g.state[cell].load(std::memory_order_acquire);
-    if (state != 0) return state;
-    // One thread fills the cell (state 3 while it does); the others go on
+CellState BoundaryCaps::rangeOf(const RangeGrid& g, std::size_t cell, const glm::uvec3& at, bool within) const {
+    CellState state = g.state[cell].load(std::memory_order_acquire);
+    if (state != CellState::Unvisited) return state;
+    // One thread fills the cell (Filling while it does); the others go on
     // by the tree meanwhile.
-    if (!g.state[cell].compare_exchange_strong(state, 3, std::memory_order_acquire)) return state;
-    std::uint8_t result = 2;
+    if (!g.state[cell].compare_exchange_strong(state, CellState::Filling, std::memory_order_acquire)) return state;
+    CellState result = CellState::NoRange;
     // Clear of the boundary curve and its sweep along +axis.
     const bool clearOfSweep = this->clearOfSweep(g, at);
     // Clear of the surface: the whole winding number is smooth over the
@@ -892,7 +894,7 @@ std::uint8_t BoundaryCaps::rangeOf(const RangeGrid& g, std::size_t cell, const g
     const bool clearOfCaps = g.capMet[cell] == 0;
     const CellsBall ball = ballOf(g, at, at);
     if (g.blockTried && blockRange(g, cell, at)) {
-        result = 4;
+        result = CellState::WindingRange;
     } else if (clearOfSweep || clearOfSurface || clearOfCaps) {
         const glm::vec3 c = ball.centre;
         Estimate e;
@@ -901,38 +903,39 @@ std::uint8_t BoundaryCaps::rangeOf(const RangeGrid& g, std::size_t cell, const g
             // The cheapest range to ask at a query: the whole winding
             // number's, then B's, then -w_caps.
             double base = e.term;
-            result = 1;
-            std::uint8_t byClosed = 0;
+            result = CellState::BoundaryRange;
+            bool byClosed = false;
             if (clearOfSurface) {
                 base += double(surface_->winding(c));
-                result = 4;
+                result = CellState::WindingRange;
             } else if (!clearOfSweep) {
                 base -= double(projected_->winding(c));
-                result = 5;
+                result = CellState::CappedRange;
                 if (!g.closedWinding.empty() && g.closedWinding[cell] != CellWindings::kUnknown) {
                     // -w_caps's range (the caps keep out of the cell), and
                     // an integer term plus caps' crossing count the caller
                     // knows is one integer over the cell.
                     base += double(g.closedWinding[cell]);
-                    result = 4;
-                    byClosed = kByClosed;
+                    result = CellState::WindingRange;
+                    byClosed = true;
                     ++g.closedCells;
                 }
             } else if (!g.constantWinding.empty() && g.constantWinding[cell] != CellWindings::kUnknown) {
                 // B's range, and an integer term the caller knows is one
                 // integer over the cell.
                 base += double(g.constantWinding[cell]);
-                result = 4;
+                result = CellState::WindingRange;
             }
             g.lo[cell] = base - e.bound - drift;
             g.hi[cell] = base + e.bound + drift;
-            if (result == 4) {
+            if (result == CellState::WindingRange) {
                 const int side = sideOf(g.lo[cell], g.hi[cell]);
-                g.alone[cell] = std::uint8_t((side == 0 ? kUndecided : std::uint8_t(side > 0)) | byClosed);
+                g.alone[cell] = {side == 0 ? CellLabel::Undecided : side > 0 ? CellLabel::Inside : CellLabel::Outside,
+                                 byClosed};
             }
         }
     }
-    if (result == 2 && plan(g, cell, ball.centre, ball.half, within)) result = 6;
+    if (result == CellState::NoRange && plan(g, cell, ball.centre, ball.half, within)) result = CellState::Planned;
     g.state[cell].store(result, std::memory_order_release);
     return result;
 }
@@ -942,11 +945,11 @@ BoundaryCaps::RangedCells BoundaryCaps::rangedCells(bool fine) const {
     RangedCells ranged;
     if (fine ? !fineReady_.load(std::memory_order_acquire) : !g.state) return ranged;
     for (std::size_t c = 0, n = std::size_t(g.dims.x) * g.dims.y * g.dims.z; c < n; ++c) {
-        const std::uint8_t state = g.state[c].load(std::memory_order_acquire);
-        ranged.boundary += state == 1;
-        ranged.winding += state == 4;
-        ranged.capped += state == 5;
-        ranged.planned += state == 6;
+        const CellState state = g.state[c].load(std::memory_order_acquire);
+        ranged.boundary += state == CellState::BoundaryRange;
+        ranged.winding += state == CellState::WindingRange;
+        ranged.capped += state == CellState::CappedRange;
+        ranged.planned += state == CellState::Planned;
     }
     ranged.closed = g.closedCells.load(std::memory_order_relaxed);
     return ranged;
@@ -962,11 +965,11 @@ std::size_t BoundaryCaps::memoryBytes() const {
         if (g == &fine_ ? !fineReady_.load(std::memory_order_acquire) : !g->state) continue;
         const std::size_t cells = std::size_t(g->dims.x) * g->dims.y * g->dims.z;
         // state, alone, planMisses; near, nearCount, nearLoops; lo, hi
-        total += cells * (3 + sizeof(std::unique_ptr<std::uint32_t[]>) + 2 * sizeof(std::uint32_t) + 2 * sizeof(double));
+        total += cells * (sizeof(CellState) + sizeof(CellVerdict) + 1 + sizeof(std::unique_ptr<std::uint32_t[]>) + 2 * sizeof(std::uint32_t) + 2 * sizeof(double));
         if (g->visits) total += cells * sizeof(std::uint16_t);
         if (g->blockTried) total += std::size_t(g->blockDims.x) * g->blockDims.y * g->blockDims.z;
         for (std::size_t c = 0; c < cells; ++c) // plans published so far
-            if (g->state[c].load(std::memory_order_acquire) == 6)
+            if (g->state[c].load(std::memory_order_acquire) == CellState::Planned)
                 total += (std::size_t(g->nearCount[c]) + g->nearLoops[c]) * sizeof(std::uint32_t);
     }
     return total;
@@ -993,17 +996,18 @@ bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt, bool a
     std::size_t cell;
     glm::uvec3 at;
     if (!cellOf(ranges_, q, cell, at)) return generalizedWindingInside(decide(windingAt(), q, 1.0).term);
-    std::uint8_t state = ranges_.state[cell].load(std::memory_order_acquire);
-    if (state == 0) state = rangeOf(ranges_, cell, at);
-    if ((state == 2 || state == 6) && busy(cell) && fineCells()) {
+    CellState state = ranges_.state[cell].load(std::memory_order_acquire);
+    if (state == CellState::Unvisited) state = rangeOf(ranges_, cell, at);
+    if ((state == CellState::NoRange || state == CellState::Planned) && busy(cell) && fineCells()) {
         // The fine cell, where it has a range or a plan (or the coarse one
         // has none either).
         std::size_t fineCell;
         glm::uvec3 fineAt;
         if (cellOf(fine_, q, fineCell, fineAt)) {
-            std::uint8_t fineState = fine_.state[fineCell].load(std::memory_order_acquire);
-            if (fineState == 0) fineState = rangeOf(fine_, fineCell, fineAt, state == 6);
-            if ((fineState != 2 && fineState != 3) || state == 2)
+            CellState fineState = fine_.state[fineCell].load(std::memory_order_acquire);
+            if (fineState == CellState::Unvisited)
+                fineState = rangeOf(fine_, fineCell, fineAt, state == CellState::Planned);
+            if ((fineState != CellState::NoRange && fineState != CellState::Filling) || state == CellState::NoRange)
                 return insideIn(fine_, fineCell, fineState, q, windingAt, apart);
         }
     }
@@ -1011,21 +1015,21 @@ bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt, bool a
 }
 
 template <class Winding>
-bool BoundaryCaps::insideIn(const RangeGrid& g, std::size_t cell, std::uint8_t state, const glm::vec3& q,
+bool BoundaryCaps::insideIn(const RangeGrid& g, std::size_t cell, CellState state, const glm::vec3& q,
                             const Winding& windingAt, bool apart) const {
     // A closed count's range, for a query apart from it: -w_caps's range
-    // (the count taken off), as state 5.
-    const bool closedApart = state == 4 && apart && (g.alone[cell] & kByClosed);
-    if (state == 4 && !closedApart && (g.alone[cell] & ~kByClosed) != kUndecided)
-        return (g.alone[cell] & ~kByClosed) != 0; // the whole winding number's range: no integer term asked
+    // (the count taken off), as CappedRange.
+    const bool closedApart = state == CellState::WindingRange && apart && g.alone[cell].byClosed;
+    if (state == CellState::WindingRange && !closedApart && g.alone[cell].label != CellLabel::Undecided)
+        return g.alone[cell].label == CellLabel::Inside; // the whole winding number's range: no integer term asked
     const int winding = windingAt();
-    if (state == 1 || state == 5 || closedApart) {
-        double shift = double(state == 1 ? winding : winding + projected_->winding(q));
+    if (state == CellState::BoundaryRange || state == CellState::CappedRange || closedApart) {
+        double shift = double(state == CellState::BoundaryRange ? winding : winding + projected_->winding(q));
         if (closedApart) shift -= double(g.closedWinding[cell]);
         const int side = sideOf(shift + g.lo[cell], shift + g.hi[cell]);
         if (side != 0) return side > 0;
     }
-    if (state == 6) {
+    if (state == CellState::Planned) {
         Estimate planned;
         if (decidePlanned(g, winding, q, cell, planned)) {
             std::uint8_t misses = g.planMisses[cell].load(std::memory_order_relaxed);
@@ -1036,7 +1040,7 @@ bool BoundaryCaps::insideIn(const RangeGrid& g, std::size_t cell, std::uint8_t s
         // Undecided: the query lies within the far range's width of 1/2.
         // A cell whose queries keep doing so does better from the root.
         if (unsigned(g.planMisses[cell].fetch_add(1, std::memory_order_relaxed)) + 1 >= kPlanMisses)
-            g.state[cell].store(2, std::memory_order_relaxed);
+            g.state[cell].store(CellState::NoRange, std::memory_order_relaxed);
     }
     return generalizedWindingInside(decide(winding, q, 1.0).term);
 }
@@ -1288,7 +1292,7 @@ bool BoundaryCaps::plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c
     // centre (some 2 us of the soup's) is not asked again.
     if (!within && double(near.size()) > kPlanShare * decide(0, c, 1.0).work) return false;
     std::sort(loops.begin(), loops.end());
-    // The filling thread owns the cell (state 3).
+    // The filling thread owns the cell (Filling).
     width = width * (1.0 + 1e-9) + kRoundingSlack;
     g.lo[cell] = value - width;
     g.hi[cell] = value + width;

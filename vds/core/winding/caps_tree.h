@@ -86,6 +86,27 @@
 
 namespace vds::detail {
 
+/// What a cell of BoundaryCaps' grids of bounds holds (how a label uses
+/// it: the list at the top of caps_tree.cpp's labels).
+enum class CellState : std::uint8_t {
+    Unvisited,     ///< no query has landed in it yet
+    BoundaryRange, ///< a range of B (clear of the boundary's sweep): the query adds its integer term
+    NoRange,       ///< no range clear of 1/2 and no plan: the tree from its root
+    Filling,       ///< one thread fills it; the others go by the tree meanwhile
+    WindingRange,  ///< a range of the whole winding number (clear of the surface): CellVerdict says
+    CappedRange,   ///< a range of -w_caps (clear of the caps): the query adds its integer term and C_caps
+    Planned,       ///< the far loops' range over the cell, and the loops near it refined per query
+};
+
+/// A WindingRange cell's answer, set before its state is published.
+enum class CellLabel : std::uint8_t { Outside, Inside, Undecided };
+struct CellVerdict {
+    CellLabel label = CellLabel::Undecided; ///< where the range puts every value (Undecided: it straddles 1/2)
+    /// The range came from a closed count (CellWindings): a query apart
+    /// from it (insideApart) takes it as -w_caps's range instead.
+    bool byClosed = false;
+};
+
 /// Error bound a tree node may add when taken by its expansion, per unit of
 /// the solid angle it subtends, for values (then exactly where the bound
 /// exceeds the value's tolerance).
@@ -379,12 +400,9 @@ public:
 
 private:
     /// The grid of bounds `inside` answers from first: cells of the
-    /// domain's box, their state (0: not yet looked at, 1: a range of B,
-    /// 2: none, 3: being filled, 4: a range of the whole winding number,
-    /// 5: a range of B less the caps' crossing count, -w_caps, 6: a plan:
-    /// the range of -w of the caps of the loops far from the cell, and the
-    /// loops near it) and range, filled on a query's first visit (one
-    /// thread fills a cell; the others go on by the tree meanwhile).
+    /// domain's box, their state (CellState) and range, filled on a
+    /// query's first visit (one thread fills a cell; the others go on by
+    /// the tree meanwhile).
     struct RangeGrid {
         Box box;
         glm::uvec3 dims{0};
@@ -401,14 +419,14 @@ private:
         /// CellWindings' closed counts: in the sweep, where the caps keep
         /// out of a cell, n - w_caps is the whole winding number.
         std::vector<std::int32_t> closedWinding;
-        mutable std::atomic<std::size_t> closedCells{0}; ///< state 4 by closedWinding
+        mutable std::atomic<std::size_t> closedCells{0}; ///< WindingRange by closedWinding
         /// A planned cell's near nodes (whole loops, or groups of them),
         /// then the loops they hold, ascending: nearCount[cell] of the
         /// first, nearLoops[cell] of the second.
         std::unique_ptr<std::unique_ptr<std::uint32_t[]>[]> near;
         std::unique_ptr<std::uint32_t[]> nearCount, nearLoops;
         /// A planned cell's score of queries the plan did not decide, less
-        /// those it did: past a few, the cell goes back to state 2 (most of
+        /// those it did: past a few, the cell goes back to NoRange (most of
         /// its queries lie close to 1/2).
         std::unique_ptr<std::atomic<std::uint8_t>[]> planMisses;
         /// Per column of cells along the axis: the lowest height along the
@@ -416,15 +434,12 @@ private:
         /// column's (+inf: none), so the cells wholly below it are clear
         /// of the curve and its sweep.
         std::vector<double> lowestEdge;
-        std::unique_ptr<std::atomic<std::uint8_t>[]> state;
-        /// A cell of state 4: 1 where its range puts every value inside,
-        /// 0 outside, kUndecided where it straddles 1/2, plus kByClosed
-        /// where the range came from a closed count (set before the state
-        /// is published).
-        std::unique_ptr<std::uint8_t[]> alone;
+        std::unique_ptr<std::atomic<CellState>[]> state;
+        /// A WindingRange cell's answer (set before the state is published).
+        std::unique_ptr<CellVerdict[]> alone;
         std::unique_ptr<double[]> lo, hi;
         /// The coarse grid's: queries that found no range in the cell
-        /// (states 2 and 6), up to kBusyVisits; from then on they ask the
+        /// (NoRange and Planned), up to kBusyVisits; from then on they ask the
         /// fine grid's cell.
         std::unique_ptr<std::atomic<std::uint16_t>[]> visits;
         /// The coarse grid's: per block of 2 x 2 x 2 cells, 1 once a cell
@@ -441,7 +456,7 @@ private:
     bool fineCells() const;
     /// The cell's state, filling it on the first visit; `within`: a fine
     /// cell within a planned coarse one (plan()).
-    std::uint8_t rangeOf(const RangeGrid& g, std::size_t cell, const glm::uvec3& at, bool within = false) const;
+    CellState rangeOf(const RangeGrid& g, std::size_t cell, const glm::uvec3& at, bool within = false) const;
     /// A ball about the box of cells [first, last] of `g`: its centre (a
     /// float point, as queries are) and a radius holding every point of
     /// those cells, widened against the rounding of a point's cell index.
@@ -456,27 +471,25 @@ private:
     /// B over the ball: `e` at its centre, to be widened by `drift`; false
     /// where the two span half a unit or more (no range clear of 1/2).
     bool rangeOver(const CellsBall& ball, Estimate& e, double& drift) const;
-    /// On a coarse cell's fill (the caller owns `cell`, state 3), once a
+    /// On a coarse cell's fill (the caller owns `cell`, Filling), once a
     /// block: where no cell of its block of 2 x 2 x 2 meets the surface
     /// (or, without one, every cell is clear of the boundary's sweep and
     /// the caller knew one integer term for them all), the range of the
     /// whole winding number over the block, clear of 1/2, for every cell
     /// of it not yet filled: one fill for eight far from the surface.
-    /// True where `cell` got it (then state 4 is the caller's to publish).
+    /// True where `cell` got it (then WindingRange is the caller's to publish).
     bool blockRange(const RangeGrid& g, std::size_t cell, const glm::uvec3& at) const;
     /// Whether a coarse cell without a range has had queries enough to
     /// ask the fine grid (counting this one).
     bool busy(std::size_t cell) const;
     /// insideBy() in cell `cell` of `g`, of state `state`.
     template <class Winding>
-    bool insideIn(const RangeGrid& g, std::size_t cell, std::uint8_t state, const glm::vec3& q,
+    bool insideIn(const RangeGrid& g, std::size_t cell, CellState state, const glm::vec3& q,
                   const Winding& windingAt, bool apart) const;
     /// inside(), asking `windingAt()` for the integer term only where the
     /// cell's range does not answer without it.
     template <class Winding>
     bool insideBy(const glm::vec3& q, const Winding& windingAt, bool apart) const;
-    static constexpr std::uint8_t kUndecided = 2;
-    static constexpr std::uint8_t kByClosed = 4;
     /// The cell q lies in; false outside the grid.
     static inline bool cellOf(const RangeGrid& g, const glm::vec3& q, std::size_t& cell, glm::uvec3& at);
     double exact(int winding, const glm::vec3& q) const;
@@ -551,7 +564,7 @@ private:
     /// chain node's edges lie together (ChainNode::edgeFirst).
     std::vector<glm::vec3> chainEdges_;
     /// The grid of bounds, and one of cells half as wide along each side
-    /// over the same box: a coarse cell without a range (states 2 and 6)
+    /// over the same box: a coarse cell without a range (NoRange, Planned)
     /// that many queries land in hands them to its fine cells, whose
     /// ranges and far ranges, taken over half the width, keep clear of 1/2
     /// more often (the near loops a plan keeps are about as many: a soup's
@@ -585,12 +598,12 @@ int BoundaryCaps::insideAlone(const glm::vec3& q, bool apart) const {
     std::size_t cell;
     glm::uvec3 at;
     if (!cellOf(ranges_, q, cell, at)) return -1;
-    std::uint8_t state = ranges_.state[cell].load(std::memory_order_acquire);
-    if (state == 0) state = rangeOf(ranges_, cell, at);
-    if (state != 4) return -1;
-    const std::uint8_t label = ranges_.alone[cell];
-    if (apart && (label & kByClosed)) return -1;
-    return (label & ~kByClosed) == kUndecided ? -1 : int(label & ~kByClosed);
+    CellState state = ranges_.state[cell].load(std::memory_order_acquire);
+    if (state == CellState::Unvisited) state = rangeOf(ranges_, cell, at);
+    if (state != CellState::WindingRange) return -1;
+    const CellVerdict verdict = ranges_.alone[cell];
+    if ((apart && verdict.byClosed) || verdict.label == CellLabel::Undecided) return -1;
+    return verdict.label == CellLabel::Inside ? 1 : 0;
 }
 
 } // namespace vds::detail
