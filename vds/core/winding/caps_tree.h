@@ -77,6 +77,7 @@
 #include <optional>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -604,6 +605,33 @@ int BoundaryCaps::insideAlone(const glm::vec3& q, bool apart) const {
     const CellVerdict verdict = ranges_.alone[cell];
     if ((apart && verdict.byClosed) || verdict.label == CellLabel::Undecided) return -1;
     return verdict.label == CellLabel::Inside ? 1 : 0;
+}
+
+// Inline: taken once a node by the walks of the labels and values.
+//
+// The node's integral of n . (x - q) / |x - q|^3 dA by its Taylor expansion
+// about its centre to second order, at y = c - q (|y| = d): with
+// K_i(y) = y_i / d^3, the terms are A . K, M_ij dK_i/dy_j and
+// N_ijk d2K_i/dy_j dy_k / 2, where dK_i/dy_j = delta_ij / d^3 - 3 y_i y_j / d^5
+// and d2K_i/dy_j dy_k = -3 (delta_ij y_k + delta_ik y_j + delta_jk y_i) / d^5
+// + 15 y_i y_j y_k / d^7.
+inline double BoundaryCaps::firstOrder(const Node& n, const glm::dvec3& y, double d2, double d) {
+    return firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
+}
+
+inline double BoundaryCaps::expansion(const Node& n, const glm::dvec3& y, double d2, double d) {
+    const double inv2 = 1.0 / d2, inv3 = inv2 / d;
+    const std::array<double, 18>& N = n.quadrupole;
+    const double yy[6] = {y.x * y.x, y.y * y.y, y.z * y.z, 2.0 * y.x * y.y, 2.0 * y.x * y.z, 2.0 * y.y * y.z};
+    double yNyy = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const double* row = N.data() + 6 * i;
+        yNyy += y[i] * (row[0] * yy[0] + row[1] * yy[1] + row[2] * yy[2] + row[3] * yy[3] + row[4] * yy[4] +
+                        row[5] * yy[5]);
+    }
+    const double second =
+        0.5 * inv2 * (-3.0 * (2.0 * glm::dot(n.quadrupoleColumns, y) + glm::dot(n.quadrupoleRows, y)) + 15.0 * yNyy * inv2);
+    return firstOrder(n, y, d2, d) + second * inv3;
 }
 
 } // namespace vds::detail
