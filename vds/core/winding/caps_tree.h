@@ -84,29 +84,9 @@
 #include <vds/mesh.h>
 
 #include "predicates/projected_mesh.h"
+#include "winding/range_grid.h"
 
 namespace vds::detail {
-
-/// What a cell of BoundaryCaps' grids of bounds holds (how a label uses
-/// it: the list at the top of caps_tree.cpp's labels).
-enum class CellState : std::uint8_t {
-    Unvisited,     ///< no query has landed in it yet
-    BoundaryRange, ///< a range of B (clear of the boundary's sweep): the query adds its integer term
-    NoRange,       ///< no range clear of 1/2 and no plan: the tree from its root
-    Filling,       ///< one thread fills it; the others go by the tree meanwhile
-    WindingRange,  ///< a range of the whole winding number (clear of the surface): CellVerdict says
-    CappedRange,   ///< a range of -w_caps (clear of the caps): the query adds its integer term and C_caps
-    Planned,       ///< the far loops' range over the cell, and the loops near it refined per query
-};
-
-/// A WindingRange cell's answer, set before its state is published.
-enum class CellLabel : std::uint8_t { Outside, Inside, Undecided };
-struct CellVerdict {
-    CellLabel label = CellLabel::Undecided; ///< where the range puts every value (Undecided: it straddles 1/2)
-    /// The range came from a closed count (CellWindings): a query apart
-    /// from it (insideApart) takes it as -w_caps's range instead.
-    bool byClosed = false;
-};
 
 /// Error bound a tree node may add when taken by its expansion, per unit of
 /// the solid angle it subtends, for values (then exactly where the bound
@@ -400,56 +380,8 @@ public:
     static double firstOrderBound(const Node& n, double distance);
 
 private:
-    /// The grid of bounds `inside` answers from first: cells of the
-    /// domain's box, their state (CellState) and range, filled on a
-    /// query's first visit (one thread fills a cell; the others go on by
-    /// the tree meanwhile).
-    struct RangeGrid {
-        Box box;
-        glm::uvec3 dims{0};
-        glm::dvec3 size{0.0};
-        glm::dvec3 inverse{0.0}; ///< 1 / size (0 where size is 0)
-        /// 1 where the surface may meet the cell (CapsSurface::markCells);
-        /// empty without a surface.
-        std::vector<std::uint8_t> met;
-        /// 1 where a cap may meet the cell.
-        std::vector<std::uint8_t> capMet;
-        /// The integer term over each cell where the caller knew it to be
-        /// one integer (CellWindings), else kUnknown; empty without.
-        std::vector<std::int32_t> constantWinding;
-        /// CellWindings' closed counts: in the sweep, where the caps keep
-        /// out of a cell, n - w_caps is the whole winding number.
-        std::vector<std::int32_t> closedWinding;
-        mutable std::atomic<std::size_t> closedCells{0}; ///< WindingRange by closedWinding
-        /// A planned cell's near nodes (whole loops, or groups of them),
-        /// then the loops they hold, ascending: nearCount[cell] of the
-        /// first, nearLoops[cell] of the second.
-        std::unique_ptr<std::unique_ptr<std::uint32_t[]>[]> near;
-        std::unique_ptr<std::uint32_t[]> nearCount, nearLoops;
-        /// A planned cell's score of queries the plan did not decide, less
-        /// those it did: past a few, the cell goes back to NoRange (most of
-        /// its queries lie close to 1/2).
-        std::unique_ptr<std::atomic<std::uint8_t>[]> planMisses;
-        /// Per column of cells along the axis: the lowest height along the
-        /// axis of a boundary edge whose projection's box meets the
-        /// column's (+inf: none), so the cells wholly below it are clear
-        /// of the curve and its sweep.
-        std::vector<double> lowestEdge;
-        std::unique_ptr<std::atomic<CellState>[]> state;
-        /// A WindingRange cell's answer (set before the state is published).
-        std::unique_ptr<CellVerdict[]> alone;
-        std::unique_ptr<double[]> lo, hi;
-        /// The coarse grid's: queries that found no range in the cell
-        /// (NoRange and Planned), up to kBusyVisits; from then on they ask the
-        /// fine grid's cell.
-        std::unique_ptr<std::atomic<std::uint16_t>[]> visits;
-        /// The coarse grid's: per block of 2 x 2 x 2 cells, 1 once a cell
-        /// of it tried the block's range (blockRange).
-        std::unique_ptr<std::atomic<std::uint8_t>[]> blockTried;
-        glm::uvec3 blockDims{0};
-    };
     void buildRangeGrid(const Box& domain, const CellWindings* windings);
-    /// `cellsNow`: allocate its cells' states and ranges too (allocateCells).
+    /// `cellsNow`: allocate its cells' states and ranges too (RangeGrid::allocate).
     void buildGrid(RangeGrid& g, const Box& box, double cellsAlong, const CellWindings* windings, bool cellsNow);
     static void allocateCells(RangeGrid& g);
     /// The fine grid's cells, allocated on the first call (once, whichever
@@ -458,14 +390,6 @@ private:
     /// The cell's state, filling it on the first visit; `within`: a fine
     /// cell within a planned coarse one (plan()).
     CellState rangeOf(const RangeGrid& g, std::size_t cell, const glm::uvec3& at, bool within = false) const;
-    /// A ball about the box of cells [first, last] of `g`: its centre (a
-    /// float point, as queries are) and a radius holding every point of
-    /// those cells, widened against the rounding of a point's cell index.
-    struct CellsBall {
-        glm::vec3 centre;
-        double half;
-    };
-    static CellsBall ballOf(const RangeGrid& g, const glm::uvec3& first, const glm::uvec3& last);
     /// Clear of the boundary curve and its sweep along +axis: every edge
     /// whose projection may meet the cell's column lies above the cell.
     bool clearOfSweep(const RangeGrid& g, const glm::uvec3& at) const;
@@ -581,24 +505,10 @@ private:
 
 // Inline: asked once a query (a sprite's batch asks insideAlone of every point).
 
-bool BoundaryCaps::cellOf(const RangeGrid& g, const glm::vec3& q, std::size_t& cell, glm::uvec3& at) {
-    if (!g.state) return false;
-    for (int a = 0; a < 3; ++a) {
-        // By the reciprocal: its extra rounding (a few ulps of the index)
-        // is far inside the slack the cells are widened by.
-        const double x = g.size[a] > 0.0 ? (double(q[a]) - double(g.box.lo[a])) * g.inverse[a]
-                                         : (q[a] == g.box.lo[a] ? 0.0 : -1.0);
-        if (!(x >= 0.0 && x < double(g.dims[a]))) return false;
-        at[a] = std::uint32_t(x);
-    }
-    cell = (std::size_t(at.z) * g.dims.y + at.y) * g.dims.x + at.x;
-    return true;
-}
-
 int BoundaryCaps::insideAlone(const glm::vec3& q, bool apart) const {
     std::size_t cell;
     glm::uvec3 at;
-    if (!cellOf(ranges_, q, cell, at)) return -1;
+    if (!ranges_.cellOf(q, cell, at)) return -1;
     CellState state = ranges_.state[cell].load(std::memory_order_acquire);
     if (state == CellState::Unvisited) state = rangeOf(ranges_, cell, at);
     if (state != CellState::WindingRange) return -1;

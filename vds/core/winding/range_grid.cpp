@@ -1,5 +1,29 @@
 // vds: the grids of bounds BoundaryCaps::inside answers from first, and
 // where they do not answer, the chain tree (chain_tree.cpp).
+//
+// How a label is decided (inside, insideApart, insideAlone), every path
+// with the per-edge sum's answer: a range, plan or bound answers only
+// where it keeps clear of 1/2 (plus the tie) by more than its error.
+//  1. q outside the coarse grid: decide() from the chain tree's root (7).
+//  2. q's cell Unvisited: the first query fills it (Filling meanwhile):
+//     a. its block of 2 x 2 x 2 cells clear of the surface, or of the sweep
+//        with one known integer term: WindingRange for all (blockRange);
+//     b. else, with the drift over the cell under half a unit: clear of
+//        the surface, WindingRange; clear of the sweep, BoundaryRange (or
+//        WindingRange with a known integer term); clear of the caps,
+//        CappedRange (or WindingRange by a closed count, byClosed);
+//     c. else Planned where the far loops' range is narrow and the near
+//        loops few (cell_plans.cpp), else NoRange.
+//  3. NoRange or Planned, once kBusyVisits queries landed: the fine cell
+//     (half as wide), where it holds a range or a plan.
+//  4. WindingRange clear of 1/2: its label, no integer term asked; a
+//     byClosed cell, for a query apart from its count: as CappedRange.
+//  5. BoundaryRange: winding + [lo, hi]; CappedRange: winding + C_caps(q)
+//     + [lo, hi]; the label where that keeps clear of 1/2.
+//  6. Planned: the near loops refined, the far ones by their range
+//     (decidePlanned); kPlanMisses net misses turn the cell NoRange.
+//  7. Else decide(): the chain tree refined until the value is farther
+//     from 1/2 than its bound, or the per-edge sum where that costs less.
 #include "winding/caps_tree.h"
 
 #include <algorithm>
@@ -76,13 +100,13 @@ void BoundaryCaps::buildRangeGrid(const Box& domain, const CellWindings* winding
     }
 }
 
-BoundaryCaps::CellsBall BoundaryCaps::ballOf(const RangeGrid& g, const glm::uvec3& first, const glm::uvec3& last) {
-    const glm::dvec3 lo(g.box.lo), hi(g.box.hi);
-    const double slack = 1e-7 * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-    const glm::dvec3 centre = lo + 0.5 * (glm::dvec3(first) + glm::dvec3(last + 1u)) * g.size;
+CellsBall RangeGrid::ballOf(const glm::uvec3& first, const glm::uvec3& last) const {
+    const glm::dvec3 from(box.lo), to(box.hi);
+    const double slack = 1e-7 * std::max({to.x - from.x, to.y - from.y, to.z - from.z});
+    const glm::dvec3 centre = from + 0.5 * (glm::dvec3(first) + glm::dvec3(last + 1u)) * size;
     const glm::vec3 c(centre);
     // Every point of the widened cells lies within this of c.
-    return {c, 0.5 * glm::length(glm::dvec3(last + 1u - first) * g.size) + glm::length(glm::dvec3(c) - centre) +
+    return {c, 0.5 * glm::length(glm::dvec3(last + 1u - first) * size) + glm::length(glm::dvec3(c) - centre) +
                    2.0 * slack};
 }
 
@@ -129,7 +153,7 @@ bool BoundaryCaps::blockRange(const RangeGrid& g, std::size_t cell, const glm::u
                 if (known != CellWindings::kUnknown && g.constantWinding[k] != known) return false;
                 known = g.constantWinding[k];
             }
-    const CellsBall ball = ballOf(g, first, last);
+    const CellsBall ball = g.ballOf(first, last);
     Estimate e;
     double drift;
     if (!rangeOver(ball, e, drift)) return false;
@@ -207,10 +231,11 @@ void BoundaryCaps::buildGrid(RangeGrid& g, const Box& box, double cellsAlong, co
     for (const glm::uvec3& c : capTriangles_)
         markTriangleCells(CellLattice{lo, g.size, g.dims}, glm::dvec3(capPositions_[c.x]), glm::dvec3(capPositions_[c.y]),
                           glm::dvec3(capPositions_[c.z]), 2.0 * slack, g.capMet);
-    if (cellsNow) allocateCells(g);
+    if (cellsNow) g.allocate();
 }
 
-void BoundaryCaps::allocateCells(RangeGrid& g) {
+void RangeGrid::allocate() {
+    RangeGrid& g = *this;
     const std::size_t cells = std::size_t(g.dims.x) * g.dims.y * g.dims.z;
     g.state.reset(new std::atomic<CellState>[cells]);
     g.near.reset(new std::unique_ptr<std::uint32_t[]>[cells]);
@@ -239,7 +264,7 @@ CellState BoundaryCaps::rangeOf(const RangeGrid& g, std::size_t cell, const glm:
     // Clear of the caps: w_caps is smooth over the cell, and B is the caps'
     // crossing count (an integer, asked at the query) less w_caps.
     const bool clearOfCaps = g.capMet[cell] == 0;
-    const CellsBall ball = ballOf(g, at, at);
+    const CellsBall ball = g.ballOf(at, at);
     if (g.blockTried && blockRange(g, cell, at)) {
         result = CellState::WindingRange;
     } else if (clearOfSweep || clearOfSurface || clearOfCaps) {
@@ -326,7 +351,7 @@ bool BoundaryCaps::fineCells() const {
     if (fineReady_.load(std::memory_order_acquire)) return true;
     if (fine_.capMet.empty()) return false; // no fine grid (no grid at all)
     std::call_once(fineOnce_, [this] {
-        allocateCells(fine_);
+        fine_.allocate();
         fineReady_.store(true, std::memory_order_release);
     });
     return true;
@@ -342,7 +367,7 @@ template <class Winding>
 bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt, bool apart) const {
     std::size_t cell;
     glm::uvec3 at;
-    if (!cellOf(ranges_, q, cell, at)) return generalizedWindingInside(decide(windingAt(), q, 1.0).term);
+    if (!ranges_.cellOf(q, cell, at)) return generalizedWindingInside(decide(windingAt(), q, 1.0).term);
     CellState state = ranges_.state[cell].load(std::memory_order_acquire);
     if (state == CellState::Unvisited) state = rangeOf(ranges_, cell, at);
     if ((state == CellState::NoRange || state == CellState::Planned) && busy(cell) && fineCells()) {
@@ -350,7 +375,7 @@ bool BoundaryCaps::insideBy(const glm::vec3& q, const Winding& windingAt, bool a
         // has none either).
         std::size_t fineCell;
         glm::uvec3 fineAt;
-        if (cellOf(fine_, q, fineCell, fineAt)) {
+        if (fine_.cellOf(q, fineCell, fineAt)) {
             CellState fineState = fine_.state[fineCell].load(std::memory_order_acquire);
             if (fineState == CellState::Unvisited)
                 fineState = rangeOf(fine_, fineCell, fineAt, state == CellState::Planned);
