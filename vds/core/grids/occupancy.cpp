@@ -173,10 +173,8 @@ private:
     /// this anywhere along the column,
     static constexpr double kFarBound = 1e-3;
     /// and its fan's solid angle (over 4 pi) moves by at most this over the
-    /// column's height; else its edges or children are taken. (Measured on
-    /// the bench's generated cases: a drift allowance of 1e-2 made the
-    /// non-manifold shell's and the soup's grids 2-3x slower than 1, which
-    /// cuts long runs in halves instead; 1e-2 on the bound was no faster.)
+    /// column's height; else its edges or children are taken (tuning:
+    /// docs/benchmarks.md).
     static constexpr double kFarDrift = 1.0;
     static constexpr std::size_t kBlock = 16;
     /// The column's edges, a field a vector (so that a block of them loads
@@ -288,9 +286,9 @@ constexpr std::uint32_t kShortRun = 8;
 constexpr double kReachMargin = 2.0;
 /// Most cells labelled alone after a run came out empty.
 constexpr std::uint32_t kMaxAlone = 16;
-/// Every this many columns a range is labelled the other way, to time it
-/// (1/64 spent on the slower way where one is much slower; 1/16 cost the
-/// non-manifold shell's grid 10 %).
+/// Every this many columns a range is labelled the other way, to time it:
+/// it bounds the share of columns spent on the slower way (tuning:
+/// docs/benchmarks.md).
 constexpr std::size_t kProbe = 64;
 
 

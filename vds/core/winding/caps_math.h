@@ -20,10 +20,8 @@ constexpr std::uint32_t kLeafTriangles = 4;
 constexpr double kRoundingSlack = 1e-9;
 /// A node to be opened that holds at most this many edges has them summed
 /// at once: with the per-edge sum a block of edges per instruction
-/// (EdgeAngles), 16 edges cost about as much as two nodes taken. Measured
-/// (4, 8, 16, 32, 64): 16 is the fastest on the soup within 0.1 of 1/2
-/// (1.2-1.6x that of 4) with the bulk unchanged or faster; 32 and more
-/// slow the non-manifold shell's bulk.
+/// (EdgeAngles), 16 edges cost about as much as two nodes taken (tuning:
+/// docs/benchmarks.md).
 constexpr std::uint32_t kDirectEdges = 16;
 
 struct Moments {
@@ -71,8 +69,8 @@ inline Moments momentsOf(const Tris& tris, std::size_t first, std::size_t last, 
 // linear term, |n . D^2K[h, h]| <= 3! |h|^2 / |y|^4), over errorScale:
 // twice the integral of (1 - t) / (d - t R)^4, in closed form. Labels take
 // nodes to first order (they need coarse bounds, and the second order term
-// costs about as much again as the rest: 0.87-0.98x the rate measured),
-// values to second order (at their 1e-3 tolerance 1.4-2.8x faster).
+// costs about as much again as the rest), values to second order (their
+// tolerance is tight; docs/benchmarks.md).
 // The node's error bound over its errorScale (3 S / 4 pi), at distance
 // d = |q - c| > R, e = d - R: R times the integral over t in [0, 1] of
 // 4 (1 - t)^2 / (d - t R)^5 (Taylor's integral remainder after the second

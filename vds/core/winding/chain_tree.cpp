@@ -22,23 +22,17 @@ namespace {
 /// keeping every taken bound small keeps the running sums' drift small).
 constexpr double kMaxTakenBound = 0.25;
 /// Labels refine by the expansion to second order once the value lies
-/// within this of the threshold (decide()).
+/// within this of the threshold (decide()); farther out, first order
+/// (tuning: docs/benchmarks.md).
 constexpr double kFineBelow = 0.1;
 /// decide() opens, a round at a time, the taken nodes whose bound is at
-/// least this fraction of the largest. Measured on the bench's generated
-/// cases against opening the largest alone (from a heap): 1.2-2x the rate
-/// within 0.1 of 1/2 on the soup and the non-manifold shell, the rest
-/// unchanged.
+/// least this fraction of the largest: the fewest rounds for the nodes
+/// opened (tuning: docs/benchmarks.md).
 constexpr double kOpenFraction = 0.5;
 /// decide() gives up for the per-edge sum where this times its predicted
-/// work passes the budget (see there). Measured (0, 1, 1.5, 2, 3, with the
-/// predicted work rising as the cube root, the square root and the 2/3
-/// power of the shrink needed): 1.5 with the square root keeps every band
-/// of |w - 1/2| on the bench's meshes within about 19x the bulk's cost,
-/// and the soup's points within 0.001 of 1/2 at 1.7x their rate by the
-/// cube root (which left them at half the per-edge sum's rate); 0 (never)
-/// leaves the soup's and the non-manifold shell's points within 0.001 at
-/// 30x, 2 and 3 slow the bunny's and the teapot's near 1/2.
+/// work (rising as the square root of the shrink of the bound still
+/// needed) passes the budget: it bounds the work a point near 1/2 may
+/// spend on the tree before the per-edge sum (tuning: docs/benchmarks.md).
 constexpr double kGiveUp = 1.5;
 } // namespace
 
@@ -335,9 +329,7 @@ bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const 
             // Close to the threshold, the nodes opened from here are taken
             // to second order (their bound about R / D of the first
             // order's, for about twice the work; bulk points stop at the
-            // first cut). Measured on the generated cases, with 0.01 to 0.2
-            // here alike: 1.1-2x the rate within 0.02 of 1/2, 1-1.9x within
-            // 0.001, the rest unchanged.
+            // first cut; kFineBelow).
             fine = std::fabs(value) < kFineBelow;
             double largest = 0.0;
             for (const Taken& tk : taken) largest = std::max(largest, tk.bound);

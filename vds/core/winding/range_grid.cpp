@@ -48,21 +48,17 @@ constexpr double kFineCells = 2.0 * kRangeCells;
 /// its fine cells.
 constexpr unsigned kBusyVisits = 1024;
 /// The node tolerance of the estimate at a cell's centre (estimate()):
-/// coarse, as a range serves only where it keeps clear of 1/2. Measured
-/// (exact classifier, first call, 200,000 points, this project's VM):
-/// 5e-2 against 1e-2, 1.1-1.25x on the fins and the punched sphere, the
-/// rest within noise; 1e-1 costs the teapot 9%.
+/// coarse, as a range serves only where it keeps clear of 1/2; it bounds
+/// the part of a cell's range that is the estimate's error (tuning:
+/// docs/benchmarks.md).
 constexpr double kRangeTolerance = 5e-2;
 } // namespace
 
 namespace {
 /// A plan's score of queries it left undecided (each adds 1, each it
 /// decided takes 1 off): at kPlanMisses its cell drops it. A miss costs
-/// the plan and then the tree from its root (2.6 us of the soup's), a
-/// planned answer 0.5 and the root alone 2.1, so a plan pays while it
-/// decides most of its queries: counting misses alone, a busy cell lost
-/// its plan to its first few queries near 1/2 (the soup's exact path
-/// 1.84 -> 1.58 M points/s over six calls of 2,000,000 points).
+/// the plan and then the tree from its root, so a plan pays while it
+/// decides most of its queries (tuning: docs/benchmarks.md).
 constexpr unsigned kPlanMisses = 4;
 } // namespace
 
