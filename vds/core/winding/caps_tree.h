@@ -463,6 +463,7 @@ private:
     /// far range left (planned) or of budget.
     bool refine(int winding, const glm::vec3& q, double margin, const std::uint32_t* roots, std::size_t rootCount,
                 double farLo, double farHi, Estimate& out) const;
+    struct Refinement; ///< refine()'s running state (chain_tree.cpp)
     std::vector<std::array<glm::dvec3, 3>> leafTris_; ///< cap triangles in tree order
     std::vector<Node> nodes_;                         ///< [0] is the root
     std::optional<ProjectedMesh> projected_;          ///< the caps, for C_caps

@@ -224,47 +224,31 @@ BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, dou
     return {exact(winding, q), 0.0, out.work + double(edges_.size() / 2)};
 }
 
-bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const std::uint32_t* roots,
-                          std::size_t rootCount, double farLo, double farHi, Estimate& out) const {
+/// refine()'s running state: the cut of the chain tree taken so far, its
+/// per-edge angles' sum (in radians: of the taken nodes, and of the
+/// leaves' edges as the per-edge sum takes them, EdgeAngles: one atan2
+/// when a label is tried, not one an edge) and its summed bounds.
+struct BoundaryCaps::Refinement {
     struct Taken {
         double bound;
         double value; ///< the node's edges' angles by its chord and expansion
         std::uint32_t node;
     };
-    thread_local std::vector<Taken> taken, opening;
-    taken.clear();
-    // Decide-or-refine: start from the coarsest cut whose nodes each err by
-    // at most kMaxTakenBound, then open, a round at a time, every taken
-    // node whose bound is at least kOpenFraction of the largest, until the
-    // value lies farther from 1/2 than the summed bounds.
-    const glm::dvec3 p(q);
-    const int a = axisIndex_;
-    // The per-edge angles' sum, in radians: of the taken nodes, and of the
-    // leaves' edges (as the per-edge sum takes them, EdgeAngles: one atan2
-    // when a label is tried, not one an edge).
-    // What stands for the loops not in `roots`: a range of their part.
-    const double farBound = 0.5 * (farHi - farLo);
-    double angles = 0.0, bound = farBound;
-    EdgeAngles leafSum;
-    // Work spent, in nodes taken (a chord's angle and an expansion) and
-    // edges summed: past the edge count the per-edge sum decides.
-    const double budget = double(edges_.size() / 2);
-    double work = 0.0;
-    bool fine = false;
-    // The leaves' angle, taken again (an atan2) only after edges were
-    // summed.
-    bool leavesChanged = false;
-    double leaves = 0.0;
-    // Opens the subtree at `index`: nodes q's ray misses and far enough by
-    // expansion, the rest down to nodes of at most kDirectEdges edges,
-    // whose edges are summed exactly. False once the work exceeds the
-    // budget. `expand`: not by its own expansion (a node taken before).
-    const auto open = [&](std::uint32_t index, bool expand) {
+    Refinement(const BoundaryCaps& of, const glm::vec3& q, double farHalfWidth, std::vector<Taken>& takenNodes,
+               std::vector<Taken>& openingNodes)
+        : caps(of), p(q), axis(of.axisIndex_), farBound(farHalfWidth), budget(double(of.edges_.size() / 2)),
+          bound(farHalfWidth), taken(takenNodes), opening(openingNodes) {}
+
+    /// Opens the subtree at `index`: nodes q's ray misses and far enough by
+    /// expansion, the rest down to nodes of at most kDirectEdges edges,
+    /// whose edges are summed exactly. False once the work exceeds the
+    /// budget. `expand`: not by its own expansion (a node taken before).
+    bool open(std::uint32_t index, bool expand) {
         return walkTree(index, [&](std::uint32_t i, TreeStack& stack) {
             if (work > budget) return false;
-            const ChainNode& n = chains_[i];
+            const ChainNode& n = caps.chains_[i];
             double b, value;
-            if (!(expand && i == index) && takeNode(n, p, fine, b, value)) {
+            if (!(expand && i == index) && caps.takeNode(n, p, fine, b, value)) {
                 work += n.chord ? 2.0 : 1.0;
                 angles += value;
                 bound += b;
@@ -277,89 +261,136 @@ bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const 
                 return true;
             }
             work += double(n.edgeCount);
-            leafSum.add(&chainEdges_[2 * std::size_t(n.edgeFirst)], n.edgeCount, a, p);
+            leafSum.add(&caps.chainEdges_[2 * std::size_t(n.edgeFirst)], n.edgeCount, axis, p);
             leavesChanged = true;
             return true;
         });
-    };
+    }
+
+    /// Rounds of opening until the value, less (1/2 + tie) by `offset`,
+    /// lies farther than `margin` times the bound from the threshold (then
+    /// `out` and true), or no round can get it there.
+    bool decide(double offset, double margin, Estimate& out);
+    /// Opens every taken node whose bound is at least kOpenFraction of the
+    /// largest, adding to `moved` how far that may move the value; false
+    /// once the work exceeds the budget.
+    bool openRound(double& moved);
+
+    const BoundaryCaps& caps;
+    const glm::dvec3 p;
+    const int axis;
+    /// What stands for the loops not in `roots`: half the width of the
+    /// range of their part.
+    const double farBound;
+    /// Work spent, in nodes taken (a chord's angle and an expansion) and
+    /// edges summed: past the edge count the per-edge sum decides.
+    const double budget;
+    double work = 0.0;
+    double angles = 0.0, bound;
+    EdgeAngles leafSum;
+    bool fine = false;
+    /// The leaves' angle, taken again (an atan2) only after edges were
+    /// summed.
+    bool leavesChanged = false;
+    double leaves = 0.0;
+    std::vector<Taken>& taken;
+    std::vector<Taken>& opening;
+};
+
+bool BoundaryCaps::Refinement::decide(double offset, double margin, Estimate& out) {
+    // The value is found (the leaves' atan2) only where it may decide:
+    // opening a node of bound b moves the value by at most b plus the
+    // bounds its children add (the node's edges lie within b of its
+    // value, the children's values within theirs of them), so |value|
+    // is at most |the last one found| + `moved`, and while that is
+    // within margin * bound no value decides.
+    double value = 0.0, moved = 0.0;
+    bool found = false;
+    while (true) {
+        const bool find = !found || std::fabs(value) + moved > margin * bound + kRoundingSlack;
+        if (find) {
+            if (leavesChanged) {
+                leaves = leafSum.angle();
+                leavesChanged = false;
+            }
+            value = offset + (angles + leaves) / kFourPi;
+            moved = 0.0;
+            found = true;
+            // The running sums drift by some 1e-13 at most (each taken
+            // bound is at most kMaxTakenBound), within the slack.
+            if (std::fabs(value) > margin * bound + kRoundingSlack) {
+                out = {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack, work};
+                return true;
+            }
+            // Within the far range's half width of 1/2 no refining
+            // decides.
+            if (std::fabs(value) <= margin * farBound + kRoundingSlack) return false;
+            // The bound must shrink by margin * bound / |value|, which
+            // takes about the work so far times its square root (a
+            // node's first-order bound falls as its radius cubed, but
+            // the cut's nodes rise faster than the radius falls, and a
+            // taken node costs about three edges of the per-edge sum):
+            // where that passes the budget, the per-edge sum is the
+            // cheaper.
+            if (kGiveUp * work * std::sqrt(margin * bound / std::fabs(value)) > budget) return false;
+        }
+        if (taken.empty() || work > budget) return false;
+        // Close to the threshold, the nodes opened from here are taken
+        // to second order (their bound about R / D of the first
+        // order's, for about twice the work; bulk points stop at the
+        // first cut; kFineBelow).
+        fine = std::fabs(value) < kFineBelow;
+        if (!openRound(moved)) return false;
+    }
+}
+
+bool BoundaryCaps::Refinement::openRound(double& moved) {
+    double largest = 0.0;
+    for (const Taken& tk : taken) largest = std::max(largest, tk.bound);
+    const double least = kOpenFraction * largest;
+    opening.clear();
+    std::size_t kept = 0;
+    for (const Taken& tk : taken) {
+        if (tk.bound >= least) {
+            opening.push_back(tk);
+            angles -= tk.value;
+            bound -= tk.bound;
+            moved += tk.bound;
+        } else {
+            taken[kept++] = tk;
+        }
+    }
+    taken.resize(kept);
+    if (taken.empty()) bound = farBound; // no drift left where nothing is taken
+    const double before = bound;
+    bool more = true;
+    for (std::size_t k = 0; k < opening.size() && more; ++k) {
+        const ChainNode& n = caps.chains_[opening[k].node];
+        if (n.count == 0) more = open(n.left, false) && open(n.right, false);
+        else more = open(opening[k].node, true); // a leaf: summed exactly
+    }
+    if (!more) return false;
+    moved += bound - before;
+    return true;
+}
+
+bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const std::uint32_t* roots,
+                          std::size_t rootCount, double farLo, double farHi, Estimate& out) const {
+    thread_local std::vector<Refinement::Taken> taken, opening;
+    taken.clear();
+    // Decide-or-refine: start from the coarsest cut whose nodes each err by
+    // at most kMaxTakenBound, then open, a round at a time, every taken
+    // node whose bound is at least kOpenFraction of the largest, until the
+    // value lies farther from 1/2 than the summed bounds.
+    Refinement refinement(*this, q, 0.5 * (farHi - farLo), taken, opening);
     // value - (1/2 + tie) = offset + angles / 4 pi; the estimate lies
     // within bound + kRoundingSlack of the per-edge sum, so a value farther
     // than that from the threshold has the per-edge sum's label.
     const double offset = double(winding) - 0.5 - kGeneralizedWindingTie + 0.5 * (farLo + farHi);
     bool opened = true;
-    for (std::size_t r = 0; r < rootCount && opened; ++r) opened = open(roots[r], false);
-    if (opened) {
-        // The value is found (the leaves' atan2) only where it may decide:
-        // opening a node of bound b moves the value by at most b plus the
-        // bounds its children add (the node's edges lie within b of its
-        // value, the children's values within theirs of them), so |value|
-        // is at most |the last one found| + `moved`, and while that is
-        // within margin * bound no value decides.
-        double value = 0.0, moved = 0.0;
-        bool found = false;
-        while (true) {
-            const bool find = !found || std::fabs(value) + moved > margin * bound + kRoundingSlack;
-            if (find) {
-                if (leavesChanged) {
-                    leaves = leafSum.angle();
-                    leavesChanged = false;
-                }
-                value = offset + (angles + leaves) / kFourPi;
-                moved = 0.0;
-                found = true;
-                // The running sums drift by some 1e-13 at most (each taken
-                // bound is at most kMaxTakenBound), within the slack.
-                if (std::fabs(value) > margin * bound + kRoundingSlack) {
-                    out = {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack, work};
-                    return true;
-                }
-                // Within the far range's half width of 1/2 no refining
-                // decides.
-                if (std::fabs(value) <= margin * farBound + kRoundingSlack) break;
-                // The bound must shrink by margin * bound / |value|, which
-                // takes about the work so far times its square root (a
-                // node's first-order bound falls as its radius cubed, but
-                // the cut's nodes rise faster than the radius falls, and a
-                // taken node costs about three edges of the per-edge sum):
-                // where that passes the budget, the per-edge sum is the
-                // cheaper.
-                if (kGiveUp * work * std::sqrt(margin * bound / std::fabs(value)) > budget) break;
-            }
-            if (taken.empty() || work > budget) break;
-            // Close to the threshold, the nodes opened from here are taken
-            // to second order (their bound about R / D of the first
-            // order's, for about twice the work; bulk points stop at the
-            // first cut; kFineBelow).
-            fine = std::fabs(value) < kFineBelow;
-            double largest = 0.0;
-            for (const Taken& tk : taken) largest = std::max(largest, tk.bound);
-            const double least = kOpenFraction * largest;
-            opening.clear();
-            std::size_t kept = 0;
-            for (const Taken& tk : taken) {
-                if (tk.bound >= least) {
-                    opening.push_back(tk);
-                    angles -= tk.value;
-                    bound -= tk.bound;
-                    moved += tk.bound;
-                } else {
-                    taken[kept++] = tk;
-                }
-            }
-            taken.resize(kept);
-            if (taken.empty()) bound = farBound; // no drift left where nothing is taken
-            const double before = bound;
-            bool more = true;
-            for (std::size_t k = 0; k < opening.size() && more; ++k) {
-                const ChainNode& n = chains_[opening[k].node];
-                if (n.count == 0) more = open(n.left, false) && open(n.right, false);
-                else more = open(opening[k].node, true); // a leaf: summed exactly
-            }
-            if (!more) break;
-            moved += bound - before;
-        }
-    }
-    out.work = work;
+    for (std::size_t r = 0; r < rootCount && opened; ++r) opened = refinement.open(roots[r], false);
+    if (opened && refinement.decide(offset, margin, out)) return true;
+    out.work = refinement.work;
     return false;
 }
 
