@@ -41,43 +41,63 @@ bool addCapTriangle(const std::array<glm::dvec3, 3>& t, const glm::dvec3& p, dou
     return true;
 }
 
-} // namespace
-
-BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis, const Box* domain,
-                           const CapsSurface* surface, const CellWindings* windings)
-    : axisIndex_(axisPermutation(axis).z), surface_(surface), edges_(edges, edges + 2 * edgeCount) {
-    // Weld endpoints by bitwise-equal positions, as boundaryEdges() does.
-    std::map<std::tuple<float, float, float>, std::uint32_t> ids;
-    const auto idOf = [&](const glm::vec3& p) {
-        return ids.emplace(std::make_tuple(p.x, p.y, p.z), std::uint32_t(ids.size())).first->second;
-    };
-    std::vector<std::uint32_t> tail(edgeCount), head(edgeCount);
-    for (std::size_t k = 0; k < edgeCount; ++k) {
-        tail[k] = idOf(edges[2 * k]);
-        head[k] = idOf(edges[2 * k + 1]);
+/// The boundary's edges as a graph on their welded endpoints, walked loop
+/// by loop.
+class LoopWalker {
+public:
+    /// Welds endpoints by bitwise-equal positions, as boundaryEdges() does.
+    LoopWalker(const glm::vec3* edges, std::size_t edgeCount)
+        : edges_(edges), tail_(edgeCount), head_(edgeCount), used_(edgeCount, 0) {
+        std::map<std::tuple<float, float, float>, std::uint32_t> ids;
+        const auto idOf = [&](const glm::vec3& p) {
+            return ids.emplace(std::make_tuple(p.x, p.y, p.z), std::uint32_t(ids.size())).first->second;
+        };
+        for (std::size_t k = 0; k < edgeCount; ++k) {
+            tail_[k] = idOf(edges[2 * k]);
+            head_[k] = idOf(edges[2 * k + 1]);
+        }
+        out_.resize(ids.size());
+        for (std::size_t k = 0; k < edgeCount; ++k) out_[tail_[k]].push_back(std::uint32_t(k));
+        nextOut_.assign(ids.size(), 0);
     }
-    std::vector<std::vector<std::uint32_t>> out(ids.size());
-    for (std::size_t k = 0; k < edgeCount; ++k) out[tail[k]].push_back(std::uint32_t(k));
-    std::vector<std::size_t> nextOut(ids.size(), 0);
-    std::vector<std::uint8_t> used(edgeCount, 0);
+
+    bool used(std::size_t edge) const { return used_[edge] != 0; }
+
+    /// Appends the loop from edge `start` along unused outgoing edges until
+    /// it returns to its start, edge k as two points of `loopEdges`; false
+    /// where it runs into a vertex with no unused edge out (an open chain).
+    bool walk(std::size_t start, std::vector<glm::vec3>& loopEdges) {
+        std::ptrdiff_t e = std::ptrdiff_t(start);
+        while (true) {
+            used_[std::size_t(e)] = 1;
+            loopEdges.push_back(edges_[2 * std::size_t(e)]);
+            loopEdges.push_back(edges_[2 * std::size_t(e) + 1]);
+            if (head_[std::size_t(e)] == tail_[start]) return true;
+            e = takeOut(std::size_t(e));
+            if (e < 0) return false;
+        }
+    }
+
+private:
     // The next edge out of the head of edge `in`: where several are unused
     // (a vertex the boundary passes more than once, as along a fin on a
     // non-manifold ring of edges), the one turning back most sharply, so
     // that loops stay small and tight (a fin's own triangle) instead of
     // running around the ring: small loops have small caps, which the tree
     // takes by expansion from close by.
-    const auto takeOut = [&](std::size_t in) -> std::ptrdiff_t {
-        const std::uint32_t v = head[in];
-        std::size_t& n = nextOut[v];
-        while (n < out[v].size() && used[out[v][n]]) ++n;
-        if (n == out[v].size()) return -1;
+    std::ptrdiff_t takeOut(std::size_t in) {
+        const std::uint32_t v = head_[in];
+        std::vector<std::uint32_t>& out = out_[v];
+        std::size_t& n = nextOut_[v];
+        while (n < out.size() && used_[out[n]]) ++n;
+        if (n == out.size()) return -1;
         std::size_t best = n;
-        const glm::dvec3 arrive = glm::dvec3(edges[2 * in + 1]) - glm::dvec3(edges[2 * in]);
+        const glm::dvec3 arrive = glm::dvec3(edges_[2 * in + 1]) - glm::dvec3(edges_[2 * in]);
         double bestTurn = std::numeric_limits<double>::infinity();
-        for (std::size_t m = n; m < out[v].size(); ++m) {
-            const std::uint32_t e = out[v][m];
-            if (used[e]) continue;
-            const glm::dvec3 leave = glm::dvec3(edges[2 * e + 1]) - glm::dvec3(edges[2 * e]);
+        for (std::size_t m = n; m < out.size(); ++m) {
+            const std::uint32_t e = out[m];
+            if (used_[e]) continue;
+            const glm::dvec3 leave = glm::dvec3(edges_[2 * e + 1]) - glm::dvec3(edges_[2 * e]);
             const double scale = glm::length(arrive) * glm::length(leave);
             const double turn = scale > 0.0 ? glm::dot(arrive, leave) / scale : 1.0;
             if (turn < bestTurn) {
@@ -85,67 +105,58 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
                 best = m;
             }
         }
-        std::swap(out[v][n], out[v][best]);
-        return std::ptrdiff_t(out[v][n++]);
-    };
+        std::swap(out[n], out[best]);
+        return std::ptrdiff_t(out[n++]);
+    }
 
-    // Walk each loop along unused outgoing edges until it returns to its start.
+    const glm::vec3* edges_;
+    std::vector<std::uint32_t> tail_, head_; ///< each edge's welded endpoints
+    std::vector<std::vector<std::uint32_t>> out_; ///< each vertex's edges out
+    std::vector<std::size_t> nextOut_;            ///< each vertex's first edge out that may be unused
+    std::vector<std::uint8_t> used_;
+};
+
+/// Appends to `fine` the fan triangles [firstTri, end of `tris`) of `loop`,
+/// each cut into m^2 triangles of about the loop's edge length: fan
+/// triangles of a long loop are slivers as long as its radius, which a
+/// tree cannot split; the tree sums the same surface.
+void cutFans(const CapLoop& loop, const std::vector<glm::vec3>& loopEdges,
+             const std::vector<std::array<glm::dvec3, 3>>& tris, std::size_t firstTri,
+             std::vector<std::array<glm::dvec3, 3>>& fine) {
+    double length = 0.0;
+    for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k)
+        length += glm::length(glm::dvec3(loopEdges[2 * k + 1]) - glm::dvec3(loopEdges[2 * k]));
+    const double meanEdge = length / double(loop.count);
+    const int m = meanEdge > 0.0 ? int(std::clamp(std::ceil(loop.radius / meanEdge), 1.0, double(kMaxCut))) : 1;
+    for (std::size_t f = firstTri; f < tris.size(); ++f) {
+        const glm::dvec3 corner = tris[f][0], db = (tris[f][1] - corner) / double(m), da = (tris[f][2] - corner) / double(m);
+        const auto at = [&](int i, int j) { return corner + double(i) * db + double(j) * da; };
+        for (int i = 0; i < m; ++i)
+            for (int j = 0; i + j < m; ++j) {
+                fine.push_back({{at(i, j), at(i + 1, j), at(i, j + 1)}});
+                if (i + j < m - 1) fine.push_back({{at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}});
+            }
+    }
+}
+
+} // namespace
+
+BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis, const Box* domain,
+                           const CapsSurface* surface, const CellWindings* windings)
+    : axisIndex_(axisPermutation(axis).z), surface_(surface), edges_(edges, edges + 2 * edgeCount) {
+    LoopWalker walker(edges, edgeCount);
     std::vector<std::array<glm::dvec3, 3>> tris, fine; // the caps' fans, and cut finer for the tree
     for (std::size_t start = 0; start < edgeCount && closed_; ++start) {
-        if (used[start]) continue;
+        if (walker.used(start)) continue;
         CapLoop loop;
         loop.first = std::uint32_t(loopEdges_.size() / 2);
-        std::ptrdiff_t e = std::ptrdiff_t(start);
-        while (true) {
-            used[std::size_t(e)] = 1;
-            loopEdges_.push_back(edges[2 * std::size_t(e)]);
-            loopEdges_.push_back(edges[2 * std::size_t(e) + 1]);
-            if (head[std::size_t(e)] == tail[start]) break;
-            e = takeOut(std::size_t(e));
-            if (e < 0) {
-                closed_ = false; // an open chain: these are not a mesh's boundary
-                break;
-            }
-        }
+        // an open chain: these are not a mesh's boundary
+        if (!walker.walk(start, loopEdges_)) closed_ = false;
         loop.count = std::uint32_t(loopEdges_.size() / 2) - loop.first;
-        glm::dvec3 sum(0.0);
-        for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k) sum += glm::dvec3(loopEdges_[2 * k]);
-        const glm::vec3 c(sum / double(loop.count)); // rounded: the caps' float and double forms agree
-        loop.centroid = glm::dvec3(c);
-        const std::uint32_t apex = std::uint32_t(capPositions_.size());
-        capPositions_.push_back(c);
         const std::size_t firstTri = tris.size();
-        for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k) {
-            const glm::vec3 a = loopEdges_[2 * k], b = loopEdges_[2 * k + 1];
-            const std::uint32_t ia = std::uint32_t(capPositions_.size());
-            capPositions_.push_back(a);
-            capPositions_.push_back(b);
-            capTriangles_.emplace_back(apex, ia + 1, ia); // (c, b, a): the cap's boundary is the loop reversed
-            capLoopOf_.push_back(std::uint32_t(loops_.size()));
-            tris.push_back({loop.centroid, glm::dvec3(b), glm::dvec3(a)});
-            loop.radius = std::max(loop.radius, glm::length(glm::dvec3(a) - loop.centroid));
-        }
-        for (std::size_t f = firstTri; f < tris.size(); ++f)
-            loop.area += 0.5 * glm::length(glm::cross(tris[f][1] - tris[f][0], tris[f][2] - tris[f][0]));
+        addCap(loop, tris);
         loops_.push_back(loop);
-        // The tree sums the same surface, each fan triangle cut into m^2
-        // triangles of about the loop's edge length: fan triangles of a long
-        // loop are slivers as long as its radius, which a tree cannot split.
-        double length = 0.0;
-        for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k)
-            length += glm::length(glm::dvec3(loopEdges_[2 * k + 1]) - glm::dvec3(loopEdges_[2 * k]));
-        const double meanEdge = length / double(loop.count);
-        const int m = meanEdge > 0.0 ? int(std::clamp(std::ceil(loop.radius / meanEdge), 1.0, double(kMaxCut))) : 1;
-        const std::size_t fanEnd = tris.size();
-        for (std::size_t f = firstTri; f < fanEnd; ++f) {
-            const glm::dvec3 corner = tris[f][0], db = (tris[f][1] - corner) / double(m), da = (tris[f][2] - corner) / double(m);
-            const auto at = [&](int i, int j) { return corner + double(i) * db + double(j) * da; };
-            for (int i = 0; i < m; ++i)
-                for (int j = 0; i + j < m; ++j) {
-                    fine.push_back({{at(i, j), at(i + 1, j), at(i, j + 1)}});
-                    if (i + j < m - 1) fine.push_back({{at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}});
-                }
-        }
+        cutFans(loop, loopEdges_, tris, firstTri, fine);
     }
     buildReach();
     if (!closed_ || tris.empty()) return;
@@ -159,6 +170,28 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
     std::vector<glm::dvec3> unsignedMoments;
     unsignedMoments.reserve(nodes_.capacity());
     build(0, std::uint32_t(fine.size()), order, fine, unsignedMoments);
+}
+
+void BoundaryCaps::addCap(CapLoop& loop, std::vector<std::array<glm::dvec3, 3>>& tris) {
+    glm::dvec3 sum(0.0);
+    for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k) sum += glm::dvec3(loopEdges_[2 * k]);
+    const glm::vec3 c(sum / double(loop.count)); // rounded: the caps' float and double forms agree
+    loop.centroid = glm::dvec3(c);
+    const std::uint32_t apex = std::uint32_t(capPositions_.size());
+    capPositions_.push_back(c);
+    const std::size_t firstTri = tris.size();
+    for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k) {
+        const glm::vec3 a = loopEdges_[2 * k], b = loopEdges_[2 * k + 1];
+        const std::uint32_t ia = std::uint32_t(capPositions_.size());
+        capPositions_.push_back(a);
+        capPositions_.push_back(b);
+        capTriangles_.emplace_back(apex, ia + 1, ia); // (c, b, a): the cap's boundary is the loop reversed
+        capLoopOf_.push_back(std::uint32_t(loops_.size()));
+        tris.push_back({loop.centroid, glm::dvec3(b), glm::dvec3(a)});
+        loop.radius = std::max(loop.radius, glm::length(glm::dvec3(a) - loop.centroid));
+    }
+    for (std::size_t f = firstTri; f < tris.size(); ++f)
+        loop.area += 0.5 * glm::length(glm::cross(tris[f][1] - tris[f][0], tris[f][2] - tris[f][0]));
 }
 
 std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,

@@ -418,6 +418,9 @@ private:
     /// The cell q lies in; false outside the grid.
     static inline bool cellOf(const RangeGrid& g, const glm::vec3& q, std::size_t& cell, glm::uvec3& at);
     double exact(int winding, const glm::vec3& q) const;
+    /// Loop `loop`'s cap: its centroid, radius and area, its fan among the
+    /// caps' triangles, and (appended to `tris`) in double.
+    void addCap(CapLoop& loop, std::vector<std::array<glm::dvec3, 3>>& tris);
     static void finish(Node& node);
     static double firstOrder(const Node& n, const glm::dvec3& y, double d2, double d);
     static double expansion(const Node& n, const glm::dvec3& y, double d2, double d);
