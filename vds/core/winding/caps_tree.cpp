@@ -217,27 +217,7 @@ std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::
     for (std::uint32_t k = first; k < last; ++k)
         for (const glm::dvec3& v : tris[order[k]]) node.radius = std::max(node.radius, glm::length(v - node.centre));
     if (last - first <= kLeafTriangles) {
-        struct Ordered {
-            const std::vector<std::array<glm::dvec3, 3>>& tris;
-            const std::vector<std::uint32_t>& order;
-            const std::array<glm::dvec3, 3>& operator[](std::size_t k) const { return tris[order[k]]; }
-        };
-        const Moments m = momentsOf(Ordered{tris, order}, first, last, node.centre);
-        node.vectorArea = m.vectorArea;
-        node.moment = m.moment;
-        node.quadrupole = m.quadrupole;
-        node.errorScale = 3.0 * m.second / kFourPi;
-        node.area = m.area;
-        for (std::uint32_t k = first; k < last; ++k) {
-            const auto& t = tris[order[k]];
-            unsignedMoments[index] += glm::length(glm::cross(t[1] - t[0], t[2] - t[0])) * 0.5 *
-                                      ((t[0] + t[1] + t[2]) / 3.0 - node.centre);
-        }
-        node.first = std::uint32_t(leafTris_.size());
-        node.count = last - first;
-        for (std::uint32_t k = first; k < last; ++k) leafTris_.push_back(tris[order[k]]);
-        finish(node);
-        nodes_[index] = node;
+        buildLeaf(node, index, first, last, order, tris, unsignedMoments);
         return index;
     }
     const glm::dvec3 extent = chi - clo;
@@ -251,6 +231,38 @@ std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::
                      });
     node.left = build(first, middle, order, tris, unsignedMoments);
     node.right = build(middle, last, order, tris, unsignedMoments);
+    gatherChildren(node, index, unsignedMoments);
+    return index;
+}
+
+void BoundaryCaps::buildLeaf(Node& node, std::uint32_t index, std::uint32_t first, std::uint32_t last,
+                             const std::vector<std::uint32_t>& order,
+                             const std::vector<std::array<glm::dvec3, 3>>& tris,
+                             std::vector<glm::dvec3>& unsignedMoments) {
+    struct Ordered {
+        const std::vector<std::array<glm::dvec3, 3>>& tris;
+        const std::vector<std::uint32_t>& order;
+        const std::array<glm::dvec3, 3>& operator[](std::size_t k) const { return tris[order[k]]; }
+    };
+    const Moments m = momentsOf(Ordered{tris, order}, first, last, node.centre);
+    node.vectorArea = m.vectorArea;
+    node.moment = m.moment;
+    node.quadrupole = m.quadrupole;
+    node.errorScale = 3.0 * m.second / kFourPi;
+    node.area = m.area;
+    for (std::uint32_t k = first; k < last; ++k) {
+        const auto& t = tris[order[k]];
+        unsignedMoments[index] += glm::length(glm::cross(t[1] - t[0], t[2] - t[0])) * 0.5 *
+                                  ((t[0] + t[1] + t[2]) / 3.0 - node.centre);
+    }
+    node.first = std::uint32_t(leafTris_.size());
+    node.count = last - first;
+    for (std::uint32_t k = first; k < last; ++k) leafTris_.push_back(tris[order[k]]);
+    finish(node);
+    nodes_[index] = node;
+}
+
+void BoundaryCaps::gatherChildren(Node& node, std::uint32_t index, std::vector<glm::dvec3>& unsignedMoments) {
     // The children's moments moved to this centre: with d = c' - c, M_ij
     // gains A_i d_j, the unsigned first moment P gains area d, and S gains
     // 2 d . P' + area |d|^2.
@@ -277,7 +289,6 @@ std::uint32_t BoundaryCaps::build(std::uint32_t first, std::uint32_t last, std::
     node.errorScale = 3.0 * second / kFourPi;
     finish(node);
     nodes_[index] = node;
-    return index;
 }
 
 void BoundaryCaps::finish(Node& node) {

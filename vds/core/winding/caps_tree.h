@@ -429,6 +429,14 @@ private:
     std::uint32_t build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,
                         const std::vector<std::array<glm::dvec3, 3>>& tris,
                         std::vector<glm::dvec3>& unsignedMoments);
+    /// build()'s leaf `node` (its ball set) at `index`: its triangles'
+    /// moments, and the triangles themselves into leafTris_.
+    void buildLeaf(Node& node, std::uint32_t index, std::uint32_t first, std::uint32_t last,
+                   const std::vector<std::uint32_t>& order, const std::vector<std::array<glm::dvec3, 3>>& tris,
+                   std::vector<glm::dvec3>& unsignedMoments);
+    /// build()'s inner `node` at `index`: its children's moments moved to
+    /// its centre and summed.
+    void gatherChildren(Node& node, std::uint32_t index, std::vector<glm::dvec3>& unsignedMoments);
 
     int axisIndex_;
     const CapsSurface* surface_ = nullptr;
@@ -482,6 +490,12 @@ private:
         bool wholeLoops;            ///< its edges are whole loops, capped
         bool loopNode;              ///< one loop
     };
+    /// driftWithin()'s sums over a leaf's edges, each at its nearest to p:
+    /// of length / (distance - `length`)^2 into `sumMoved`, of length /
+    /// distance^2 into `sumAt`, the least distance into `nearest`; false
+    /// where a move by `length` may reach one.
+    bool addEdgeDrifts(const EdgeNode& leaf, const glm::dvec3& p, double length, double& sumMoved, double& sumAt,
+                       double& nearest) const;
     void buildReach();
     std::uint32_t buildLoops(std::vector<std::uint32_t>& nodes, std::uint32_t first, std::uint32_t last);
     std::uint32_t buildEdges(std::uint32_t first, std::uint32_t last);

@@ -166,6 +166,23 @@ BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q, double steepest) con
     return r;
 }
 
+bool BoundaryCaps::addEdgeDrifts(const EdgeNode& leaf, const glm::dvec3& p, double length, double& sumMoved,
+                                 double& sumAt, double& nearest) const {
+    for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
+        const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
+        const glm::dvec3 ab = b - a;
+        const double length2 = glm::dot(ab, ab);
+        const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+        const double distance = glm::length(a + t * ab - p);
+        if (!(distance > length)) return false;
+        const double edge = std::sqrt(length2);
+        sumMoved += edge / ((distance - length) * (distance - length));
+        sumAt += edge / (distance * distance);
+        nearest = std::min(nearest, distance);
+    }
+    return true;
+}
+
 double BoundaryCaps::driftWithin(const glm::vec3& q, double length, double limit) const {
     constexpr double kInfinity = std::numeric_limits<double>::infinity();
     if (edgeNodes_.empty()) return 0.0;
@@ -179,22 +196,8 @@ double BoundaryCaps::driftWithin(const glm::vec3& q, double length, double limit
         const double shrink = 1.0 - length / gap;
         return moved > sumLimit && (!(shrink > 0.0) || at / (shrink * shrink * shrink) > sumLimit);
     };
-    // A leaf's edges, each at its nearest to q; false where a move may
-    // reach one.
     const auto addEdges = [&](const EdgeNode& leaf, double& sumMoved, double& sumAt, double& nearest) {
-        for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
-            const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
-            const glm::dvec3 ab = b - a;
-            const double length2 = glm::dot(ab, ab);
-            const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
-            const double distance = glm::length(a + t * ab - p);
-            if (!(distance > length)) return false;
-            const double edge = std::sqrt(length2);
-            sumMoved += edge / ((distance - length) * (distance - length));
-            sumAt += edge / (distance * distance);
-            nearest = std::min(nearest, distance);
-        }
-        return true;
+        return addEdgeDrifts(leaf, p, length, sumMoved, sumAt, nearest);
     };
     const bool finite = walkTree(0, [&](std::uint32_t index, TreeStack& stack) {
         const EdgeNode& n = edgeNodes_[index];
