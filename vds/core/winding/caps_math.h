@@ -1,6 +1,7 @@
 // vds internal: what the parts of the winding engine (caps_tree.h) share:
-// the moments of a fan of triangles about a centre, the error factors of
-// their expansions, and the constants more than one part bounds by.
+// the moments of a fan of triangles about a centre, the error factor of
+// their expansion to first order (to second: chain_tree.h), and the
+// constants more than one part bounds by.
 #pragma once
 
 #include <array>
@@ -9,6 +10,8 @@
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+
+#include <vds/detail/chain_tree.h>
 
 namespace vds::detail::caps {
 
@@ -32,8 +35,6 @@ struct Moments {
     double second = 0.0; ///< S: the integral of |x - centre|^2 dA
 };
 
-/// Index of the symmetric pair (j, k) in a row of Node::quadrupole.
-constexpr int kPairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
 
 // Sum over triangles of their vector areas, first and second moments about
 // `centre` and unsigned areas. A flat triangle's integral of (x - c)(x - c)^T
@@ -71,13 +72,6 @@ inline Moments momentsOf(const Tris& tris, std::size_t first, std::size_t last, 
 // nodes to first order (they need coarse bounds, and the second order term
 // costs about as much again as the rest), values to second order (their
 // tolerance is tight; docs/benchmarks.md).
-// The node's error bound over its errorScale (3 S / 4 pi), at distance
-// d = |q - c| > R, e = d - R: R times the integral over t in [0, 1] of
-// 4 (1 - t)^2 / (d - t R)^5 (Taylor's integral remainder after the second
-// order term, with |h|^3 <= R |h|^2 and the kernel's third derivative taken
-// at distance d - t|h| >= d - t R), in closed form.
 inline double firstOrderFactor(double d, double e) { return (d + 2.0 * e) / (3.0 * d * d * d * e * e); }
-
-inline double remainderFactor(double d, double e, double radius) { return radius * (d + 3.0 * e) / (3.0 * d * d * d * d * e * e); }
 
 } // namespace vds::detail::caps

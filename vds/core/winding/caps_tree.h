@@ -84,6 +84,7 @@
 #include <vds/mesh.h>
 
 #include "predicates/projected_mesh.h"
+#include <vds/detail/chain_tree.h>
 #include "winding/range_grid.h"
 
 namespace vds::detail {
@@ -326,46 +327,10 @@ public:
     const std::vector<glm::vec3>& loopEdges() const { return loopEdges_; }
     std::size_t edgeCount() const { return edges_.size() / 2; }
 
-    /// A node of either tree: a ball (centre, radius) holding a surface,
-    /// with that surface's moments about the centre.
-    struct Node {
-        glm::dvec3 centre;
-        double radius;
-        double errorScale; ///< 3 S / 4 pi: the bound is errorScale R (D + 3e) / (3 D^4 e^2), e = D - R
-        double area;       ///< unsigned
-        glm::dvec3 vectorArea;
-        std::array<double, 9> moment; ///< M_ij = integral of n_i (x - c)_j dA, row-major
-        /// N_ijk = integral of n_i (x - c)_j (x - c)_k dA, row i holding the
-        /// pairs (j, k) = 00, 11, 22, 01, 02, 12
-        std::array<double, 18> quadrupole;
-        double trace;                 ///< sum of M_ii
-        glm::dvec3 quadrupoleRows;    ///< sum over j of N_ijj, for each i
-        glm::dvec3 quadrupoleColumns; ///< sum over i of N_iik, for each k
-        std::uint32_t first, count; ///< leaf: cap triangles [first, first + count)
-        std::uint32_t left, right;  ///< inner: children (count == 0)
-    };
-
-    /// The tree labels refine (decide): over the loops, then within each
-    /// loop over halves of its edges (chains). A chain a node holds runs
-    /// from P to Q; closed by its chord Q -> P it bounds the fan from its
-    /// centre, a surface inside its ball. Where q's ray misses the ball the
-    /// fan's crossing count is 0, so the chain's edges sum to the chord's
-    /// angle f(P -> Q) less the fan's solid angle, which the expansion
-    /// takes: the fan hugs the chain (a lune, not a cap across the loop).
-    /// Node's moments are its fan's, about `centre` (the ball's centre);
-    /// a leaf's `first`, `count` are edges of loopEdges().
-    struct ChainNode : Node {
-        glm::dvec3 from, to; ///< the chord P -> Q (none for whole loops)
-        bool chord;
-        /// One whole loop: its index in loops(); else (a group of loops, or
-        /// part of one) kNoLoop.
-        std::uint32_t loop;
-        /// Every edge under the node: [edgeFirst, edgeFirst + edgeCount)
-        /// of the chain tree's edges (the loops in the tree's order),
-        /// summed at once where the node is to be opened and holds few.
-        std::uint32_t edgeFirst, edgeCount;
-    };
-    static constexpr std::uint32_t kNoLoop = 0xffffffffu;
+    /// A node of either tree (chain_tree.h).
+    using Node = CapsNode;
+    using ChainNode = vds::detail::ChainNode;
+    static constexpr std::uint32_t kNoLoop = ChainNode::kNoLoop;
     /// [0] is the root; empty where the edges do not close into loops.
     const std::vector<ChainNode>& chains() const { return chains_; }
     /// A node's fan's solid angle seen from q by its expansion to first

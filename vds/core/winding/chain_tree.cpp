@@ -394,4 +394,13 @@ bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const 
     return false;
 }
 
+ChainTree chainTreeOf(const glm::vec3* edges, std::size_t edgeCount, Axis axis) {
+    const BoundaryCaps caps(edges, edgeCount, axis);
+    ChainTree tree;
+    tree.closed = caps.closed();
+    tree.loopEdges = caps.loopEdges();
+    tree.nodes = caps.chains();
+    return tree;
+}
+
 } // namespace vds::detail
