@@ -536,95 +536,126 @@ void requireBoundaryKnown(const Sprite& sprite, Rule rule) {
                               "store the boundary edges the generalized winding number needs: bake it again");
 }
 
-void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
-                                std::uint8_t* labels, const ClassifyOptions& options) {
-    const std::size_t edgeCount = sprite.boundaryEdges.size() / 2;
-    const glm::vec3* edges = sprite.boundaryEdges.data();
-    const int axis = axisPermutation(sprite.grid.axis).z;
-    const BoundaryCaps* caps =
-        options.boundary == BoundaryEvaluation::Caps ? &sprite.boundaryCaps.get(sprite, options.threads) : nullptr;
-    const char* base = reinterpret_cast<const char*>(xyz);
-    const SpriteGrid& sg = sprite.grid;
-    const std::uint32_t* offsets = sprite.offsets.data();
-    const float* crossings = sprite.crossings.data();
-    const ColumnPoints place(sg);
-    parallelFor(options.threads, count, 1024, [&](std::size_t begin, std::size_t end) {
-        // In batches, three in flight, so that each cache miss has a whole
-        // batch's work to arrive: find batch k's points (no memory read),
-        // label those whose cell of the caps answers alone and prefetch the
-        // rest's offsets; read batch k - 1's offsets and prefetch their
-        // crossings; count batch k - 2's crossings and label them.
-        constexpr std::size_t kBatch = 32;
-        struct Pending {
-            std::size_t index;         ///< of the point
-            std::ptrdiff_t column;     ///< -1 beside the texture
-            float depth;               ///< texture depth
-            glm::vec3 point;           ///< where B is taken
-            const float *first, *last; ///< the column's crossings (stage 2)
-        };
-        struct Batch {
-            Pending pending[kBatch];
-            std::size_t waiting = 0;
-        };
-        Batch ring[3];
+namespace {
+
+/// classifyGeneralizedWinding's points from one thread, in batches, three
+/// in flight, so that each cache miss has a whole batch's work to arrive:
+/// find batch k's points (no memory read), label those whose cell of the
+/// caps answers alone and prefetch the rest's offsets; read batch k - 1's
+/// offsets and prefetch their crossings; count batch k - 2's crossings and
+/// label them.
+class BatchedLabels {
+public:
+    static constexpr std::size_t kBatch = 32;
+    BatchedLabels(const Sprite& sprite, const BoundaryCaps* caps, const ColumnPoints& place, const char* base,
+                  std::size_t strideBytes, std::uint8_t* labels)
+        : sprite_(sprite), caps_(caps), place_(place), base_(base), strideBytes_(strideBytes), labels_(labels),
+          offsets_(sprite.offsets.data()), crossings_(sprite.crossings.data()),
+          axis_(axisPermutation(sprite.grid.axis).z) {}
+
+    void run(std::size_t begin, std::size_t end) {
         const std::size_t batches = (end - begin + kBatch - 1) / kBatch;
         for (std::size_t k = 0; k < batches + 2; ++k) {
-            if (k < batches) { // stage 1
-                Batch& batch = ring[k % 3];
-                batch.waiting = 0;
-                const std::size_t b0 = begin + k * kBatch, n = std::min(kBatch, end - b0);
-                // Every point placed first, then every cell asked: two
-                // short loops whose iterations overlap, where one long
-                // chain of dependent steps a point did not.
-                glm::vec3 q[kBatch];
-                float depth[kBatch];
-                std::ptrdiff_t column[kBatch];
-                bool finite[kBatch];
-                for (std::size_t i = 0; i < n; ++i) {
-                    glm::vec3 p;
-                    std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
-                    const glm::vec3 t = textureOf(sg, p);
-                    finite[i] = place.place(t, column[i], q[i]);
-                    depth[i] = t.z;
-                }
-                for (std::size_t i = 0; i < n; ++i) {
-                    if (!finite[i]) {
-                        labels[b0 + i] = 0;
-                        continue;
-                    }
-                    const int alone = caps ? caps->insideAlone(q[i], column[i] < 0) : -1;
-                    if (alone >= 0) {
-                        labels[b0 + i] = std::uint8_t(alone);
-                        continue;
-                    }
-                    batch.pending[batch.waiting++] = {b0 + i, column[i], depth[i], q[i], nullptr, nullptr};
-                    if (column[i] >= 0) __builtin_prefetch(offsets + column[i]);
-                }
-            }
-            if (k >= 1 && k - 1 < batches) { // stage 2
-                Batch& batch = ring[(k - 1) % 3];
-                for (std::size_t w = 0; w < batch.waiting; ++w) {
-                    Pending& at = batch.pending[w];
-                    if (at.column < 0) continue;
-                    at.first = crossings + offsets[at.column];
-                    at.last = crossings + offsets[at.column + 1];
-                    __builtin_prefetch(at.first);
-                }
-            }
-            if (k >= 2) { // stage 3
-                const Batch& batch = ring[(k - 2) % 3];
-                for (std::size_t w = 0; w < batch.waiting; ++w) {
-                    const Pending& at = batch.pending[w];
-                    const int winding = at.column >= 0 ? columnWinding(at.first, at.last, at.depth) : 0;
-                    labels[at.index] =
-                        (caps ? (at.column >= 0 ? caps->inside(winding, at.point) : caps->insideApart(winding, at.point))
-                              : generalizedWindingInside(double(winding) +
-                                                         boundaryTermExact(edges, edgeCount, axis, glm::dvec3(at.point))))
-                            ? 1
-                            : 0;
-                }
-            }
+            if (k < batches) place(ring_[k % 3], begin + k * kBatch, std::min(kBatch, end - (begin + k * kBatch)));
+            if (k >= 1 && k - 1 < batches) readOffsets(ring_[(k - 1) % 3]);
+            if (k >= 2) label(ring_[(k - 2) % 3]);
         }
+    }
+
+private:
+    struct Pending {
+        std::size_t index;         ///< of the point
+        std::ptrdiff_t column;     ///< -1 beside the texture
+        float depth;               ///< texture depth
+        glm::vec3 point;           ///< where B is taken
+        const float *first, *last; ///< the column's crossings (stage 2)
+    };
+    struct Batch {
+        Pending pending[kBatch];
+        std::size_t waiting = 0;
+    };
+
+    /// Stage 1: points [b0, b0 + n) placed, labelled where their cell
+    /// answers alone, the rest's offsets prefetched.
+    void place(Batch& batch, std::size_t b0, std::size_t n) {
+        batch.waiting = 0;
+        // Every point placed first, then every cell asked: two short loops
+        // whose iterations overlap, where one long chain of dependent steps
+        // a point did not.
+        glm::vec3 q[kBatch];
+        float depth[kBatch];
+        std::ptrdiff_t column[kBatch];
+        bool finite[kBatch];
+        for (std::size_t i = 0; i < n; ++i) {
+            glm::vec3 p;
+            std::memcpy(&p, base_ + (b0 + i) * strideBytes_, sizeof p);
+            const glm::vec3 t = textureOf(sprite_.grid, p);
+            finite[i] = place_.place(t, column[i], q[i]);
+            depth[i] = t.z;
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            if (!finite[i]) {
+                labels_[b0 + i] = 0;
+                continue;
+            }
+            const int alone = caps_ ? caps_->insideAlone(q[i], column[i] < 0) : -1;
+            if (alone >= 0) {
+                labels_[b0 + i] = std::uint8_t(alone);
+                continue;
+            }
+            batch.pending[batch.waiting++] = {b0 + i, column[i], depth[i], q[i], nullptr, nullptr};
+            if (column[i] >= 0) __builtin_prefetch(offsets_ + column[i]);
+        }
+    }
+
+    /// Stage 2: the pending points' columns found, their crossings
+    /// prefetched.
+    void readOffsets(Batch& batch) const {
+        for (std::size_t w = 0; w < batch.waiting; ++w) {
+            Pending& at = batch.pending[w];
+            if (at.column < 0) continue;
+            at.first = crossings_ + offsets_[at.column];
+            at.last = crossings_ + offsets_[at.column + 1];
+            __builtin_prefetch(at.first);
+        }
+    }
+
+    /// Stage 3: the pending points counted and labelled.
+    void label(const Batch& batch) const {
+        for (std::size_t w = 0; w < batch.waiting; ++w) {
+            const Pending& at = batch.pending[w];
+            const int winding = at.column >= 0 ? columnWinding(at.first, at.last, at.depth) : 0;
+            labels_[at.index] =
+                (caps_ ? (at.column >= 0 ? caps_->inside(winding, at.point) : caps_->insideApart(winding, at.point))
+                       : generalizedWindingInside(double(winding) + boundaryTermExact(sprite_.boundaryEdges.data(),
+                                                                                      sprite_.boundaryEdges.size() / 2,
+                                                                                      axis_, glm::dvec3(at.point))))
+                    ? 1
+                    : 0;
+        }
+    }
+
+    const Sprite& sprite_;
+    const BoundaryCaps* caps_;
+    const ColumnPoints& place_;
+    const char* base_;
+    std::size_t strideBytes_;
+    std::uint8_t* labels_;
+    const std::uint32_t* offsets_;
+    const float* crossings_;
+    int axis_;
+    Batch ring_[3];
+};
+
+} // namespace
+
+void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
+                                std::uint8_t* labels, const ClassifyOptions& options) {
+    const BoundaryCaps* caps =
+        options.boundary == BoundaryEvaluation::Caps ? &sprite.boundaryCaps.get(sprite, options.threads) : nullptr;
+    const ColumnPoints place(sprite.grid);
+    parallelFor(options.threads, count, 1024, [&](std::size_t begin, std::size_t end) {
+        BatchedLabels(sprite, caps, place, reinterpret_cast<const char*>(xyz), strideBytes, labels).run(begin, end);
     });
 }
 
