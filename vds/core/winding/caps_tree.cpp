@@ -158,7 +158,7 @@ BoundaryCaps::BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis a
         loops_.push_back(loop);
         cutFans(loop, loopEdges_, tris, firstTri, fine);
     }
-    buildReach();
+    edgeTree_.build(edges_, loopEdges_, loops_, closed_);
     if (!closed_ || tris.empty()) return;
     buildChains();
     projected_.emplace(MeshView(capPositions_.data(), capPositions_.size(), capTriangles_.data(), capTriangles_.size()),

@@ -1,7 +1,7 @@
 // vds: the tree of the boundary's edges (loops, then each loop's edges)
 // that bounds how far the boundary term may drift over a move: reach() and
 // driftWithin(), which the grid of bounds widens its ranges by.
-#include "winding/caps_tree.h"
+#include "winding/edge_tree.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +17,7 @@ namespace vds::detail {
 
 using namespace caps;
 
-std::uint32_t BoundaryCaps::buildEdges(std::uint32_t first, std::uint32_t last) {
+std::uint32_t EdgeTree::buildEdges(std::uint32_t first, std::uint32_t last) {
     const std::uint32_t index = std::uint32_t(edgeNodes_.size());
     edgeNodes_.emplace_back();
     EdgeNode node{};
@@ -58,22 +58,23 @@ std::uint32_t BoundaryCaps::buildEdges(std::uint32_t first, std::uint32_t last) 
     return index;
 }
 
-void BoundaryCaps::buildReach() {
-    const std::size_t edgeCount = edges_.size() / 2;
+void EdgeTree::build(const std::vector<glm::vec3>& edges, const std::vector<glm::vec3>& loopEdges,
+                     const std::vector<CapLoop>& loops, bool closed) {
+    const std::size_t edgeCount = edges.size() / 2;
     if (edgeCount == 0) return;
-    edgeNodes_.reserve(2 * edgeCount / kLeafTriangles + 2 * loops_.size() + 2);
-    if (!closed_) { // no loops: the edges alone
-        treeEdges_ = edges_;
+    edgeNodes_.reserve(2 * edgeCount / kLeafTriangles + 2 * loops.size() + 2);
+    if (!closed) { // no loops: the edges alone
+        treeEdges_ = edges;
         buildEdges(0, std::uint32_t(edgeCount));
         return;
     }
     // Each loop's edges get a subtree of their own (in loop order, so that
     // a loop's edges are contiguous), under a tree over the loops.
-    treeEdges_ = loopEdges_;
+    treeEdges_ = loopEdges;
     edgeNodes_.emplace_back(); // [0]: the root, filled below
-    std::vector<std::uint32_t> loopNodes(loops_.size());
-    for (std::size_t l = 0; l < loops_.size(); ++l) {
-        const CapLoop& loop = loops_[l];
+    std::vector<std::uint32_t> loopNodes(loops.size());
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+        const CapLoop& loop = loops[l];
         const std::uint32_t edgesRoot = buildEdges(loop.first, loop.first + loop.count);
         EdgeNode node{};
         node.centre = loop.centroid; // the ball (centroid, radius) holds the loop and its cap
@@ -90,7 +91,7 @@ void BoundaryCaps::buildReach() {
     edgeNodes_[0] = edgeNodes_[root];
 }
 
-std::uint32_t BoundaryCaps::buildLoops(std::vector<std::uint32_t>& nodes, std::uint32_t first, std::uint32_t last) {
+std::uint32_t EdgeTree::buildLoops(std::vector<std::uint32_t>& nodes, std::uint32_t first, std::uint32_t last) {
     if (last - first == 1) return nodes[first];
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (std::uint32_t k = first; k < last; ++k) {
@@ -118,7 +119,7 @@ std::uint32_t BoundaryCaps::buildLoops(std::vector<std::uint32_t>& nodes, std::u
     return std::uint32_t(edgeNodes_.size() - 1);
 }
 
-BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q, double steepest) const {
+Reach EdgeTree::reach(const glm::vec3& q, double steepest) const {
     const double limit = steepest * kFourPi; // on the sum below
     Reach r;
     r.gap = std::numeric_limits<double>::infinity();
@@ -166,7 +167,7 @@ BoundaryCaps::Reach BoundaryCaps::reach(const glm::vec3& q, double steepest) con
     return r;
 }
 
-bool BoundaryCaps::addEdgeDrifts(const EdgeNode& leaf, const glm::dvec3& p, double length, double& sumMoved,
+bool EdgeTree::addEdgeDrifts(const EdgeNode& leaf, const glm::dvec3& p, double length, double& sumMoved,
                                  double& sumAt, double& nearest) const {
     for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
         const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
@@ -183,7 +184,7 @@ bool BoundaryCaps::addEdgeDrifts(const EdgeNode& leaf, const glm::dvec3& p, doub
     return true;
 }
 
-double BoundaryCaps::driftWithin(const glm::vec3& q, double length, double limit) const {
+double EdgeTree::driftWithin(const glm::vec3& q, double length, double limit) const {
     constexpr double kInfinity = std::numeric_limits<double>::infinity();
     if (edgeNodes_.empty()) return 0.0;
     const double sumLimit = limit / length * kFourPi; // on the sums below

@@ -326,7 +326,7 @@ BoundaryCaps::RangedCells BoundaryCaps::rangedCells(bool fine) const {
 std::size_t BoundaryCaps::memoryBytes() const {
     const auto held = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
     std::size_t total = held(edges_) + held(loopEdges_) + held(loops_) + held(capPositions_) + held(capTriangles_) +
-                        held(capLoopOf_) + held(chains_) + held(chainEdges_) + held(treeEdges_) + held(edgeNodes_) +
+                        held(capLoopOf_) + held(chains_) + held(chainEdges_) + edgeTree_.memoryBytes() +
                         held(leafTris_) + held(nodes_) + (projected_ ? projected_->memoryBytes() : 0);
     for (const RangeGrid* g : {&ranges_, static_cast<const RangeGrid*>(&fine_)}) {
         total += held(g->met) + held(g->capMet) + held(g->constantWinding) + held(g->closedWinding) + held(g->lowestEdge);
