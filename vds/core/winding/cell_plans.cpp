@@ -43,7 +43,7 @@ bool BoundaryCaps::plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c
     // enough from it (its ball at least kPlanReach cell half diagonals and
     // two radii beyond) is far, its caps' -w taken at the cell's centre by
     // the second-order expansion and widened over the cell by the caps'
-    // steepness (2 area / distance^3 over 4 pi, caps_tree.h); a single
+    // steepness (2 area / distance^3 over 4 pi, edge_tree.h); a single
     // loop nearer is near, left to each query, a group nearer is split.
     // Chains (parts of loops) are never reached. No plan where the far
     // range would be wide or the near loops many: the tree from its root

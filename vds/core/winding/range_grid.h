@@ -17,7 +17,7 @@
 namespace vds::detail {
 
 /// What a cell of BoundaryCaps' grids of bounds holds (how a label uses
-/// it: the list at the top of caps_tree.cpp's labels).
+/// it: the list at the top of range_grid.cpp).
 enum class CellState : std::uint8_t {
     Unvisited,     ///< no query has landed in it yet
     BoundaryRange, ///< a range of B (clear of the boundary's sweep): the query adds its integer term
