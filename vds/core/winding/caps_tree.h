@@ -305,10 +305,67 @@ public:
     static double firstOrderBound(const Node& n, double distance);
 
 private:
+    // ---- the caps and their tree of cap triangles, for values (caps_tree.cpp)
+    double exact(int winding, const glm::vec3& q) const;
+    /// Loop `loop`'s cap: its centroid, radius and area, its fan among the
+    /// caps' triangles, and (appended to `tris`) in double.
+    void addCap(CapLoop& loop, std::vector<std::array<glm::dvec3, 3>>& tris);
+    static void finish(Node& node);
+    static double firstOrder(const Node& n, const glm::dvec3& y, double d2, double d);
+    static double expansion(const Node& n, const glm::dvec3& y, double d2, double d);
+    /// `unsignedMoments[node]`: the integral of |n| (x - centre) dA, for the
+    /// parent's moments from its children's.
+    std::uint32_t build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,
+                        const std::vector<std::array<glm::dvec3, 3>>& tris,
+                        std::vector<glm::dvec3>& unsignedMoments);
+    /// build()'s leaf `node` (its ball set) at `index`: its triangles'
+    /// moments, and the triangles themselves into leafTris_.
+    void buildLeaf(Node& node, std::uint32_t index, std::uint32_t first, std::uint32_t last,
+                   const std::vector<std::uint32_t>& order, const std::vector<std::array<glm::dvec3, 3>>& tris,
+                   std::vector<glm::dvec3>& unsignedMoments);
+    /// build()'s inner `node` at `index`: its children's moments moved to
+    /// its centre and summed.
+    void gatherChildren(Node& node, std::uint32_t index, std::vector<glm::dvec3>& unsignedMoments);
+
+    // ---- the chain tree labels refine (chain_tree.cpp)
+    void buildChains();
+    std::uint32_t buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first, std::uint32_t last);
+    std::uint32_t buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count, std::uint32_t treeFirst);
+    /// refine()'s first round over chain nodes `roots`, each taken by its
+    /// first-order term or its edges summed (as refine's first cut takes
+    /// them, in the same order: the same value and bound), in one pass with
+    /// no stack; true where that decides (then `out` is refine's answer),
+    /// false where it does not or a root would be split.
+    bool firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount, double farLo,
+                  double farHi, Estimate& out) const;
+    /// refine()'s step on one chain node at p: where q's ray misses its
+    /// ball and its bound (first order, or the remainder where `fine`) is
+    /// at most kMaxTakenBound, that bound and its edges' angle (its chord's
+    /// less its fan's, by the expansion); false where it must be opened.
+    inline bool takeNode(const ChainNode& n, const glm::dvec3& p, bool fine, double& bound, double& value) const;
+    /// The decide-or-refine of decide(), from the chain nodes `roots`
+    /// (whole loops, or the root) with `farCrossings` + [farLo, farHi]
+    /// standing for the rest; false where it runs out of nodes with the
+    /// far range left (planned) or of budget.
+    bool refine(int winding, const glm::vec3& q, double margin, const std::uint32_t* roots, std::size_t rootCount,
+                double farLo, double farHi, Estimate& out) const;
+    struct Refinement; ///< refine()'s running state (chain_tree.cpp)
+
+    // ---- a grid cell's plan (cell_plans.cpp)
+    /// The cap triangles q's ray towards -axis crosses in front of q, as
+    /// (loop, +1 or -1): C_caps loop by loop, counted as projected_ counts.
+    void capCrossings(const glm::vec3& q, std::vector<std::pair<std::uint32_t, int>>& out) const;
+    /// A cell's plan, on the fill: false where the far loops' range would
+    /// be too wide to help.
+    bool plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c, double half, bool within) const;
+    /// decide() from a planned cell's near loops; false where that does
+    /// not decide (the far range is as wide as the rest of the distance).
+    bool decidePlanned(const RangeGrid& g, int winding, const glm::vec3& q, std::size_t cell, Estimate& out) const;
+
+    // ---- the grids of bounds (range_grid.cpp)
     void buildRangeGrid(const Box& domain, const CellWindings* windings);
     /// `cellsNow`: allocate its cells' states and ranges too (RangeGrid::allocate).
     void buildGrid(RangeGrid& g, const Box& box, double cellsAlong, const CellWindings* windings, bool cellsNow);
-    static void allocateCells(RangeGrid& g);
     /// The fine grid's cells, allocated on the first call (once, whichever
     /// thread comes first); false where there is no fine grid.
     bool fineCells() const;
@@ -340,28 +397,6 @@ private:
     /// cell's range does not answer without it.
     template <class Winding>
     bool insideBy(const glm::vec3& q, const Winding& windingAt, bool apart) const;
-    /// The cell q lies in; false outside the grid.
-    static inline bool cellOf(const RangeGrid& g, const glm::vec3& q, std::size_t& cell, glm::uvec3& at);
-    double exact(int winding, const glm::vec3& q) const;
-    /// Loop `loop`'s cap: its centroid, radius and area, its fan among the
-    /// caps' triangles, and (appended to `tris`) in double.
-    void addCap(CapLoop& loop, std::vector<std::array<glm::dvec3, 3>>& tris);
-    static void finish(Node& node);
-    static double firstOrder(const Node& n, const glm::dvec3& y, double d2, double d);
-    static double expansion(const Node& n, const glm::dvec3& y, double d2, double d);
-    /// `unsignedMoments[node]`: the integral of |n| (x - centre) dA, for the
-    /// parent's moments from its children's.
-    std::uint32_t build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,
-                        const std::vector<std::array<glm::dvec3, 3>>& tris,
-                        std::vector<glm::dvec3>& unsignedMoments);
-    /// build()'s leaf `node` (its ball set) at `index`: its triangles'
-    /// moments, and the triangles themselves into leafTris_.
-    void buildLeaf(Node& node, std::uint32_t index, std::uint32_t first, std::uint32_t last,
-                   const std::vector<std::uint32_t>& order, const std::vector<std::array<glm::dvec3, 3>>& tris,
-                   std::vector<glm::dvec3>& unsignedMoments);
-    /// build()'s inner `node` at `index`: its children's moments moved to
-    /// its centre and summed.
-    void gatherChildren(Node& node, std::uint32_t index, std::vector<glm::dvec3>& unsignedMoments);
 
     int axisIndex_;
     const CapsSurface* surface_ = nullptr;
@@ -372,40 +407,9 @@ private:
     std::vector<glm::vec3> capPositions_;
     std::vector<glm::uvec3> capTriangles_;
     std::vector<std::uint32_t> capLoopOf_; ///< the loop of each cap triangle
-    /// The cap triangles q's ray towards -axis crosses in front of q, as
-    /// (loop, +1 or -1): C_caps loop by loop, counted as projected_ counts.
-    void capCrossings(const glm::vec3& q, std::vector<std::pair<std::uint32_t, int>>& out) const;
-    /// A cell's plan, on the fill: false where the far loops' range would
-    /// be too wide to help.
-    bool plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c, double half, bool within) const;
-    /// decide() from a planned cell's near loops; false where that does
-    /// not decide (the far range is as wide as the rest of the distance).
-    bool decidePlanned(const RangeGrid& g, int winding, const glm::vec3& q, std::size_t cell, Estimate& out) const;
-    /// refine()'s first round over chain nodes `roots`, each taken by its
-    /// first-order term or its edges summed (as refine's first cut takes
-    /// them, in the same order: the same value and bound), in one pass with
-    /// no stack; true where that decides (then `out` is refine's answer),
-    /// false where it does not or a root would be split.
-    bool firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount, double farLo,
-                  double farHi, Estimate& out) const;
-    /// refine()'s step on one chain node at p: where q's ray misses its
-    /// ball and its bound (first order, or the remainder where `fine`) is
-    /// at most kMaxTakenBound, that bound and its edges' angle (its chord's
-    /// less its fan's, by the expansion); false where it must be opened.
-    inline bool takeNode(const ChainNode& n, const glm::dvec3& p, bool fine, double& bound, double& value) const;
-    /// The decide-or-refine of decide(), from the chain nodes `roots`
-    /// (whole loops, or the root) with `farCrossings` + [farLo, farHi]
-    /// standing for the rest; false where it runs out of nodes with the
-    /// far range left (planned) or of budget.
-    bool refine(int winding, const glm::vec3& q, double margin, const std::uint32_t* roots, std::size_t rootCount,
-                double farLo, double farHi, Estimate& out) const;
-    struct Refinement; ///< refine()'s running state (chain_tree.cpp)
     std::vector<std::array<glm::dvec3, 3>> leafTris_; ///< cap triangles in tree order
     std::vector<Node> nodes_;                         ///< [0] is the root
     std::optional<ProjectedMesh> projected_;          ///< the caps, for C_caps
-    void buildChains();
-    std::uint32_t buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first, std::uint32_t last);
-    std::uint32_t buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count, std::uint32_t treeFirst);
     std::vector<ChainNode> chains_;
     /// loopEdges_ with the loops in the chain tree's order, so that every
     /// chain node's edges lie together (ChainNode::edgeFirst).
