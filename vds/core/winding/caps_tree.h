@@ -438,8 +438,8 @@ int BoundaryCaps::insideAlone(const glm::vec3& q, bool apart) const {
     if (state == CellState::Unvisited) state = rangeOf(ranges_, cell, at);
     if (state != CellState::WindingRange) return -1;
     const CellVerdict verdict = ranges_.alone[cell];
-    if ((apart && verdict.byClosed) || verdict.label == CellLabel::Undecided) return -1;
-    return verdict.label == CellLabel::Inside ? 1 : 0;
+    if ((apart && verdict.byClosed()) || verdict.label() == CellLabel::Undecided) return -1;
+    return verdict.label() == CellLabel::Inside ? 1 : 0;
 }
 
 // Inline: taken once a node by the walks of the labels and values.

@@ -387,9 +387,9 @@ bool BoundaryCaps::insideIn(const RangeGrid& g, std::size_t cell, CellState stat
                             const Winding& windingAt, bool apart) const {
     // A closed count's range, for a query apart from it: -w_caps's range
     // (the count taken off), as CappedRange.
-    const bool closedApart = state == CellState::WindingRange && apart && g.alone[cell].byClosed;
-    if (state == CellState::WindingRange && !closedApart && g.alone[cell].label != CellLabel::Undecided)
-        return g.alone[cell].label == CellLabel::Inside; // the whole winding number's range: no integer term asked
+    const bool closedApart = state == CellState::WindingRange && apart && g.alone[cell].byClosed();
+    if (state == CellState::WindingRange && !closedApart && g.alone[cell].label() != CellLabel::Undecided)
+        return g.alone[cell].label() == CellLabel::Inside; // the whole winding number's range: no integer term asked
     const int winding = windingAt();
     if (state == CellState::BoundaryRange || state == CellState::CappedRange || closedApart) {
         double shift = double(state == CellState::BoundaryRange ? winding : winding + projected_->winding(q));

@@ -30,11 +30,22 @@ enum class CellState : std::uint8_t {
 
 /// A WindingRange cell's answer, set before its state is published.
 enum class CellLabel : std::uint8_t { Outside, Inside, Undecided };
-struct CellVerdict {
-    CellLabel label = CellLabel::Undecided; ///< where the range puts every value (Undecided: it straddles 1/2)
+class CellVerdict {
+public:
+    CellVerdict() = default;
+    CellVerdict(CellLabel label, bool byClosed)
+        : bits_(std::uint8_t(std::uint8_t(label) | (byClosed ? kByClosed : 0u))) {}
+    /// Where the range puts every value (Undecided: it straddles 1/2).
+    CellLabel label() const { return CellLabel(bits_ & ~kByClosed); }
     /// The range came from a closed count (CellWindings): a query apart
     /// from it (insideApart) takes it as -w_caps's range instead.
-    bool byClosed = false;
+    bool byClosed() const { return (bits_ & kByClosed) != 0; }
+
+private:
+    /// One byte a cell, as the states: the grid's bytes a query reads stay
+    /// within the first level of cache.
+    static constexpr std::uint8_t kByClosed = 0x80;
+    std::uint8_t bits_ = std::uint8_t(CellLabel::Undecided);
 };
 
 /// A ball holding a box of cells (RangeGrid::ballOf).
