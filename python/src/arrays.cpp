@@ -209,6 +209,13 @@ std::uint32_t countOption(const py::object& value, const char* what) {
     }));
 }
 
+std::string textOption(const py::object& value, const char* what) {
+    if (!py::isinstance<py::str>(value))
+        throw DTypeError(std::string(what) + " must be a str, not " +
+                         py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+    return value.cast<std::string>();
+}
+
 std::string fsPath(const py::object& path) {
     // os.fsencode: str, bytes and os.PathLike, as the bytes the file system sees.
     return py::module_::import("os").attr("fsencode")(path).cast<std::string>();

@@ -87,6 +87,10 @@ unsigned threadCount(const py::object& threads, const char* what = "threads");
 /// `InvalidArgument` naming `what` and what was given. The library judges its range.
 std::uint32_t countOption(const py::object& value, const char* what);
 
+/// A text option (rule, axis, method): a str, else `DTypeError` (a
+/// vds.Error and a TypeError) naming `what` and the type given.
+std::string textOption(const py::object& value, const char* what);
+
 /// A path as the bytes the file system sees: str, bytes or os.PathLike.
 std::string fsPath(const py::object& path);
 /// Throws `IoError` when `path` names a directory (a file was expected).

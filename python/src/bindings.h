@@ -43,7 +43,7 @@ void warnOpenSprite(const vds::Sprite& sprite, vds::Rule rule);
 /// How Python spells what the messages name: rule="generalized-winding".
 const vds::MeshFlags& pythonFlags();
 
-vds::ClassifyOptions classifyOptions(const std::string& rule, const py::object& threads);
+vds::ClassifyOptions classifyOptions(const py::object& rule, const py::object& threads);
 py::dict statsDict(const vds::ClassifyStats& stats);
 py::tuple tuple3(const glm::vec3& v);
 

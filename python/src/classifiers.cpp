@@ -30,9 +30,10 @@ namespace {
 
 class PyExact {
 public:
-    PyExact(const py::object& vertices, const py::object& faces, const std::string& axis) : axis_(axis) {
+    PyExact(const py::object& vertices, const py::object& faces, const py::object& axis)
+        : axis_(textOption(axis, "axis")) {
         const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
-        const vds::Axis a = vds::parseAxis(axis);
+        const vds::Axis a = vds::parseAxis(axis_);
         py::gil_scoped_release released;
         report_ = vds::validateMesh(mesh.view);
         exact_ = std::make_unique<vds::ExactClassifier>(mesh.view, a); // copies the triangles
@@ -43,7 +44,7 @@ public:
         const py::tuple arrays = mesh_->arrays();
         return py::make_tuple(arrays[0], arrays[1], axis_);
     }
-    BoolArray contains(const py::object& points, const std::string& rule, const py::object& threads) const {
+    BoolArray contains(const py::object& points, const py::object& rule, const py::object& threads) const {
         const vds::ClassifyOptions options = classifyOptions(rule, threads);
         warn(insideMessage(report_, "", options.rule));
         Points p = vds::python::viewPoints(points);
@@ -141,7 +142,7 @@ public:
     PyClassifier(const PyClassifier&) = delete;
     PyClassifier& operator=(const PyClassifier&) = delete;
 
-    py::object classify(const py::object& points, const std::string& rule, const py::object& threads,
+    py::object classify(const py::object& points, const py::object& rule, const py::object& threads,
                         bool withStats) const {
         vds::ClassifyOptions options = classifyOptions(rule, threads);
         vds::requireRule(method_, options.rule);
@@ -160,7 +161,7 @@ public:
         return std::move(labels);
     }
 
-    BoolArray occupancy(const py::object& gridObject, const std::string& rule, const py::object& threads) const {
+    BoolArray occupancy(const py::object& gridObject, const py::object& rule, const py::object& threads) const {
         const vds::Grid grid = gridFrom(gridObject);
         const vds::ClassifyOptions options = classifyOptions(rule, threads);
         vds::requireRule(method_, options.rule);
@@ -333,7 +334,7 @@ stats: if True, returns (labels, {"certain": n, "exact": m}): how many
     points the method answered itself and how many by the exact classifier
     (the certified method's fallback; 0 for the others).
 Releases the GIL while it works.)doc").c_str())
-        .def("contains", [](const PyClassifier& c, const py::object& points, const std::string& rule,
+        .def("contains", [](const PyClassifier& c, const py::object& points, const py::object& rule,
                             const py::object& threads) { return c.classify(points, rule, threads, false); },
              py::arg("points"), py::arg("rule") = "parity", py::arg("threads") = 0,
              "`classify` without stats (the name `Sprite` and `ExactClassifier` use).")
@@ -363,7 +364,7 @@ V: (n, 3) float32/float64 vertex positions (kept as float32), F: (m, 3)
 integer vertex indices, counter-clockwise seen from outside. The triangles
 are copied; build once, ask many times (thread safe). The same labels as
 Classifier(V, F, "exact").)doc")
-        .def(py::init<const py::object&, const py::object&, const std::string&>(), py::arg("V"), py::arg("F"),
+        .def(py::init<const py::object&, const py::object&, const py::object&>(), py::arg("V"), py::arg("F"),
              py::arg("axis") = "z")
         .def("contains", &PyExact::contains, py::arg("points"), py::arg("rule") = "parity", py::arg("threads") = 0,
              (std::string("(N, 3) float points -> (N,) bool.") + kRuleDoc).c_str())
@@ -377,7 +378,7 @@ Classifier(V, F, "exact").)doc")
         .def(py::pickle([](const PyExact& e) { return e.state(); },
                         [](const py::tuple& t) {
                             if (t.size() != 3) throw vds::InvalidArgument("not a pickled vds.ExactClassifier");
-                            return std::make_unique<PyExact>(t[0], t[1], t[2].cast<std::string>());
+                            return std::make_unique<PyExact>(t[0], t[1], t[2]);
                         }));
 
 }

@@ -62,7 +62,7 @@ py::tuple meshArraysOut(const vds::TriangleMesh& mesh) {
 
 /// vds.occupancy(V, F, grid): the exact sweep on the triangles.
 BoolArray meshOccupancy(const py::object& vertices, const py::object& faces, const py::object& gridObject,
-                        const std::string& rule, const py::object& threads) {
+                        const py::object& rule, const py::object& threads) {
     const vds::Grid grid = gridFrom(gridObject);
     const vds::ClassifyOptions options = classifyOptions(rule, threads);
     const MeshArrays mesh = vds::python::meshArrays(vertices, faces);

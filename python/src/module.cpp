@@ -108,9 +108,9 @@ void warnOpenSprite(const vds::Sprite& sprite, vds::Rule rule) {
 
 // ---- options ---------------------------------------------------------------
 
-vds::ClassifyOptions classifyOptions(const std::string& rule, const py::object& threads) {
+vds::ClassifyOptions classifyOptions(const py::object& rule, const py::object& threads) {
     vds::ClassifyOptions options;
-    options.rule = vds::parseRule(rule);
+    options.rule = vds::parseRule(textOption(rule, "rule"));
     options.threads = vds::python::threadCount(threads);
     return options;
 }

@@ -65,7 +65,7 @@ bool axisAligned(const vds::SpriteGrid& g) {
     return g.matrix[p.z][2] > 0.0f;
 }
 
-BoolArray spriteContains(PySprite& sprite, const py::object& points, const std::string& rule, bool gpu,
+BoolArray spriteContains(PySprite& sprite, const py::object& points, const py::object& rule, bool gpu,
                          const py::object& threads) {
     const vds::ClassifyOptions options = classifyOptions(rule, threads);
     warnOpenSprite(sprite, options.rule);
@@ -87,7 +87,7 @@ BoolArray spriteContains(PySprite& sprite, const py::object& points, const std::
     return labels;
 }
 
-BoolArray spriteOccupancy(PySprite& sprite, const py::object& gridObject, const std::string& rule, bool gpu,
+BoolArray spriteOccupancy(PySprite& sprite, const py::object& gridObject, const py::object& rule, bool gpu,
                           const py::object& threads) {
     const vds::Grid grid = gridFrom(gridObject);
     const vds::ClassifyOptions options = classifyOptions(rule, threads);
@@ -135,7 +135,9 @@ py::array_t<double> spriteWinding(const PySprite& sprite, const py::object& poin
 
 /// vds.bake: the mesh's warning (as `vds bake` prints it), then the bake.
 std::shared_ptr<PySprite> bakeMesh(const py::object& vertices, const py::object& faces, const py::object& resolution,
-                                   const std::string& axis, const std::string& method, const std::string& name) {
+                                   const py::object& axisObject, const py::object& methodObject,
+                                   const std::string& name) {
+    const std::string axis = textOption(axisObject, "axis"), method = textOption(methodObject, "method");
     const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
     vds::BakeOptions options;
     options.resolution = vds::python::countOption(resolution, "resolution");

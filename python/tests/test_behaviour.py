@@ -71,6 +71,20 @@ def test_a_tuple_for_a_grid_is_a_vds_error():
         assert isinstance(caught.value, TypeError)
 
 
+def test_text_options_of_the_wrong_type_are_vds_errors():
+    V, F = box_mesh((0, 0, 0), (1, 1, 1))
+    points = np.full((2, 3), 0.5)
+    sprite = vds.bake(V, F, resolution=16, method="cpu")
+    for call, what in ((lambda: vds.exact_contains(V, F, points, rule=None), "rule"),
+                       (lambda: sprite.contains(points, rule=1), "rule"),
+                       (lambda: vds.bake(V, F, resolution=16, axis=2), "axis"),
+                       (lambda: vds.bake(V, F, resolution=16, method=None), "method"),
+                       (lambda: vds.ExactClassifier(V, F, axis=0), "axis")):
+        with pytest.raises(vds.DTypeError, match=what + " must be a str, not") as caught:
+            call()
+        assert isinstance(caught.value, vds.Error) and isinstance(caught.value, TypeError)
+
+
 def test_threads_are_validated_like_the_command_line():
     V, F = box_mesh((0, 0, 0), (1, 1, 1))
     points = np.full((4, 3), 0.5)
