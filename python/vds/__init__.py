@@ -25,7 +25,7 @@ float32/float64, faces not integers; an InvalidArgument and a TypeError),
 ``InvalidMesh`` (a ValueError), ``IoError`` (an OSError), ``FormatError`` (a
 ValueError), ``GlUnavailable`` and ``GlError`` (RuntimeErrors),
 ``OutOfMemory`` (a MemoryError); an argument of the wrong type where vds
-checks it (points, faces, a grid) is a ``DTypeError``. A mesh that bounds no
+checks it (points, faces, a grid, a rule, axis or method) is a ``DTypeError``. A mesh that bounds no
 solid by the rule asked (open, or closed but mis-oriented) gets a
 ``vds.MeshWarning`` with the command-line tool's text in Python's words,
 pointing at the caller's line. ``vds.gl_available()`` is True where GL work
