@@ -50,14 +50,16 @@ int main(int argc, char** argv) {
     std::uint32_t dims = 256;
     unsigned threads = 2;
     double drop = 0.01;
-    app.add_option("--dims", dims, "cells along each side of the cubic grid");
+    app.add_option("--dims", dims, "cells along each axis of the grid over the scan's box");
     app.add_option("--threads", threads, "CPU threads (0: all)");
     app.add_option("--drop", drop, "the share of triangles the scan misses");
     CLI11_PARSE(app, argc, argv);
     try {
         const vds::TriangleMesh scan = openScan(drop);
         const vds::MeshReport report = vds::validateMesh(scan);
-        const vds::Grid grid = vds::cubicGrid(report.bounds, dims);
+        vds::Grid grid; // dims^3 cells over the scan's box (as `vds voxelize --dims`)
+        grid.box = report.bounds;
+        grid.dims = glm::uvec3(dims);
         std::vector<std::uint8_t> cells(grid.cellCount());
         const auto start = std::chrono::steady_clock::now();
         vds::occupancy(scan, grid, cells.data(), {vds::Rule::GeneralizedWinding, threads});
