@@ -16,13 +16,12 @@
 
 #include "winding/antipodal.h"
 #include <vds/detail/boundary_loops.h>
+#include <vds/detail/pi.h>
 
 namespace vds::detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kFourPi = 4.0 * kPi;
 constexpr std::uint32_t kLeafTriangles = 4;
 /// Most pieces a fan triangle's sides are cut into for the tree.
 constexpr int kMaxCut = 8;
