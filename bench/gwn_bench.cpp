@@ -42,6 +42,7 @@
 
 #include <CLI/CLI.hpp>
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 
 #include <vds/bake.h>
 #include <vds/error.h>
@@ -56,7 +57,7 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kPi = 3.14159265358979323846; // for the generated spheres
+constexpr double kPi = glm::pi<double>(); // for the generated spheres
 
 double seconds(Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); }
 
@@ -250,15 +251,15 @@ int main(int argc, char** argv) {
             rows.back().build = exactBuild;
             vds::BakeOptions o;
             o.resolution = resolution;
-            const vds::Sprite sprite = vds::bakeCpu(mesh, o);
-            // Its caps, built by the first call on it: one point.
+            const vds::SpriteClassifier sprite(vds::bakeCpu(mesh, o));
+            // Its caps, built by the classifier's first call: one point.
             std::uint8_t one = 0;
             built = Clock::now();
-            vds::classify(sprite, vds::PointsView(points.data(), 1), &one, gwn);
+            sprite.classify(vds::PointsView(points.data(), 1), &one, gwn);
             const double spriteBuild = seconds(built) * 1e3;
             rows.push_back(measure(name, "sprite GWN @" + std::to_string(resolution), points, w, bands,
                                    [&](const auto& p, auto& l) {
-                                       vds::classify(sprite, vds::PointsView(p.data(), p.size()), l.data(), gwn);
+                                       sprite.classify(vds::PointsView(p.data(), p.size()), l.data(), gwn);
                                    }));
             rows.back().build = spriteBuild;
             // (A sprite's labels may differ from the yardstick's within a
