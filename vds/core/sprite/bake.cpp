@@ -150,4 +150,7 @@ AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution, unsigned thre
     return choice;
 }
 
+BakeMethod parseBakeMethod(const std::string& s) { return parseEnum<BakeMethod>(s); }
+const char* toString(BakeMethod m) { return enumName(m); }
+
 } // namespace vds
