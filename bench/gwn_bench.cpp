@@ -24,7 +24,10 @@
 // the sprite's caps (by a call on one point; the bake not counted); the
 // first call ("all") counts the cells of the range grid the points land in.
 // Occupancy: `--dims` cubed cells of the padded box by the mesh sweep, its
-// labels checked against the exact classifier at the cell centres.
+// labels checked against the exact classifier at the cell centres. Last,
+// how the sprite's caps answer: their coarse grid's cells by kind once the
+// points have landed (ranges of the boundary term, of the whole winding
+// number, of -w_caps; plans), which only speed depends on.
 //
 // `--dump DIR` writes, for each mesh, NAME.obj (its positions and triangles
 // as measured), NAME.points (the points, little-endian float32 x y z) and
@@ -53,6 +56,8 @@
 #include <vds/detail/parallel.h>
 
 #include "solids.h"
+#include "sprite/vpt.h"
+#include "winding/caps_tree.h"
 
 namespace {
 
@@ -262,6 +267,16 @@ int main(int argc, char** argv) {
                                        sprite.classify(vds::PointsView(p.data(), p.size()), l.data(), gwn);
                                    }));
             rows.back().build = spriteBuild;
+            // How the sprite's caps answer: their coarse grid's cells by
+            // kind once the uniform points have landed in them (the same
+            // caps built again, untimed). A matter of speed, not of
+            // labels, so reported here rather than asserted by the tests.
+            const vds::detail::BoundaryCapsCache spriteCaps;
+            std::vector<std::uint8_t> landed(points.size());
+            vds::detail::classifySpriteFloats(sprite.sprite(), spriteCaps, {}, &points[0].x, points.size(),
+                                              sizeof(glm::vec3), landed.data(), gwn);
+            const vds::detail::BoundaryCaps::RangedCells ranged =
+                spriteCaps.get(sprite.sprite(), threads).rangedCells();
             // (A sprite's labels may differ from the yardstick's within a
             // texel of the surface: its points sit at texel centres.)
             for (const Row& r : rows) {
@@ -293,6 +308,9 @@ int main(int argc, char** argv) {
                         edges.size() / 2, grid.dims.x, grid.dims.y, grid.dims.z, differ, occupancyRate);
             std::printf("| %s | | points per band | | | %zu | | %zu | %zu | %zu | %zu |\n", name.c_str(), points.size(),
                         counts[0], counts[1], counts[2], counts[3]);
+            std::printf("| %s | | sprite caps' coarse cells: by range (boundary %zu, winding %zu of which closed %zu, "
+                        "capped %zu), planned %zu | | | | | | | | |\n",
+                        name.c_str(), ranged.boundary, ranged.winding, ranged.closed, ranged.capped, ranged.planned);
             std::fflush(stdout);
         }
     } catch (const vds::Error& e) {
