@@ -8,7 +8,6 @@
 #include <memory>
 #include <vector>
 
-#include <vds/grid.h>
 #include <vds/sprite.h>
 
 namespace vds::detail {
@@ -20,11 +19,6 @@ namespace vds::detail {
 void classifySpriteFloats(const Sprite& sprite, const BoundaryCapsCache& caps, const SpriteQueryOptions& query,
                           const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
                           const ClassifyOptions& options);
-
-/// `occupancy(sprite, ...)` (<vds/occupancy.h>) with the sprite's caps
-/// cache of its `SpriteClassifier` (or of the call).
-void occupancyOfSprite(const Sprite& sprite, const BoundaryCapsCache& caps, const Grid& grid, std::uint8_t* cells,
-                       const ClassifyOptions& options);
 
 
 /// SpriteGrid::toTexture, inline for the batches that ask it of every

@@ -51,4 +51,9 @@ struct SweepPlan {
 /// says which world axis depth follows). Texels computed on `threads`.
 SweepPlan planSweep(const SpriteGrid& sprite, const Grid& grid, unsigned threads);
 
+/// `occupancy(sprite, ...)` (<vds/occupancy.h>) with a sprite's caps cache:
+/// its `SpriteClassifier`'s, or the call's.
+void occupancyOfSprite(const Sprite& sprite, const BoundaryCapsCache& caps, const Grid& grid, std::uint8_t* cells,
+                       const ClassifyOptions& options);
+
 } // namespace vds::detail
