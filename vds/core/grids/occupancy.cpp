@@ -18,7 +18,9 @@
 #include <vector>
 
 #include <vds/error.h>
+#include <vds/detail/aligned_axes.h>
 #include <vds/detail/parallel.h>
+#include <vds/detail/pi.h>
 #include <vds/detail/sweep_plan.h>
 #include <vds/detail/tree_walk.h>
 
@@ -30,6 +32,9 @@
 
 namespace vds {
 namespace {
+
+using detail::kFourPi;
+using detail::kPi;
 
 std::vector<float> centres(const Grid& grid, int axis) {
     std::vector<float> c(grid.dims[axis]);
@@ -163,8 +168,6 @@ public:
     double drift() const { return drift_; }
 
 private:
-    static constexpr double kPi = 3.14159265358979323846;
-    static constexpr double kFourPi = 4.0 * kPi;
     /// A node is taken by its fan's expansion where that errs by at most
     /// this anywhere along the column,
     static constexpr double kFarBound = 1e-3;
@@ -292,16 +295,11 @@ constexpr std::size_t kProbe = 64;
 
 detail::SweepPlan detail::planSweep(const SpriteGrid& sg, const Grid& grid, unsigned threads) {
     SweepPlan plan;
-    // The world axis depth follows (r's row of the matrix), and every texture
-    // coordinate following one world axis: the permutation of that axis.
-    int a = -1;
-    for (int col = 0; col < 3; ++col)
-        if (sg.matrix[col][2] > 0.0f) a = col;
-    if (a < 0) return plan;
-    const glm::ivec3 p = axisPermutation(Axis(a)); // axisPermutation(X).z = 0, Y: 1, Z: 2
-    for (int row = 0; row < 3; ++row)
-        for (int col = 0; col < 3; ++col)
-            if (col != p[row] && sg.matrix[col][row] != 0.0f) return plan;
+    if (!sweepsByColumns(sg)) return plan;
+    // s, t and r on world axes u, v and a, in any order and sign (a sprite
+    // turned by quarter turns or mirrored across its axis), depth growing along a.
+    const glm::ivec3 p = *alignedAxes(sg);
+    const int a = p.z;
     plan.aligned = true;
     plan.a = a;
     plan.u = p.x;
@@ -335,6 +333,12 @@ detail::SweepPlan detail::planSweep(const SpriteGrid& sg, const Grid& grid, unsi
 }
 
 void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {
+    const detail::BoundaryCapsCache caps; // this call's
+    detail::occupancyOfSprite(sprite, caps, grid, cells, options);
+}
+
+void detail::occupancyOfSprite(const Sprite& sprite, const BoundaryCapsCache& caps, const Grid& grid,
+                               std::uint8_t* cells, const ClassifyOptions& options) {
     checkGrid(grid);
     detail::requireBoundaryKnown(sprite, options.rule);
     assert(cells);
@@ -347,6 +351,7 @@ void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, cons
         const int a = p.z, u = p.x, v = p.y;
         const std::uint32_t n = grid.dims[a];
         const std::size_t step = a == 2 ? 1 : a == 1 ? grid.dims.z : std::size_t(grid.dims.y) * grid.dims.z;
+        const BoundaryCaps* built = boundaryTerm ? &caps.get(sprite, options.threads) : nullptr;
         parallelFor(options.threads, std::size_t(grid.dims[u]) * grid.dims[v], 64, [&](std::size_t begin, std::size_t end) {
             std::vector<glm::vec3> points(n);
             std::vector<std::uint8_t> labels(n);
@@ -358,11 +363,11 @@ void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, cons
                     c[a] = k;
                     points[k] = grid.cellCentre(c.x, c.y, c.z);
                 }
-                const ClassifyOptions one{options.rule, 1, QueryLayout::Offsets, BoundaryEvaluation::Caps};
+                const ClassifyOptions one{options.rule, 1};
                 if (boundaryTerm)
-                    detail::classifyGeneralizedWinding(sprite, &points[0].x, n, sizeof(glm::vec3), labels.data(), one);
+                    detail::classifyGeneralizedWinding(sprite, built, &points[0].x, n, sizeof(glm::vec3), labels.data(), one);
                 else
-                    classify(sprite, PointsView(points.data(), n), labels.data(), one);
+                    classify(sprite, PointsView(points.data(), n), labels.data(), one, {QueryLayout::Offsets});
                 c[a] = 0;
                 std::uint8_t* out = cells + grid.index(c.x, c.y, c.z);
                 for (std::uint32_t k = 0; k < n; ++k) out[k * step] = labels[k];
@@ -407,7 +412,7 @@ void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, cons
 }
 
 void SpriteClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
-    vds::occupancy(sprite_, grid, cells, options);
+    detail::occupancyOfSprite(sprite_, caps_, grid, cells, options);
 }
 
 void occupancy(MeshView mesh, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {

@@ -649,10 +649,8 @@ private:
 
 } // namespace
 
-void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
-                                std::uint8_t* labels, const ClassifyOptions& options) {
-    const BoundaryCaps* caps =
-        options.boundary == BoundaryEvaluation::Caps ? &sprite.boundaryCaps.get(sprite, options.threads) : nullptr;
+void classifyGeneralizedWinding(const Sprite& sprite, const BoundaryCaps* caps, const float* xyz, std::size_t count,
+                                std::size_t strideBytes, std::uint8_t* labels, const ClassifyOptions& options) {
     const ColumnPoints place(sprite.grid);
     parallelFor(options.threads, count, 1024, [&](std::size_t begin, std::size_t end) {
         BatchedLabels(sprite, caps, place, reinterpret_cast<const char*>(xyz), strideBytes, labels).run(begin, end);
@@ -673,13 +671,9 @@ void BoundaryCapsCache::reset() noexcept { delete caps_.exchange(nullptr); }
 
 bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world) {
     requireBoundaryKnown(sprite, Rule::GeneralizedWinding);
-    const SpriteGrid& sg = sprite.grid;
-    const glm::vec3 t = sg.toTexture(world);
-    std::ptrdiff_t column;
-    glm::vec3 q;
-    if (!ColumnPoints(sg).place(t, column, q)) return false;
-    const BoundaryCaps& caps = sprite.boundaryCaps.get(sprite);
-    return column >= 0 ? caps.inside(columnCount(sprite, t, column), q) : caps.insideApart(0, q);
+    std::uint8_t label = 0; // the batch's per-edge path, so that one point answers as a batch does
+    classifyGeneralizedWinding(sprite, nullptr, &world.x, 1, sizeof world, &label, {Rule::GeneralizedWinding, 1});
+    return label != 0;
 }
 
 } // namespace vds::detail
@@ -699,7 +693,8 @@ double Sprite::generalizedWinding(const glm::vec3& world) const {
     glm::vec3 q;
     if (!detail::gwnSample(*this, t, winding, q))
         return 0.0;
-    return boundaryCaps.get(*this).generalizedWinding(winding, q, detail::kGeneralizedWindingTolerance);
+    return double(winding) + detail::boundaryTermExact(boundaryEdges.data(), boundaryEdges.size() / 2,
+                                                       axisPermutation(grid.axis).z, glm::dvec3(q));
 }
 
 } // namespace vds

@@ -24,6 +24,7 @@
 
 #include <vds/detail/solid_angle.h>
 #include <vds/mesh.h>
+#include <vds/detail/pi.h>
 #include <vds/rule.h>
 
 namespace vds::detail {
@@ -82,7 +83,7 @@ struct AngleProduct {
         re /= size;
         im /= size;
     }
-    double angle() const { return std::atan2(im, re) + 2.0 * 3.14159265358979323846 * turns; }
+    double angle() const { return std::atan2(im, re) + 2.0 * kPi * turns; }
 };
 
 /// Two AngleProducts side by side, a lane each (GCC's vectors: SSE2's

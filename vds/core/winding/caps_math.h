@@ -12,11 +12,10 @@
 #include <glm/vec3.hpp>
 
 #include <vds/detail/chain_tree.h>
+#include <vds/detail/pi.h> // kPi, kFourPi
 
 namespace vds::detail::caps {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kFourPi = 4.0 * kPi;
 constexpr std::uint32_t kLeafTriangles = 4;
 /// Rounding slack on the estimate: the solid angles and the expansion are
 /// summed in double, some 1e-15 each.
