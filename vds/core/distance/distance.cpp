@@ -1,0 +1,182 @@
+// vds: exact signed distances to a triangle mesh (<vds/distance.h>): the
+// hierarchy (bvh.h) finds the nearest triangle, the exact classifier of the
+// same rule gives the sign.
+#include <vds/distance.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <vds/detail/parallel.h>
+#include <vds/error.h>
+
+#include "distance/bvh.h"
+#include "distance/triangle_distance.h"
+
+namespace vds {
+
+namespace {
+
+/// Points a chunk of a batch: enough to amortise a chunk's classify call.
+constexpr std::size_t kChunkPoints = 512;
+/// Triangles a hierarchy can reference (29 bits of a leaf reference).
+constexpr std::size_t kMaxTriangles = (std::size_t(1) << 29) - 1;
+
+/// The first point that is not finite after rounding to float, or count.
+std::size_t firstNonFinite(const PointsView& points) {
+    for (std::size_t k = 0; k < points.count; ++k) {
+        const glm::vec3 p = points[k];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return k;
+    }
+    return points.count;
+}
+
+void checkBatch(const PointsView& points, const DistanceOptions& options) {
+    if (!(options.maxDistance > 0.0))
+        throw InvalidArgument("the largest distance to search must be above 0, not " +
+                              std::to_string(options.maxDistance));
+    const std::size_t bad = firstNonFinite(points);
+    if (bad < points.count)
+        throw InvalidArgument("point " + std::to_string(bad) + " is not finite (" +
+                              std::to_string(points[bad].x) + ", " + std::to_string(points[bad].y) + ", " +
+                              std::to_string(points[bad].z) + "): it has no distance");
+}
+
+} // namespace
+
+struct SignedDistance::Impl {
+    Impl(MeshView mesh, Rule r) : rule(r), bvh(mesh), exact(mesh, Axis::Z) {}
+    Rule rule;
+    detail::Bvh bvh;
+    ExactClassifier exact;
+
+    /// The nearest triangle within `maxDistance`, starting from `seed`'s
+    /// distance when one is given.
+    detail::NearestState nearest(const glm::vec3& p, double maxDistance, std::uint32_t seed = kNoTriangle) const {
+        detail::NearestState state{maxDistance * maxDistance};
+        if (seed != kNoTriangle) {
+            const double d2 = bvh.distance2(p, seed);
+            if (d2 < state.distance2) state = {d2, seed};
+        }
+        bvh.nearest(p, state);
+        return state;
+    }
+    double unsignedAt(const glm::vec3& p, double maxDistance) const {
+        const detail::NearestState s = nearest(p, maxDistance);
+        return s.slot == kNoTriangle ? maxDistance : std::sqrt(s.distance2);
+    }
+    ClosestPoint closestAt(const glm::vec3& p, double maxDistance) const {
+        const detail::NearestState s = nearest(p, maxDistance);
+        if (s.slot != kNoTriangle) return bvh.closest(p, s.slot);
+        ClosestPoint none;
+        none.point = glm::dvec3(std::nan(""));
+        none.distance = maxDistance;
+        return none;
+    }
+};
+
+SignedDistance::SignedDistance(MeshView mesh, Rule rule, const std::string& meshName) {
+    const MeshReport report = validateMesh(mesh);
+    requireUsable(report, meshName);
+    requireVolume(report, meshName);
+    requireInsideDefined(report, meshName, rule);
+    if (mesh.triangleCount > kMaxTriangles)
+        throw InvalidMesh(meshName + " has " + std::to_string(mesh.triangleCount) +
+                          " triangles, more than a distance hierarchy holds (" + std::to_string(kMaxTriangles) + ")");
+    impl_ = std::make_unique<Impl>(mesh, rule);
+}
+
+SignedDistance::~SignedDistance() = default;
+SignedDistance::SignedDistance(SignedDistance&&) noexcept = default;
+SignedDistance& SignedDistance::operator=(SignedDistance&&) noexcept = default;
+
+Rule SignedDistance::rule() const { return impl_->rule; }
+const ExactClassifier& SignedDistance::classifier() const { return impl_->exact; }
+std::size_t SignedDistance::triangleCount() const { return impl_->bvh.triangleCount(); }
+
+std::size_t SignedDistance::memoryBytes() const { return impl_->bvh.memoryBytes() + impl_->exact.memoryBytes(); }
+
+std::string SignedDistance::summary() const {
+    return "distance on " + std::to_string(triangleCount()) + " triangles, " + std::to_string(impl_->bvh.nodeCount()) +
+           " nodes, signed by " + toString(impl_->rule);
+}
+
+void SignedDistance::unsignedDistance(const PointsView& points, double* out, const DistanceOptions& options) const {
+    checkBatch(points, options);
+    parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) out[k] = impl_->unsignedAt(points[k], options.maxDistance);
+    });
+}
+
+void SignedDistance::distance(const PointsView& points, double* out, const DistanceOptions& options) const {
+    checkBatch(points, options);
+    parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
+        std::uint8_t inside[kChunkPoints];
+        ClassifyOptions classify;
+        classify.rule = impl_->rule;
+        classify.threads = 1;
+        impl_->exact.classify(points.slice(begin, end - begin), inside, classify);
+        for (std::size_t k = begin; k < end; ++k) {
+            const double d = impl_->unsignedAt(points[k], options.maxDistance);
+            out[k] = inside[k - begin] ? -d : d;
+        }
+    });
+}
+
+void SignedDistance::closestPoints(const PointsView& points, ClosestPoint* out, const DistanceOptions& options) const {
+    checkBatch(points, options);
+    parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) out[k] = impl_->closestAt(points[k], options.maxDistance);
+    });
+}
+
+double SignedDistance::distance(const glm::vec3& p) const {
+    double d = 0.0;
+    distance(PointsView(&p, 1), &d, DistanceOptions{1});
+    return d;
+}
+
+ClosestPoint SignedDistance::closest(const glm::vec3& p) const {
+    ClosestPoint c;
+    closestPoints(PointsView(&p, 1), &c, DistanceOptions{1});
+    return c;
+}
+
+void SignedDistance::grid(const Grid& grid, float* cells, const DistanceGridOptions& options) const {
+    checkGrid(grid);
+    if (!std::isfinite(options.band) || options.band < 0.0)
+        throw InvalidArgument("the band's half-width must be a finite distance >= 0 (0: the full grid), not " +
+                              std::to_string(options.band));
+    const double reach = options.band > 0.0 ? options.band : std::numeric_limits<double>::infinity();
+    std::vector<std::uint8_t> inside(grid.cellCount());
+    ClassifyOptions classify;
+    classify.rule = impl_->rule;
+    classify.threads = options.threads;
+    impl_->exact.occupancy(grid, inside.data(), classify);
+    // A column at a time along z: each cell starts from the nearest triangle
+    // of the cell before it, which bounds its search from the first box on.
+    const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
+    parallelFor(options.threads, columns, 4, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t c = begin; c < end; ++c) {
+            const std::uint32_t i = std::uint32_t(c / grid.dims.y), j = std::uint32_t(c % grid.dims.y);
+            std::uint32_t seed = kNoTriangle;
+            for (std::uint32_t k = 0; k < grid.dims.z; ++k) {
+                const detail::NearestState s = impl_->nearest(grid.cellCentre(i, j, k), reach, seed);
+                if (s.slot != kNoTriangle) seed = s.slot;
+                const double d = s.slot == kNoTriangle ? reach : std::sqrt(s.distance2);
+                const std::size_t at = grid.index(i, j, k);
+                cells[at] = inside[at] ? -float(d) : float(d);
+            }
+        }
+    });
+}
+
+ClosestPoint closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                    const glm::dvec3& c) {
+    const detail::TriangleHit hit = detail::closestOnTriangle(p, a, b, c);
+    return {hit.point, std::sqrt(detail::distance2(p, hit.point)), kNoTriangle, hit.feature, hit.index};
+}
+
+} // namespace vds
