@@ -96,5 +96,7 @@ void addInfo(CLI::App& app);
 void addEval(CLI::App& app);
 void addCompare(CLI::App& app);
 void addVoxelize(CLI::App& app);
+void addDistance(CLI::App& app);
+void addSdf(CLI::App& app);
 
 } // namespace cli
