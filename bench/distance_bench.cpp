@@ -176,7 +176,7 @@ int main(int argc, char** argv) {
     try {
         if (meshes.empty()) {
             run("sphere", vds::solids::sphere(glm::vec3(0.0f), 1.0f, 256).mesh, settings);
-            run("trefoil", vds::solids::torusKnot(glm::vec3(0.0f), 1.0f, 2, 3, 0.25f, 1800, 64).mesh, settings);
+            run("trefoil", vds::solids::torusKnot(glm::vec3(0.0f), 1.0f, 2, 3, 0.25f, 800, 64).mesh, settings);
             run("soup (open)", vds::solids::looseTriangles(20000, 0.05f, 9), settings);
             run("sphere with holes (open)", vds::solids::sphereWithHoles(), settings);
         }

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/geometric.hpp>
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -29,6 +31,11 @@ constexpr int kStackEntries = 3 * (kSahDepth + 32) + 4;
 /// distance by this relative margin: above the few float roundings of a box
 /// distance (4 * 2^-24) and of the bound itself (2^-24).
 constexpr double kPruneMargin = 1.0 + 1.0 / (1 << 20);
+/// A float plane distance |n . p - w| is within kPlaneError (|p|_1 + 2
+/// max |v|_1) of the exact distance to the plane: the normal's rounding to
+/// float (sqrt(3) 2^-24 relative), the offset's (2^-24) and four float
+/// roundings of the dot product (4 2^-24), with a factor of 2 to spare.
+constexpr float kPlaneError = 1e-6f;
 
 struct Aabb {
     glm::vec3 lo{kInf}, hi{-kInf};
@@ -250,9 +257,18 @@ Bvh::Bvh(MeshView mesh) {
     nodes_.reserve(builder.nodes.size() / 2 + 1);
     Collapser(builder.nodes, nodes_).emit(0);
     triangles_.resize(prims.size());
+    planes_.resize(prims.size());
     for (std::size_t s = 0; s < prims.size(); ++s) {
         const glm::uvec3 v = mesh.triangles[prims[s].index];
-        triangles_[s] = {mesh.positions[v.x], mesh.positions[v.y], mesh.positions[v.z], prims[s].index};
+        const BvhTriangle t{mesh.positions[v.x], mesh.positions[v.y], mesh.positions[v.z], prims[s].index};
+        triangles_[s] = t;
+        const glm::dvec3 n = glm::cross(glm::dvec3(t.b) - glm::dvec3(t.a), glm::dvec3(t.c) - glm::dvec3(t.a));
+        const double length = glm::length(n);
+        // A degenerate triangle's plane bounds nothing: the zero plane gives |0 - 0| = 0.
+        const glm::vec3 unit = length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.0f);
+        planes_[s] = glm::vec4(unit, float(glm::dot(glm::dvec3(unit), glm::dvec3(t.a))));
+        for (const glm::vec3& corner : {t.a, t.b, t.c})
+            verticesL1_ = std::max(verticesL1_, std::abs(corner.x) + std::abs(corner.y) + std::abs(corner.z));
     }
 }
 
@@ -300,22 +316,80 @@ void Bvh::nearest(const glm::vec3& p, NearestState& state) const {
         // children are pushed (farthest first: the nearest is popped next).
         for (int i = 0; i < n; ++i) {
             const std::int32_t ref = node.child[order[i]];
-            if (ref >= 0 || d2[order[i]] > bound) continue;
-            const std::uint32_t code = std::uint32_t(~ref);
-            const std::uint32_t first = code >> 2, end = first + (code & 3u) + 1;
-            for (std::uint32_t s = first; s < end; ++s) {
-                const double t2 = distance2(p, s);
-                if (t2 < state.distance2) {
-                    state.distance2 = t2;
-                    state.slot = s;
-                    bound = pruneBound(t2);
-                }
-            }
+            if (ref < 0 && d2[order[i]] <= bound) searchLeaf(p, ref, state, bound);
         }
         for (int i = n - 1; i >= 0; --i) {
             const std::int32_t ref = node.child[order[i]];
             if (ref >= 0 && d2[order[i]] <= bound) stack[top++] = {d2[order[i]], ref};
         }
+    }
+}
+
+void Bvh::searchLeaf(const glm::vec3& p, std::int32_t leaf, NearestState& state, float& bound) const {
+    const std::uint32_t code = std::uint32_t(~leaf);
+    const std::uint32_t first = code >> 2, end = first + (code & 3u) + 1;
+    const float slack = kPlaneError * (std::abs(p.x) + std::abs(p.y) + std::abs(p.z) + 2.0f * verticesL1_);
+    for (std::uint32_t s = first; s < end; ++s) {
+        const glm::vec4& plane = planes_[s];
+        const float below = std::abs(plane.x * p.x + plane.y * p.y + plane.z * p.z - plane.w) - slack;
+        if (below > 0.0f && below * below > bound) continue;
+        const double t2 = distance2(p, s);
+        if (t2 < state.distance2) {
+            state.distance2 = t2;
+            state.slot = s;
+            bound = pruneBound(t2);
+        }
+    }
+}
+
+void Bvh::leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, std::vector<BvhNode>& out) const {
+    const float bound = pruneBound(reach2);
+    int slot = 4; // the next free slot of out.back()
+    const auto keep = [&](const BvhNode& node, int k) {
+        if (slot == 4) {
+            out.emplace_back();
+            BvhNode& fresh = out.back();
+            for (int a = 0; a < 3; ++a)
+                for (int s = 0; s < 4; ++s) {
+                    fresh.lo[a][s] = kInf;
+                    fresh.hi[a][s] = -kInf;
+                }
+            std::fill(fresh.child, fresh.child + 4, kEmptyChild);
+            slot = 0;
+        }
+        BvhNode& into = out.back();
+        for (int a = 0; a < 3; ++a) {
+            into.lo[a][slot] = node.lo[a][k];
+            into.hi[a][slot] = node.hi[a][k];
+        }
+        into.child[slot++] = node.child[k];
+    };
+    std::int32_t stack[kStackEntries];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const BvhNode& node = nodes_[std::size_t(stack[--top])];
+        for (int k = 0; k < 4; ++k) {
+            if (node.child[k] == kEmptyChild) continue;
+            float d2 = 0.0f; // box to box: the gap along each axis
+            for (int a = 0; a < 3; ++a) {
+                const float gap = std::max(std::max(node.lo[a][k] - hi[a], lo[a] - node.hi[a][k]), 0.0f);
+                d2 += gap * gap;
+            }
+            if (d2 > bound) continue;
+            if (node.child[k] >= 0) stack[top++] = node.child[k];
+            else keep(node, k);
+        }
+    }
+}
+
+void Bvh::nearestAmong(const glm::vec3& p, const std::vector<BvhNode>& leaves, NearestState& state) const {
+    float bound = pruneBound(state.distance2);
+    for (const BvhNode& group : leaves) {
+        float d2[4];
+        boxDistances(group, p, d2);
+        for (int k = 0; k < 4; ++k)
+            if (d2[k] <= bound && group.child[k] != kEmptyChild) searchLeaf(p, group.child[k], state, bound);
     }
 }
 

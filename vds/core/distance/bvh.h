@@ -55,6 +55,13 @@ public:
     /// `state.distance2` (the caller's bound: infinity, a band's square, or
     /// the distance to a seed triangle).
     void nearest(const glm::vec3& p, NearestState& state) const;
+    /// Appends to `out` the leaves whose boxes come within `reach2` (squared
+    /// distance) of the box [lo, hi], packed four to a node as the
+    /// hierarchy's own (empty slots kEmptyChild): every triangle that can be
+    /// nearer than sqrt(reach2) to a point of the box is in one of them.
+    void leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, std::vector<BvhNode>& out) const;
+    /// `nearest` over the leaves `leavesNear` gave only.
+    void nearestAmong(const glm::vec3& p, const std::vector<BvhNode>& leaves, NearestState& state) const;
     /// Squared distance from p to the triangle in `slot`.
     double distance2(const glm::vec3& p, std::uint32_t slot) const;
     /// The closest point on the triangle in `slot`, its index the mesh's.
@@ -63,12 +70,21 @@ public:
     std::size_t nodeCount() const { return nodes_.size(); }
     std::size_t triangleCount() const { return triangles_.size(); }
     std::size_t memoryBytes() const {
-        return nodes_.size() * sizeof(BvhNode) + triangles_.size() * sizeof(BvhTriangle);
+        return nodes_.size() * sizeof(BvhNode) + triangles_.size() * (sizeof(BvhTriangle) + sizeof(glm::vec4));
     }
 
 private:
+    void searchLeaf(const glm::vec3& p, std::int32_t leaf, NearestState& state, float& bound) const;
+
     std::vector<BvhNode> nodes_;
     std::vector<BvhTriangle> triangles_;
+    /// Each triangle's plane in float, unit normal and offset (n . x = w):
+    /// |n . p - w| less `planeSlack_` is a lower bound of its distance,
+    /// which turns most triangles of a leaf away before the double test.
+    std::vector<glm::vec4> planes_;
+    /// The float plane distance's error bound: kPlaneError times (|p|_1 +
+    /// 2 max |v|_1 over the vertices).
+    float verticesL1_ = 0.0f;
 };
 
 } // namespace vds::detail

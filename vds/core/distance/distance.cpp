@@ -24,6 +24,17 @@ constexpr std::size_t kChunkPoints = 512;
 /// Triangles a hierarchy can reference (29 bits of a leaf reference).
 constexpr std::size_t kMaxTriangles = (std::size_t(1) << 29) - 1;
 
+/// Cells a brick has along each axis: the unit of a grid's coherence.
+constexpr std::uint32_t kBrick = 8;
+/// Leaves a brick's list may hold (packed four a node) before its cells
+/// search the whole hierarchy instead: a list costs each cell one box test
+/// a leaf, the hierarchy about a node a level.
+constexpr std::size_t kMaxBrickGroups = 24;
+
+struct Brick {
+    glm::uvec3 lo, hi; ///< cells [lo, hi)
+};
+
 /// The first point that is not finite after rounding to float, or count.
 std::size_t firstNonFinite(const PointsView& points) {
     for (std::size_t k = 0; k < points.count; ++k) {
@@ -67,6 +78,8 @@ struct SignedDistance::Impl {
         const detail::NearestState s = nearest(p, maxDistance);
         return s.slot == kNoTriangle ? maxDistance : std::sqrt(s.distance2);
     }
+    void fillBrick(const Grid& grid, const Brick& brick, double band, const std::uint8_t* inside, float* cells,
+                   std::vector<detail::BvhNode>& leaves) const;
     ClosestPoint closestAt(const glm::vec3& p, double maxDistance) const {
         const detail::NearestState s = nearest(p, maxDistance);
         if (s.slot != kNoTriangle) return bvh.closest(p, s.slot);
@@ -144,31 +157,66 @@ ClosestPoint SignedDistance::closest(const glm::vec3& p) const {
     return c;
 }
 
+
+/// One brick of a grid: the leaves that can hold any of its cells' nearest
+/// triangle (those within the band, or within the distance of the brick's
+/// centre plus its half-diagonal, which bounds every cell's distance) are
+/// gathered once; each cell then searches them, starting from the nearest
+/// triangle of the cell before it in its column.
+void SignedDistance::Impl::fillBrick(const Grid& grid, const Brick& brick, double band, const std::uint8_t* inside,
+                                     float* cells, std::vector<detail::BvhNode>& leaves) const {
+    const glm::vec3 lo = grid.cellCentre(brick.lo.x, brick.lo.y, brick.lo.z);
+    const glm::vec3 hi = grid.cellCentre(brick.hi.x - 1, brick.hi.y - 1, brick.hi.z - 1);
+    double reach = band;
+    if (band == 0.0) {
+        const glm::vec3 centre = (lo + hi) * 0.5f;
+        const double radius = std::max(glm::length(glm::dvec3(hi) - glm::dvec3(centre)),
+                                       glm::length(glm::dvec3(lo) - glm::dvec3(centre)));
+        reach = (std::sqrt(nearest(centre, std::numeric_limits<double>::infinity()).distance2) + radius) * (1.0 + 1e-9);
+    }
+    leaves.clear();
+    bvh.leavesNear(lo, hi, reach * reach, leaves);
+    const bool useList = leaves.size() <= kMaxBrickGroups;
+    const double start2 = band > 0.0 ? band * band : std::numeric_limits<double>::infinity();
+    for (std::uint32_t i = brick.lo.x; i < brick.hi.x; ++i)
+        for (std::uint32_t j = brick.lo.y; j < brick.hi.y; ++j) {
+            std::uint32_t seed = kNoTriangle;
+            for (std::uint32_t k = brick.lo.z; k < brick.hi.z; ++k) {
+                const glm::vec3 p = grid.cellCentre(i, j, k);
+                detail::NearestState s{start2};
+                if (seed != kNoTriangle) {
+                    const double d2 = bvh.distance2(p, seed);
+                    if (d2 < s.distance2) s = {d2, seed};
+                }
+                if (useList) bvh.nearestAmong(p, leaves, s);
+                else bvh.nearest(p, s);
+                if (s.slot != kNoTriangle) seed = s.slot;
+                const double d = s.slot == kNoTriangle ? band : std::sqrt(s.distance2);
+                const std::size_t at = grid.index(i, j, k);
+                cells[at] = inside[at] ? -float(d) : float(d);
+            }
+        }
+}
+
 void SignedDistance::grid(const Grid& grid, float* cells, const DistanceGridOptions& options) const {
     checkGrid(grid);
     if (!std::isfinite(options.band) || options.band < 0.0)
         throw InvalidArgument("the band's half-width must be a finite distance >= 0 (0: the full grid), not " +
                               std::to_string(options.band));
-    const double reach = options.band > 0.0 ? options.band : std::numeric_limits<double>::infinity();
     std::vector<std::uint8_t> inside(grid.cellCount());
     ClassifyOptions classify;
     classify.rule = impl_->rule;
     classify.threads = options.threads;
     impl_->exact.occupancy(grid, inside.data(), classify);
-    // A column at a time along z: each cell starts from the nearest triangle
-    // of the cell before it, which bounds its search from the first box on.
-    const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
-    parallelFor(options.threads, columns, 4, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t c = begin; c < end; ++c) {
-            const std::uint32_t i = std::uint32_t(c / grid.dims.y), j = std::uint32_t(c % grid.dims.y);
-            std::uint32_t seed = kNoTriangle;
-            for (std::uint32_t k = 0; k < grid.dims.z; ++k) {
-                const detail::NearestState s = impl_->nearest(grid.cellCentre(i, j, k), reach, seed);
-                if (s.slot != kNoTriangle) seed = s.slot;
-                const double d = s.slot == kNoTriangle ? reach : std::sqrt(s.distance2);
-                const std::size_t at = grid.index(i, j, k);
-                cells[at] = inside[at] ? -float(d) : float(d);
-            }
+    const glm::uvec3 bricks = (grid.dims + glm::uvec3(kBrick - 1)) / kBrick;
+    const std::size_t count = std::size_t(bricks.x) * bricks.y * bricks.z;
+    parallelFor(options.threads, count, 4, [&](std::size_t begin, std::size_t end) {
+        std::vector<detail::BvhNode> leaves;
+        for (std::size_t b = begin; b < end; ++b) {
+            const glm::uvec3 at(std::uint32_t(b / (std::size_t(bricks.y) * bricks.z)),
+                                std::uint32_t(b / bricks.z % bricks.y), std::uint32_t(b % bricks.z));
+            const Brick brick{at * kBrick, glm::min((at + 1u) * kBrick, grid.dims)};
+            impl_->fillBrick(grid, brick, options.band, inside.data(), cells, leaves);
         }
     });
 }
