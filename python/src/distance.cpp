@@ -20,11 +20,28 @@ namespace vds::python {
 
 namespace {
 
+/// vds.MeshWarning with the CLI's text where `rule` does not define the
+/// mesh's inside (as vds.exact_contains warns); the distances still come.
+void warnIfOpen(const MeshView& mesh, Rule rule) {
+    MeshReport report;
+    {
+        py::gil_scoped_release released;
+        report = validateMesh(mesh);
+    }
+    if (!report.usable()) return; // SignedDistance says why
+    std::string message = openMeshMessage(report, "", rule);
+    if (message.empty()) message = insideWarning(report, rule);
+    if (message.empty()) return;
+    const py::object category = py::module_::import("vds._vds").attr("MeshWarning");
+    if (PyErr_WarnEx(category.ptr(), message.c_str(), 2) < 0) throw py::error_already_set();
+}
+
 class PySignedDistance {
 public:
     PySignedDistance(const py::object& vertices, const py::object& faces, const std::string& rule) {
         const Rule r = parseRule(rule);
         const MeshArrays mesh = meshArrays(vertices, faces);
+        warnIfOpen(mesh.view, r);
         py::gil_scoped_release released;
         distance_ = std::make_unique<SignedDistance>(mesh.view, r); // copies the triangles
     }
@@ -94,9 +111,10 @@ closed mesh, "generalized-winding" for open, messy or badly oriented ones.
 A distance is negative exactly where vds.exact_contains(V, F, points, rule)
 is True. Points are (N, 3) float32 or float64, rounded to float32 first (as
 every classifier does); distances are float64, mesh units, exact up to
-double rounding. Raises vds.InvalidMesh for an empty, flat or unusable mesh
-or one whose inside the rule does not define, vds.InvalidArgument for a
-point that is not finite.)doc")
+double rounding. Raises vds.InvalidMesh for an empty, flat or unusable mesh,
+vds.InvalidArgument for a point that is not finite; warns (vds.MeshWarning)
+where the rule does not define the mesh's inside (an open mesh by parity or
+winding: crossings are counted as for a surface).)doc")
         .def(py::init<const py::object&, const py::object&, const std::string&>(), py::arg("V"), py::arg("F"),
              py::arg("rule") = "parity")
         .def("distance", [](const PySignedDistance& s, const py::object& p, const py::object& t) {

@@ -259,7 +259,10 @@ TEST(Distance, BadInputGetsOneClearError) {
     flat.positions = {glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)};
     flat.triangles = {glm::uvec3(0, 1, 2)};
     EXPECT_THROW(SignedDistance(flat, Rule::GeneralizedWinding), InvalidMesh);
-    EXPECT_THROW(SignedDistance(solids::sphereCup(), Rule::Parity), InvalidMesh); // open: parity defines no inside
+    // An open mesh by parity: answered like the exact classifier (crossings as for a surface), not refused.
+    const TriangleMesh cup = solids::sphereCup();
+    const SignedDistance byParity(cup, Rule::Parity);
+    EXPECT_EQ(std::signbit(byParity.distance(glm::vec3(0.0f))), byParity.classifier().contains(glm::vec3(0.0f)));
     TriangleMesh badIndex = sphere;
     badIndex.triangles[3].y = 100000;
     EXPECT_THROW(SignedDistance(badIndex, Rule::Parity), InvalidMesh);

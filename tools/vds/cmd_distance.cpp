@@ -20,7 +20,7 @@ struct DistanceArgs {
     std::string mesh, points, output, closestPoints, triangles;
     vds::Rule rule = vds::Rule::Parity;
     unsigned threads = 0;
-    bool quiet = false;
+    bool allowOpen = false, quiet = false;
 };
 
 // A .npy array of N x 3 float32 or float64, or what vds::loadPoints reads.
@@ -33,7 +33,9 @@ void distance(DistanceArgs& a) {
     const auto progress = progressPrinter(a.quiet);
     const std::vector<glm::vec3> points = readPoints(a.points);
     progress("read " + std::to_string(points.size()) + " points from " + a.points);
-    const vds::SignedDistance query(vds::loadMesh(a.mesh), a.rule, a.mesh);
+    const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
+    checkSignedMesh(mesh, a.mesh, a.rule, a.allowOpen, "distance");
+    const vds::SignedDistance query(mesh, a.rule, a.mesh);
     progress("built " + query.summary());
     vds::DistanceOptions options;
     options.threads = a.threads;
@@ -66,6 +68,16 @@ void distance(DistanceArgs& a) {
 
 } // namespace
 
+void checkSignedMesh(const vds::TriangleMesh& mesh, const std::string& name, vds::Rule rule, bool allowOpen,
+                     const char* command) {
+    const vds::MeshReport report = vds::validateMesh(mesh);
+    vds::requireUsable(report, name);
+    vds::requireVolume(report, name);
+    if (!allowOpen) vds::requireInsideDefined(report, name, rule);
+    const std::string warning = vds::insideWarning(report, rule);
+    if (!warning.empty()) std::fprintf(stderr, "vds %s: warning: %s: %s\n", command, name.c_str(), warning.c_str());
+}
+
 void addDistance(CLI::App& app) {
     const auto [c, a] = addCommand<DistanceArgs>(
         app, "distance", "signed distance of points to a mesh's surface, into a numpy .npy file",
@@ -86,6 +98,7 @@ void addDistance(CLI::App& app) {
         ->type_name("FILE");
     c->add_option("--triangles", a->triangles, "also write the closest points' triangles (uint32 .npy)")->type_name("FILE");
     addEnum(*c, "--rule", a->rule, "what is inside (negative): parity, winding, or generalized-winding (open meshes)");
+    c->add_flag("--allow-open", a->allowOpen, "sign an open mesh by crossing count anyway");
     addCount(*c, "--threads", a->threads, "CPU threads, 0: all");
 }
 

@@ -27,7 +27,7 @@ struct SdfArgs {
     const CLI::Option* bandGiven = nullptr;
     vds::Rule rule = vds::Rule::Parity;
     vds::DistanceGridOptions options;
-    bool quiet = false;
+    bool allowOpen = false, quiet = false;
 };
 
 void sdf(SdfArgs& a) {
@@ -39,6 +39,7 @@ void sdf(SdfArgs& a) {
         throw CLI::ValidationError("--pad: a fraction of the box's size from 0 to 10, not " + std::to_string(a.pad));
     const auto progress = progressPrinter(a.quiet);
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
+    checkSignedMesh(mesh, a.mesh, a.rule, a.allowOpen, "sdf");
     const vds::SignedDistance query(mesh, a.rule, a.mesh);
     progress("built " + query.summary());
     vds::Grid grid;
@@ -86,6 +87,7 @@ void addSdf(CLI::App& app) {
     a->bandGiven = c->add_option("--band", a->band, "narrow band half-width W, mesh units: farther cells hold +-W")
                        ->type_name("W");
     addEnum(*c, "--rule", a->rule, "what is inside (negative): parity, winding, or generalized-winding (open meshes)");
+    c->add_flag("--allow-open", a->allowOpen, "sign an open mesh by crossing count anyway");
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
 }
 

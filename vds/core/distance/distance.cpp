@@ -94,7 +94,6 @@ SignedDistance::SignedDistance(MeshView mesh, Rule rule, const std::string& mesh
     const MeshReport report = validateMesh(mesh);
     requireUsable(report, meshName);
     requireVolume(report, meshName);
-    requireInsideDefined(report, meshName, rule);
     if (mesh.triangleCount > kMaxTriangles)
         throw InvalidMesh(meshName + " has " + std::to_string(mesh.triangleCount) +
                           " triangles, more than a distance hierarchy holds (" + std::to_string(kMaxTriangles) + ")");

@@ -94,10 +94,11 @@ public:
     /// Copies the triangles and builds the hierarchy (O(n log n); about 90
     /// bytes a triangle) and the exact classifier along z. Throws
     /// `InvalidMesh` (naming `meshName`) for a mesh that is empty, not
-    /// finite or has bad indices, that is flat (it bounds no volume, so no
-    /// sign), or whose inside `rule` does not define (an open mesh by
-    /// parity or winding: use Rule::GeneralizedWinding), with the wording of
-    /// `requireInsideDefined`.
+    /// finite or has bad indices, or that is flat (it bounds no volume, so
+    /// no sign). Like `ExactClassifier`, any other mesh is answered by any
+    /// rule: on an open mesh parity and winding count crossings as for a
+    /// surface, and only Rule::GeneralizedWinding means inside; callers that
+    /// want to refuse it check `requireInsideDefined` first (the CLI does).
     SignedDistance(MeshView mesh, Rule rule, const std::string& meshName = "mesh");
     ~SignedDistance();
     SignedDistance(SignedDistance&&) noexcept;
