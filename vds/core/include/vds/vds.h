@@ -196,6 +196,12 @@
 //     the exact classifier's answers at close to a sprite's speed: per
 //     texel, bands where the surface may be; outside them the answer is
 //     proven, inside them the exact classifier decides. <vds/certified.h>
+//   SignedDistance(mesh, rule)                             <vds/distance.h>
+//     exact distances to the triangles (a 4-wide SAH hierarchy, the closest
+//     point in double): `distance` (signed: negative exactly where the exact
+//     classifier of the rule says inside), `unsignedDistance`,
+//     `closestPoints` (point, triangle, feature), `grid` (a signed distance
+//     grid over a Grid, full or a band clamped to +-band).
 //
 // ---- 8. On the GPU (vds::gl) --------------------------------------------------
 //
@@ -292,6 +298,7 @@
 #include <vds/bake.h>
 #include <vds/certified.h>
 #include <vds/classify.h>
+#include <vds/distance.h>
 #include <vds/enum_names.h>
 #include <vds/error.h>
 #include <vds/exact.h>

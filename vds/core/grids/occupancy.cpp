@@ -1,0 +1,674 @@
+// vds: occupancy grids by column sweeps (see <vds/occupancy.h>). The sprite
+// sweep is the VPT of Trapp & Döllner 2008 (section 3.2) evaluated for a
+// whole column of points at once; the exact sweep applies the exact
+// classifier's predicates and tie rule (projected_mesh.h) to a column of
+// cell centres at once, in the manner of the Antipodal method's dense-grid
+// path (Martens, Trettner & Bessmeltsev 2026: signed crossings along the
+// axis, then a prefix sum).
+#include <vds/occupancy.h>
+
+#include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <vds/error.h>
+#include <vds/detail/parallel.h>
+#include <vds/detail/sweep_plan.h>
+
+#include "winding/caps_tree.h"
+#include "sprite/sprite_winding.h"
+#include "winding/antipodal.h"
+#include "predicates/projected_mesh.h"
+#include "sprite/vpt.h"
+
+namespace vds {
+namespace {
+
+float centreCoordinate(float lo, float hi, std::uint32_t cells, std::uint32_t index) {
+    return float(double(lo) + (double(index) + 0.5) * (double(hi) - double(lo)) / double(cells));
+}
+
+std::vector<float> centres(const Grid& grid, int axis) {
+    std::vector<float> c(grid.dims[axis]);
+    for (std::uint32_t k = 0; k < grid.dims[axis]; ++k)
+        c[k] = centreCoordinate(grid.box.lo[axis], grid.box.hi[axis], grid.wholeCells(axis), grid.first[axis] + k);
+    return c;
+}
+
+
+// The boundary term along one grid column (x, y fixed, z the axis), split by
+// monotony, for the generalized winding number's column sweep.
+//
+// Edge e's term is 2 atan2(det, den) with det = (u x v)_z, u = a - q,
+// v = b - q: det does not depend on q's z, and den = g(u) g(v) + u_x v_x +
+// u_y v_y with g(w) = |w| + w_z. As q rises, w_z = a_z - q_z falls and g
+// (derivative w_z / |w| + 1 >= 0 in w_z) falls with it, so den falls; with
+// det > 0 the angle atan2(det, den) rises as den falls, with det < 0 it
+// falls. So B+(z), the sum over the edges with det > 0, is non-decreasing
+// in z, B-(z), the rest, non-increasing, and on [z0, z1]
+//
+//     B+(z0) + B-(z1) <= B(z) <= B+(z1) + B-(z0).
+//
+// Edges with det = 0 whose projection the column meets (u_x v_x + u_y v_y
+// <= 0: over the edge, or through an end) step at one depth by the tie
+// rule; columns with such an edge are labelled cell by cell instead, and so
+// are runs whose ends the column passes almost over an edge (see `at`).
+//
+// With the boundary's chain tree (caps_tree.h), a node whose ball the
+// column passes beside (at every depth, so its fan's crossing count is 0)
+// stands for its edges by its chord, an edge like the others, and its fan,
+// taken by expansion: F(z), within the expansions' bounds E of the fans'
+// own, which move by at most G a unit of depth. On [z0, z1] (length L)
+// then, for the fans' part,
+//
+//     (F(z0) + F(z1)) / 2 - E - G L / 2 <= . <= (F(z0) + F(z1)) / 2 + E + G L / 2,
+//
+// so a split costs the column's cut (chords and fans where the boundary is
+// far, edges where it is near), not every edge.
+/// The boundary term at one depth of a column, split as ColumnBoundary
+/// brackets it.
+struct Split {
+    double up = 0.0, down = 0.0, smooth = 0.0;
+};
+
+class ColumnBoundary {
+public:
+    /// The column's terms: with `caps` (closed loops), by its chain tree
+    /// (see the comment above `at`), else every edge. False when the column
+    /// meets an edge's projection (no bracket).
+    bool reset(const std::vector<glm::vec3>& edges, const detail::BoundaryCaps* caps, double x, double y,
+               double height) {
+        ups_.clear();
+        downs_.clear();
+        far_.clear();
+        error_ = 0.0;
+        drift_ = 0.0;
+        x_ = x;
+        y_ = y;
+        if (caps == nullptr || caps->chains().empty()) {
+            for (std::size_t k = 0; k + 1 < edges.size(); k += 2)
+                if (!addEdge(glm::dvec3(edges[k]), glm::dvec3(edges[k + 1]))) return false;
+            return true;
+        }
+        const std::vector<detail::BoundaryCaps::ChainNode>& nodes = caps->chains();
+        const std::vector<glm::vec3>& loopEdges = caps->loopEdges();
+        std::uint32_t stack[64];
+        int top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const detail::BoundaryCaps::ChainNode& n = nodes[stack[--top]];
+            const double dx = n.centre.x - x, dy = n.centre.y - y;
+            const double rho = std::sqrt(dx * dx + dy * dy), e = rho - n.radius * (1.0 + 1e-12);
+            if (e > 0.0) {
+                // The column passes beside the ball at every depth: the
+                // fan's crossing count is 0 all along, its expansion errs
+                // by at most the bound at the closest approach, and its
+                // solid angle moves by at most 2 area / e^3 a unit of depth
+                // (the gradient of n . (x - q) / |x - q|^3 has norm at most
+                // 2 / |x - q|^3).
+                const double bound = detail::BoundaryCaps::firstOrderBound(n, n.radius * (1.0 + 1e-12) + e);
+                const double drift = 2.0 * n.area / (e * e * e) / kFourPi;
+                if (bound <= kFarBound && drift * height <= kFarDrift) {
+                    far_.push_back(&n);
+                    error_ += bound;
+                    drift_ += drift;
+                    if (n.chord && !addEdge(n.from, n.to)) return false;
+                    continue;
+                }
+            }
+            if (n.count == 0) {
+                stack[top++] = n.left;
+                stack[top++] = n.right;
+                continue;
+            }
+            for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
+                if (!addEdge(glm::dvec3(loopEdges[2 * k]), glm::dvec3(loopEdges[2 * k + 1]))) return false;
+        }
+        // The expansions' bounds, and rounding: the fans' float sums.
+        error_ = error_ * (1.0 + 1e-9) + 1e-12 * double(far_.size());
+        return true;
+    }
+
+    /// B at depth z as (B+, B-, F): B+ non-decreasing, B- non-increasing
+    /// in z, F the far nodes' fans by expansion, within `error()` of
+    /// theirs, which move by at most `drift()` a unit of depth; each over
+    /// 4 pi. False where some edge's angle is ill-conditioned there (its
+    /// denominator cancelling to within 1e-6 of its parts: the column
+    /// passes almost over the edge).
+    ///
+    /// Without an atan2 per edge: the angles of one sign are summed as the
+    /// argument of the product of the complex numbers den + i |det|, each
+    /// in (0, pi) (AngleProduct, its turns counted; the column's edges
+    /// of each sign are kept apart, as det's sign is the column's). The
+    /// factors are found a block of edges at a time, with no branch on the
+    /// edge (columnFactors). The
+    /// products err by some 1e-16 an edge relative, so the sums stay well
+    /// within kBracketSlack.
+    bool at(double z, Split& split) const {
+        // Two products a sign, alternating, so that consecutive multiplies
+        // do not wait on each other.
+        detail::AngleProduct up[2], down[2];
+        if (!product(ups_, z, up) || !product(downs_, z, down)) return false;
+        double fans = 0.0;
+        const glm::dvec3 q(x_, y_, z);
+        for (const detail::BoundaryCaps::Node* n : far_) fans += detail::BoundaryCaps::firstOrderSolidAngle(*n, q);
+        // Each edge adds 2 atan2(det, den); over 4 pi.
+        split.up = (up[0].angle() + up[1].angle()) / (2.0 * kPi);
+        split.down = -(down[0].angle() + down[1].angle()) / (2.0 * kPi);
+        split.smooth = -fans / kFourPi;
+        return true;
+    }
+    double error() const { return error_; }
+    double drift() const { return drift_; }
+
+private:
+    static constexpr double kPi = 3.14159265358979323846;
+    static constexpr double kFourPi = 4.0 * kPi;
+    /// A node is taken by its fan's expansion where that errs by at most
+    /// this anywhere along the column,
+    static constexpr double kFarBound = 1e-3;
+    /// and its fan's solid angle (over 4 pi) moves by at most this over the
+    /// column's height; else its edges or children are taken. (Measured on
+    /// the bench's generated cases: a drift allowance of 1e-2 made the
+    /// non-manifold shell's and the soup's grids 2-3x slower than 1, which
+    /// cuts long runs in halves instead; 1e-2 on the bound was no faster.)
+    static constexpr double kFarDrift = 1.0;
+    static constexpr std::size_t kBlock = 16;
+    /// The column's edges, a field a vector (so that a block of them loads
+    /// as vectors): ends a, b less the column's (x, y), their depths, the
+    /// cross product det (the edge's turn about the column, never 0) and
+    /// dot product `across` of their (x, y) parts.
+    struct Terms {
+        std::vector<double> ux, uy, vx, vy, az, bz, det, across;
+        std::size_t size() const { return ux.size(); }
+        void clear() {
+            for (std::vector<double>* v : {&ux, &uy, &vx, &vy, &az, &bz, &det, &across}) v->clear();
+        }
+    };
+    /// Edges first .. first + n - 1 of `terms` at depth z: each edge's den +
+    /// i det (EdgeAngles' factor, both times the positive du dv that
+    /// apex's division would take) scaled to |x| + |y| = 1. False where
+    /// some edge's denominator cancels to within 1e-6 of its parts.
+    VDS_EDGE_CLONES static bool columnFactors(const Terms& terms, std::size_t first, std::size_t n, double z,
+                                              double* __restrict xs, double* __restrict ys) {
+        // Whether each edge's denominator cancels, as a double a lane (an
+        // int reduction of double compares would keep the loop scalar).
+        alignas(64) double cancels[kBlock];
+        const double *__restrict ux = terms.ux.data() + first, *uy = terms.uy.data() + first, *vx = terms.vx.data() + first,
+                     *vy = terms.vy.data() + first, *az = terms.az.data() + first, *bz = terms.bz.data() + first,
+                     *det = terms.det.data() + first, *across = terms.across.data() + first;
+        for (std::size_t j = 0; j < n; ++j) {
+            // apex(w) = |w| + w_z = nw / dw: w_z >= 0: (|w| + w_z) / 1, else
+            // rho^2 / (|w| + |w_z|).
+            const double uz = az[j] - z, vz = bz[j] - z;
+            const double ru = ux[j] * ux[j] + uy[j] * uy[j], rv = vx[j] * vx[j] + vy[j] * vy[j];
+            const double mu = std::sqrt(ru + uz * uz) + std::fabs(uz), mv = std::sqrt(rv + vz * vz) + std::fabs(vz);
+            double nu = ru, du = mu, nv = rv, dv = mv;
+            if (uz >= 0.0) {
+                nu = mu;
+                du = 1.0;
+            }
+            if (vz >= 0.0) {
+                nv = mv;
+                dv = 1.0;
+            }
+            const double scale = du * dv, product = nu * nv, along = across[j] * scale;
+            const double den = product + along, turn = det[j] * scale, size = std::fabs(den) + std::fabs(turn);
+            cancels[j] = across[j] < 0.0 && size < 1e-6 * (product - along) ? 1.0 : 0.0;
+            const double inv = 1.0 / size;
+            xs[j] = den * inv;
+            ys[j] = turn * inv;
+        }
+        for (std::size_t j = 0; j < n; ++j)
+            if (cancels[j] != 0.0) return false;
+        return true;
+    }
+    /// The angles of `terms` (all of one sign: det's, |det| taken) at depth
+    /// z multiplied into `sums` (two products, alternating, so that
+    /// consecutive multiplies do not wait on each other); false where some
+    /// edge's denominator cancels (see columnFactors).
+    static bool product(const Terms& terms, double z, detail::AngleProduct (&sums)[2]) {
+        alignas(64) double xs[kBlock], ys[kBlock];
+        const std::size_t count = terms.size();
+        for (std::size_t first = 0; first < count; first += kBlock) {
+            const std::size_t n = std::min(kBlock, count - first);
+            if (!columnFactors(terms, first, n, z, xs, ys)) return false;
+            std::size_t j = 0;
+            for (; j + 1 < n; j += 2) {
+                sums[0].add(xs[j], std::fabs(ys[j]));
+                sums[1].add(xs[j + 1], std::fabs(ys[j + 1]));
+            }
+            if (j < n) sums[0].add(xs[j], std::fabs(ys[j]));
+            // At most 32 factors a product between rescales.
+            if ((first / kBlock) % 4 == 3) {
+                sums[0].rescale();
+                sums[1].rescale();
+            }
+        }
+        return true;
+    }
+    /// Adds edge a -> b; false where its projection meets the column.
+    bool addEdge(const glm::dvec3& a, const glm::dvec3& b) {
+        const double ux = a.x - x_, uy = a.y - y_, vx = b.x - x_, vy = b.y - y_;
+        const double det = ux * vy - uy * vx, across = ux * vx + uy * vy;
+        if (det == 0.0) return across > 0.0; // else adds 0 all along the column
+        // The sign of det, so of the edge's angle, is the column's: the
+        // edges of each sign kept apart.
+        Terms& terms = det > 0.0 ? ups_ : downs_;
+        terms.ux.push_back(ux);
+        terms.uy.push_back(uy);
+        terms.vx.push_back(vx);
+        terms.vy.push_back(vy);
+        terms.az.push_back(a.z);
+        terms.bz.push_back(b.z);
+        terms.det.push_back(det);
+        terms.across.push_back(across);
+        return true;
+    }
+    Terms ups_, downs_; ///< the column's edges with det > 0, det < 0
+    std::vector<const detail::BoundaryCaps::Node*> far_;
+    double error_ = 0.0, drift_ = 0.0, x_ = 0.0, y_ = 0.0;
+};
+
+/// Slack on a bracket's ends: they and the per-edge sum each err by some
+/// 1e-15 an edge; a bracket decides only when it clears the label's
+/// threshold by more than this.
+constexpr double kBracketSlack = 1e-9;
+/// Runs of one integer term this short are labelled cell by cell (by the
+/// capped loops), which is cheaper than brackets of O(boundary edges) each.
+constexpr std::uint32_t kShortRun = 8;
+/// How far from the threshold, in multiples of its bound, the value of a
+/// cell that labels a run after it is refined: the rest of that distance is
+/// what the boundary term may drift along the run.
+constexpr double kReachMargin = 2.0;
+/// Most cells labelled alone after a run came out empty.
+constexpr std::uint32_t kMaxAlone = 16;
+/// Every this many columns a range is labelled the other way, to time it
+/// (1/64 spent on the slower way where one is much slower; 1/16 cost the
+/// non-manifold shell's grid 10 %).
+constexpr std::size_t kProbe = 64;
+
+
+} // namespace
+
+glm::vec3 Grid::cellCentre(std::uint32_t i, std::uint32_t j, std::uint32_t k) const {
+    return {centreCoordinate(box.lo.x, box.hi.x, wholeCells(0), first.x + i),
+            centreCoordinate(box.lo.y, box.hi.y, wholeCells(1), first.y + j),
+            centreCoordinate(box.lo.z, box.hi.z, wholeCells(2), first.z + k)};
+}
+
+void checkGrid(const Grid& grid) {
+    if (grid.dims.x == 0 || grid.dims.y == 0 || grid.dims.z == 0)
+        throw InvalidArgument("occupancy grid has a zero dimension");
+    if (std::uint64_t(grid.dims.x) * grid.dims.y * grid.dims.z > kMaxGridCells)
+        throw InvalidArgument("occupancy grid of " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) +
+                              "x" + std::to_string(grid.dims.z) + " cells is too large (at most 2^34 cells)");
+    for (int a = 0; a < 3; ++a)
+        if (grid.whole[a] && std::uint64_t(grid.first[a]) + grid.dims[a] > grid.whole[a])
+            throw InvalidArgument("occupancy grid slab reaches past its whole grid");
+    for (int a = 0; a < 3; ++a)
+        if (!(std::isfinite(grid.box.lo[a]) && std::isfinite(grid.box.hi[a]) && grid.box.lo[a] < grid.box.hi[a]))
+            throw InvalidArgument("occupancy grid box is empty or not finite");
+}
+
+Grid cubicGrid(const Box& box, std::uint32_t n) {
+    Grid grid;
+    grid.box = box;
+    const glm::vec3 size = box.hi - box.lo;
+    const float longest = std::max({size.x, size.y, size.z});
+    for (int a = 0; a < 3; ++a) {
+        const double cells = longest > 0.0f ? std::ceil(double(n) * double(size[a]) / double(longest) - 1e-9) : 1.0;
+        grid.dims[a] = std::uint32_t(std::clamp(cells, 1.0, double(n)));
+        // The box grows to whole cells so that cells stay cubic.
+        grid.box.hi[a] = float(double(box.lo[a]) + double(grid.dims[a]) * double(longest) / double(n));
+    }
+    return grid;
+}
+
+detail::SweepPlan detail::planSweep(const SpriteGrid& sg, const Grid& grid, unsigned threads) {
+    SweepPlan plan;
+    // The world axis depth follows (r's row of the matrix), and every texture
+    // coordinate following one world axis: the permutation of that axis.
+    int a = -1;
+    for (int col = 0; col < 3; ++col)
+        if (sg.matrix[col][2] > 0.0f) a = col;
+    if (a < 0) return plan;
+    const glm::ivec3 p = axisPermutation(Axis(a)); // axisPermutation(X).z = 0, Y: 1, Z: 2
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col)
+            if (col != p[row] && sg.matrix[col][row] != 0.0f) return plan;
+    plan.aligned = true;
+    plan.a = a;
+    plan.u = p.x;
+    plan.v = p.y;
+    plan.n = grid.dims[a];
+    plan.step = a == 2 ? 1 : a == 1 ? grid.dims.z : std::size_t(grid.dims.y) * grid.dims.z;
+    plan.columns = std::size_t(grid.dims[plan.u]) * grid.dims[plan.v];
+    const std::vector<float> along = centres(grid, a), acrossU = centres(grid, plan.u),
+                             acrossV = centres(grid, plan.v);
+    // toTexture adds only exact zeros to a slice's depth: one depth a slice.
+    plan.depth.resize(plan.n);
+    glm::vec3 probe = sg.position;
+    for (std::uint32_t k = 0; k < plan.n; ++k) {
+        probe[a] = along[k];
+        plan.depth[k] = sg.toTexture(probe).z;
+    }
+    plan.firstSlice = std::uint32_t(std::lower_bound(plan.depth.begin(), plan.depth.end(), 0.0f) - plan.depth.begin());
+    plan.endSlice = std::uint32_t(std::upper_bound(plan.depth.begin(), plan.depth.end(), 1.0f) - plan.depth.begin());
+    plan.texels.assign(plan.columns, -1);
+    if (plan.firstSlice >= plan.endSlice) return plan;
+    parallelFor(threads, plan.columns, 4096, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t column = begin; column < end; ++column) {
+            glm::vec3 world;
+            world[plan.u] = acrossU[column / grid.dims[plan.v]];
+            world[plan.v] = acrossV[column % grid.dims[plan.v]];
+            world[a] = along[plan.firstSlice];
+            plan.texels[column] = std::int32_t(columnOf(sg, sg.toTexture(world))); // exactly as Sprite::contains
+        }
+    });
+    return plan;
+}
+
+void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {
+    checkGrid(grid);
+    detail::requireBoundaryKnown(sprite, options.rule);
+    assert(cells);
+    const bool boundaryTerm = detail::needsBoundaryTerm(sprite, options.rule);
+    const detail::SweepPlan plan = detail::planSweep(sprite.grid, grid, options.threads);
+    if (!plan.aligned || boundaryTerm) {
+        // A rotated sprite, or the GWN of an open one: each cell on its own,
+        // the same answers as classify (the sprite's boundary caps for the GWN).
+        const glm::ivec3 p = axisPermutation(sprite.grid.axis);
+        const int a = p.z, u = p.x, v = p.y;
+        const std::uint32_t n = grid.dims[a];
+        const std::size_t step = a == 2 ? 1 : a == 1 ? grid.dims.z : std::size_t(grid.dims.y) * grid.dims.z;
+        parallelFor(options.threads, std::size_t(grid.dims[u]) * grid.dims[v], 64, [&](std::size_t begin, std::size_t end) {
+            std::vector<glm::vec3> points(n);
+            std::vector<std::uint8_t> labels(n);
+            for (std::size_t column = begin; column < end; ++column) {
+                glm::uvec3 c(0u);
+                c[u] = std::uint32_t(column / grid.dims[v]);
+                c[v] = std::uint32_t(column % grid.dims[v]);
+                for (std::uint32_t k = 0; k < n; ++k) {
+                    c[a] = k;
+                    points[k] = grid.cellCentre(c.x, c.y, c.z);
+                }
+                const ClassifyOptions one{options.rule, 1, QueryLayout::Offsets, BoundaryEvaluation::Caps};
+                if (boundaryTerm)
+                    detail::classifyGeneralizedWinding(sprite, &points[0].x, n, sizeof(glm::vec3), labels.data(), one);
+                else
+                    classify(sprite, PointsView(points.data(), n), labels.data(), one);
+                c[a] = 0;
+                std::uint8_t* out = cells + grid.index(c.x, c.y, c.z);
+                for (std::uint32_t k = 0; k < n; ++k) out[k * step] = labels[k];
+            }
+        });
+        return;
+    }
+    const std::uint32_t n = plan.n, firstValid = plan.firstSlice, endValid = plan.endSlice;
+    const std::vector<float>& depth = plan.depth;
+    const float* crossings = sprite.crossings.data();
+    parallelFor(options.threads, plan.columns, 64, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t column = begin; column < end; ++column) {
+            const glm::uvec3 c = plan.firstCell(column, grid);
+            std::uint8_t* out = cells + grid.index(c.x, c.y, c.z);
+            const auto fill = [&](std::uint32_t from, std::uint32_t to, std::uint8_t label) {
+                if (from >= to) return;
+                if (plan.step == 1) std::memset(out + from, label, to - from);
+                else for (std::uint32_t k = from; k < to; ++k) out[k * plan.step] = label;
+            };
+            const std::int32_t texel = plan.texels[column];
+            if (texel < 0) {
+                fill(0, n, 0);
+                continue;
+            }
+            fill(0, firstValid, 0);
+            // Each crossing counts for the cells whose depth lies strictly behind it.
+            const float* e = crossings + sprite.offsets[std::size_t(texel)];
+            const float* last = crossings + sprite.offsets[std::size_t(texel) + 1];
+            int winding = 0;
+            std::uint32_t filled = firstValid;
+            for (; e != last && filled < endValid; ++e) {
+                const auto from = std::uint32_t(
+                    std::upper_bound(depth.begin() + filled, depth.begin() + endValid, std::fabs(*e)) - depth.begin());
+                fill(filled, from, insideByRule(winding, options.rule) ? 1 : 0);
+                filled = from;
+                winding += crossingEnters(*e) ? 1 : -1;
+            }
+            fill(filled, endValid, insideByRule(winding, options.rule) ? 1 : 0);
+            fill(endValid, n, 0);
+        }
+    });
+}
+
+void occupancy(MeshView mesh, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {
+    checkGrid(grid);
+    assert(cells);
+    const MeshReport report = validateMesh(mesh);
+    requireUsable(report, "mesh");
+    const std::vector<glm::vec3> edges = options.rule == Rule::GeneralizedWinding && !report.oriented()
+                                             ? detail::boundaryEdges(mesh)
+                                             : std::vector<glm::vec3>();
+    const detail::ProjectedMesh projected(mesh, Axis::Z); // (s, t, r) = (x, y, z)
+    detail::sweepExact(projected, edges, grid, cells, options);
+}
+
+void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::vec3>& edges, const Grid& grid,
+                        std::uint8_t* cells, const ClassifyOptions& options, SweepWay way) {
+    assert(projected.axis == Axis::Z);
+    // The generalized winding number of a mesh with boundary: each cell's
+    // crossing count plus the boundary term at its centre, by the boundary's
+    // capped loops (the labels of the exact per-edge sum).
+    const std::size_t edgeCount = options.rule == Rule::GeneralizedWinding ? edges.size() / 2 : 0;
+    std::optional<detail::BoundaryCaps> caps;
+    const detail::ProjectedSurface surface(projected);
+    if (edgeCount > 0) caps.emplace(edges.data(), edgeCount, Axis::Z, &grid.box, &surface);
+    const std::vector<float> xs = centres(grid, 0), ys = centres(grid, 1), zs = centres(grid, 2);
+    const std::uint32_t n = grid.dims.z;
+    const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
+    parallelFor(options.threads, columns, 256, [&](std::size_t begin, std::size_t end) {
+        std::vector<std::pair<std::uint32_t, int>> events; // (first cell the crossing is in front of, +-1)
+        // For the generalized winding number: each cell's integer term, and
+        // the column's boundary term split by monotony, memoized per cell.
+        std::vector<int> integer(edgeCount > 0 ? n : 0);
+        std::vector<Split> terms(integer.size());
+        std::vector<std::uint8_t> known(integer.size());
+        ColumnBoundary bracket;
+        const double height = double(zs.back()) - double(zs.front());
+        // Which way labels a column faster depends on the boundary: brackets
+        // cost O(edges) a split, the capped loops a tree query a cell (cheap
+        // for small holes, dear beside a large cap). Both give the same
+        // labels, so each range of columns times both (the first two
+        // columns, then every kProbe-th the other way) and takes the cheaper.
+        double secondsSpent[2] = {0.0, 0.0}; // on the columns timed, [0]: cell by cell, [1]: brackets
+        std::size_t columnsTimed[2] = {0, 0};
+        std::size_t local = 0;
+        for (std::size_t column = begin; column < end; ++column, ++local) {
+            float q[3] = {xs[column / grid.dims.y], ys[column % grid.dims.y], 0.0f};
+            events.clear();
+            const detail::CellGrid::Found found = projected.grid.find(q);
+            for (const detail::CellEntry* e = found.begin; e != found.end; ++e) {
+                if (!detail::CellGrid::mayHold(*e, found.sub)) continue;
+                const detail::Triangle& t = projected.tris[e->triangle];
+                if (!detail::claims(t, q)) continue;
+                // The crossing lies strictly in front of (q, z) iff orient3d < 0,
+                // false then true as z grows: the first such cell, by bisection.
+                std::uint32_t lo = 0, hi = n;
+                while (lo < hi) {
+                    const std::uint32_t mid = lo + (hi - lo) / 2;
+                    q[2] = zs[mid];
+                    if (detail::orient3d(t.v[0], t.v[1], t.v[2], q) < 0) hi = mid;
+                    else lo = mid + 1;
+                }
+                if (lo < n) events.emplace_back(lo, (t.flags & detail::kEntering) ? 1 : -1);
+            }
+            std::sort(events.begin(), events.end());
+            std::uint8_t* out = cells + column * n;
+            if (edgeCount > 0) {
+                // The integer term of every cell, then each run of cells
+                // with one integer term by brackets of the boundary term
+                // (ColumnBoundary), halved until they decide; short or
+                // undecided runs, and columns without a bracket, cell by
+                // cell by the capped loops.
+                std::size_t next = 0;
+                int w = 0;
+                for (std::uint32_t k = 0; k < n; ++k) {
+                    for (; next < events.size() && events[next].first <= k; ++next) w += events[next].second;
+                    integer[k] = w;
+                }
+                const auto cell = [&](std::uint32_t k) {
+                    out[k] = caps->inside(integer[k], glm::vec3(q[0], q[1], zs[k])) ? 1 : 0;
+                };
+                const bool cheaper = secondsSpent[1] * double(columnsTimed[0]) <= secondsSpent[0] * double(columnsTimed[1]);
+                const bool useBrackets = way == detail::SweepWay::Timed
+                                             ? (local < 2 ? local == 0 : (local % kProbe == 0) != cheaper)
+                                             : way == detail::SweepWay::Brackets;
+                const auto started = std::chrono::steady_clock::now();
+                const auto record = [&](int timed) {
+                    secondsSpent[timed] += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+                    ++columnsTimed[timed];
+                };
+                if (!useBrackets ||
+                    !bracket.reset(edges, caps->closed() ? &*caps : nullptr, double(q[0]), double(q[1]), height)) {
+                    // Cell by cell, each estimate labelling the cells after
+                    // it as far as the boundary term provably stays on one
+                    // side of the threshold (BoundaryCaps::Reach).
+                    // Where runs come out empty (coarse grids, cells beside
+                    // the boundary) the next cells are labelled alone for a
+                    // while, twice as long each time, so that the reach is
+                    // not paid for nothing.
+                    const double threshold = 0.5 + detail::kGeneralizedWindingTie;
+                    std::uint32_t alone = 0, backoff = 1;
+                    for (std::uint32_t k = 0; k < n;) {
+                        if (alone > 0) {
+                            cell(k++);
+                            --alone;
+                            continue;
+                        }
+                        const glm::vec3 at(q[0], q[1], zs[k]);
+                        const detail::BoundaryCaps::Estimate e = caps->decide(integer[k], at, kReachMargin);
+                        out[k] = e.term > threshold ? 1 : 0;
+                        // No run unless the room left could hold at least the
+                        // next cell at the steepness found.
+                        const double room = std::fabs(e.term - threshold) - e.bound;
+                        const double step = k + 1 < n ? double(zs[k + 1]) - double(zs[k]) : 0.0;
+                        const detail::BoundaryCaps::Reach reach =
+                            room > 0.0 && step > 0.0 ? caps->reach(at, room / step) : detail::BoundaryCaps::Reach{};
+                        std::uint32_t j = k + 1;
+                        for (; j < n; ++j) {
+                            const double v = double(integer[j] - integer[k]) + e.term;
+                            const double move = double(zs[j]) - double(zs[k]);
+                            if (!(std::fabs(v - threshold) > e.bound + reach.drift(move))) break;
+                            out[j] = v > threshold ? 1 : 0;
+                        }
+                        if (j == k + 1) {
+                            alone = backoff;
+                            backoff = std::min(2 * backoff, kMaxAlone);
+                        } else {
+                            backoff = 1;
+                        }
+                        k = j;
+                    }
+                    if (!useBrackets) record(0);
+                    continue;
+                }
+                std::fill(known.begin(), known.end(), 0);
+                // The split at cell k; false where it is ill-conditioned.
+                const auto split = [&](std::uint32_t k) {
+                    if (!known[k]) known[k] = bracket.at(double(zs[k]), terms[k]) ? 1 : 2;
+                    return known[k] == 1;
+                };
+                const double threshold = 0.5 + detail::kGeneralizedWindingTie;
+                // Labels cells [k0, k1] (one integer term).
+                const auto decide = [&](auto&& self, std::uint32_t k0, std::uint32_t k1) -> void {
+                    if (!split(k0) || !split(k1)) {
+                        for (std::uint32_t k = k0; k <= k1; ++k) cell(k);
+                        return;
+                    }
+                    // One or two cells: the split's value, or the capped
+                    // loops where it is too close to call.
+                    const double error = bracket.error() + kBracketSlack;
+                    if (k1 - k0 <= 1) {
+                        for (const std::uint32_t k : {k0, k1}) {
+                            const Split& t = terms[k];
+                            const double value = double(integer[k]) + t.up + t.down + t.smooth;
+                            if (std::fabs(value - threshold) > error) out[k] = value > threshold ? 1 : 0;
+                            else cell(k);
+                        }
+                        return;
+                    }
+                    const Split& t0 = terms[k0];
+                    const Split& t1 = terms[k1];
+                    // The fans' part: their mean at the ends, less (plus) the
+                    // error and how far they may move over half the run.
+                    const double fans = 0.5 * (t0.smooth + t1.smooth),
+                                 spread = error + 0.5 * bracket.drift() * (double(zs[k1]) - double(zs[k0]));
+                    const double lo = double(integer[k0]) + t0.up + t1.down + fans - spread,
+                                 hi = double(integer[k0]) + t1.up + t0.down + fans + spread;
+                    if (lo > threshold || hi < threshold) {
+                        std::memset(out + k0, lo > threshold ? 1 : 0, k1 - k0 + 1);
+                        return;
+                    }
+                    // Where the ends lie on either side of the threshold, cut
+                    // beside the crossing their line predicts (the halves
+                    // then mostly decide at once); else halve, the halves
+                    // sharing the middle cell (one new split a cut).
+                    const double v0 = double(integer[k0]) + t0.up + t0.down + t0.smooth,
+                                 v1 = double(integer[k0]) + t1.up + t1.down + t1.smooth;
+                    if ((v0 - threshold) * (v1 - threshold) < 0.0) {
+                        const double at = (threshold - v0) / (v1 - v0) * double(k1 - k0);
+                        const std::uint32_t m = k0 + std::min(k1 - k0 - 1, std::uint32_t(std::max(0.0, at)));
+                        self(self, k0, m);
+                        self(self, m + 1, k1);
+                        return;
+                    }
+                    const std::uint32_t mid = k0 + (k1 - k0) / 2;
+                    self(self, k0, mid);
+                    self(self, mid, k1);
+                };
+                for (std::uint32_t k0 = 0; k0 < n;) {
+                    std::uint32_t k1 = k0;
+                    while (k1 + 1 < n && integer[k1 + 1] == integer[k0]) ++k1;
+                    if (k1 - k0 + 1 < kShortRun) {
+                        for (std::uint32_t k = k0; k <= k1; ++k) cell(k);
+                    } else {
+                        decide(decide, k0, k1);
+                    }
+                    k0 = k1 + 1;
+                }
+                record(1);
+                continue;
+            }
+            int winding = 0;
+            std::uint32_t filled = 0;
+            for (const auto& [k, delta] : events) {
+                if (k > filled) std::memset(out + filled, insideByRule(winding, options.rule) ? 1 : 0, k - filled);
+                filled = std::max(filled, k);
+                winding += delta;
+            }
+            std::memset(out + filled, insideByRule(winding, options.rule) ? 1 : 0, n - filled);
+        }
+    });
+}
+
+void packLabels(const std::uint8_t* cells, std::size_t count, std::uint8_t* bits) {
+    const std::size_t whole = count / 8;
+    for (std::size_t b = 0; b < whole; ++b) {
+        const std::uint8_t* c = cells + 8 * b;
+        bits[b] = std::uint8_t((c[0] != 0) << 7 | (c[1] != 0) << 6 | (c[2] != 0) << 5 | (c[3] != 0) << 4 |
+                               (c[4] != 0) << 3 | (c[5] != 0) << 2 | (c[6] != 0) << 1 | (c[7] != 0));
+    }
+    if (count % 8) {
+        std::uint8_t last = 0;
+        for (std::size_t k = 0; k < count % 8; ++k) last |= std::uint8_t((cells[8 * whole + k] != 0) << (7 - k));
+        bits[whole] = last;
+    }
+}
+
+} // namespace vds
