@@ -9,7 +9,7 @@
 // peers' distances against vds's. Then signed distance grids (full and a
 // band) on two threads.
 //
-// usage: vds_distance_bench [--points N] [--brute N] [--rounds N] [--sdf N] [--band CELLS] [mesh ...]
+// usage: vds_distance_bench [--points N] [--brute N] [--rounds N] [--sdf N] [--band CELLS] [--full-grid] [mesh ...]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -47,6 +47,7 @@ struct Settings {
     int rounds = 3;
     std::uint32_t sdf = 256;
     double band = 3.0;
+    bool fullGrid = false;
 };
 
 struct Contender {
@@ -120,7 +121,8 @@ void agreement(const vds::TriangleMesh& mesh, const vds::SignedDistance& vds, co
     }
 }
 
-void grids(const vds::SignedDistance& vds, const vds::TriangleMesh& mesh, std::uint32_t n, double bandCells) {
+void grids(const vds::SignedDistance& vds, const vds::TriangleMesh& mesh, std::uint32_t n, double bandCells,
+           bool fullGrid) {
     vds::Box box = vds::meshBounds(mesh);
     const glm::vec3 pad = 0.05f * (box.hi - box.lo);
     box.lo -= pad;
@@ -129,6 +131,7 @@ void grids(const vds::SignedDistance& vds, const vds::TriangleMesh& mesh, std::u
     std::vector<float> cells(grid.cellCount());
     const double cell = double(box.hi.x - box.lo.x) / grid.dims.x;
     for (double band : {0.0, bandCells * cell}) {
+        if (band == 0.0 && !fullGrid) continue;
         vds::DistanceGridOptions options;
         options.threads = 2;
         options.band = band;
@@ -157,7 +160,7 @@ void run(const std::string& name, const vds::TriangleMesh& mesh, const Settings&
         std::printf("  %-34s %8.0f ns/point  %5.2fx vds unsigned's time\n", c.name.c_str(),
                     1e9 * c.best / double(points.size()), c.best / all[0].best);
     agreement(mesh, vds, points, all, settings.brute);
-    if (settings.sdf > 0 && mesh.triangles.size() >= 50000) grids(vds, mesh, settings.sdf, settings.band);
+    if (settings.sdf > 0 && mesh.triangles.size() >= 50000) grids(vds, mesh, settings.sdf, settings.band, settings.fullGrid);
 }
 
 } // namespace
@@ -171,11 +174,12 @@ int main(int argc, char** argv) {
     app.add_option("--rounds", settings.rounds, "alternated rounds, the best kept");
     app.add_option("--sdf", settings.sdf, "cells of the SDF grids on the longest side (0: none), meshes of 50k triangles up");
     app.add_option("--band", settings.band, "the band grid's half-width in cells");
+    app.add_flag("--full-grid", settings.fullGrid, "the full SDF grid too (minutes: every cell exact)");
     app.add_option("meshes", meshes, "mesh files (default: generated solids)");
     CLI11_PARSE(app, argc, argv);
     try {
         if (meshes.empty()) {
-            run("sphere", vds::solids::sphere(glm::vec3(0.0f), 1.0f, 256).mesh, settings);
+            run("sphere", vds::solids::sphere(glm::vec3(0.0f), 1.0f, 316).mesh, settings);
             run("trefoil", vds::solids::torusKnot(glm::vec3(0.0f), 1.0f, 2, 3, 0.25f, 800, 64).mesh, settings);
             run("soup (open)", vds::solids::looseTriangles(20000, 0.05f, 9), settings);
             run("sphere with holes (open)", vds::solids::sphereWithHoles(), settings);

@@ -200,8 +200,11 @@
 //     exact distances to the triangles (a 4-wide SAH hierarchy, the closest
 //     point in double): `distance` (signed: negative exactly where the exact
 //     classifier of the rule says inside), `unsignedDistance`,
-//     `closestPoints` (point, triangle, feature), `grid` (a signed distance
-//     grid over a Grid, full or a band clamped to +-band).
+//     `closestPoints` (a ClosestPoint each: point, distance, triangle, its
+//     Feature and index), `grid` (a signed distance grid over a Grid, full
+//     or a band clamped to +-band), with DistanceOptions{threads,
+//     maxDistance} and DistanceGridOptions{threads, band}.
+//     `closestPointOnTriangle(p, a, b, c)`: the one closest-point kernel.
 //
 // ---- 8. On the GPU (vds::gl) --------------------------------------------------
 //
