@@ -244,6 +244,9 @@
 //                                                        <vds/gl/classifier.h>
 //   GpuOccupancy         occupancy grids in a compute shader, into a GL
 //                        buffer or host memory.          <vds/gl/occupancy.h>
+//   uploadDistanceTexture(grid, cells)  a signed distance grid as a 3D
+//                        texture for `vdsDistance` in vpt.glsl (within half
+//                        a cell's diagonal of the exact distance). <vds/gl/distance.h>
 //   GpuBake bakeToGpu(gl, mesh, options, parts)  a GpuSprite straight from
 //                        the fragment-list bake, nothing read back. <vds/gl/bake.h>
 //   setStyleUniforms(program, solids, StyleOptions)  the uniforms of
