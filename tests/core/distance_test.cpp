@@ -232,6 +232,26 @@ TEST(Distance, GridEqualsThePointDistancesOfItsCellCentres) {
     }
 }
 
+TEST(Distance, GridCellsFarInsideARoundSolidSearchTheWholeHierarchy) {
+    // Near the centre of a fine sphere every triangle is nearly as near as
+    // the nearest: the bricks' lists grow past their cap, and those cells
+    // search the hierarchy from their neighbour's triangle instead.
+    const TriangleMesh mesh = solids::sphere(glm::vec3(0.0f), 1.0f, 200).mesh;
+    const SignedDistance distance(mesh, Rule::Parity);
+    Grid grid;
+    grid.box = {glm::vec3(-0.3f), glm::vec3(0.3f)};
+    grid.dims = glm::uvec3(9, 8, 7);
+    std::vector<float> cells(grid.cellCount());
+    distance.grid(grid, cells.data(), DistanceGridOptions{2, 0.0});
+    for (std::uint32_t i = 0; i < grid.dims.x; ++i)
+        for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+            for (std::uint32_t k = 0; k < grid.dims.z; ++k) {
+                const glm::vec3 p = grid.cellCentre(i, j, k);
+                ASSERT_EQ(cells[grid.index(i, j, k)], float(distance.distance(p)));
+                ASSERT_NEAR(cells[grid.index(i, j, k)], -bruteForce(mesh, p), 1e-6);
+            }
+}
+
 TEST(Distance, BadInputGetsOneClearError) {
     const TriangleMesh sphere = solids::sphere(glm::vec3(0.0f), 1.0f, 16).mesh;
     const SignedDistance distance(sphere, Rule::Parity);
