@@ -112,3 +112,24 @@ def test_bad_input_raises_one_clear_error():
     for band in (-1.0, float("nan"), float("inf")):
         with pytest.raises(vds.InvalidArgument):
             vds.sdf(V, F, grid, band=band)
+
+
+def test_the_command_line_gives_the_same_values(tmp_path):
+    """vds distance (the C++ library through the CLI) and Python on the same points."""
+    import pathlib
+    import subprocess
+
+    tool = pathlib.Path(vds.__file__).resolve().parents[2] / "tools" / "vds"
+    if not tool.exists():
+        pytest.skip("the vds tool is not built beside this module")
+    V, F = sphere_mesh(segments=32, rings=16)
+    with open(tmp_path / "sphere.obj", "w") as f:
+        f.writelines(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in V.astype(np.float32))
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in F)
+    P = sample(V, 200, seed=4)
+    np.save(tmp_path / "points.npy", P)
+    subprocess.run([str(tool), "distance", str(tmp_path / "sphere.obj"), str(tmp_path / "points.npy"), "-o",
+                    str(tmp_path / "d.npy"), "--closest-points", str(tmp_path / "q.npy"), "--rule", "winding",
+                    "--quiet"], check=True, capture_output=True)
+    np.testing.assert_array_equal(np.load(tmp_path / "d.npy"), vds.signed_distance(V, F, P, rule="winding"))
+    np.testing.assert_array_equal(np.load(tmp_path / "q.npy"), vds.closest_points(V, F, P)[0])
