@@ -91,8 +91,8 @@ struct DistanceGridOptions {
 /// queries may run from any number of threads at once.
 class SignedDistance {
 public:
-    /// Copies the triangles and builds the hierarchy (O(n log n); about 90
-    /// bytes a triangle) and the exact classifier along z. Throws
+    /// Copies the triangles and builds the hierarchy (O(n log n); about 70
+    /// bytes a triangle) and the exact classifier along z (about 100 more). Throws
     /// `InvalidMesh` (naming `meshName`) for a mesh that is empty, not
     /// finite or has bad indices, or that is flat (it bounds no volume, so
     /// no sign). Like `ExactClassifier`, any other mesh is answered by any
@@ -134,9 +134,12 @@ public:
     /// index order `Grid::index`) as float: `cells` holds `grid.cellCount()`
     /// floats. Each cell's distance is the nearest float to `distance` of its
     /// centre, and its sign the label `occupancy` of the same classifier
-    /// gives (one sweep a column). Cells are searched a column at a time,
-    /// each starting from its neighbour's nearest triangle. Throws like
-    /// `checkGrid` and `InvalidArgument` for a bad band.
+    /// gives (one sweep a column). Cells go by bricks (8^3 cells, 4^3 for a
+    /// full grid): the leaves that can hold a brick's nearest triangles are
+    /// gathered once, and each cell starts from the nearest triangle of the
+    /// cell before it; in band mode a brick no leaf comes near is filled
+    /// without a search. Throws like `checkGrid` and `InvalidArgument` for
+    /// a bad band.
     void grid(const Grid& grid, float* cells, const DistanceGridOptions& options = {}) const;
 
 private:
