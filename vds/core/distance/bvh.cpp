@@ -342,7 +342,8 @@ void Bvh::searchLeaf(const glm::vec3& p, std::int32_t leaf, NearestState& state,
     }
 }
 
-void Bvh::leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, std::vector<BvhNode>& out) const {
+bool Bvh::leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, std::vector<BvhNode>& out,
+                     std::size_t maxGroups) const {
     const float bound = pruneBound(reach2);
     int slot = 4; // the next free slot of out.back()
     const auto keep = [&](const BvhNode& node, int k) {
@@ -380,7 +381,9 @@ void Bvh::leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, st
             if (node.child[k] >= 0) stack[top++] = node.child[k];
             else keep(node, k);
         }
+        if (out.size() > maxGroups) return false;
     }
+    return true;
 }
 
 void Bvh::nearestAmong(const glm::vec3& p, const std::vector<BvhNode>& leaves, NearestState& state) const {

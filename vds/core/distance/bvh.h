@@ -59,7 +59,9 @@ public:
     /// distance) of the box [lo, hi], packed four to a node as the
     /// hierarchy's own (empty slots kEmptyChild): every triangle that can be
     /// nearer than sqrt(reach2) to a point of the box is in one of them.
-    void leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, std::vector<BvhNode>& out) const;
+    /// Stops, returning false, once `out` holds more than `maxGroups` nodes.
+    bool leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, std::vector<BvhNode>& out,
+                    std::size_t maxGroups) const;
     /// `nearest` over the leaves `leavesNear` gave only.
     void nearestAmong(const glm::vec3& p, const std::vector<BvhNode>& leaves, NearestState& state) const;
     /// Squared distance from p to the triangle in `slot`.

@@ -178,8 +178,7 @@ void SignedDistance::Impl::fillBrick(const Grid& grid, const Brick& brick, doubl
         reach = (std::sqrt(nearest(centre, std::numeric_limits<double>::infinity()).distance2) + radius) * (1.0 + 1e-9);
     }
     leaves.clear();
-    bvh.leavesNear(lo, hi, reach * reach, leaves);
-    const bool useList = leaves.size() <= kMaxBrickGroups;
+    const bool useList = bvh.leavesNear(lo, hi, reach * reach, leaves, kMaxBrickGroups);
     const double start2 = band > 0.0 ? band * band : std::numeric_limits<double>::infinity();
     for (std::uint32_t i = brick.lo.x; i < brick.hi.x; ++i)
         for (std::uint32_t j = brick.lo.y; j < brick.hi.y; ++j) {
