@@ -31,8 +31,7 @@ constexpr std::uint32_t kBrick = 8;
 constexpr std::uint32_t kFullGridBrick = 4;
 /// Groups of four leaves a brick's list may hold before its cells search the
 /// whole hierarchy instead: a group costs each cell one SIMD box test, the
-/// hierarchy a few nodes a level (measured on 256^3 grids: lists of up to
-/// 1024 groups and bricks of 4^3 cells took the full grid from 82 s to 46 s).
+/// hierarchy a few nodes a level (docs/benchmarks.md, exact distances).
 constexpr std::size_t kMaxBrickGroups = 1024;
 
 struct Brick {
