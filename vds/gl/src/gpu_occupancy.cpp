@@ -34,10 +34,21 @@ Buffer upload(const void* data, std::size_t bytes, const char* what) {
 
 } // namespace
 
+// The sweep of one rule (occupancy.comp): the generalized winding number's
+// boundary term is compiled into its own program only.
+const Program& GpuOccupancy::program(Rule rule) const {
+    const int id = rule == Rule::Parity ? 0 : rule == Rule::Winding ? 1 : 2;
+    return gl_->program(std::string("vds.occupancy.") + toString(rule), [id] {
+        std::string defines = "#define VDS_RULE_ID " + std::to_string(id) + "\n";
+        if (id == 2) defines += "#define VDS_BOUNDARY_TERM\n";
+        return buildProgram({{GL_COMPUTE_SHADER, "vds/occupancy.comp", ""}}, defines);
+    });
+}
+
 GpuOccupancy::GpuOccupancy(const GlContext& gl) : gl_(&gl) {
     const CurrentContext current(gl);
     stamp_ = detail::ContextStamp::current("GpuOccupancy");
-    program_ = &gl.program("vds.occupancy", [] { return buildProgram({{GL_COMPUTE_SHADER, "vds/occupancy.comp", ""}}); });
+    program(Rule::Parity); // a shader error shows at construction, not at the first call
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     maxBlock_ = std::uint64_t(maxBlock);
@@ -85,7 +96,10 @@ void GpuOccupancy::sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells
     const GLuint zero = 0;
     glClearNamedBufferSubData(cells, GL_R32UI, 0, GLsizeiptr(labelBytes(grid)), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    const GLuint id = program_->id();
+    // With no boundary edges (a mesh that bounds a solid) the generalized
+    // winding number is the winding number: the plain sweep.
+    const bool boundaryTerm = rule == Rule::GeneralizedWinding && sprite.boundaryEdgeCount() > 0;
+    const GLuint id = program(boundaryTerm || rule == Rule::Parity ? rule : Rule::Winding).id();
     glUseProgram(id);
     const std::uint64_t offsetBytes = (std::uint64_t(sg.width) * sg.height + 1) * 4;
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sprite.offsets().id(), 0, GLsizeiptr(offsetBytes));
@@ -102,11 +116,7 @@ void GpuOccupancy::sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells
     glUniform1ui(glGetUniformLocation(id, "u_firstSlice"), firstSlice);
     glUniform1ui(glGetUniformLocation(id, "u_endSlice"), endSlice);
     glUniform1ui(glGetUniformLocation(id, "u_width"), sg.width);
-    // With no boundary edges (a mesh that bounds a solid) the generalized
-    // winding number is the winding number: the plain sweep.
-    const bool boundaryTerm = rule == Rule::GeneralizedWinding && sprite.boundaryEdgeCount() > 0;
     if (boundaryTerm) sprite.setBoundaryUniforms(id, "u_boundary", kBoundaryBinding);
-    glUniform1i(glGetUniformLocation(id, "u_rule"), boundaryTerm ? 2 : rule == Rule::Parity ? 0 : 1);
     glDispatchCompute(detail::strideGroups(columns, kLocalSize), 1, 1);
     for (GLuint binding = 0; binding <= kBoundaryBinding; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
     glUseProgram(0);

@@ -220,9 +220,16 @@ void copyParallel(void* dst, const void* src, std::size_t bytes) {
     });
 }
 
-const Program& classifierProgram(const GlContext& gl, bool columns) {
-    return gl.program(columns ? "vds.classify.columns" : "vds.classify.texture", [columns] {
-        return buildProgram({{GL_COMPUTE_SHADER, "vds/classify.comp", ""}}, columns ? "#define VDS_COLUMNS\n" : "");
+// The program of one form and rule (classify.comp): the generalized winding
+// number's boundary term is compiled into its own program only.
+const Program& classifierProgram(const GlContext& gl, bool columns, Rule rule) {
+    const int id = rule == Rule::Parity ? 0 : rule == Rule::Winding ? 1 : 2;
+    const std::string key = std::string("vds.classify.") + (columns ? "columns." : "texture.") + toString(rule);
+    return gl.program(key, [columns, id] {
+        std::string defines = "#define VDS_RULE_ID " + std::to_string(id) + "\n";
+        if (columns) defines += "#define VDS_COLUMNS\n";
+        if (id == 2) defines += "#define VDS_BOUNDARY_TERM\n";
+        return buildProgram({{GL_COMPUTE_SHADER, "vds/classify.comp", ""}}, defines);
     });
 }
 
@@ -231,8 +238,7 @@ const Program& classifierProgram(const GlContext& gl, bool columns) {
 GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints) : gl_(&gl), batch_(batchPoints) {
     const CurrentContext current(gl);
     stamp_ = detail::ContextStamp::current("GpuClassifier");
-    columns_ = &classifierProgram(gl, true);
-    texture_ = &classifierProgram(gl, false);
+    classifierProgram(gl, true, Rule::Parity); // a shader error shows at construction, not at the first call
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     maxBlock_ = std::uint64_t(maxBlock);
@@ -257,16 +263,13 @@ GpuClassifier::~GpuClassifier() {
 }
 
 GpuClassifier::GpuClassifier(GpuClassifier&& o) noexcept
-    : gl_(std::exchange(o.gl_, nullptr)), stamp_(o.stamp_), batch_(o.batch_), columns_(o.columns_),
-      texture_(o.texture_), maxBlock_(o.maxBlock_), maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)),
+    : gl_(std::exchange(o.gl_, nullptr)), stamp_(o.stamp_), batch_(o.batch_), maxBlock_(o.maxBlock_), maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)),
       capacity_(std::exchange(o.capacity_, 0)) {}
 
 GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
     if (this != &o) {
         gl_ = std::exchange(o.gl_, nullptr);
         stamp_ = o.stamp_;
-        columns_ = o.columns_;
-        texture_ = o.texture_;
         maxBlock_ = o.maxBlock_;
         maxDispatch_ = o.maxDispatch_;
         slots_ = std::move(o.slots_);
@@ -285,7 +288,10 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
     if (rule == Rule::GeneralizedWinding && !sprite.boundaryKnown())
         throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
                               "store the boundary edges the generalized winding number needs: bake it again");
-    const Program& program = columns ? *columns_ : *texture_;
+    // With no boundary edges (a mesh that bounds a solid) the generalized
+    // winding number is the winding number: the plain program.
+    const bool boundaryTerm = rule == Rule::GeneralizedWinding && sprite.boundaryEdgeCount() > 0;
+    const Program& program = classifierProgram(*gl_, columns, boundaryTerm || rule == Rule::Parity ? rule : Rule::Winding);
     glUseProgram(program.id());
     if (columns) {
         // The ranges the shader reads: a baked sprite's buffers may be padded.
@@ -297,13 +303,7 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
     } else {
         sprite.setUniforms(program.id(), "u_ldi", "u_placement", 0);
     }
-    if (rule == Rule::GeneralizedWinding) {
-        // With no boundary edges the shader reads the rule as Winding.
-        sprite.setBoundaryUniforms(program.id(), "u_boundary", kBoundaryBinding);
-    }
-    glUniform1i(glGetUniformLocation(program.id(), "u_rule"), int(rule == Rule::Parity                 ? 0
-                                                                  : rule == Rule::Winding            ? 1
-                                                                                                     : 2));
+    if (boundaryTerm) sprite.setBoundaryUniforms(program.id(), "u_boundary", kBoundaryBinding);
     const GLint countLoc = glGetUniformLocation(program.id(), "u_count");
     for (std::size_t first = 0; first < count; first += maxDispatch_) {
         const std::size_t n = std::min(maxDispatch_, count - first);

@@ -63,7 +63,7 @@ private:
     void sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells, const ClassifyOptions& options);
     const GlContext* gl_ = nullptr;
     detail::ContextStamp stamp_;
-    const Program* program_ = nullptr;
+    const Program& program(Rule rule) const;
     std::uint64_t maxBlock_ = 0;
 };
 
