@@ -1,4 +1,4 @@
-// The boundary term's capped loops (vds/core/src/caps_tree.h) against the
+// The boundary term's capped loops (vds/core/winding/caps_tree.h) against the
 // per-edge sum (antipodal.h), the independent exact form: the expansion's
 // error bound, the drift bound along a move (what the occupancy sweep's runs
 // rest on), the margin of decide() and its cost beside a large loop, how
@@ -23,9 +23,9 @@
 #include <vds/mesh.h>
 #include <vds/sprite.h>
 
-#include "antipodal.h"
-#include "caps_tree.h"
-#include "projected_mesh.h"
+#include "winding/antipodal.h"
+#include "winding/caps_tree.h"
+#include "predicates/projected_mesh.h"
 #include "solids.h"
 
 namespace vds::detail {

@@ -1,4 +1,4 @@
-// The exact predicates (vds/core/src/predicates.h) against an independent
+// The exact predicates (vds/core/predicates/predicates.h) against an independent
 // exact oracle: CGAL's orientation over exact rationals (Simple_cartesian
 // of GMP's mpq), on random, nearly degenerate and exactly degenerate float
 // inputs of wide exponent range, where the double filter cannot decide and
@@ -11,7 +11,7 @@
 #include <CGAL/Simple_cartesian.h>
 #include <gtest/gtest.h>
 
-#include "predicates.h"
+#include "predicates/predicates.h"
 
 namespace vds::detail {
 namespace {

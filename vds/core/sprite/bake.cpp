@@ -7,8 +7,8 @@
 #include <vds/error.h>
 
 #include <vds/detail/bake_common.h>
-#include "antipodal.h"
-#include "projected_mesh.h"
+#include "winding/antipodal.h"
+#include "predicates/projected_mesh.h"
 #include <vds/detail/parallel.h>
 
 namespace vds {

@@ -46,7 +46,7 @@
 #include <vds/grid.h>
 #include <vds/sprite.h>
 
-#include "predicates.h"
+#include "predicates/predicates.h"
 
 namespace vds::detail {
 

@@ -21,10 +21,11 @@
 #include <vds/detail/parallel.h>
 #include <vds/detail/sweep_plan.h>
 
-#include "caps_tree.h"
-#include "antipodal.h"
-#include "projected_mesh.h"
-#include "vpt.h"
+#include "winding/caps_tree.h"
+#include "sprite/sprite_winding.h"
+#include "winding/antipodal.h"
+#include "predicates/projected_mesh.h"
+#include "sprite/vpt.h"
 
 namespace vds {
 namespace {

@@ -30,9 +30,9 @@
 #include <vds/detail/exact_access.h>
 #include <vds/detail/parallel.h>
 
-#include "antipodal.h"
-#include "caps_tree.h"
-#include "projected_mesh.h"
+#include "winding/antipodal.h"
+#include "winding/caps_tree.h"
+#include "predicates/projected_mesh.h"
 
 namespace vds {
 

@@ -82,7 +82,7 @@
 
 #include <vds/mesh.h>
 
-#include "projected_mesh.h"
+#include "predicates/projected_mesh.h"
 
 namespace vds::detail {
 

@@ -1,4 +1,4 @@
-#include "projected_mesh.h"
+#include "predicates/projected_mesh.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,9 +9,9 @@
 
 #include <vds/error.h>
 
-#include "file_bytes.h"
-#include "mesh_readers.h"
-#include "text_scanner.h"
+#include "io/file_bytes.h"
+#include "mesh/mesh_readers.h"
+#include "io/text_scanner.h"
 
 namespace vds {
 namespace detail {

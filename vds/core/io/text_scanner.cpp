@@ -1,4 +1,4 @@
-#include "text_scanner.h"
+#include "io/text_scanner.h"
 
 #include <charconv>
 #include <cmath>

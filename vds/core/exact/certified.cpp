@@ -16,8 +16,8 @@
 #include <vds/error.h>
 #include <vds/detail/parallel.h>
 
-#include "projected_mesh.h"
-#include "vpt.h"
+#include "predicates/projected_mesh.h"
+#include "sprite/vpt.h"
 
 namespace vds {
 namespace {

@@ -10,7 +10,7 @@
 
 #include <vds/detail/atomic_file.h>
 
-#include "file_bytes.h"
+#include "io/file_bytes.h"
 
 #include <fcntl.h>
 #include <unistd.h>

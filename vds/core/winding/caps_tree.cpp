@@ -2,7 +2,7 @@
 // boundary loops (see caps_tree.h); the Antipodal split is Martens,
 // Trettner & Bessmeltsev 2026, the tree expansion Barill, Dickson, Schmidt,
 // Levin & Jacobson 2018, section 3.
-#include "caps_tree.h"
+#include "winding/caps_tree.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "antipodal.h"
+#include "winding/antipodal.h"
 #include <vds/detail/boundary_loops.h>
 
 namespace vds::detail {

@@ -20,8 +20,9 @@
 #include <vds/occupancy.h>
 #include <vds/detail/parallel.h>
 
-#include "antipodal.h"
-#include "vpt.h"
+#include "sprite/sprite_winding.h"
+#include "winding/antipodal.h"
+#include "sprite/vpt.h"
 
 namespace vds {
 

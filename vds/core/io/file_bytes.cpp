@@ -1,4 +1,4 @@
-#include "file_bytes.h"
+#include "io/file_bytes.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
