@@ -27,7 +27,7 @@ void bake(BakeArgs& a) {
     vds::requireUsable(report, a.mesh);
     vds::requireVolume(report, a.mesh);
     if (a.axis == "auto") {
-        const vds::AxisChoice choice = vds::chooseViewAxis(mesh, a.options.resolution);
+        const vds::AxisChoice choice = vds::chooseViewAxis(mesh, report, a.options.resolution);
         a.options.axis = choice.axis;
         if (a.verbose) std::fprintf(stderr, "%s: the fewest layers\n", choice.summary().c_str());
     } else {

@@ -61,15 +61,14 @@ void GlPhaseClock::collect() {
     checkGl("reading the bake's timer queries");
 }
 
+// The one validation of every baker (detail::prepareBake), timed on the GL
+// bake's clock.
 ValidatedMesh validateForBake(MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
     const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
-    ValidatedMesh v;
-    v.report = validateMesh(mesh);
-    requireUsable(v.report, options.sourceName);
-    requireVolume(v.report, options.sourceName);
-    const Axis axis = options.axis ? *options.axis : chooseViewAxis(mesh, options.resolution).axis;
-    v.grid = makeGrid(v.report.bounds, axis, options.resolution);
-    return v;
+    BakeOptions untimed = options;
+    untimed.timings = nullptr;
+    BakeSetup setup = prepareBake(mesh, untimed);
+    return {std::move(setup.report), setup.grid};
 }
 
 void dispatchGroups(std::uint64_t groups) {
