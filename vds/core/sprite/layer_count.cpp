@@ -6,15 +6,15 @@
 // consecutive texels: the tie rule claims p exactly when p + d, a point
 // displaced by a fixed infinitesimal d, lies in the open triangle, and a
 // line meets a convex set in an interval. So a triangle adds +1 at its run's
-// first texel and -1 past its last in a per-row difference array, and a
-// prefix sum along each row gives every column's count: the same counts as
+// first texel and -1 past its last in the row's difference array, and a
+// prefix sum along the row gives every column's count: the same counts as
 // testing every texel of every triangle's box, for two increments and a few
 // claim tests a row instead of one claim test a texel.
 //
 // The run is found from the row's intersection with the closed triangle,
 // computed in double from the float vertices (an error of a few units in
-// the last place of double, far below the texels' spacing), widened by two
-// texels each way and then narrowed by the exact claim test from both ends:
+// the last place of double, far below the texels' spacing), widened by one
+// texel each way and then narrowed by the exact claim test from both ends:
 // every claimed centre lies in the closed triangle, hence in the widened
 // range, and the run being contiguous, the first and last claimed texels
 // found from the ends bound it exactly.
@@ -32,9 +32,10 @@
 namespace vds::detail {
 namespace {
 
-// Texels that the double intersection may be off by, at most (it is off
-// by far less than one texel).
-constexpr std::ptrdiff_t kWiden = 2;
+// Texels that the double intersection may be off by, at most: it errs by a
+// few units in the last place of double, and the texel centres, being
+// distinct floats, lie at least one float ulp (2^29 double ulps) apart.
+constexpr std::ptrdiff_t kWiden = 1;
 
 // The s range where row t meets the closed triangle (lo > hi: it misses).
 void rowSpan(const Triangle& tri, double t, double& lo, double& hi) {
@@ -87,18 +88,20 @@ struct Centres {
     }
 };
 
+// One triangle's run of claimed texels [a, b) on a row.
+struct Run {
+    std::uint32_t row, a, b;
+};
+
 struct RowCounts {
     const Centres& s;
     const Centres& t;
-    std::vector<std::atomic<std::int32_t>>& diff; // (width + 1) a row
-    std::size_t stride;
 
-    // Adds the triangle's runs; returns the texels it claims.
-    std::uint64_t add(const Triangle& tri) const {
+    // Appends the triangle's runs to `out`.
+    void add(const Triangle& tri, std::vector<Run>& out) const {
         const Box2 box = boxOf(tri);
         const std::ptrdiff_t i0 = s.first(box.lo[0]), i1 = s.past(box.hi[0]);
         const std::ptrdiff_t j0 = t.first(box.lo[1]), j1 = t.past(box.hi[1]);
-        std::uint64_t claimed = 0;
         float c[3] = {0.0f, 0.0f, 0.0f};
         for (std::ptrdiff_t j = j0; j < j1; ++j) {
             c[1] = t.at[std::size_t(j)];
@@ -114,12 +117,8 @@ struct RowCounts {
                 c[0] = s.at[std::size_t(b - 1)];
                 if (claims(tri, c)) break;
             }
-            if (a == b) continue;
-            diff[std::size_t(j) * stride + std::size_t(a)].fetch_add(1, std::memory_order_relaxed);
-            diff[std::size_t(j) * stride + std::size_t(b)].fetch_sub(1, std::memory_order_relaxed);
-            claimed += std::uint64_t(b - a);
+            if (a < b) out.push_back({std::uint32_t(j), std::uint32_t(a), std::uint32_t(b)});
         }
-        return claimed;
     }
 };
 
@@ -132,29 +131,47 @@ LayerCount countLayers(MeshView mesh, const SpriteGrid& grid, unsigned threads) 
     std::vector<float> sAt(grid.width), tAt(grid.height);
     for (std::uint32_t i = 0; i < grid.width; ++i) sAt[i] = grid.texelCentre(i, 0, 0.0f)[perm.x];
     for (std::uint32_t j = 0; j < grid.height; ++j) tAt[j] = grid.texelCentre(0, j, 0.0f)[perm.y];
-    const std::size_t stride = std::size_t(grid.width) + 1;
-    std::vector<std::atomic<std::int32_t>> diff(stride * grid.height);
-    std::atomic<std::uint64_t> total{0};
     const Centres s(std::move(sAt)), t(std::move(tAt));
-    const RowCounts rows{s, t, diff, stride};
-    parallelFor(threads, mesh.triangleCount, 1024, [&](std::size_t begin, std::size_t end) {
-        std::uint64_t claimed = 0;
+    const RowCounts rows{s, t};
+    // The runs, chunk by chunk of triangles, then bucketed by row: each row's
+    // difference array is then small enough to stay in the core's cache.
+    constexpr std::size_t kChunk = 4096;
+    std::vector<std::vector<Run>> runs((mesh.triangleCount + kChunk - 1) / kChunk);
+    parallelFor(threads, mesh.triangleCount, kChunk, [&](std::size_t begin, std::size_t end) {
+        std::vector<Run>& out = runs[begin / kChunk];
         for (std::size_t k = begin; k < end; ++k) {
             const Triangle tri = projectTriangle(mesh, k, perm);
-            if (!(tri.flags & kParallel)) claimed += rows.add(tri);
+            if (!(tri.flags & kParallel)) rows.add(tri, out);
         }
-        total.fetch_add(claimed, std::memory_order_relaxed);
     });
+    std::vector<std::uint32_t> start(std::size_t(grid.height) + 1, 0);
+    for (const auto& chunk : runs)
+        for (const Run& r : chunk) ++start[r.row + 1];
+    for (std::size_t j = 0; j < grid.height; ++j) start[j + 1] += start[j];
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> byRow(start.back());
+    {
+        std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+        for (const auto& chunk : runs)
+            for (const Run& r : chunk) byRow[next[r.row]++] = {r.a, r.b};
+    }
     std::atomic<std::uint32_t> most{0};
+    std::atomic<std::uint64_t> total{0};
     parallelFor(threads, grid.height, 64, [&](std::size_t begin, std::size_t end) {
-        std::int64_t best = 0;
+        std::vector<std::int32_t> diff(std::size_t(grid.width) + 1);
+        std::int32_t best = 0;
+        std::uint64_t claimed = 0;
         for (std::size_t j = begin; j < end; ++j) {
-            std::int64_t running = 0;
-            for (std::size_t i = 0; i < grid.width; ++i) {
-                running += diff[j * stride + i].load(std::memory_order_relaxed);
-                best = std::max(best, running);
+            if (start[j] == start[j + 1]) continue;
+            std::fill(diff.begin(), diff.end(), 0);
+            for (std::uint32_t k = start[j]; k < start[j + 1]; ++k) {
+                ++diff[byRow[k].first];
+                --diff[byRow[k].second];
+                claimed += byRow[k].second - byRow[k].first;
             }
+            std::int32_t running = 0;
+            for (std::size_t i = 0; i < grid.width; ++i) best = std::max(best, running += diff[i]);
         }
+        total.fetch_add(claimed);
         std::uint32_t seen = most.load();
         while (std::uint32_t(best) > seen && !most.compare_exchange_weak(seen, std::uint32_t(best))) {
         }
