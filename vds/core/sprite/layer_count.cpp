@@ -11,17 +11,22 @@
 // testing every texel of every triangle's box, for two increments and a few
 // claim tests a row instead of one claim test a texel.
 //
-// The run is found from the row's intersection with the closed triangle,
-// computed in double from the float vertices (an error of a few units in
-// the last place of double, far below the texels' spacing), widened by one
-// texel each way and then narrowed by the exact claim test from both ends:
-// every claimed centre lies in the closed triangle, hence in the widened
-// range, and the run being contiguous, the first and last claimed texels
-// found from the ends bound it exactly.
+// The run is found from the row's intersection (lo, hi) with the closed
+// triangle, computed in double from the float vertices (an error of a few
+// units in the last place of double, far below the texels' spacing). A row
+// through no vertex crosses the open triangle: centres more than a margin
+// inside (lo, hi) are claimed and those more than the margin outside are
+// not, so only a centre within the margin of an end takes the exact claim
+// test (almost never). A row through a vertex or along an edge takes the
+// claim test at both ends of the range widened by one texel. Either way
+// every claimed centre lies in the tested range, and the run being
+// contiguous, the first and last claimed texels found from the ends bound
+// it exactly.
 #include "sprite/layer_count.h"
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -102,22 +107,45 @@ struct RowCounts {
         const Box2 box = boxOf(tri);
         const std::ptrdiff_t i0 = s.first(box.lo[0]), i1 = s.past(box.hi[0]);
         const std::ptrdiff_t j0 = t.first(box.lo[1]), j1 = t.past(box.hi[1]);
-        float c[3] = {0.0f, 0.0f, 0.0f};
+        // What the double intersection may err by, with a wide margin
+        // (a few double ulps of the coordinates, taken as 2^-40 of them).
+        const double tol = 0x1p-40 * 3.0 * std::max({std::fabs(tri.v[0][0]), std::fabs(tri.v[1][0]), std::fabs(tri.v[2][0])});
         for (std::ptrdiff_t j = j0; j < j1; ++j) {
-            c[1] = t.at[std::size_t(j)];
+            const float row = t.at[std::size_t(j)];
             double lo, hi;
-            rowSpan(tri, double(c[1]), lo, hi);
+            rowSpan(tri, double(row), lo, hi);
             if (lo > hi) continue;
-            std::ptrdiff_t a = std::max(i0, s.first(lo) - kWiden), b = std::min(i1, s.past(hi) + kWiden);
-            for (; a < b; ++a) {
-                c[0] = s.at[std::size_t(a)];
-                if (claims(tri, c)) break;
-            }
-            for (; b > a; --b) {
-                c[0] = s.at[std::size_t(b - 1)];
-                if (claims(tri, c)) break;
+            std::ptrdiff_t a, b;
+            if (row == tri.v[0][1] || row == tri.v[1][1] || row == tri.v[2][1]) {
+                // Through a vertex (or along an edge): the ends by the claim test.
+                a = std::max(i0, s.first(lo) - kWiden);
+                b = std::min(i1, s.past(hi) + kWiden);
+                narrow(tri, row, a, b, b, a);
+            } else {
+                // Through the interior: centres farther than tol inside
+                // (lo, hi) lie in the open triangle, farther outside outside
+                // the closed one; only those within tol of an end are tested.
+                a = std::max(i0, s.first(lo - tol));
+                b = std::min(i1, s.past(hi + tol));
+                narrow(tri, row, a, b, std::max(a, s.past(lo + tol)), std::min(b, s.first(hi - tol)));
             }
             if (a < b) out.push_back({std::uint32_t(j), std::uint32_t(a), std::uint32_t(b)});
+        }
+    }
+
+    // Narrows [a, b), which holds the row's run, to the run: the texels in
+    // [sureA, sureB), when that is not empty, are known claimed.
+    void narrow(const Triangle& tri, float row, std::ptrdiff_t& a, std::ptrdiff_t& b, std::ptrdiff_t sureA,
+                std::ptrdiff_t sureB) const {
+        const bool sure = sureA < sureB;
+        float c[3] = {0.0f, row, 0.0f};
+        for (; a < b && !(sure && a >= sureA); ++a) {
+            c[0] = s.at[std::size_t(a)];
+            if (claims(tri, c)) break;
+        }
+        for (; b > a && !(sure && b <= sureB); --b) {
+            c[0] = s.at[std::size_t(b - 1)];
+            if (claims(tri, c)) break;
         }
     }
 };

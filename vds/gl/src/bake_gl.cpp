@@ -71,6 +71,13 @@ ValidatedMesh validateForBake(MeshView mesh, const BakeOptions& options, GlPhase
     return {std::move(setup.report), setup.grid};
 }
 
+Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what) {
+    Buffer b = Buffer::create();
+    glNamedBufferStorage(b.id(), GLsizeiptr(std::max<std::size_t>(bytes, 4)), bytes ? data : nullptr, 0);
+    checkGl(what);
+    return b;
+}
+
 void dispatchGroups(std::uint64_t groups) {
     constexpr std::uint64_t kMax = 65535;
     if (groups <= kMax) {

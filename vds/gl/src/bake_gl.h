@@ -71,6 +71,11 @@ struct ValidatedMesh {
 };
 ValidatedMesh validateForBake(MeshView mesh, const BakeOptions& options, GlPhaseClock& clock);
 
+/// An immutable buffer holding `bytes` of `data` (at least 4 bytes: GL
+/// refuses empty storage; `data` may be null for contents left undefined).
+/// Throws `GlError` naming `what`.
+Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what);
+
 /// `groups` workgroups as a glDispatchCompute grid: x up to 65535, then rows
 /// of y. Shaders number a group `gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x`
 /// and skip numbers past the real count.

@@ -25,12 +25,6 @@ namespace {
 constexpr std::uint32_t kLocalSize = 64;    // occupancy.comp's local_size_x
 constexpr GLuint kBoundaryBinding = 5;     // occupancy.comp's VDS_BOUNDARY_BINDING
 
-Buffer upload(const void* data, std::size_t bytes, const char* what) {
-    Buffer b = Buffer::create();
-    glNamedBufferStorage(b.id(), GLsizeiptr(std::max<std::size_t>(bytes, 4)), bytes ? data : nullptr, 0);
-    checkGl(what);
-    return b;
-}
 
 } // namespace
 
@@ -89,8 +83,8 @@ void GpuOccupancy::sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells
     const std::vector<float>& depth = plan.depth;
     const std::uint32_t firstSlice = plan.firstSlice, endSlice = plan.endSlice;
     const int a = plan.a, u = plan.u, v = plan.v;
-    const Buffer texelBuffer = upload(texels.data(), texels.size() * 4, "uploading the occupancy columns");
-    const Buffer depthBuffer = upload(depth.data(), depth.size() * 4, "uploading the occupancy depths");
+    const Buffer texelBuffer = detail::uploadBuffer(texels.data(), texels.size() * 4, "uploading the occupancy columns");
+    const Buffer depthBuffer = detail::uploadBuffer(depth.data(), depth.size() * 4, "uploading the occupancy depths");
     const glm::uvec3 stride(grid.dims.y * grid.dims.z, grid.dims.z, 1u);
 
     const GLuint zero = 0;

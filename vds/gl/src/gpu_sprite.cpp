@@ -62,17 +62,6 @@ GpuSprite GpuSpriteAccess::make(Texture texture, Buffer offsets, Buffer crossing
 
 } // namespace detail
 
-namespace {
-
-Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what) {
-    Buffer b = Buffer::create();
-    glNamedBufferStorage(b.id(), GLsizeiptr(std::max<std::size_t>(bytes, 4)), bytes ? data : nullptr, 0);
-    checkGl(what);
-    return b;
-}
-
-} // namespace
-
 GpuSprite::GpuSprite(const GlContext& gl, const Sprite& sprite, GpuSpriteParts parts) {
     const CurrentContext current(gl);
     upload(sprite, parts);
@@ -140,8 +129,8 @@ void GpuSprite::upload(const Sprite& sprite, GpuSpriteParts parts) {
         checkGl("uploading the sprite texture");
     }
     if (parts != GpuSpriteParts::TextureOnly) {
-        offsets_ = uploadBuffer(sprite.offsets.data(), sprite.offsets.size() * 4, "uploading the sprite's columns");
-        crossings_ = uploadBuffer(sprite.crossings.data(), sprite.crossings.size() * 4, "uploading the sprite's columns");
+        offsets_ = detail::uploadBuffer(sprite.offsets.data(), sprite.offsets.size() * 4, "uploading the sprite's columns");
+        crossings_ = detail::uploadBuffer(sprite.crossings.data(), sprite.crossings.size() * 4, "uploading the sprite's columns");
     }
     setPlacement(sprite.grid);
     setBoundary(sprite.grid, sprite.boundaryEdges, sprite.boundaryKnown || sprite.status != SolidStatus::Open);
@@ -153,7 +142,7 @@ void GpuSprite::setBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>
     // that the shader takes far chains by their chords and expansions.
     detail::PackedBoundary packed = detail::packBoundary(edges, grid.axis);
     if (packed.data.empty()) packed.data.emplace_back(0.0f);
-    boundaryEdges_ = uploadBuffer(packed.data.data(), packed.data.size() * sizeof(glm::vec4), "uploading the boundary edges");
+    boundaryEdges_ = detail::uploadBuffer(packed.data.data(), packed.data.size() * sizeof(glm::vec4), "uploading the boundary edges");
     boundaryEdgeCount_ = packed.edgeCount;
     boundaryNodeCount_ = packed.nodeCount;
     boundaryKnown_ = known;
