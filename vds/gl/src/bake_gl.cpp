@@ -159,7 +159,11 @@ Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options) 
     }
     if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
     const detail::BakeClock clock(options.timings);
-    const detail::BakeSetup setup = detail::prepareBake(mesh, options);
+    return detail::bakeOnGl(gl, detail::prepareBake(mesh, options), mesh, options);
+}
+
+Sprite detail::bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options) {
+    if (options.method == BakeMethod::Cpu) return bakeCpu(setup, mesh, options);
     std::vector<std::uint32_t> offsets;
     std::vector<float> crossings;
     {

@@ -10,6 +10,7 @@
 #include <GL/gl.h>
 
 #include <vds/bake.h>
+#include <vds/detail/bake_common.h>
 #include <vds/gl/context.h>
 #include <vds/gl/objects.h>
 
@@ -75,6 +76,10 @@ ValidatedMesh validateForBake(MeshView mesh, const BakeOptions& options, GlPhase
 /// refuses empty storage; `data` may be null for contents left undefined).
 /// Throws `GlError` naming `what`.
 Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what);
+
+/// `bakeOnGl` on a mesh validated before (`setup`), with a method chosen
+/// (not Auto). Phases timed on `options.timings`; the caller holds the clock.
+Sprite bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options);
 
 /// `groups` workgroups as a glDispatchCompute grid: x up to 65535, then rows
 /// of y. Shaders number a group `gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x`

@@ -56,6 +56,11 @@ private:
 /// timed as `BakePhase::Validation`.
 BakeSetup prepareBake(MeshView mesh, const BakeOptions& options);
 
+/// The CPU baker (`bakeCpu`) on a mesh validated before: `setup` holds its
+/// report and grid. Its phases are timed on `options.timings`; the caller
+/// holds the `BakeClock`.
+Sprite bakeCpu(const BakeSetup& setup, MeshView mesh, const BakeOptions& options);
+
 /// Assembles a sprite from per-column crossings in CSR form (already sorted);
 /// fills d_S and the metadata, then checks consistency; timed as
 /// `BakePhase::Assembly`.
