@@ -105,8 +105,8 @@ struct RowCounts {
     // Appends the triangle's runs to `out`.
     void add(const Triangle& tri, std::vector<Run>& out) const {
         const Box2 box = boxOf(tri);
-        const std::ptrdiff_t i0 = s.first(box.lo[0]), i1 = s.past(box.hi[0]);
         const std::ptrdiff_t j0 = t.first(box.lo[1]), j1 = t.past(box.hi[1]);
+        if (j0 >= j1) return; // between two rows of centres
         // What the double intersection may err by, with a wide margin
         // (a few double ulps of the coordinates, taken as 2^-40 of them).
         const double tol = 0x1p-40 * 3.0 * std::max({std::fabs(tri.v[0][0]), std::fabs(tri.v[1][0]), std::fabs(tri.v[2][0])});
@@ -118,32 +118,37 @@ struct RowCounts {
             std::ptrdiff_t a, b;
             if (row == tri.v[0][1] || row == tri.v[1][1] || row == tri.v[2][1]) {
                 // Through a vertex (or along an edge): the ends by the claim test.
-                a = std::max(i0, s.first(lo) - kWiden);
-                b = std::min(i1, s.past(hi) + kWiden);
-                narrow(tri, row, a, b, b, a);
+                a = s.first(lo) - kWiden;
+                b = s.past(hi) + kWiden;
+                a = std::max<std::ptrdiff_t>(a, 0);
+                b = std::min<std::ptrdiff_t>(b, std::ptrdiff_t(s.at.size()));
+                narrow(tri, row, a, b, false, false);
             } else {
-                // Through the interior: centres farther than tol inside
-                // (lo, hi) lie in the open triangle, farther outside outside
-                // the closed one; only those within tol of an end are tested.
-                a = std::max(i0, s.first(lo - tol));
-                b = std::min(i1, s.past(hi + tol));
-                narrow(tri, row, a, b, std::max(a, s.past(lo + tol)), std::min(b, s.first(hi - tol)));
+                // Through the interior: a centre farther than tol inside
+                // (lo, hi) lies in the open triangle, one farther outside
+                // outside the closed one; only an end within tol of lo or
+                // hi takes the claim test.
+                a = s.first(lo - tol);
+                b = s.past(hi + tol);
+                const auto inside = [&](std::ptrdiff_t i) {
+                    const double c = s.at[std::size_t(i)];
+                    return c > lo + tol && c < hi - tol;
+                };
+                narrow(tri, row, a, b, a < b && inside(a), a < b && inside(b - 1));
             }
             if (a < b) out.push_back({std::uint32_t(j), std::uint32_t(a), std::uint32_t(b)});
         }
     }
 
-    // Narrows [a, b), which holds the row's run, to the run: the texels in
-    // [sureA, sureB), when that is not empty, are known claimed.
-    void narrow(const Triangle& tri, float row, std::ptrdiff_t& a, std::ptrdiff_t& b, std::ptrdiff_t sureA,
-                std::ptrdiff_t sureB) const {
-        const bool sure = sureA < sureB;
+    // Narrows [a, b), which holds the row's run, to the run; `sureA` says
+    // texel a is known claimed, `sureB` texel b - 1.
+    void narrow(const Triangle& tri, float row, std::ptrdiff_t& a, std::ptrdiff_t& b, bool sureA, bool sureB) const {
         float c[3] = {0.0f, row, 0.0f};
-        for (; a < b && !(sure && a >= sureA); ++a) {
+        for (; !sureA && a < b; ++a) {
             c[0] = s.at[std::size_t(a)];
             if (claims(tri, c)) break;
         }
-        for (; b > a && !(sure && b <= sureB); --b) {
+        for (; !sureB && b > a; --b) {
             c[0] = s.at[std::size_t(b - 1)];
             if (claims(tri, c)) break;
         }
