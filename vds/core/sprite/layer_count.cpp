@@ -195,14 +195,17 @@ LayerCount countLayers(MeshView mesh, const SpriteGrid& grid, unsigned threads) 
         std::uint64_t claimed = 0;
         for (std::size_t j = begin; j < end; ++j) {
             if (start[j] == start[j + 1]) continue;
-            std::fill(diff.begin(), diff.end(), 0);
+            std::uint32_t lo = grid.width, hi = 0; // the row's texels that runs touch
             for (std::uint32_t k = start[j]; k < start[j + 1]; ++k) {
                 ++diff[byRow[k].first];
                 --diff[byRow[k].second];
                 claimed += byRow[k].second - byRow[k].first;
+                lo = std::min(lo, byRow[k].first);
+                hi = std::max(hi, byRow[k].second);
             }
             std::int32_t running = 0;
-            for (std::size_t i = 0; i < grid.width; ++i) best = std::max(best, running += diff[i]);
+            for (std::uint32_t i = lo; i < hi; ++i) best = std::max(best, running += diff[i]);
+            std::fill(diff.begin() + lo, diff.begin() + hi + 1, 0); // the row's differences sum to 0
         }
         total.fetch_add(claimed);
         std::uint32_t seen = most.load();
