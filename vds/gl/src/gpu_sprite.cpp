@@ -192,6 +192,10 @@ namespace {
 
 constexpr std::size_t kPointBytes = 12;
 constexpr GLuint kBoundaryBinding = 5; // classify.comp's VDS_BOUNDARY_BINDING
+// classify.comp's VDS_POINTS_PER_INVOCATION (the labels of one 32-bit word)
+// and VDS_LOCAL_SIZE.
+constexpr std::size_t kPointsPerInvocation = 4;
+constexpr std::uint32_t kLocalSize = 256;
 
 std::size_t labelBytes(std::size_t points) { return (points + 3) / 4 * 4; }
 
@@ -301,7 +305,7 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, points, p, GLsizeiptr(n * kPointBytes));
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, labels, l, GLsizeiptr(labelBytes(n)));
         glUniform1ui(countLoc, GLuint(n));
-        glDispatchCompute(detail::strideGroups((n + 3) / 4), 1, 1);
+        glDispatchCompute(detail::strideGroups((n + kPointsPerInvocation - 1) / kPointsPerInvocation, kLocalSize), 1, 1);
     }
     for (GLuint binding = 0; binding <= kBoundaryBinding; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
     if (!columns) glBindTextureUnit(0, 0);
