@@ -368,6 +368,29 @@ void coherentPoints(const vds::SpriteGrid& grid, std::vector<glm::vec3>& points)
     }
 }
 
+// One set of resident points: vds's classifier and the plain kernel on the
+// same buffers, timed after the warm-up, their labels read back.
+struct ResidentCase {
+    const std::vector<glm::vec3>& points;
+    Timed& vds;
+    Timed& plain;
+    std::vector<std::uint8_t>& vdsLabels;
+    std::vector<std::uint8_t>& plainLabels;
+};
+
+void measureResident(const Settings& set, vds::GpuClassifier& classifier, const vds::bench::PlainKernels& plain,
+                     const vds::GpuSprite& gpu, const ResidentCase& c) {
+    const std::size_t n = c.points.size();
+    vds::Buffer points = vds::Buffer::create(), labels = vds::Buffer::create();
+    glNamedBufferStorage(points.id(), GLsizeiptr(n * 12), c.points.data(), 0);
+    glNamedBufferStorage(labels.id(), GLsizeiptr((n + 3) / 4 * 4), nullptr, 0);
+    vds::checkGl("allocating the benchmark's buffers");
+    c.vds = timeGpu(set, [&] { classifier.classify(gpu, points.id(), n, labels.id()); });
+    readLabels(labels.id(), n, c.vdsLabels);
+    c.plain = timeGpu(set, [&] { plain.parity(gpu, points.id(), n, labels.id()); });
+    readLabels(labels.id(), n, c.plainLabels);
+}
+
 void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMesh>& meshes) {
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     const std::size_t n = set.points;
@@ -394,7 +417,6 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
         for (auto& p : unit) p = glm::vec3(u(rng), u(rng), u(rng));
     }
     std::vector<std::uint8_t> cpu1(n), cpuN(n), hostToHost(n), resident(n), coherentCpu(n), coherentGpu(n);
-    const std::size_t labelBytes = (n + 3) / 4 * 4;
     for (const auto& m : meshes) {
         vds::BakeOptions o;
         o.resolution = set.classifyResolution;
@@ -416,25 +438,9 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
         // Resident: the points uploaded once, the labels left in GL.
         Timed vdsRandom, vdsCoherent, plainRandom, plainCoherent;
         std::vector<std::uint8_t> plainLabels(n), plainCoherentLabels(n);
-        {
-            vds::Buffer randomBuffer = vds::Buffer::create(), coherentBuffer = vds::Buffer::create(),
-                        labels = vds::Buffer::create();
-            glNamedBufferStorage(randomBuffer.id(), GLsizeiptr(n * 12), random.data(), 0);
-            glNamedBufferStorage(coherentBuffer.id(), GLsizeiptr(n * 12), coherent.data(), 0);
-            glNamedBufferStorage(labels.id(), GLsizeiptr(labelBytes), nullptr, 0);
-            vds::checkGl("allocating the benchmark's buffers");
-            const auto measure = [&](const std::function<void()>& dispatch, Timed& t, std::vector<std::uint8_t>& out) {
-                t = timeGpu(set, dispatch);
-                readLabels(labels.id(), n, out);
-            };
-            for (const vds::Buffer* points : {&randomBuffer, &coherentBuffer}) {
-                const bool rnd = points == &randomBuffer;
-                measure([&] { classifier.classify(gpu, points->id(), n, labels.id()); }, rnd ? vdsRandom : vdsCoherent,
-                        rnd ? resident : coherentGpu);
-                measure([&] { plain.parity(gpu, points->id(), n, labels.id()); }, rnd ? plainRandom : plainCoherent,
-                        rnd ? plainLabels : plainCoherentLabels);
-            }
-        }
+        const ResidentCase randomCase{random, vdsRandom, plainRandom, resident, plainLabels};
+        const ResidentCase coherentCase{coherent, vdsCoherent, plainCoherent, coherentGpu, plainCoherentLabels};
+        for (const ResidentCase& c : {randomCase, coherentCase}) measureResident(set, classifier, plain, gpu, c);
         vds::classify(sprite, vds::PointsView(coherent.data(), n), coherentCpu.data(), all);
 
         const std::size_t ne = std::min(n, set.exactPoints);
@@ -518,6 +524,31 @@ void gwnTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMe
     }
 }
 
+// --quick and --full: the settings they stand for.
+void applyMode(Settings& set, bool quick, bool full) {
+    if (quick) {
+        set.mode = "quick";
+        set.resolutions = {512};
+        set.knotResolutions = {512};
+        set.sphereResolutions = {1024};
+        set.points = 1000000;
+        set.classifyResolution = 1024;
+        set.gwnPoints = 100000;
+        set.gwnDims = 64;
+        set.bakeRuns = 1;
+        set.classifyRuns = 1;
+        set.sizes = false;
+    } else if (full) {
+        set.mode = "full";
+        set.resolutions = {512, 1024, 2048};
+        set.knotResolutions = {1024, 2048};
+        set.sphereResolutions = {1024, 2048};
+        set.points = 100000000;
+        set.bakeRuns = 3;
+        set.classifyRuns = 5;
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -551,27 +582,7 @@ int main(int argc, char** argv) {
     app.add_option("meshes", set.meshFiles, "mesh files instead of those of bench/meshes and the generated meshes");
     CLI11_PARSE(app, argc, argv);
 
-    if (quick) {
-        set.mode = "quick";
-        set.resolutions = {512};
-        set.knotResolutions = {512};
-        set.sphereResolutions = {1024};
-        set.points = 1000000;
-        set.classifyResolution = 1024;
-        set.gwnPoints = 100000;
-        set.gwnDims = 64;
-        set.bakeRuns = 1;
-        set.classifyRuns = 1;
-        set.sizes = false;
-    } else if (full) {
-        set.mode = "full";
-        set.resolutions = {512, 1024, 2048};
-        set.knotResolutions = {1024, 2048};
-        set.sphereResolutions = {1024, 2048};
-        set.points = 100000000;
-        set.bakeRuns = 3;
-        set.classifyRuns = 5;
-    }
+    applyMode(set, quick, full);
     if (!resolutions.empty()) set.resolutions = resolutions;
     if (points) set.points = points;
     if (classifyResolution) set.classifyResolution = classifyResolution;
