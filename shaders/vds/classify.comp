@@ -154,7 +154,8 @@ void main() {
         uint q = first + gl_LocalInvocationID.x;
         vec3 p[VDS_N];
         for (uint k = 0u; k < uint(VDS_N); ++k) p[k] = vec3(0.0);
-        uint valid = q < quads ? vdsLoadPoints(q, p) : 0u;
+        uint valid = 0u;
+        if (q < quads) valid = vdsLoadPoints(q, p);
         uint word = vdsClassifyPoints(p, valid);
         if (q < quads) labels[q] = word;
     }
