@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <optional>
 
 #include <vds/error.h>
 
@@ -15,13 +16,19 @@ namespace vds {
 
 namespace detail {
 
-BakeSetup prepareBake(MeshView mesh, const BakeOptions& options) {
+BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count) {
     const HostPhase phase(options.timings, BakePhase::Validation);
     BakeSetup setup;
     setup.report = validateMesh(mesh);
     requireUsable(setup.report, options.sourceName);
     requireVolume(setup.report, options.sourceName);
-    const Axis axis = options.axis ? *options.axis : chooseViewAxis(mesh, setup.report, options.resolution).axis;
+    Axis axis = Axis::Z;
+    if (options.axis) {
+        axis = *options.axis;
+    } else {
+        const std::optional<AxisChoice> counted = count ? count(setup.report) : std::nullopt;
+        axis = counted ? counted->axis : chooseViewAxis(mesh, setup.report, options.resolution).axis;
+    }
     setup.grid = makeGrid(setup.report.bounds, axis, options.resolution);
     return setup;
 }
@@ -101,6 +108,11 @@ AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t
         choice.layers[std::size_t(axis)] = count.most;
         choice.crossings[std::size_t(axis)] = count.total;
     }
+    detail::pickFewestLayers(choice);
+    return choice;
+}
+
+void detail::pickFewestLayers(AxisChoice& choice) {
     std::uint64_t bestKey = ~std::uint64_t(0);
     for (Axis axis : {Axis::Z, Axis::X, Axis::Y}) {
         const std::uint64_t key = (std::uint64_t(choice.layers[std::size_t(axis)]) << 40) | choice.crossings[std::size_t(axis)];
@@ -109,7 +121,6 @@ AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t
             choice.axis = axis;
         }
     }
-    return choice;
 }
 
 } // namespace vds

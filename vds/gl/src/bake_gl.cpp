@@ -63,11 +63,11 @@ void GlPhaseClock::collect() {
 
 // The one validation of every baker (detail::prepareBake), timed on the GL
 // bake's clock.
-ValidatedMesh validateForBake(MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
+ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
     const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
     BakeOptions untimed = options;
     untimed.timings = nullptr;
-    BakeSetup setup = prepareBake(mesh, untimed);
+    BakeSetup setup = prepareBake(mesh, untimed, axisCounter(gl, mesh, options));
     return {std::move(setup.report), setup.grid};
 }
 
@@ -140,10 +140,7 @@ namespace vds {
 
 BakeMethod chooseBakeMethod(const GlContext& gl, std::string* why) {
     const std::string& renderer = gl.info().renderer;
-    const bool software = gl.info().platform.find("software") != std::string::npos ||
-                          renderer.find("llvmpipe") != std::string::npos ||
-                          renderer.find("softpipe") != std::string::npos ||
-                          renderer.find("SwiftShader") != std::string::npos;
+    const bool software = detail::softwareRenderer(gl);
     if (why)
         *why = software ? "bake method auto: cpu, because GL here is the software renderer " + renderer +
                               " (the CPU baker is faster for a one-shot bake there)"
@@ -159,7 +156,7 @@ Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options) 
     }
     if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
     const detail::BakeClock clock(options.timings);
-    return detail::bakeOnGl(gl, detail::prepareBake(mesh, options), mesh, options);
+    return detail::bakeOnGl(gl, detail::prepareBake(mesh, options, detail::axisCounter(gl, mesh, options)), mesh, options);
 }
 
 Sprite detail::bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options) {

@@ -44,7 +44,10 @@ Baker::Baker(TriangleMesh mesh, BakeOptions options) : mesh_(std::move(mesh)), o
 void Baker::validate() {
     BakeOptions first = options_;
     first.timings = nullptr;
-    const detail::BakeSetup setup = detail::prepareBake(mesh_, first);
+    // The GL bakers count the layers in their own raster on a GPU.
+    const bool glCount = gl_ && options_.method != BakeMethod::Cpu;
+    const detail::BakeSetup setup =
+        detail::prepareBake(mesh_, first, glCount ? detail::axisCounter(*gl_, mesh_, first) : detail::AxisCounter{});
     report_ = setup.report;
     options_.axis = setup.grid.axis;
     std::vector<bool> named(mesh_.positions.size(), false);
