@@ -2,7 +2,7 @@
 """<vds/vds.h> is the manual: every public free function and every public
 class or struct of every layer's installed headers must be named in it.
 
-Reads the headers under vds/*/include (the installed ones; <vds/detail/...>
+Reads the headers under every include/ of vds/ (the installed ones; <vds/detail/...>
 lives elsewhere and is not installed), takes the names declared at namespace
 scope (declarations start in column 0 in this code base: free functions,
 classes, structs, enums), and fails listing every name the manual does not
@@ -22,7 +22,7 @@ TYPE = re.compile(r"^(?:template <[^>]*>\s*)?(?:class|struct|enum class|enum)\s+
 
 def public_names(source: pathlib.Path):
     names = {}
-    for header in sorted(source.glob("vds/*/include/vds/**/*.h")):
+    for header in sorted(source.glob("vds/**/include/vds/**/*.h")):
         if "detail" in header.parts:
             continue
         text = header.read_text()

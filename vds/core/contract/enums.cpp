@@ -1,8 +1,8 @@
 #include <vds/enum_names.h>
 
-#include <vds/bake.h>
+#include <vds/axis.h>
 #include <vds/error.h>
-#include <vds/sprite.h>
+#include <vds/rule.h>
 
 namespace vds {
 
@@ -17,9 +17,7 @@ void throwUnknownName(const char* kind, std::string_view text, const std::vector
 
 Axis parseAxis(const std::string& s) { return parseEnum<Axis>(s); }
 Rule parseRule(const std::string& s) { return parseEnum<Rule>(s); }
-BakeMethod parseBakeMethod(const std::string& s) { return parseEnum<BakeMethod>(s); }
 const char* toString(Axis a) { return enumName(a); }
 const char* toString(Rule r) { return enumName(r); }
-const char* toString(BakeMethod m) { return enumName(m); }
 
 } // namespace vds

@@ -30,14 +30,10 @@
 namespace vds {
 namespace {
 
-float centreCoordinate(float lo, float hi, std::uint32_t cells, std::uint32_t index) {
-    return float(double(lo) + (double(index) + 0.5) * (double(hi) - double(lo)) / double(cells));
-}
-
 std::vector<float> centres(const Grid& grid, int axis) {
     std::vector<float> c(grid.dims[axis]);
     for (std::uint32_t k = 0; k < grid.dims[axis]; ++k)
-        c[k] = centreCoordinate(grid.box.lo[axis], grid.box.hi[axis], grid.wholeCells(axis), grid.first[axis] + k);
+        c[k] = grid.cellCoordinate(axis, k);
     return c;
 }
 
@@ -297,40 +293,6 @@ constexpr std::size_t kProbe = 64;
 
 } // namespace
 
-glm::vec3 Grid::cellCentre(std::uint32_t i, std::uint32_t j, std::uint32_t k) const {
-    return {centreCoordinate(box.lo.x, box.hi.x, wholeCells(0), first.x + i),
-            centreCoordinate(box.lo.y, box.hi.y, wholeCells(1), first.y + j),
-            centreCoordinate(box.lo.z, box.hi.z, wholeCells(2), first.z + k)};
-}
-
-void checkGrid(const Grid& grid) {
-    if (grid.dims.x == 0 || grid.dims.y == 0 || grid.dims.z == 0)
-        throw InvalidArgument("occupancy grid has a zero dimension");
-    if (std::uint64_t(grid.dims.x) * grid.dims.y * grid.dims.z > kMaxGridCells)
-        throw InvalidArgument("occupancy grid of " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) +
-                              "x" + std::to_string(grid.dims.z) + " cells is too large (at most 2^34 cells)");
-    for (int a = 0; a < 3; ++a)
-        if (grid.whole[a] && std::uint64_t(grid.first[a]) + grid.dims[a] > grid.whole[a])
-            throw InvalidArgument("occupancy grid slab reaches past its whole grid");
-    for (int a = 0; a < 3; ++a)
-        if (!(std::isfinite(grid.box.lo[a]) && std::isfinite(grid.box.hi[a]) && grid.box.lo[a] < grid.box.hi[a]))
-            throw InvalidArgument("occupancy grid box is empty or not finite");
-}
-
-Grid cubicGrid(const Box& box, std::uint32_t n) {
-    Grid grid;
-    grid.box = box;
-    const glm::vec3 size = box.hi - box.lo;
-    const float longest = std::max({size.x, size.y, size.z});
-    for (int a = 0; a < 3; ++a) {
-        const double cells = longest > 0.0f ? std::ceil(double(n) * double(size[a]) / double(longest) - 1e-9) : 1.0;
-        grid.dims[a] = std::uint32_t(std::clamp(cells, 1.0, double(n)));
-        // The box grows to whole cells so that cells stay cubic.
-        grid.box.hi[a] = float(double(box.lo[a]) + double(grid.dims[a]) * double(longest) / double(n));
-    }
-    return grid;
-}
-
 detail::SweepPlan detail::planSweep(const SpriteGrid& sg, const Grid& grid, unsigned threads) {
     SweepPlan plan;
     // The world axis depth follows (r's row of the matrix), and every texture
@@ -445,6 +407,10 @@ void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, cons
             fill(endValid, n, 0);
         }
     });
+}
+
+void SpriteClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
+    vds::occupancy(sprite_, grid, cells, options);
 }
 
 void occupancy(MeshView mesh, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {

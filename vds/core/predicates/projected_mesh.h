@@ -44,7 +44,8 @@
 
 #include <vds/mesh.h>
 #include <vds/grid.h>
-#include <vds/sprite.h>
+#include <vds/axis.h>
+#include <vds/classify.h>
 
 #include "predicates/predicates.h"
 

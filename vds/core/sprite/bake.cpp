@@ -123,4 +123,7 @@ void detail::pickFewestLayers(AxisChoice& choice) {
     }
 }
 
+BakeMethod parseBakeMethod(const std::string& s) { return parseEnum<BakeMethod>(s); }
+const char* toString(BakeMethod m) { return enumName(m); }
+
 } // namespace vds

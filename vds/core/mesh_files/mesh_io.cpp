@@ -10,7 +10,7 @@
 #include <vds/error.h>
 
 #include "io/file_bytes.h"
-#include "mesh/mesh_readers.h"
+#include "mesh_files/mesh_readers.h"
 #include "io/text_scanner.h"
 
 namespace vds {

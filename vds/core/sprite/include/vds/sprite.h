@@ -30,16 +30,6 @@
 
 namespace vds {
 
-/// Index of the texture's s, t and r axes in mesh coordinates for a view axis.
-inline glm::ivec3 axisPermutation(Axis axis) {
-    switch (axis) {
-    case Axis::X: return {1, 2, 0};
-    case Axis::Y: return {2, 0, 1};
-    case Axis::Z: break;
-    }
-    return {0, 1, 2};
-}
-
 /// The texel grid of a sprite: how a mesh box becomes an LDI.
 ///
 /// Texels are square in world units: `texelSize = max(extent_s, extent_t) /
@@ -75,12 +65,6 @@ constexpr std::uint32_t kMaxResolution = 16384;
 /// Builds the grid for a box. Throws `InvalidArgument` for resolution 0 or
 /// above `kMaxResolution`, or a box with no extent across or along the view.
 SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution);
-
-/// A mesh's boundary edges as `Sprite::boundaryEdges` holds them (edge k
-/// runs from `[2k]` to `[2k+1]`, mesh coordinates; see there), for bakers
-/// outside vds::core such as `bakeToGpu`. Empty for a mesh whose every edge
-/// is used equally often each way. O(triangles log triangles).
-std::vector<glm::vec3> meshBoundaryEdges(MeshView mesh);
 
 /// Encoding of one stored crossing: depth in [0,1], sign bit set when the ray
 /// leaves the solid there (the surface faced away from the viewer). -0.0 is a

@@ -28,6 +28,9 @@ struct Grid {
     glm::uvec3 whole{0u}; ///< the whole grid's cells; 0 (the default): `dims`, no slab
 
     glm::vec3 cellCentre(std::uint32_t i, std::uint32_t j, std::uint32_t k) const;
+    /// Coordinate `axis` (0..2) of the centres of this grid's cells with
+    /// index `index` along it: `cellCentre`'s, one axis at a time.
+    float cellCoordinate(int axis, std::uint32_t index) const;
     /// Cells along axis a of the whole grid.
     std::uint32_t wholeCells(int a) const { return whole[a] ? whole[a] : dims[a]; }
     /// Cells [i0, i1) along x of this grid as a slab (of the same whole grid).

@@ -135,4 +135,10 @@ std::string insideWarning(const MeshReport& report, Rule rule);
 /// Bounding box of the vertices referenced by triangles.
 Box meshBounds(MeshView mesh);
 
+/// A mesh's boundary edges as `Sprite::boundaryEdges` (<vds/sprite.h>) holds them (edge k
+/// runs from `[2k]` to `[2k+1]`, mesh coordinates; see there), for bakers
+/// outside vds::core such as `bakeToGpu`. Empty for a mesh whose every edge
+/// is used equally often each way. O(triangles log triangles).
+std::vector<glm::vec3> meshBoundaryEdges(MeshView mesh);
+
 } // namespace vds

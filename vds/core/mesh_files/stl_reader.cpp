@@ -6,7 +6,7 @@
 // past. STL has no shared vertices: every corner is stored with each of its
 // triangles, so corners are welded by exact position (+0 and -0 alike), in
 // order of first appearance; a binary file and its ASCII twin load alike.
-#include "mesh/mesh_readers.h"
+#include "mesh_files/mesh_readers.h"
 
 #include <cmath>
 #include <cstring>

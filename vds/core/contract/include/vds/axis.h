@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <string>
 
+#include <glm/vec3.hpp>
+
 #include <vds/enum_names.h>
 
 namespace vds {
@@ -21,5 +23,15 @@ template <> struct EnumNames<Axis> {
 /// Parses "x"/"y"/"z" (`parseEnum`); throws `InvalidArgument`.
 Axis parseAxis(const std::string& s);
 const char* toString(Axis a);
+
+/// Index of the texture's s, t and r axes in mesh coordinates for a view axis.
+inline glm::ivec3 axisPermutation(Axis axis) {
+    switch (axis) {
+    case Axis::X: return {1, 2, 0};
+    case Axis::Y: return {2, 0, 1};
+    case Axis::Z: break;
+    }
+    return {0, 1, 2};
+}
 
 } // namespace vds

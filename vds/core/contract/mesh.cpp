@@ -12,7 +12,7 @@
 
 #include <vds/detail/parallel.h>
 #include <vds/error.h>
-#include <vds/sprite.h>
+#include <vds/rule.h>
 
 namespace vds {
 namespace {

@@ -8,7 +8,7 @@
 // it before anything is allocated, and the data must end where they say. An
 // ascii file laid out one element per line may hold more numbers on a line
 // than its element declares (onePerLine).
-#include "mesh/mesh_readers.h"
+#include "mesh_files/mesh_readers.h"
 
 #include <cmath>
 #include <cstdio>

@@ -11,7 +11,7 @@
 // The text is read in one pass with a pointer, token by token, without
 // splitting it into lines first: loading is mostly this loop and the number
 // conversions (std::from_chars), so it runs near their speed.
-#include "mesh/mesh_readers.h"
+#include "mesh_files/mesh_readers.h"
 
 #include <limits>
 

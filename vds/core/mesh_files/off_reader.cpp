@@ -7,7 +7,7 @@
 // vertices is skipped and counted). '#' starts a comment. 4OFF, nOFF and
 // binary OFF are refused. Exactly the declared vertices and faces must
 // follow.
-#include "mesh/mesh_readers.h"
+#include "mesh_files/mesh_readers.h"
 
 #include <limits>
 

@@ -1,0 +1,51 @@
+// vds: the one grid of cells (<vds/grid.h>): its cell centres, checks and
+// the cubic grid over a box.
+#include <vds/grid.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include <vds/error.h>
+
+namespace vds {
+
+float Grid::cellCoordinate(int axis, std::uint32_t index) const {
+    const double lo = box.lo[axis], hi = box.hi[axis];
+    return float(lo + (double(first[axis] + index) + 0.5) * (hi - lo) / double(wholeCells(axis)));
+}
+
+glm::vec3 Grid::cellCentre(std::uint32_t i, std::uint32_t j, std::uint32_t k) const {
+    return {cellCoordinate(0, i), cellCoordinate(1, j), cellCoordinate(2, k)};
+}
+
+void checkGrid(const Grid& grid) {
+    if (grid.dims.x == 0 || grid.dims.y == 0 || grid.dims.z == 0)
+        throw InvalidArgument("occupancy grid has a zero dimension");
+    if (std::uint64_t(grid.dims.x) * grid.dims.y * grid.dims.z > kMaxGridCells)
+        throw InvalidArgument("occupancy grid of " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) +
+                              "x" + std::to_string(grid.dims.z) + " cells is too large (at most 2^34 cells)");
+    for (int a = 0; a < 3; ++a)
+        if (grid.whole[a] && std::uint64_t(grid.first[a]) + grid.dims[a] > grid.whole[a])
+            throw InvalidArgument("occupancy grid slab reaches past its whole grid");
+    for (int a = 0; a < 3; ++a)
+        if (!(std::isfinite(grid.box.lo[a]) && std::isfinite(grid.box.hi[a]) && grid.box.lo[a] < grid.box.hi[a]))
+            throw InvalidArgument("occupancy grid box is empty or not finite");
+}
+
+Grid cubicGrid(const Box& box, std::uint32_t n) {
+    Grid grid;
+    grid.box = box;
+    const glm::vec3 size = box.hi - box.lo;
+    const float longest = std::max({size.x, size.y, size.z});
+    for (int a = 0; a < 3; ++a) {
+        const double cells = longest > 0.0f ? std::ceil(double(n) * double(size[a]) / double(longest) - 1e-9) : 1.0;
+        grid.dims[a] = std::uint32_t(std::clamp(cells, 1.0, double(n)));
+        // The box grows to whole cells so that cells stay cubic.
+        grid.box.hi[a] = float(double(box.lo[a]) + double(grid.dims[a]) * double(longest) / double(n));
+    }
+    return grid;
+}
+
+} // namespace vds
