@@ -47,6 +47,7 @@ void vdsSumEdgeTiles(int first, int count, vec3 q[VDS_TERM_POINTS], inout float 
             vdsTileFrom[local] = vdsBoundaryEdges[at].xyz;
             vdsTileTo[local] = vdsBoundaryEdges[at + 1].xyz;
         }
+        memoryBarrierShared(); // the tile's stores visible to the workgroup (as scan.comp does)
         barrier();
         int n = min(VDS_LOCAL_SIZE, count - tile);
         for (int e = 0; e < n; ++e) {
@@ -63,6 +64,7 @@ bool vdsAllTake(vec4 ball, float errorScale, vec3 q[VDS_TERM_POINTS], bool live[
     bool take = true;
     for (int k = 0; k < VDS_TERM_POINTS; ++k) take = take && (!live[k] || vdsNodeTaken(ball, errorScale, q[k]));
     if (!take) vdsRefused[round & 1] = round; // every refusing invocation writes the same value
+    memoryBarrierShared();
     barrier();
     return vdsRefused[round & 1] != round;
 }
@@ -82,6 +84,7 @@ void vdsBoundaryTerms(VdsBoundary boundary, vec3 q[VDS_TERM_POINTS], bool live[V
             vdsRefused[0] = -1;
             vdsRefused[1] = -1;
         }
+        memoryBarrierShared();
         barrier();
         int base = 2 * boundary.edgeCount;
         int node = 0;
