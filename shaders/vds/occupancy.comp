@@ -48,6 +48,10 @@ uniform uint u_endSlice;
 uniform uint u_width;      // the sprite's width in texels: texel = t * width + s
 #ifdef VDS_BOUNDARY_TERM
 uniform VdsBoundary u_boundary;
+uniform ivec2 u_size; // the sprite's width and height in texels
+// Per grid column: its texture (s, t), for the cells of a column beside the
+// texture, whose term is taken at the cell itself (texels[] is then -1).
+layout(std430, binding = 6) readonly restrict buffer ColumnPoints { vec2 columnPoints[]; };
 #endif
 
 void vdsFlush(uint word, uint bits) {
@@ -55,9 +59,17 @@ void vdsFlush(uint word, uint bits) {
 }
 
 // Walks grid column `column`'s cells (none where `live` is false, which
-// still takes every step for the workgroup's votes and tiles).
+// still takes every step for the workgroup's votes and tiles). With the
+// boundary term every slice of the grid is walked (u_firstSlice 0), in
+// front of and behind the box (none or all of the column's crossings in
+// front), and columns beside the texture too (no crossing, the term at the
+// cell itself), as the CPU classifies those cells.
 void vdsSweepColumn(uint column, bool live) {
     int texel = live ? texels[column] : -1;
+#ifdef VDS_BOUNDARY_TERM
+    bool valid = live; // a column of the grid: beside the texture too
+    vec2 beside = live ? columnPoints[column] : vec2(0.0);
+#endif
     live = texel >= 0;
 #ifndef VDS_BOUNDARY_TERM
     if (!live) return;
@@ -75,11 +87,12 @@ void vdsSweepColumn(uint column, bool live) {
             winding += floatBitsToInt(crossings[e]) < 0 ? -1 : 1;
         }
 #ifdef VDS_BOUNDARY_TERM
-        vec3 q[1] = vec3[1](vdsColumnPoint(u_boundary, st, depth));
-        bool alive[1] = bool[1](live);
+        vec3 q[1] = vec3[1](live ? vdsColumnPoint(u_boundary, st, depth)
+                                 : vdsBesidePoint(u_boundary, u_size, vec3(beside, depth)));
+        bool alive[1] = bool[1](valid);
         float term[1];
         vdsBoundaryTerms(u_boundary, q, alive, term);
-        bool inside = live && float(winding) + term[0] > 0.5;
+        bool inside = valid && float(winding) + term[0] > 0.5;
 #elif VDS_RULE_ID == VDS_RULE_WINDING
         bool inside = winding != 0;
 #else
