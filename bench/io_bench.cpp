@@ -30,6 +30,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <glm/gtc/constants.hpp>
 
 #include <vds/mesh.h>
 #include <vds/mesh_io.h>
@@ -42,7 +43,7 @@ using Clock = std::chrono::steady_clock;
 /// A torus of `rings` x `sides` quads, two triangles each, facing out.
 vds::TriangleMesh torus(std::uint32_t rings, std::uint32_t sides) {
     vds::TriangleMesh m;
-    const double pi = 3.14159265358979323846;
+    const double pi = glm::pi<double>();
     for (std::uint32_t i = 0; i < rings; ++i)
         for (std::uint32_t j = 0; j < sides; ++j) {
             const double u = 2 * pi * i / rings, v = 2 * pi * j / sides;

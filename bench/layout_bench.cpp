@@ -123,7 +123,8 @@ void measure(const Input& in, std::size_t count, std::uint32_t resolution, int r
             if (v.layout == vds::QueryLayout::Auto)
                 classifyPrevious(sprite, points.data(), count, v.labels.data());
             else
-                vds::classify(sprite, vds::PointsView(points.data(), count), v.labels.data(), {vds::Rule::Parity, v.threads, v.layout});
+                vds::classify(sprite, vds::PointsView(points.data(), count), v.labels.data(), {vds::Rule::Parity, v.threads},
+                              {v.layout});
             if (round == 0) continue;
             v.best = std::min(v.best, cpuSeconds() - cpu); // all threads: the time of one busy thread
             v.bestWall = std::min(v.bestWall, wallSeconds() - wall);

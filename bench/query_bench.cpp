@@ -83,8 +83,10 @@ void randomPoints(const Input& in, std::size_t count, std::uint32_t resolution, 
     std::vector<Row> rows;
     for (unsigned t : {1u, threads}) {
         for (vds::QueryLayout layout : {vds::QueryLayout::Offsets, vds::QueryLayout::Packed}) {
-            const vds::ClassifyOptions co{vds::Rule::Parity, t, layout};
-            const double s = best(2, [&] { vds::classify(sprite, vds::PointsView(points.data(), count), labels.data(), co); });
+            const vds::ClassifyOptions co{vds::Rule::Parity, t};
+            const double s = best(2, [&] {
+                vds::classify(sprite, vds::PointsView(points.data(), count), labels.data(), co, {layout});
+            });
             rows.push_back({layout == vds::QueryLayout::Packed ? "sprite, packed columns" : "sprite, offsets", t,
                             bakeSeconds, s, differing(labels, truth), ""});
         }

@@ -48,6 +48,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <vds/all.h>
+#include <vds/detail/aligned_axes.h>
 #include <vds/error.h>
 #include <vds/vds_file.h>
 
@@ -329,17 +330,6 @@ const vds::GpuSprite& residentCopy(GlState& s, PySprite& sprite) {
     return *it->second;
 }
 
-/// Whether a grid column along the sprite's view axis falls in one texel
-/// column, in depth order (moved or scaled since the bake, not rotated): the
-/// condition of GpuOccupancy's column sweep.
-bool axisAligned(const vds::SpriteGrid& g) {
-    const glm::ivec3 p = vds::axisPermutation(g.axis);
-    for (int row = 0; row < 3; ++row)
-        for (int col = 0; col < 3; ++col)
-            if (col != p[row] && g.matrix[col][row] != 0.0f) return false;
-    return g.matrix[p.z][2] > 0.0f;
-}
-
 BoolArray spriteContains(PySprite& sprite, const py::object& points, const std::string& rule, bool gpu,
                          const py::object& threads) {
     const vds::ClassifyOptions options = classifyOptions(rule, threads);
@@ -374,7 +364,7 @@ BoolArray spriteOccupancy(PySprite& sprite, const vds::Grid& grid, const std::st
         return cells;
     }
     vds::checkGrid(grid);
-    if (axisAligned(sprite.grid)) {
+    if (vds::detail::sweepsByColumns(sprite.grid)) { // the condition of GpuOccupancy's column sweep
         glThread().run([&](GlState& s) {
             const vds::GpuSprite& copy = residentCopy(s, sprite);
             if (!s.occupancy) s.occupancy = std::make_unique<vds::GpuOccupancy>(*s.gl);

@@ -16,6 +16,7 @@
 
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -27,6 +28,7 @@
 #include <vds/gl/sprite.h>
 #include <vds/mesh_io.h>
 #include <vds/gl/shader.h>
+#include <vds/voxel/gpu_grid.h>
 #include <vds/voxel/representation.h>
 
 namespace vds::samples {
@@ -162,9 +164,9 @@ TriangleMesh uvSphere(const glm::vec3& centre, float radius, int rings) {
     const int segments = 2 * rings;
     m.positions.push_back(centre + glm::vec3(0, radius, 0));
     for (int i = 1; i < rings; ++i) {
-        const float theta = float(M_PI) * float(i) / float(rings);
+        const float theta = glm::pi<float>() * float(i) / float(rings);
         for (int j = 0; j < segments; ++j) {
-            const float phi = 2.0f * float(M_PI) * float(j) / float(segments);
+            const float phi = 2.0f * glm::pi<float>() * float(j) / float(segments);
             m.positions.push_back(centre + radius * glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta),
                                                               -std::sin(theta) * std::sin(phi)));
         }
@@ -265,9 +267,8 @@ struct SceneRenderer::Impl {
     std::vector<Sprite> baked;             // Vds: the sprite at its bake placement
     std::vector<GpuSprite> sprites;        // Vds
     std::vector<voxel::Model> models;      // voxel lookups
-    std::vector<Texture> voxelTextures;    // Solid: texture buffers; slicemaps: 2D arrays
-    std::vector<Texture> rangeTextures;    // SlicemapLocal
-    std::vector<Buffer> voxelBuffers;      // Solid
+    std::vector<voxel::GpuBitGrid> bitGrids;   // Lookup::Solid, one a solid
+    std::vector<voxel::GpuSlicemap> slicemaps; // Lookup::Slicemap(Local), one a solid
     std::vector<ExactClassifier> exact;    // Exact
     std::vector<std::uint32_t> resolutions;
     std::size_t bytes = 0;
@@ -370,45 +371,8 @@ void SceneRenderer::Impl::uploadModel() {
 
     // Voxel representations as the GLSL lookups read them (shaders/voxel/*.glsl).
     for (const voxel::Model& model : models) {
-        if (const voxel::BitGrid* bits = model.solid()) {
-            Buffer words = Buffer::create();
-            glNamedBufferStorage(words.id(), GLsizeiptr(bits->memoryBytes()), bits->words.data(), 0);
-            Texture t = Texture::create(GL_TEXTURE_BUFFER);
-            glTextureBuffer(t.id(), GL_R32UI, words.id());
-            voxelBuffers.push_back(std::move(words));
-            voxelTextures.push_back(std::move(t));
-            continue;
-        }
-        const voxel::Slicemap& map = *model.slicemap();
-        const voxel::VoxelGrid& g = map.grid;
-        const std::size_t columns = std::size_t(g.size.x) * g.size.y;
-        const std::uint32_t targets = map.renderTargets;
-        std::vector<std::uint32_t> texels(columns * 4 * 2 * targets, 0u);
-        for (std::size_t c = 0; c < columns; ++c)
-            for (std::uint32_t w = 0; w < map.words; ++w) {
-                texels[((w / 4) * columns + c) * 4 + w % 4] = map.front[c * map.words + w];
-                texels[((targets + w / 4) * columns + c) * 4 + w % 4] = map.back[c * map.words + w];
-            }
-        Texture maps = Texture::create(GL_TEXTURE_2D_ARRAY);
-        glTextureStorage3D(maps.id(), 1, GL_RGBA32UI, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(2 * targets));
-        nearest(maps);
-        glTextureSubImage3D(maps.id(), 0, 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(2 * targets),
-                            GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
-        voxelTextures.push_back(std::move(maps));
-        if (map.slicing == voxel::Slicing::Local) {
-            std::vector<float> range(columns * 4, 0.0f);
-            for (std::size_t c = 0; c < columns; ++c) {
-                range[4 * c] = map.nearDepth[c];
-                range[4 * c + 1] = map.farDepth[c];
-                range[4 * c + 2] = map.slicesPerDepth[c];
-            }
-            Texture ranges = Texture::create(GL_TEXTURE_2D);
-            glTextureStorage2D(ranges.id(), 1, GL_RGBA32F, GLsizei(g.size.x), GLsizei(g.size.y));
-            nearest(ranges);
-            glTextureSubImage2D(ranges.id(), 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GL_RGBA, GL_FLOAT,
-                                range.data());
-            rangeTextures.push_back(std::move(ranges));
-        }
+        if (const voxel::BitGrid* bits = model.solid()) bitGrids.emplace_back(*bits);
+        else slicemaps.emplace_back(*model.slicemap());
     }
     checkGl("uploading the scene");
 }
@@ -471,32 +435,11 @@ void SceneRenderer::Impl::setUniforms(GLuint p) {
         glUniformMatrix4fv(location(p, "u_toMesh" + k), 1, GL_FALSE, glm::value_ptr(toMesh));
         switch (lookup) {
         case Lookup::Vds: sprites[i].setUniforms(p, "u_vdsLdi" + k, "u_vdsPlacement" + k, unit++); break;
-        case Lookup::Solid: {
-            const voxel::VoxelGrid& g = models[i].solid()->grid;
-            glBindTextureUnit(unit, voxelTextures[i].id());
-            glUniform1i(location(p, "u_voxels" + k), GLint(unit++));
-            glUniform3fv(location(p, "u_voxelGrid" + k + ".origin"), 1, &g.origin[0]);
-            glUniform3fv(location(p, "u_voxelGrid" + k + ".scale"), 1, &g.scale[0]);
-            glUniform3i(location(p, "u_voxelGrid" + k + ".size"), GLint(g.size.x), GLint(g.size.y), GLint(g.size.z));
-            break;
-        }
+        case Lookup::Solid: bitGrids[i].setUniforms(p, "u_voxels" + k, "u_voxelGrid" + k, unit++); break;
         case Lookup::Slicemap:
-        case Lookup::SlicemapLocal: {
-            const voxel::Slicemap& map = *models[i].slicemap();
-            glBindTextureUnit(unit, voxelTextures[i].id());
-            glUniform1i(location(p, "u_slicemap" + k), GLint(unit++));
-            if (lookup == Lookup::SlicemapLocal) {
-                glBindTextureUnit(unit, rangeTextures[i].id());
-                glUniform1i(location(p, "u_ranges" + k), GLint(unit++));
-            }
-            const std::string m = "u_map" + k;
-            glUniform3fv(location(p, m + ".grid.origin"), 1, &map.grid.origin[0]);
-            glUniform3fv(location(p, m + ".grid.scale"), 1, &map.grid.scale[0]);
-            glUniform3i(location(p, m + ".grid.size"), GLint(map.grid.size.x), GLint(map.grid.size.y),
-                        GLint(map.grid.size.z));
-            glUniform1i(location(p, m + ".backLayer"), GLint(map.renderTargets));
+        case Lookup::SlicemapLocal:
+            unit = slicemaps[i].setUniforms(p, "u_slicemap" + k, "u_ranges" + k, "u_map" + k, unit);
             break;
-        }
         case Lookup::Exact: break;
         }
     }

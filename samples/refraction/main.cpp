@@ -19,6 +19,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/gtc/constants.hpp>
 
 #include <vds/all.h>
 #include <vds/bake.h>
@@ -28,6 +29,8 @@
 #include <vds/mesh_io.h>
 #include <vds/voxel/refraction.h>
 #include <vds/voxel/light_frame.h>
+
+#include "shapes.h"
 
 namespace {
 
@@ -41,7 +44,7 @@ struct Options {
 // A closed torus around the y axis, outward facing.
 void addTorus(vds::TriangleMesh& m, const glm::vec3& centre, float major, float minor, std::uint32_t segments) {
     const std::uint32_t base = std::uint32_t(m.positions.size()), around = segments, tube = segments / 2;
-    const float pi = 3.14159265358979f;
+    const float pi = glm::pi<float>();
     for (std::uint32_t i = 0; i < around; ++i)
         for (std::uint32_t j = 0; j < tube; ++j) {
             const float u = 2 * pi * float(i) / float(around), v = 2 * pi * float(j) / float(tube);
@@ -56,29 +59,7 @@ void addTorus(vds::TriangleMesh& m, const glm::vec3& centre, float major, float 
         }
 }
 
-// A closed UV sphere, outward facing.
-void addSphere(vds::TriangleMesh& m, const glm::vec3& centre, float radius, std::uint32_t segments) {
-    const std::uint32_t rings = segments / 2, base = std::uint32_t(m.positions.size());
-    const float pi = 3.14159265358979f;
-    m.positions.push_back(centre + glm::vec3(0, radius, 0));
-    for (std::uint32_t r = 1; r < rings; ++r)
-        for (std::uint32_t s = 0; s < segments; ++s) {
-            const float theta = pi * float(r) / float(rings), phi = 2.0f * pi * float(s) / float(segments);
-            m.positions.push_back(centre + radius * glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta),
-                                                              std::sin(theta) * std::sin(phi)));
-        }
-    m.positions.push_back(centre - glm::vec3(0, radius, 0));
-    const std::uint32_t south = std::uint32_t(m.positions.size()) - 1;
-    const auto ring = [&](std::uint32_t r, std::uint32_t s) { return base + 1 + (r - 1) * segments + s % segments; };
-    for (std::uint32_t s = 0; s < segments; ++s) {
-        m.triangles.push_back({base, ring(1, s + 1), ring(1, s)});
-        m.triangles.push_back({south, ring(rings - 1, s), ring(rings - 1, s + 1)});
-        for (std::uint32_t r = 1; r + 1 < rings; ++r) {
-            m.triangles.push_back({ring(r, s), ring(r, s + 1), ring(r + 1, s)});
-            m.triangles.push_back({ring(r, s + 1), ring(r + 1, s + 1), ring(r + 1, s)});
-        }
-    }
-}
+using vds::samples::addSphere;
 
 // A sphere, and a torus tilted to the view (concave: rays cross it up to
 // four times).

@@ -36,6 +36,8 @@
 #include <vds/mesh_io.h>
 #include <vds/voxel/transmittance.h>
 
+#include "shapes.h"
+
 namespace {
 
 struct Options {
@@ -45,33 +47,7 @@ struct Options {
     std::vector<float> light{0.35f, -1.0f, 0.25f};
 };
 
-// A closed UV sphere, outward facing, `segments` around (>= 3) and
-// `segments / 2` rings.
-void addSphere(vds::TriangleMesh& m, const glm::vec3& centre, float radius, std::uint32_t segments, bool inward = false) {
-    const std::uint32_t rings = std::max(2u, segments / 2), base = std::uint32_t(m.positions.size());
-    const float pi = 3.14159265358979f;
-    m.positions.push_back(centre + glm::vec3(0, radius, 0));
-    for (std::uint32_t r = 1; r < rings; ++r)
-        for (std::uint32_t s = 0; s < segments; ++s) {
-            const float theta = pi * float(r) / float(rings), phi = 2.0f * pi * float(s) / float(segments);
-            m.positions.push_back(centre + radius * glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta),
-                                                              std::sin(theta) * std::sin(phi)));
-        }
-    m.positions.push_back(centre - glm::vec3(0, radius, 0));
-    const std::uint32_t south = std::uint32_t(m.positions.size()) - 1;
-    const auto ring = [&](std::uint32_t r, std::uint32_t s) { return base + 1 + (r - 1) * segments + s % segments; };
-    const auto tri = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-        m.triangles.push_back(inward ? glm::uvec3(a, c, b) : glm::uvec3(a, b, c));
-    };
-    for (std::uint32_t s = 0; s < segments; ++s) {
-        tri(base, ring(1, s + 1), ring(1, s));
-        tri(south, ring(rings - 1, s), ring(rings - 1, s + 1));
-        for (std::uint32_t r = 1; r + 1 < rings; ++r) {
-            tri(ring(r, s), ring(r, s + 1), ring(r + 1, s));
-            tri(ring(r, s + 1), ring(r + 1, s + 1), ring(r + 1, s));
-        }
-    }
-}
+using vds::samples::addSphere;
 
 void addBox(vds::TriangleMesh& m, const glm::vec3& lo, const glm::vec3& hi) {
     const std::uint32_t b = std::uint32_t(m.positions.size());

@@ -202,9 +202,9 @@ TEST(SpriteGeneralizedWinding, AgreesWithTheExactGwnAwayFromTheSurface) {
                                      glm::vec3(near(nearRng), near(nearRng), near(nearRng)));
             std::vector<std::uint8_t> exactLabels(points.size()), capLabels(points.size());
             classify(sprite, {points.data(), points.size()}, exactLabels.data(),
-                     {Rule::GeneralizedWinding, 0, QueryLayout::Auto, BoundaryEvaluation::Exact});
+                     {Rule::GeneralizedWinding, 0}, {QueryLayout::Auto, BoundaryEvaluation::Exact});
             classify(sprite, {points.data(), points.size()}, capLabels.data(),
-                     {Rule::GeneralizedWinding, 0, QueryLayout::Auto, BoundaryEvaluation::Caps});
+                     {Rule::GeneralizedWinding, 0}, {QueryLayout::Auto, BoundaryEvaluation::Caps});
             std::size_t compared = 0, wrong = 0, farWrong = 0;
             for (std::size_t k = 0; k < points.size(); ++k) {
                 const glm::vec3& p = points[k];
@@ -285,9 +285,9 @@ TEST(SpriteGeneralizedWinding, CapsLabelsEqualTheExactTermsNearOneHalf) {
             }
             std::vector<std::uint8_t> exactLabels(points.size()), capLabels(points.size());
             classify(sprite, {points.data(), points.size()}, exactLabels.data(),
-                     {Rule::GeneralizedWinding, 0, QueryLayout::Auto, BoundaryEvaluation::Exact});
+                     {Rule::GeneralizedWinding, 0}, {QueryLayout::Auto, BoundaryEvaluation::Exact});
             classify(sprite, {points.data(), points.size()}, capLabels.data(),
-                     {Rule::GeneralizedWinding, 0, QueryLayout::Auto, BoundaryEvaluation::Caps});
+                     {Rule::GeneralizedWinding, 0}, {QueryLayout::Auto, BoundaryEvaluation::Caps});
             tested += points.size();
             for (std::size_t k = 0; k < points.size(); ++k) {
                 ASSERT_EQ(capLabels[k], exactLabels[k]) << c.name << " point " << k;
@@ -342,10 +342,10 @@ TEST(SpriteGeneralizedWinding, FollowsTheSpritesPlacement) {
     EXPECT_LE(double(wrong), 0.005 * double(compared));
 }
 
-// The capped loops are derived data: a copy starts without them and builds
-// its own from its own edges (so a copy whose edges are then changed answers
-// for the changed edges); a move takes them along. Answers against the
-// per-edge sum on the same sprite.
+// The capped loops are derived data a SpriteClassifier keeps: a classifier
+// of a copy builds its own from its own edges (so a copy whose edges are
+// then changed answers for the changed edges); a moved classifier takes
+// them along. Answers against the per-edge sum on the same sprite.
 TEST(SpriteGeneralizedWinding, CapsFollowCopiesAndMoves) {
     const TriangleMesh mesh = sphereWithHoles();
     Sprite sprite = bakeAt(mesh, Axis::Z, 64);
@@ -353,20 +353,23 @@ TEST(SpriteGeneralizedWinding, CapsFollowCopiesAndMoves) {
     std::uniform_real_distribution<float> u(-1.2f, 1.2f);
     std::vector<glm::vec3> points(2000);
     for (glm::vec3& p : points) p = {u(rng), u(rng), u(rng)};
-    const auto labels = [&](const Sprite& s, BoundaryEvaluation how) {
+    const auto labels = [&](const Classifier& c) {
         std::vector<std::uint8_t> out(points.size());
-        classify(s, {points.data(), points.size()}, out.data(), {Rule::GeneralizedWinding, 1, QueryLayout::Auto, how});
+        c.classify({points.data(), points.size()}, out.data(), {Rule::GeneralizedWinding, 1});
         return out;
     };
-    const std::vector<std::uint8_t> before = labels(sprite, BoundaryEvaluation::Caps); // builds the caps
-    EXPECT_EQ(before, labels(sprite, BoundaryEvaluation::Exact));
+    const SpriteQueryOptions perEdge{QueryLayout::Auto, BoundaryEvaluation::Exact};
+    SpriteClassifier byCaps(sprite);
+    const std::vector<std::uint8_t> before = labels(byCaps); // builds the caps
+    EXPECT_EQ(before, labels(SpriteClassifier(sprite, perEdge)));
     Sprite copy = sprite;
     for (glm::vec3& e : copy.boundaryEdges) e *= 1.5f; // a larger hole rim: a different boundary term
-    const std::vector<std::uint8_t> scaled = labels(copy, BoundaryEvaluation::Caps);
-    EXPECT_EQ(scaled, labels(copy, BoundaryEvaluation::Exact));
+    const std::vector<std::uint8_t> scaled = labels(SpriteClassifier(copy));
+    EXPECT_EQ(scaled, labels(SpriteClassifier(copy, perEdge)));
     EXPECT_NE(scaled, before);
-    const Sprite moved = std::move(sprite);
-    EXPECT_EQ(labels(moved, BoundaryEvaluation::Caps), before);
+    const SpriteClassifier moved = std::move(byCaps);
+    EXPECT_EQ(labels(moved), before);
+    EXPECT_EQ(labels(moved), before); // from the caps it keeps
 }
 
 TEST(SpriteGeneralizedWinding, BoundaryEdgesSurviveTheFile) {

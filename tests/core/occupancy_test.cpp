@@ -71,9 +71,20 @@ TEST(Occupancy, SpriteSweepEqualsContainsOnEveryCell) {
         o.axis = axis;
         o.method = BakeMethod::Cpu;
         Sprite sprite = bakeCpu(torus.mesh, o);
-        for (int moved = 0; moved < 3; ++moved) {
+        // Turned exactly a quarter about its axis (s and t swap world axes:
+        // still swept by columns) and mirrored along it (depth falls along
+        // the axis: cells one by one), entries exactly 0 and 1.
+        const glm::ivec3 p = axisPermutation(axis);
+        glm::mat4 quarter(0.0f), mirror(1.0f);
+        quarter[p.x][p.y] = 1.0f;
+        quarter[p.y][p.x] = -1.0f;
+        quarter[p.z][p.z] = quarter[3][3] = 1.0f;
+        mirror[p.z][p.z] = -1.0f;
+        for (int moved = 0; moved < 5; ++moved) {
             if (moved == 1) sprite.transform(glm::translate(glm::mat4(1.0f), {0.05f, -0.1f, 0.02f})); // still aligned
-            if (moved == 2) sprite.transform(glm::rotate(glm::mat4(1.0f), 0.3f, {0.2f, 1.0f, 0.4f}));  // rotated
+            if (moved == 2) sprite.transform(quarter);
+            if (moved == 3) sprite.transform(mirror);
+            if (moved == 4) sprite.transform(glm::rotate(glm::mat4(1.0f), 0.3f, {0.2f, 1.0f, 0.4f}));  // rotated
             for (Rule rule : {Rule::Parity, Rule::Winding}) {
                 std::vector<std::uint8_t> swept(grid.cellCount(), 7);
                 occupancy(sprite, grid, swept.data(), {rule, 2});

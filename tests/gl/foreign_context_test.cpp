@@ -179,6 +179,27 @@ TEST_F(ForeignContext, AnAdoptedContextBakesUploadsAndClassifiesLikeTheCpu) {
     EXPECT_TRUE(contextWorks());
 }
 
+// makeClassifier with no context makes a private one for a GPU method: the
+// application's context is current again when it returns (rule 3), and
+// after the classifier answers and goes.
+TEST_F(ForeignContext, MakeClassifierOnAPrivateContextGivesTheApplicationsContextBack) {
+    const auto torus = solids::torus({0.5f, 0.5f, 0.5f}, 0.6f, 0.25f, 32);
+    MethodOptions o;
+    o.resolution = 32;
+    std::unique_ptr<Classifier> gpu = makeClassifier(torus.mesh, Method::SpriteGpu, o);
+    EXPECT_TRUE(egl.isCurrent()) << "makeClassifier left the library's own context current";
+    const std::unique_ptr<Classifier> cpu = makeClassifier(torus.mesh, Method::Sprite, o);
+    const std::vector<glm::vec3> points = gridPoints(12);
+    std::vector<std::uint8_t> fromGpu(points.size()), fromCpu(points.size());
+    gpu->classify(points, fromGpu.data());
+    EXPECT_TRUE(egl.isCurrent());
+    cpu->classify(points, fromCpu.data());
+    EXPECT_EQ(fromGpu, fromCpu);
+    gpu.reset();
+    EXPECT_TRUE(egl.isCurrent());
+    EXPECT_TRUE(contextWorks());
+}
+
 TEST_F(ForeignContext, MisuseGivesOneLineErrorsNamingTheMistake) {
     const auto box = solids::box({0, 0, 0}, {1, 1, 1});
     BakeOptions o;

@@ -72,9 +72,8 @@ TEST_F(GwnGpuTest, ClassifierMatchesTheCpuOnOpenMeshes) {
                 }
                 ClassifyOptions options;
                 options.rule = Rule::GeneralizedWinding;
-                options.boundary = BoundaryEvaluation::Exact;
-                std::vector<std::uint8_t> cpu(points.size());
-                classify(sprite, {points.data(), points.size()}, cpu.data(), options);
+                        std::vector<std::uint8_t> cpu(points.size());
+                classify(sprite, {points.data(), points.size()}, cpu.data(), options, {QueryLayout::Auto, BoundaryEvaluation::Exact});
                 for (GpuSpriteParts parts : {GpuSpriteParts::ColumnsOnly, GpuSpriteParts::TextureOnly}) {
                     const GpuSprite gpu(sprite, parts);
                     EXPECT_EQ(gpu.boundaryEdgeCount(), sprite.boundaryEdges.size() / 2);
@@ -242,9 +241,8 @@ TEST_F(GwnGpuTest, ReferenceMatchesTheCpuLabels) {
     const auto points = test::randomPoints(sprite.grid.box, 5000, 0.1f, 9);
     ClassifyOptions options;
     options.rule = Rule::GeneralizedWinding;
-    options.boundary = BoundaryEvaluation::Exact;
     std::vector<std::uint8_t> cpu(points.size());
-    classify(sprite, {points.data(), points.size()}, cpu.data(), options);
+    classify(sprite, {points.data(), points.size()}, cpu.data(), options, {QueryLayout::Auto, BoundaryEvaluation::Exact});
     std::size_t differ = 0, open = 0;
     for (std::size_t k = 0; k < points.size(); ++k) {
         const double w = referenceGwn(sprite, points[k]);
@@ -398,9 +396,8 @@ TEST_F(GwnGpuTest, OneLargeOpeningMatchesTheCpuNearItsPlane) {
         ASSERT_GE(sprite.boundaryEdges.size(), 2u * 256u); // the rim (and the pole's zero-length edges)
         ClassifyOptions options;
         options.rule = Rule::GeneralizedWinding;
-        options.boundary = BoundaryEvaluation::Exact;
         std::vector<std::uint8_t> cpu(points.size());
-        classify(sprite, {points.data(), points.size()}, cpu.data(), options);
+        classify(sprite, {points.data(), points.size()}, cpu.data(), options, {QueryLayout::Auto, BoundaryEvaluation::Exact});
         const GpuSprite gpu(sprite, GpuSpriteParts::TextureOnly);
         // one loop, halved into chains closed by their chords
         EXPECT_GE(gpu.boundaryNodeCount(), 256u / 4u) << toString(axis);

@@ -160,6 +160,9 @@ TEST_F(SolidTest, ModelsAnswerPointQueriesLikeTheirGrid) {
     EXPECT_FALSE(model.contains({0, 0, 0}));    // the hole
     EXPECT_TRUE(model.contains({1.0f, 0, 0}));  // in the tube
     EXPECT_FALSE(model.contains({5.0f, 0, 0})); // outside the grid
+    // The contract's contains(p, rule), not hidden by the model's own.
+    EXPECT_TRUE(model.contains({1.0f, 0, 0}, Rule::Parity));
+    EXPECT_THROW(model.contains({1.0f, 0, 0}, Rule::Winding), InvalidArgument);
 }
 
 } // namespace

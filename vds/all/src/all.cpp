@@ -28,8 +28,9 @@ Sprite bakeFor(const GlContext* gl, MeshView mesh, Method method, const MethodOp
 class OwnContext final : public Classifier {
 public:
     template <class Make>
-    explicit OwnContext(Make&& make) : gl_(std::make_unique<GlContext>()) {
-        const CurrentContext restore; // GlContext() made its context current
+    explicit OwnContext(Make&& make) {
+        const CurrentContext restore; // saved before GlContext() makes its own context current
+        gl_ = std::make_unique<GlContext>();
         inner_ = make(*gl_);
     }
     ~OwnContext() override { inner_.reset(); }

@@ -67,22 +67,23 @@ constexpr std::size_t kChunk = std::size_t(1) << 16;
 
 } // namespace
 
-PointsView PointsView::floats(const float* xyz, std::size_t n, std::size_t strideBytes) {
+namespace {
+PointsView viewOf(const void* xyz, std::size_t n, std::size_t strideBytes, Scalar scalar) {
     PointsView v;
     v.data = xyz;
     v.count = n;
     v.strideBytes = strideBytes;
-    v.scalar = Scalar::Float32;
+    v.scalar = scalar;
     return v;
+}
+} // namespace
+
+PointsView PointsView::floats(const float* xyz, std::size_t n, std::size_t strideBytes) {
+    return viewOf(xyz, n, strideBytes, Scalar::Float32);
 }
 
 PointsView PointsView::doubles(const double* xyz, std::size_t n, std::size_t strideBytes) {
-    PointsView v;
-    v.data = xyz;
-    v.count = n;
-    v.strideBytes = strideBytes;
-    v.scalar = Scalar::Float64;
-    return v;
+    return viewOf(xyz, n, strideBytes, Scalar::Float64);
 }
 
 glm::vec3 PointsView::operator[](std::size_t k) const {

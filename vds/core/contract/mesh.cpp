@@ -119,63 +119,47 @@ struct Found {
     }
 };
 
-/// The counts of `validateMesh` but for the vertices, `weld` given. Each
-/// thread takes a share of the triangles: it checks them and counts, per
-/// vertex, the edge uses and corner sets it will put in the vertex's group
-/// (the group of an edge's, or a triangle's, lowest welded vertex). Running
-/// sums of those counts say where each thread puts each item, and a second
-/// pass puts them there: a counting sort by lowest vertex. Then every group,
-/// a handful of items, is sorted in place and read in runs. `Index` holds a
-/// vertex index shifted left by one and any position in the arrays of items.
-template <class Index>
-void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>& weld, unsigned threads) {
-    const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
-    std::unique_ptr<std::atomic<std::uint8_t>[]> used(new std::atomic<std::uint8_t>[nv]());
-    // Per thread and vertex: how many edge uses (corner sets) the thread
-    // has for the vertex's group; then where it puts the next one.
-    std::vector<std::vector<Index>> edgeAt(threads, std::vector<Index>(nv, 0));
-    std::vector<std::vector<Index>> cornerAt(threads, std::vector<Index>(nv, 0));
-    std::vector<Found> found(threads);
-    const auto share = [&](std::size_t k) { return std::make_pair(nt * k / threads, nt * (k + 1) / threads); };
-    parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
-        Found& f = found[k];
-        Index* edgeCount = edgeAt[k].data();
-        Index* cornerCount = cornerAt[k].data();
-        for (auto [t, end] = share(k); t < end; ++t) {
-            const glm::uvec3 tri = mesh.triangles[t];
-            if (tri.x >= nv || tri.y >= nv || tri.z >= nv) {
-                ++f.badIndices;
-                continue;
-            }
-            const std::uint32_t w[3] = {weld[tri.x], weld[tri.y], weld[tri.z]};
-            for (std::uint32_t v : w) used[v].store(1, std::memory_order_relaxed);
-            const glm::vec3 &a = mesh.positions[tri.x], &b = mesh.positions[tri.y], &c = mesh.positions[tri.z];
-            const glm::vec3 n = glm::cross(b - a, c - a);
-            const bool collapsed = w[0] == w[1] || w[1] == w[2] || w[0] == w[2];
-            if (collapsed || glm::dot(n, n) == 0.0f) ++f.degenerate;
-            if (collapsed) continue; // the edges of a collapsed triangle mean nothing
-            ++edgeCount[std::min(w[0], w[1])];
-            ++edgeCount[std::min(w[1], w[2])];
-            ++edgeCount[std::min(w[2], w[0])];
-            ++cornerCount[std::min({w[0], w[1], w[2]})];
-        }
-    });
-    // The bounds of the used vertices' positions: those of the vertices the
-    // triangles name, as a twin has its vertex's position.
-    Found all;
-    for (std::size_t i = 0; i < nv; ++i) {
-        if (!used[weld[i]].load(std::memory_order_relaxed))
-            ++r.isolatedVertices;
-        else if (finite(mesh.positions[i]))
-            all.include(mesh.positions[i], mesh.positions[i]);
-    }
-    r.bounds = all.bounds;
-    used.reset();
+/// The triangles [nt k / threads, nt (k + 1) / threads): thread k's share.
+std::pair<std::size_t, std::size_t> shareOf(std::size_t nt, unsigned threads, std::size_t k) {
+    return std::make_pair(nt * k / threads, nt * (k + 1) / threads);
+}
 
-    // Counts to where each thread starts in each group (afterwards the last
-    // thread's entries are where the groups end): the totals of chunks of
-    // vertices, their running sums, then each chunk's own, chunks in parallel.
-    constexpr std::size_t kVerticesPerChunk = 1 << 14;
+/// countByEdges' first pass, thread k's share: checks its triangles (into
+/// `f`), marks their welded vertices `used`, and counts per vertex the edge
+/// uses and corner sets that go to the vertex's group.
+template <class Index>
+void countItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair<std::size_t, std::size_t> share,
+                std::atomic<std::uint8_t>* used, Index* edgeCount, Index* cornerCount, Found& f) {
+    const std::size_t nv = mesh.positionCount;
+    for (auto [t, end] = share; t < end; ++t) {
+        const glm::uvec3 tri = mesh.triangles[t];
+        if (tri.x >= nv || tri.y >= nv || tri.z >= nv) {
+            ++f.badIndices;
+            continue;
+        }
+        const std::uint32_t w[3] = {weld[tri.x], weld[tri.y], weld[tri.z]};
+        for (std::uint32_t v : w) used[v].store(1, std::memory_order_relaxed);
+        const glm::vec3 &a = mesh.positions[tri.x], &b = mesh.positions[tri.y], &c = mesh.positions[tri.z];
+        const glm::vec3 n = glm::cross(b - a, c - a);
+        const bool collapsed = w[0] == w[1] || w[1] == w[2] || w[0] == w[2];
+        if (collapsed || glm::dot(n, n) == 0.0f) ++f.degenerate;
+        if (collapsed) continue; // the edges of a collapsed triangle mean nothing
+        ++edgeCount[std::min(w[0], w[1])];
+        ++edgeCount[std::min(w[1], w[2])];
+        ++edgeCount[std::min(w[2], w[0])];
+        ++cornerCount[std::min({w[0], w[1], w[2]})];
+    }
+}
+
+constexpr std::size_t kVerticesPerChunk = 1 << 14;
+
+/// Counts to where each thread starts in each group (afterwards the last
+/// thread's entries are where the groups end): the totals of chunks of
+/// vertices, their running sums, then each chunk's own, chunks in
+/// parallel. Returns the totals (edge uses, corner sets).
+template <class Index>
+std::pair<Index, Index> groupStarts(std::vector<std::vector<Index>>& edgeAt, std::vector<std::vector<Index>>& cornerAt,
+                                    std::size_t nv, unsigned threads) {
     const std::size_t chunks = (nv + kVerticesPerChunk - 1) / kVerticesPerChunk;
     std::vector<std::pair<Index, Index>> chunkStart(chunks + 1); // edges, corners
     parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
@@ -202,27 +186,97 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
                 t += cornerCount;
             }
     });
-    const Index edgeTotal = chunkStart[chunks].first, cornerTotal = chunkStart[chunks].second;
+    return chunkStart[chunks];
+}
+
+/// countByEdges' second pass, thread k's share: each edge use and corner
+/// set into its group, at the thread's next place there.
+template <class Index>
+void placeItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair<std::size_t, std::size_t> share,
+                Index* edgeNext, Index* cornerNext, Index* edges, std::uint64_t* others) {
+    const std::size_t nv = mesh.positionCount;
+    for (auto [t, end] = share; t < end; ++t) {
+        const glm::uvec3 tri = mesh.triangles[t];
+        if (tri.x >= nv || tri.y >= nv || tri.z >= nv) continue;
+        std::uint32_t w[3] = {weld[tri.x], weld[tri.y], weld[tri.z]};
+        if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) continue;
+        for (int e = 0; e < 3; ++e) {
+            const std::uint32_t a = w[e], b = w[(e + 1) % 3];
+            edges[edgeNext[std::min(a, b)]++] = edgeUse<Index>(a, b);
+        }
+        if (w[0] > w[1]) std::swap(w[0], w[1]);
+        if (w[1] > w[2]) std::swap(w[1], w[2]);
+        if (w[0] > w[1]) std::swap(w[0], w[1]);
+        others[cornerNext[w[0]]++] = (std::uint64_t(w[1]) << 32) | w[2];
+    }
+}
+
+/// Vertex v's groups, sorted in place and read in runs: its edges' uses
+/// (boundary, non-manifold, inconsistent) and its triangles' corner sets
+/// (duplicates), into `f`.
+template <class Index>
+void readGroup(std::size_t v, const std::vector<Index>& edgeEnd, const std::vector<Index>& cornerEnd, Index* edges,
+               std::uint64_t* others, Found& f) {
+    const auto less = [](auto x, auto y) { return x < y; };
+    const std::size_t first = v == 0 ? 0 : std::size_t(edgeEnd[v - 1]);
+    Index* group = edges + first;
+    const std::size_t n = std::size_t(edgeEnd[v]) - first;
+    sortGroup(group, n, less);
+    for (std::size_t i = 0; i < n;) {
+        std::size_t j = i, forward = 0;
+        for (; j < n && (group[j] >> 1) == (group[i] >> 1); ++j) forward += std::size_t(group[j] & 1);
+        const std::size_t uses = j - i;
+        if (uses == 1) ++f.boundary;
+        if (uses > 2) ++f.nonManifold;
+        if (uses > 2 && uses % 2 == 1) ++f.oddNonManifold;
+        if (uses % 2 == 0 && 2 * forward != uses) ++f.inconsistent;
+        i = j;
+    }
+    const std::size_t firstSet = v == 0 ? 0 : std::size_t(cornerEnd[v - 1]);
+    std::uint64_t* sets = others + firstSet;
+    const std::size_t m = std::size_t(cornerEnd[v]) - firstSet;
+    sortGroup(sets, m, less);
+    for (std::size_t i = 1; i < m; ++i) f.duplicates += sets[i] == sets[i - 1];
+}
+
+/// The counts of `validateMesh` but for the vertices, `weld` given. Each
+/// thread takes a share of the triangles: it checks them and counts, per
+/// vertex, the edge uses and corner sets it will put in the vertex's group
+/// (the group of an edge's, or a triangle's, lowest welded vertex). Running
+/// sums of those counts say where each thread puts each item, and a second
+/// pass puts them there: a counting sort by lowest vertex. Then every group,
+/// a handful of items, is sorted in place and read in runs. `Index` holds a
+/// vertex index shifted left by one and any position in the arrays of items.
+template <class Index>
+void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>& weld, unsigned threads) {
+    const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
+    std::unique_ptr<std::atomic<std::uint8_t>[]> used(new std::atomic<std::uint8_t>[nv]());
+    // Per thread and vertex: how many edge uses (corner sets) the thread
+    // has for the vertex's group; then where it puts the next one.
+    std::vector<std::vector<Index>> edgeAt(threads, std::vector<Index>(nv, 0));
+    std::vector<std::vector<Index>> cornerAt(threads, std::vector<Index>(nv, 0));
+    std::vector<Found> found(threads);
+    parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
+        countItems(mesh, weld, shareOf(nt, threads, k), used.get(), edgeAt[k].data(), cornerAt[k].data(), found[k]);
+    });
+    // The bounds of the used vertices' positions: those of the vertices the
+    // triangles name, as a twin has its vertex's position.
+    Found all;
+    for (std::size_t i = 0; i < nv; ++i) {
+        if (!used[weld[i]].load(std::memory_order_relaxed))
+            ++r.isolatedVertices;
+        else if (finite(mesh.positions[i]))
+            all.include(mesh.positions[i], mesh.positions[i]);
+    }
+    r.bounds = all.bounds;
+    used.reset();
+
+    const auto [edgeTotal, cornerTotal] = groupStarts(edgeAt, cornerAt, nv, threads);
     // Every item is written below, so the arrays start uninitialised.
     const std::unique_ptr<Index[]> edges(new Index[std::size_t(edgeTotal)]);
     const std::unique_ptr<std::uint64_t[]> others(new std::uint64_t[std::size_t(cornerTotal)]); ///< a triangle's two higher corners: middle << 32 | highest
     parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
-        Index* edgeNext = edgeAt[k].data();
-        Index* cornerNext = cornerAt[k].data();
-        for (auto [t, end] = share(k); t < end; ++t) {
-            const glm::uvec3 tri = mesh.triangles[t];
-            if (tri.x >= nv || tri.y >= nv || tri.z >= nv) continue;
-            std::uint32_t w[3] = {weld[tri.x], weld[tri.y], weld[tri.z]};
-            if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) continue;
-            for (int e = 0; e < 3; ++e) {
-                const std::uint32_t a = w[e], b = w[(e + 1) % 3];
-                edges[edgeNext[std::min(a, b)]++] = edgeUse<Index>(a, b);
-            }
-            if (w[0] > w[1]) std::swap(w[0], w[1]);
-            if (w[1] > w[2]) std::swap(w[1], w[2]);
-            if (w[0] > w[1]) std::swap(w[0], w[1]);
-            others[cornerNext[w[0]]++] = (std::uint64_t(w[1]) << 32) | w[2];
-        }
+        placeItems(mesh, weld, shareOf(nt, threads, k), edgeAt[k].data(), cornerAt[k].data(), edges.get(), others.get());
     });
     const std::vector<Index> edgeEnd = std::move(edgeAt.back()), cornerEnd = std::move(cornerAt.back());
     edgeAt = {};
@@ -230,29 +284,8 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
 
     std::vector<Found> groups((nv + kVerticesPerChunk - 1) / kVerticesPerChunk);
     parallelFor(threads, nv, kVerticesPerChunk, [&](std::size_t begin, std::size_t end) {
-        Found& f = groups[begin / kVerticesPerChunk];
-        const auto less = [](auto x, auto y) { return x < y; };
-        for (std::size_t v = begin; v < end; ++v) {
-            const std::size_t first = v == 0 ? 0 : std::size_t(edgeEnd[v - 1]);
-            Index* group = edges.get() + first;
-            const std::size_t n = std::size_t(edgeEnd[v]) - first;
-            sortGroup(group, n, less);
-            for (std::size_t i = 0; i < n;) {
-                std::size_t j = i, forward = 0;
-                for (; j < n && (group[j] >> 1) == (group[i] >> 1); ++j) forward += std::size_t(group[j] & 1);
-                const std::size_t uses = j - i;
-                if (uses == 1) ++f.boundary;
-                if (uses > 2) ++f.nonManifold;
-                if (uses > 2 && uses % 2 == 1) ++f.oddNonManifold;
-                if (uses % 2 == 0 && 2 * forward != uses) ++f.inconsistent;
-                i = j;
-            }
-            const std::size_t firstSet = v == 0 ? 0 : std::size_t(cornerEnd[v - 1]);
-            std::uint64_t* sets = others.get() + firstSet;
-            const std::size_t m = std::size_t(cornerEnd[v]) - firstSet;
-            sortGroup(sets, m, less);
-            for (std::size_t i = 1; i < m; ++i) f.duplicates += sets[i] == sets[i - 1];
-        }
+        for (std::size_t v = begin; v < end; ++v)
+            readGroup(v, edgeEnd, cornerEnd, edges.get(), others.get(), groups[begin / kVerticesPerChunk]);
     });
 
     found.insert(found.end(), groups.begin(), groups.end());

@@ -128,7 +128,30 @@ struct CertifiedClassifier::Impl {
         if (certifies) build(mesh, options.threads);
     }
 
+    // The build, a row of texels at a time: each column's bands (the
+    // merged depth ranges of the triangles whose footprint meets it) with
+    // the winding number above each, counted at the texel's centre.
     void build(MeshView mesh, unsigned threads);
+    struct Footprints {
+        double originS = 0.0, originT = 0.0, texelS = 0.0, texelT = 0.0; ///< texel edges, mesh units
+        std::uint32_t width = 0, height = 0;
+    };
+    struct TrianglesByRow {
+        std::vector<ViewTriangle> tris;
+        std::vector<std::uint32_t> start, of; ///< the triangles of row j: of[start[j] .. start[j+1])
+    };
+    struct ColumnScratch {
+        std::vector<std::int32_t> bandOf, delta;
+    };
+    Footprints footprints() const;
+    TrianglesByRow trianglesByRow(MeshView mesh, const Footprints& f) const;
+    /// The depth intervals the row's triangles cover in each of its columns.
+    void rowIntervals(const Footprints& f, const TrianglesByRow& rows, std::uint32_t j,
+                      std::vector<std::vector<Interval>>& columns) const;
+    /// Column (i, j)'s intervals merged into bands, appended to `outBands`; returns how many.
+    std::uint32_t columnBands(const detail::ProjectedMesh& projected, std::vector<Interval>& list, std::uint32_t i,
+                              std::uint32_t j, ColumnScratch& scratch, std::vector<Band>& outBands) const;
+    void join(std::vector<std::vector<Band>>& rowBands, const std::vector<std::vector<std::uint32_t>>& rowCounts);
 
     // Where p's answer comes from: kOutside (certainly outside, no surface
     // out there), kExact (the exact path), or the column whose bands decide.
@@ -169,115 +192,141 @@ struct CertifiedClassifier::Impl {
 };
 
 void CertifiedClassifier::Impl::build(MeshView mesh, unsigned threads) {
-    const std::uint32_t width = grid.width, height = grid.height;
     const detail::ProjectedMesh projected(mesh, grid.axis);
-    // Footprint edges along s and t in mesh units, from the lookup's own
-    // matrix: texel i covers s in [lo_s + i / (m_s width), lo_s + (i+1) / (m_s width)).
-    const double originS = grid.position[perm.x], originT = grid.position[perm.y];
-    const double texelS = 1.0 / (double(grid.matrix[perm.x][0]) * width);
-    const double texelT = 1.0 / (double(grid.matrix[perm.y][1]) * height);
-    const std::size_t n = mesh.triangleCount;
-    std::vector<ViewTriangle> tris(n);
-    // Rows each triangle's widened box reaches, and the triangles of each row (CSR).
-    std::vector<std::uint32_t> rowStart(std::size_t(height) + 1, 0);
-    const auto rowRange = [&](const ViewTriangle& t, std::uint32_t& j0, std::uint32_t& j1) {
-        const double lo = std::floor((t.tMin - originT) / texelT - kFootprintMargin);
-        const double hi = std::floor((t.tMax - originT) / texelT + kFootprintMargin);
-        j0 = std::uint32_t(std::clamp(lo, 0.0, double(height - 1)));
-        j1 = std::uint32_t(std::clamp(hi, 0.0, double(height - 1)));
-    };
-    for (std::size_t k = 0; k < n; ++k) {
-        tris[k] = viewTriangle(mesh, k, perm);
-        std::uint32_t j0, j1;
-        rowRange(tris[k], j0, j1);
-        for (std::uint32_t j = j0; j <= j1; ++j) ++rowStart[j + 1];
-    }
-    std::partial_sum(rowStart.begin(), rowStart.end(), rowStart.begin());
-    std::vector<std::uint32_t> rowTris(rowStart.back());
-    {
-        std::vector<std::uint32_t> next(rowStart.begin(), rowStart.end() - 1);
-        for (std::size_t k = 0; k < n; ++k) {
-            std::uint32_t j0, j1;
-            rowRange(tris[k], j0, j1);
-            for (std::uint32_t j = j0; j <= j1; ++j) rowTris[next[j]++] = std::uint32_t(k);
-        }
-    }
-
+    const Footprints f = footprints();
+    const TrianglesByRow rows = trianglesByRow(mesh, f);
     // Each row's bands and windings, then joined.
-    std::vector<std::vector<Band>> rowBands(height);
-    std::vector<std::vector<std::uint32_t>> rowCounts(height);
-    parallelFor(threads, height, 1, [&](std::size_t jBegin, std::size_t jEnd) {
-        std::vector<std::vector<Interval>> columns(width);
-        std::vector<std::int32_t> bandOf, delta;
+    std::vector<std::vector<Band>> rowBands(f.height);
+    std::vector<std::vector<std::uint32_t>> rowCounts(f.height);
+    parallelFor(threads, f.height, 1, [&](std::size_t jBegin, std::size_t jEnd) {
+        std::vector<std::vector<Interval>> columns(f.width);
+        ColumnScratch scratch;
         for (std::size_t j = jBegin; j < jEnd; ++j) {
-            for (auto& c : columns) c.clear();
-            const double t0 = originT + (double(j) - kFootprintMargin) * texelT;
-            const double t1 = originT + (double(j) + 1.0 + kFootprintMargin) * texelT;
-            for (std::uint32_t r = rowStart[j]; r < rowStart[j + 1]; ++r) {
-                const ViewTriangle& t = tris[rowTris[r]];
-                const double i0 = std::floor((t.sMin - originS) / texelS - kFootprintMargin);
-                const double i1 = std::floor((t.sMax - originS) / texelS + kFootprintMargin);
-                for (auto i = std::uint32_t(std::clamp(i0, 0.0, double(width - 1)));
-                     i <= std::uint32_t(std::clamp(i1, 0.0, double(width - 1))); ++i) {
-                    const double s0 = originS + (double(i) - kFootprintMargin) * texelS;
-                    const double s1 = originS + (double(i) + 1.0 + kFootprintMargin) * texelS;
-                    if (!overlaps(t, s0, s1, t0, t1)) continue;
-                    double lo = t.rMin, hi = t.rMax;
-                    if (t.hasPlane) {
-                        const double r00 = t.a + t.b * s0 + t.c * t0, r10 = t.a + t.b * s1 + t.c * t0;
-                        const double r01 = t.a + t.b * s0 + t.c * t1, r11 = t.a + t.b * s1 + t.c * t1;
-                        lo = std::max(lo, std::min({r00, r10, r01, r11}));
-                        hi = std::min(hi, std::max({r00, r10, r01, r11}));
-                        if (lo > hi) lo = hi = 0.5 * (lo + hi); // rounding of a nearly flat plane
-                    }
-                    columns[i].push_back({roundDown(lo), roundUp(hi), rowTris[r]});
-                }
-            }
-            std::vector<Band>& outBands = rowBands[j];
-            std::vector<std::uint32_t>& outCounts = rowCounts[j];
-            outCounts.assign(width, 0);
-            for (std::uint32_t i = 0; i < width; ++i) {
-                std::vector<Interval>& list = columns[i];
-                std::sort(list.begin(), list.end(), [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
-                // Merge into bands; remember each interval's band.
-                bandOf.assign(list.size(), 0);
-                std::size_t bandCount = 0;
-                const std::size_t bandBase = outBands.size();
-                for (std::size_t k = 0; k < list.size(); ++k) {
-                    if (bandCount > 0 && list[k].lo <= outBands.back().hi) {
-                        outBands.back().hi = std::max(outBands.back().hi, list[k].hi);
-                    } else {
-                        outBands.push_back({list[k].lo, list[k].hi, 0});
-                        ++bandCount;
-                    }
-                    bandOf[k] = std::int32_t(bandCount - 1);
-                }
-                // The centre's exact crossings, each counted in its band.
-                delta.assign(bandCount + 1, 0);
-                const glm::vec3 centre = grid.texelCentre(i, std::uint32_t(j), 0.0f);
-                float q[3];
-                projected.toViewSpace(centre, q);
-                const detail::CellGrid::Found found = projected.grid.find(q);
-                for (const detail::CellEntry* e = found.begin; e != found.end; ++e) {
-                    if (!detail::CellGrid::mayHold(*e, found.sub)) continue;
-                    const detail::Triangle& tri = projected.tris[e->triangle];
-                    if (!detail::claims(tri, q)) continue;
-                    const auto it = std::find_if(list.begin(), list.end(),
-                                                 [&](const Interval& x) { return x.triangle == tri.index; });
-                    if (it == list.end()) throw Error("certified bake: a claimed triangle missed its footprint");
-                    delta[std::size_t(bandOf[std::size_t(it - list.begin())])] += (tri.flags & detail::kEntering) ? 1 : -1;
-                }
-                std::int32_t winding = 0;
-                for (std::size_t m = 0; m < bandCount; ++m) {
-                    winding += delta[m];
-                    outBands[bandBase + m].windingAbove = winding;
-                }
-                outCounts[i] = std::uint32_t(bandCount);
-            }
+            rowIntervals(f, rows, std::uint32_t(j), columns);
+            rowCounts[j].assign(f.width, 0);
+            for (std::uint32_t i = 0; i < f.width; ++i)
+                rowCounts[j][i] = columnBands(projected, columns[i], i, std::uint32_t(j), scratch, rowBands[j]);
         }
     });
-    const std::size_t columnCount = std::size_t(width) * height;
-    offsets.assign(columnCount + 1, 0);
+    join(rowBands, rowCounts);
+}
+
+CertifiedClassifier::Impl::Footprints CertifiedClassifier::Impl::footprints() const {
+    // Footprint edges along s and t in mesh units, from the lookup's own
+    // matrix: texel i covers s in [lo_s + i / (m_s width), lo_s + (i+1) / (m_s width)).
+    Footprints f;
+    f.width = grid.width;
+    f.height = grid.height;
+    f.originS = grid.position[perm.x];
+    f.originT = grid.position[perm.y];
+    f.texelS = 1.0 / (double(grid.matrix[perm.x][0]) * f.width);
+    f.texelT = 1.0 / (double(grid.matrix[perm.y][1]) * f.height);
+    return f;
+}
+
+CertifiedClassifier::Impl::TrianglesByRow CertifiedClassifier::Impl::trianglesByRow(MeshView mesh,
+                                                                                     const Footprints& f) const {
+    TrianglesByRow rows;
+    const std::size_t n = mesh.triangleCount;
+    rows.tris.resize(n);
+    // Rows each triangle's widened box reaches, and the triangles of each row (CSR).
+    rows.start.assign(std::size_t(f.height) + 1, 0);
+    const auto rowRange = [&](const ViewTriangle& t, std::uint32_t& j0, std::uint32_t& j1) {
+        const double lo = std::floor((t.tMin - f.originT) / f.texelT - kFootprintMargin);
+        const double hi = std::floor((t.tMax - f.originT) / f.texelT + kFootprintMargin);
+        j0 = std::uint32_t(std::clamp(lo, 0.0, double(f.height - 1)));
+        j1 = std::uint32_t(std::clamp(hi, 0.0, double(f.height - 1)));
+    };
+    for (std::size_t k = 0; k < n; ++k) {
+        rows.tris[k] = viewTriangle(mesh, k, perm);
+        std::uint32_t j0, j1;
+        rowRange(rows.tris[k], j0, j1);
+        for (std::uint32_t j = j0; j <= j1; ++j) ++rows.start[j + 1];
+    }
+    std::partial_sum(rows.start.begin(), rows.start.end(), rows.start.begin());
+    rows.of.resize(rows.start.back());
+    std::vector<std::uint32_t> next(rows.start.begin(), rows.start.end() - 1);
+    for (std::size_t k = 0; k < n; ++k) {
+        std::uint32_t j0, j1;
+        rowRange(rows.tris[k], j0, j1);
+        for (std::uint32_t j = j0; j <= j1; ++j) rows.of[next[j]++] = std::uint32_t(k);
+    }
+    return rows;
+}
+
+void CertifiedClassifier::Impl::rowIntervals(const Footprints& f, const TrianglesByRow& rows, std::uint32_t j,
+                                             std::vector<std::vector<Interval>>& columns) const {
+    for (auto& c : columns) c.clear();
+    const double t0 = f.originT + (double(j) - kFootprintMargin) * f.texelT;
+    const double t1 = f.originT + (double(j) + 1.0 + kFootprintMargin) * f.texelT;
+    for (std::uint32_t r = rows.start[j]; r < rows.start[j + 1]; ++r) {
+        const ViewTriangle& t = rows.tris[rows.of[r]];
+        const double i0 = std::floor((t.sMin - f.originS) / f.texelS - kFootprintMargin);
+        const double i1 = std::floor((t.sMax - f.originS) / f.texelS + kFootprintMargin);
+        for (auto i = std::uint32_t(std::clamp(i0, 0.0, double(f.width - 1)));
+             i <= std::uint32_t(std::clamp(i1, 0.0, double(f.width - 1))); ++i) {
+            const double s0 = f.originS + (double(i) - kFootprintMargin) * f.texelS;
+            const double s1 = f.originS + (double(i) + 1.0 + kFootprintMargin) * f.texelS;
+            if (!overlaps(t, s0, s1, t0, t1)) continue;
+            double lo = t.rMin, hi = t.rMax;
+            if (t.hasPlane) {
+                const double r00 = t.a + t.b * s0 + t.c * t0, r10 = t.a + t.b * s1 + t.c * t0;
+                const double r01 = t.a + t.b * s0 + t.c * t1, r11 = t.a + t.b * s1 + t.c * t1;
+                lo = std::max(lo, std::min({r00, r10, r01, r11}));
+                hi = std::min(hi, std::max({r00, r10, r01, r11}));
+                if (lo > hi) lo = hi = 0.5 * (lo + hi); // rounding of a nearly flat plane
+            }
+            columns[i].push_back({roundDown(lo), roundUp(hi), rows.of[r]});
+        }
+    }
+}
+
+std::uint32_t CertifiedClassifier::Impl::columnBands(const detail::ProjectedMesh& projected,
+                                                     std::vector<Interval>& list, std::uint32_t i, std::uint32_t j,
+                                                     ColumnScratch& scratch, std::vector<Band>& outBands) const {
+    std::sort(list.begin(), list.end(), [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
+    // Merge into bands; remember each interval's band.
+    std::vector<std::int32_t>& bandOf = scratch.bandOf;
+    bandOf.assign(list.size(), 0);
+    std::size_t bandCount = 0;
+    const std::size_t bandBase = outBands.size();
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        if (bandCount > 0 && list[k].lo <= outBands.back().hi) {
+            outBands.back().hi = std::max(outBands.back().hi, list[k].hi);
+        } else {
+            outBands.push_back({list[k].lo, list[k].hi, 0});
+            ++bandCount;
+        }
+        bandOf[k] = std::int32_t(bandCount - 1);
+    }
+    // The centre's exact crossings, each counted in its band.
+    std::vector<std::int32_t>& delta = scratch.delta;
+    delta.assign(bandCount + 1, 0);
+    const glm::vec3 centre = grid.texelCentre(i, j, 0.0f);
+    float q[3];
+    projected.toViewSpace(centre, q);
+    const detail::CellGrid::Found found = projected.grid.find(q);
+    for (const detail::CellEntry* e = found.begin; e != found.end; ++e) {
+        if (!detail::CellGrid::mayHold(*e, found.sub)) continue;
+        const detail::Triangle& tri = projected.tris[e->triangle];
+        if (!detail::claims(tri, q)) continue;
+        const auto it =
+            std::find_if(list.begin(), list.end(), [&](const Interval& x) { return x.triangle == tri.index; });
+        if (it == list.end()) throw Error("certified bake: a claimed triangle missed its footprint");
+        delta[std::size_t(bandOf[std::size_t(it - list.begin())])] += (tri.flags & detail::kEntering) ? 1 : -1;
+    }
+    std::int32_t winding = 0;
+    for (std::size_t m = 0; m < bandCount; ++m) {
+        winding += delta[m];
+        outBands[bandBase + m].windingAbove = winding;
+    }
+    return std::uint32_t(bandCount);
+}
+
+void CertifiedClassifier::Impl::join(std::vector<std::vector<Band>>& rowBands,
+                                     const std::vector<std::vector<std::uint32_t>>& rowCounts) {
+    const std::uint32_t width = grid.width, height = grid.height;
+    offsets.assign(std::size_t(width) * height + 1, 0);
     std::size_t totalBands = 0;
     for (std::uint32_t j = 0; j < height; ++j)
         for (std::uint32_t i = 0; i < width; ++i) {

@@ -18,8 +18,11 @@
 #include <vector>
 
 #include <vds/error.h>
+#include <vds/detail/aligned_axes.h>
 #include <vds/detail/parallel.h>
+#include <vds/detail/pi.h>
 #include <vds/detail/sweep_plan.h>
+#include <vds/detail/tree_walk.h>
 
 #include "winding/caps_tree.h"
 #include "sprite/sprite_winding.h"
@@ -29,6 +32,9 @@
 
 namespace vds {
 namespace {
+
+using detail::kFourPi;
+using detail::kPi;
 
 std::vector<float> centres(const Grid& grid, int axis) {
     std::vector<float> c(grid.dims[axis]);
@@ -94,11 +100,8 @@ public:
         }
         const std::vector<detail::BoundaryCaps::ChainNode>& nodes = caps->chains();
         const std::vector<glm::vec3>& loopEdges = caps->loopEdges();
-        std::uint32_t stack[64];
-        int top = 0;
-        stack[top++] = 0;
-        while (top > 0) {
-            const detail::BoundaryCaps::ChainNode& n = nodes[stack[--top]];
+        const bool bracketed = detail::walkTree(0, [&](std::uint32_t index, detail::TreeStack& stack) {
+            const detail::BoundaryCaps::ChainNode& n = nodes[index];
             const double dx = n.centre.x - x, dy = n.centre.y - y;
             const double rho = std::sqrt(dx * dx + dy * dy), e = rho - n.radius * (1.0 + 1e-12);
             if (e > 0.0) {
@@ -114,18 +117,19 @@ public:
                     far_.push_back(&n);
                     error_ += bound;
                     drift_ += drift;
-                    if (n.chord && !addEdge(n.from, n.to)) return false;
-                    continue;
+                    return !n.chord || addEdge(n.from, n.to);
                 }
             }
             if (n.count == 0) {
-                stack[top++] = n.left;
-                stack[top++] = n.right;
-                continue;
+                stack.push(n.left);
+                stack.push(n.right);
+                return true;
             }
             for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
                 if (!addEdge(glm::dvec3(loopEdges[2 * k]), glm::dvec3(loopEdges[2 * k + 1]))) return false;
-        }
+            return true;
+        });
+        if (!bracketed) return false;
         // The expansions' bounds, and rounding: the fans' float sums.
         error_ = error_ * (1.0 + 1e-9) + 1e-12 * double(far_.size());
         return true;
@@ -164,16 +168,12 @@ public:
     double drift() const { return drift_; }
 
 private:
-    static constexpr double kPi = 3.14159265358979323846;
-    static constexpr double kFourPi = 4.0 * kPi;
     /// A node is taken by its fan's expansion where that errs by at most
     /// this anywhere along the column,
     static constexpr double kFarBound = 1e-3;
     /// and its fan's solid angle (over 4 pi) moves by at most this over the
-    /// column's height; else its edges or children are taken. (Measured on
-    /// the bench's generated cases: a drift allowance of 1e-2 made the
-    /// non-manifold shell's and the soup's grids 2-3x slower than 1, which
-    /// cuts long runs in halves instead; 1e-2 on the bound was no faster.)
+    /// column's height; else its edges or children are taken (tuning:
+    /// docs/benchmarks.md).
     static constexpr double kFarDrift = 1.0;
     static constexpr std::size_t kBlock = 16;
     /// The column's edges, a field a vector (so that a block of them loads
@@ -285,9 +285,9 @@ constexpr std::uint32_t kShortRun = 8;
 constexpr double kReachMargin = 2.0;
 /// Most cells labelled alone after a run came out empty.
 constexpr std::uint32_t kMaxAlone = 16;
-/// Every this many columns a range is labelled the other way, to time it
-/// (1/64 spent on the slower way where one is much slower; 1/16 cost the
-/// non-manifold shell's grid 10 %).
+/// Every this many columns a range is labelled the other way, to time it:
+/// it bounds the share of columns spent on the slower way (tuning:
+/// docs/benchmarks.md).
 constexpr std::size_t kProbe = 64;
 
 
@@ -295,16 +295,11 @@ constexpr std::size_t kProbe = 64;
 
 detail::SweepPlan detail::planSweep(const SpriteGrid& sg, const Grid& grid, unsigned threads) {
     SweepPlan plan;
-    // The world axis depth follows (r's row of the matrix), and every texture
-    // coordinate following one world axis: the permutation of that axis.
-    int a = -1;
-    for (int col = 0; col < 3; ++col)
-        if (sg.matrix[col][2] > 0.0f) a = col;
-    if (a < 0) return plan;
-    const glm::ivec3 p = axisPermutation(Axis(a)); // axisPermutation(X).z = 0, Y: 1, Z: 2
-    for (int row = 0; row < 3; ++row)
-        for (int col = 0; col < 3; ++col)
-            if (col != p[row] && sg.matrix[col][row] != 0.0f) return plan;
+    if (!sweepsByColumns(sg)) return plan;
+    // s, t and r on world axes u, v and a, in any order and sign (a sprite
+    // turned by quarter turns or mirrored across its axis), depth growing along a.
+    const glm::ivec3 p = *alignedAxes(sg);
+    const int a = p.z;
     plan.aligned = true;
     plan.a = a;
     plan.u = p.x;
@@ -338,6 +333,12 @@ detail::SweepPlan detail::planSweep(const SpriteGrid& sg, const Grid& grid, unsi
 }
 
 void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {
+    const detail::BoundaryCapsCache caps; // this call's
+    detail::occupancyOfSprite(sprite, caps, grid, cells, options);
+}
+
+void detail::occupancyOfSprite(const Sprite& sprite, const BoundaryCapsCache& caps, const Grid& grid,
+                               std::uint8_t* cells, const ClassifyOptions& options) {
     checkGrid(grid);
     detail::requireBoundaryKnown(sprite, options.rule);
     assert(cells);
@@ -350,6 +351,7 @@ void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, cons
         const int a = p.z, u = p.x, v = p.y;
         const std::uint32_t n = grid.dims[a];
         const std::size_t step = a == 2 ? 1 : a == 1 ? grid.dims.z : std::size_t(grid.dims.y) * grid.dims.z;
+        const BoundaryCaps* built = boundaryTerm ? &caps.get(sprite, options.threads) : nullptr;
         parallelFor(options.threads, std::size_t(grid.dims[u]) * grid.dims[v], 64, [&](std::size_t begin, std::size_t end) {
             std::vector<glm::vec3> points(n);
             std::vector<std::uint8_t> labels(n);
@@ -361,11 +363,11 @@ void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, cons
                     c[a] = k;
                     points[k] = grid.cellCentre(c.x, c.y, c.z);
                 }
-                const ClassifyOptions one{options.rule, 1, QueryLayout::Offsets, BoundaryEvaluation::Caps};
+                const ClassifyOptions one{options.rule, 1};
                 if (boundaryTerm)
-                    detail::classifyGeneralizedWinding(sprite, &points[0].x, n, sizeof(glm::vec3), labels.data(), one);
+                    detail::classifyGeneralizedWinding(sprite, built, &points[0].x, n, sizeof(glm::vec3), labels.data(), one);
                 else
-                    classify(sprite, PointsView(points.data(), n), labels.data(), one);
+                    classify(sprite, PointsView(points.data(), n), labels.data(), one, {QueryLayout::Offsets});
                 c[a] = 0;
                 std::uint8_t* out = cells + grid.index(c.x, c.y, c.z);
                 for (std::uint32_t k = 0; k < n; ++k) out[k * step] = labels[k];
@@ -410,7 +412,7 @@ void occupancy(const Sprite& sprite, const Grid& grid, std::uint8_t* cells, cons
 }
 
 void SpriteClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
-    vds::occupancy(sprite_, grid, cells, options);
+    detail::occupancyOfSprite(sprite_, caps_, grid, cells, options);
 }
 
 void occupancy(MeshView mesh, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {
@@ -424,6 +426,248 @@ void occupancy(MeshView mesh, const Grid& grid, std::uint8_t* cells, const Class
     const detail::ProjectedMesh projected(mesh, Axis::Z); // (s, t, r) = (x, y, z)
     detail::sweepExact(projected, edges, grid, cells, options);
 }
+
+namespace {
+
+/// detail::sweepExact's columns from one thread: each column's crossings
+/// (its cells' crossing counts), then its labels by the rule; for the
+/// generalized winding number either cell by cell by the capped loops or
+/// by brackets of the boundary term (ColumnBoundary), timed against each
+/// other.
+class ColumnSweep {
+public:
+    ColumnSweep(const detail::ProjectedMesh& projected, const std::vector<glm::vec3>& edges, const std::vector<float>& zs,
+                const detail::BoundaryCaps* caps, const ClassifyOptions& options, detail::SweepWay way)
+        : projected_(projected), edges_(edges), zs_(zs), caps_(caps), options_(options), way_(way),
+          n_(std::uint32_t(zs.size())), integer_(caps ? n_ : 0), terms_(integer_.size()), known_(integer_.size()),
+          height_(double(zs.back()) - double(zs.front())) {}
+
+    /// Labels the column at (x, y) into out[0, n); `local`: its place in
+    /// this thread's range.
+    void column(float x, float y, std::uint8_t* out, std::size_t local) {
+        q_[0] = x;
+        q_[1] = y;
+        out_ = out;
+        crossings();
+        if (!caps_) {
+            fillByRule();
+            return;
+        }
+        integerTerms();
+        // Which way labels a column faster depends on the boundary:
+        // brackets cost O(edges) a split, the capped loops a tree query a
+        // cell (cheap for small holes, dear beside a large cap). Both give
+        // the same labels, so each range of columns times both (the first
+        // two columns, then every kProbe-th the other way) and takes the
+        // cheaper.
+        const bool cheaper = secondsSpent_[1] * double(columnsTimed_[0]) <= secondsSpent_[0] * double(columnsTimed_[1]);
+        const bool useBrackets = way_ == detail::SweepWay::Timed
+                                     ? (local < 2 ? local == 0 : (local % kProbe == 0) != cheaper)
+                                     : way_ == detail::SweepWay::Brackets;
+        const auto started = std::chrono::steady_clock::now();
+        const auto record = [&](int timed) {
+            secondsSpent_[timed] += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            ++columnsTimed_[timed];
+        };
+        if (!useBrackets ||
+            !bracket_.reset(edges_, caps_->closed() ? caps_ : nullptr, double(q_[0]), double(q_[1]), height_)) {
+            byCells();
+            if (!useBrackets) record(0);
+            return;
+        }
+        byBrackets();
+        record(1);
+    }
+
+private:
+    /// The column's crossings as (first cell the crossing is in front of,
+    /// +-1), in order.
+    void crossings();
+    /// The column's labels by the rule, from its crossings alone.
+    void fillByRule();
+    /// The integer term of every cell.
+    void integerTerms();
+    /// Cell k by the capped loops.
+    void cell(std::uint32_t k) { out_[k] = caps_->inside(integer_[k], glm::vec3(q_[0], q_[1], zs_[k])) ? 1 : 0; }
+    /// Cell by cell, each estimate labelling the cells after it as far as
+    /// the boundary term provably stays on one side of the threshold
+    /// (BoundaryCaps::Reach).
+    void byCells();
+    /// Each run of cells with one integer term by brackets of the boundary
+    /// term, halved until they decide; short or undecided runs cell by cell.
+    void byBrackets();
+    /// The split at cell k; false where it is ill-conditioned.
+    bool split(std::uint32_t k) {
+        if (!known_[k]) known_[k] = bracket_.at(double(zs_[k]), terms_[k]) ? 1 : 2;
+        return known_[k] == 1;
+    }
+    /// Labels cells [k0, k1] (one integer term) by their brackets.
+    void decideRun(std::uint32_t k0, std::uint32_t k1);
+
+    const detail::ProjectedMesh& projected_;
+    const std::vector<glm::vec3>& edges_;
+    const std::vector<float>& zs_;
+    const detail::BoundaryCaps* caps_;
+    const ClassifyOptions& options_;
+    const detail::SweepWay way_;
+    const std::uint32_t n_;
+    float q_[3] = {0.0f, 0.0f, 0.0f};
+    std::uint8_t* out_ = nullptr;
+    std::vector<std::pair<std::uint32_t, int>> events_;
+    // For the generalized winding number: each cell's integer term, and
+    // the column's boundary term split by monotony, memoized per cell.
+    std::vector<int> integer_;
+    std::vector<Split> terms_;
+    std::vector<std::uint8_t> known_;
+    ColumnBoundary bracket_;
+    const double height_;
+    double secondsSpent_[2] = {0.0, 0.0}; ///< on the columns timed, [0]: cell by cell, [1]: brackets
+    std::size_t columnsTimed_[2] = {0, 0};
+};
+
+void ColumnSweep::crossings() {
+    float* q = q_;
+    events_.clear();
+    const detail::CellGrid::Found found = projected_.grid.find(q);
+    for (const detail::CellEntry* e = found.begin; e != found.end; ++e) {
+        if (!detail::CellGrid::mayHold(*e, found.sub)) continue;
+        const detail::Triangle& t = projected_.tris[e->triangle];
+        if (!detail::claims(t, q)) continue;
+        // The crossing lies strictly in front of (q, z) iff orient3d < 0,
+        // false then true as z grows: the first such cell, by bisection.
+        std::uint32_t lo = 0, hi = n_;
+        while (lo < hi) {
+            const std::uint32_t mid = lo + (hi - lo) / 2;
+            q[2] = zs_[mid];
+            if (detail::orient3d(t.v[0], t.v[1], t.v[2], q) < 0) hi = mid;
+            else lo = mid + 1;
+        }
+        if (lo < n_) events_.emplace_back(lo, (t.flags & detail::kEntering) ? 1 : -1);
+    }
+    std::sort(events_.begin(), events_.end());
+}
+
+void ColumnSweep::fillByRule() {
+    int winding = 0;
+    std::uint32_t filled = 0;
+    for (const auto& [k, delta] : events_) {
+        if (k > filled) std::memset(out_ + filled, insideByRule(winding, options_.rule) ? 1 : 0, k - filled);
+        filled = std::max(filled, k);
+        winding += delta;
+    }
+    std::memset(out_ + filled, insideByRule(winding, options_.rule) ? 1 : 0, n_ - filled);
+}
+
+void ColumnSweep::integerTerms() {
+    std::size_t next = 0;
+    int w = 0;
+    for (std::uint32_t k = 0; k < n_; ++k) {
+        for (; next < events_.size() && events_[next].first <= k; ++next) w += events_[next].second;
+        integer_[k] = w;
+    }
+}
+
+void ColumnSweep::byCells() {
+    // Where runs come out empty (coarse grids, cells beside the boundary)
+    // the next cells are labelled alone for a while, twice as long each
+    // time, so that the reach is not paid for nothing.
+    const double threshold = 0.5 + detail::kGeneralizedWindingTie;
+    std::uint32_t alone = 0, backoff = 1;
+    for (std::uint32_t k = 0; k < n_;) {
+        if (alone > 0) {
+            cell(k++);
+            --alone;
+            continue;
+        }
+        const glm::vec3 at(q_[0], q_[1], zs_[k]);
+        const detail::BoundaryCaps::Estimate e = caps_->decide(integer_[k], at, kReachMargin);
+        out_[k] = e.term > threshold ? 1 : 0;
+        // No run unless the room left could hold at least the next cell at
+        // the steepness found.
+        const double room = std::fabs(e.term - threshold) - e.bound;
+        const double step = k + 1 < n_ ? double(zs_[k + 1]) - double(zs_[k]) : 0.0;
+        const detail::BoundaryCaps::Reach reach =
+            room > 0.0 && step > 0.0 ? caps_->reach(at, room / step) : detail::BoundaryCaps::Reach{};
+        std::uint32_t j = k + 1;
+        for (; j < n_; ++j) {
+            const double v = double(integer_[j] - integer_[k]) + e.term;
+            const double move = double(zs_[j]) - double(zs_[k]);
+            if (!(std::fabs(v - threshold) > e.bound + reach.drift(move))) break;
+            out_[j] = v > threshold ? 1 : 0;
+        }
+        if (j == k + 1) {
+            alone = backoff;
+            backoff = std::min(2 * backoff, kMaxAlone);
+        } else {
+            backoff = 1;
+        }
+        k = j;
+    }
+}
+
+void ColumnSweep::byBrackets() {
+    std::fill(known_.begin(), known_.end(), 0);
+    for (std::uint32_t k0 = 0; k0 < n_;) {
+        std::uint32_t k1 = k0;
+        while (k1 + 1 < n_ && integer_[k1 + 1] == integer_[k0]) ++k1;
+        if (k1 - k0 + 1 < kShortRun) {
+            for (std::uint32_t k = k0; k <= k1; ++k) cell(k);
+        } else {
+            decideRun(k0, k1);
+        }
+        k0 = k1 + 1;
+    }
+}
+
+void ColumnSweep::decideRun(std::uint32_t k0, std::uint32_t k1) {
+    const double threshold = 0.5 + detail::kGeneralizedWindingTie;
+    if (!split(k0) || !split(k1)) {
+        for (std::uint32_t k = k0; k <= k1; ++k) cell(k);
+        return;
+    }
+    // One or two cells: the split's value, or the capped loops where it is
+    // too close to call.
+    const double error = bracket_.error() + kBracketSlack;
+    if (k1 - k0 <= 1) {
+        for (const std::uint32_t k : {k0, k1}) {
+            const Split& t = terms_[k];
+            const double value = double(integer_[k]) + t.up + t.down + t.smooth;
+            if (std::fabs(value - threshold) > error) out_[k] = value > threshold ? 1 : 0;
+            else cell(k);
+        }
+        return;
+    }
+    const Split& t0 = terms_[k0];
+    const Split& t1 = terms_[k1];
+    // The fans' part: their mean at the ends, less (plus) the error and
+    // how far they may move over half the run.
+    const double fans = 0.5 * (t0.smooth + t1.smooth),
+                 spread = error + 0.5 * bracket_.drift() * (double(zs_[k1]) - double(zs_[k0]));
+    const double lo = double(integer_[k0]) + t0.up + t1.down + fans - spread,
+                 hi = double(integer_[k0]) + t1.up + t0.down + fans + spread;
+    if (lo > threshold || hi < threshold) {
+        std::memset(out_ + k0, lo > threshold ? 1 : 0, k1 - k0 + 1);
+        return;
+    }
+    // Where the ends lie on either side of the threshold, cut beside the
+    // crossing their line predicts (the halves then mostly decide at
+    // once); else halve, the halves sharing the middle cell (one new split
+    // a cut).
+    const double v0 = double(integer_[k0]) + t0.up + t0.down + t0.smooth,
+                 v1 = double(integer_[k0]) + t1.up + t1.down + t1.smooth;
+    if ((v0 - threshold) * (v1 - threshold) < 0.0) {
+        const double at = (threshold - v0) / (v1 - v0) * double(k1 - k0);
+        const std::uint32_t m = k0 + std::min(k1 - k0 - 1, std::uint32_t(std::max(0.0, at)));
+        decideRun(k0, m);
+        decideRun(m + 1, k1);
+        return;
+    }
+    const std::uint32_t mid = k0 + (k1 - k0) / 2;
+    decideRun(k0, mid);
+    decideRun(mid, k1);
+}
+
+} // namespace
 
 void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::vec3>& edges, const Grid& grid,
                         std::uint8_t* cells, const ClassifyOptions& options, SweepWay way) {
@@ -439,187 +683,10 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
     const std::uint32_t n = grid.dims.z;
     const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
     parallelFor(options.threads, columns, 256, [&](std::size_t begin, std::size_t end) {
-        std::vector<std::pair<std::uint32_t, int>> events; // (first cell the crossing is in front of, +-1)
-        // For the generalized winding number: each cell's integer term, and
-        // the column's boundary term split by monotony, memoized per cell.
-        std::vector<int> integer(edgeCount > 0 ? n : 0);
-        std::vector<Split> terms(integer.size());
-        std::vector<std::uint8_t> known(integer.size());
-        ColumnBoundary bracket;
-        const double height = double(zs.back()) - double(zs.front());
-        // Which way labels a column faster depends on the boundary: brackets
-        // cost O(edges) a split, the capped loops a tree query a cell (cheap
-        // for small holes, dear beside a large cap). Both give the same
-        // labels, so each range of columns times both (the first two
-        // columns, then every kProbe-th the other way) and takes the cheaper.
-        double secondsSpent[2] = {0.0, 0.0}; // on the columns timed, [0]: cell by cell, [1]: brackets
-        std::size_t columnsTimed[2] = {0, 0};
+        ColumnSweep sweep(projected, edges, zs, caps ? &*caps : nullptr, options, way);
         std::size_t local = 0;
-        for (std::size_t column = begin; column < end; ++column, ++local) {
-            float q[3] = {xs[column / grid.dims.y], ys[column % grid.dims.y], 0.0f};
-            events.clear();
-            const detail::CellGrid::Found found = projected.grid.find(q);
-            for (const detail::CellEntry* e = found.begin; e != found.end; ++e) {
-                if (!detail::CellGrid::mayHold(*e, found.sub)) continue;
-                const detail::Triangle& t = projected.tris[e->triangle];
-                if (!detail::claims(t, q)) continue;
-                // The crossing lies strictly in front of (q, z) iff orient3d < 0,
-                // false then true as z grows: the first such cell, by bisection.
-                std::uint32_t lo = 0, hi = n;
-                while (lo < hi) {
-                    const std::uint32_t mid = lo + (hi - lo) / 2;
-                    q[2] = zs[mid];
-                    if (detail::orient3d(t.v[0], t.v[1], t.v[2], q) < 0) hi = mid;
-                    else lo = mid + 1;
-                }
-                if (lo < n) events.emplace_back(lo, (t.flags & detail::kEntering) ? 1 : -1);
-            }
-            std::sort(events.begin(), events.end());
-            std::uint8_t* out = cells + column * n;
-            if (edgeCount > 0) {
-                // The integer term of every cell, then each run of cells
-                // with one integer term by brackets of the boundary term
-                // (ColumnBoundary), halved until they decide; short or
-                // undecided runs, and columns without a bracket, cell by
-                // cell by the capped loops.
-                std::size_t next = 0;
-                int w = 0;
-                for (std::uint32_t k = 0; k < n; ++k) {
-                    for (; next < events.size() && events[next].first <= k; ++next) w += events[next].second;
-                    integer[k] = w;
-                }
-                const auto cell = [&](std::uint32_t k) {
-                    out[k] = caps->inside(integer[k], glm::vec3(q[0], q[1], zs[k])) ? 1 : 0;
-                };
-                const bool cheaper = secondsSpent[1] * double(columnsTimed[0]) <= secondsSpent[0] * double(columnsTimed[1]);
-                const bool useBrackets = way == detail::SweepWay::Timed
-                                             ? (local < 2 ? local == 0 : (local % kProbe == 0) != cheaper)
-                                             : way == detail::SweepWay::Brackets;
-                const auto started = std::chrono::steady_clock::now();
-                const auto record = [&](int timed) {
-                    secondsSpent[timed] += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-                    ++columnsTimed[timed];
-                };
-                if (!useBrackets ||
-                    !bracket.reset(edges, caps->closed() ? &*caps : nullptr, double(q[0]), double(q[1]), height)) {
-                    // Cell by cell, each estimate labelling the cells after
-                    // it as far as the boundary term provably stays on one
-                    // side of the threshold (BoundaryCaps::Reach).
-                    // Where runs come out empty (coarse grids, cells beside
-                    // the boundary) the next cells are labelled alone for a
-                    // while, twice as long each time, so that the reach is
-                    // not paid for nothing.
-                    const double threshold = 0.5 + detail::kGeneralizedWindingTie;
-                    std::uint32_t alone = 0, backoff = 1;
-                    for (std::uint32_t k = 0; k < n;) {
-                        if (alone > 0) {
-                            cell(k++);
-                            --alone;
-                            continue;
-                        }
-                        const glm::vec3 at(q[0], q[1], zs[k]);
-                        const detail::BoundaryCaps::Estimate e = caps->decide(integer[k], at, kReachMargin);
-                        out[k] = e.term > threshold ? 1 : 0;
-                        // No run unless the room left could hold at least the
-                        // next cell at the steepness found.
-                        const double room = std::fabs(e.term - threshold) - e.bound;
-                        const double step = k + 1 < n ? double(zs[k + 1]) - double(zs[k]) : 0.0;
-                        const detail::BoundaryCaps::Reach reach =
-                            room > 0.0 && step > 0.0 ? caps->reach(at, room / step) : detail::BoundaryCaps::Reach{};
-                        std::uint32_t j = k + 1;
-                        for (; j < n; ++j) {
-                            const double v = double(integer[j] - integer[k]) + e.term;
-                            const double move = double(zs[j]) - double(zs[k]);
-                            if (!(std::fabs(v - threshold) > e.bound + reach.drift(move))) break;
-                            out[j] = v > threshold ? 1 : 0;
-                        }
-                        if (j == k + 1) {
-                            alone = backoff;
-                            backoff = std::min(2 * backoff, kMaxAlone);
-                        } else {
-                            backoff = 1;
-                        }
-                        k = j;
-                    }
-                    if (!useBrackets) record(0);
-                    continue;
-                }
-                std::fill(known.begin(), known.end(), 0);
-                // The split at cell k; false where it is ill-conditioned.
-                const auto split = [&](std::uint32_t k) {
-                    if (!known[k]) known[k] = bracket.at(double(zs[k]), terms[k]) ? 1 : 2;
-                    return known[k] == 1;
-                };
-                const double threshold = 0.5 + detail::kGeneralizedWindingTie;
-                // Labels cells [k0, k1] (one integer term).
-                const auto decide = [&](auto&& self, std::uint32_t k0, std::uint32_t k1) -> void {
-                    if (!split(k0) || !split(k1)) {
-                        for (std::uint32_t k = k0; k <= k1; ++k) cell(k);
-                        return;
-                    }
-                    // One or two cells: the split's value, or the capped
-                    // loops where it is too close to call.
-                    const double error = bracket.error() + kBracketSlack;
-                    if (k1 - k0 <= 1) {
-                        for (const std::uint32_t k : {k0, k1}) {
-                            const Split& t = terms[k];
-                            const double value = double(integer[k]) + t.up + t.down + t.smooth;
-                            if (std::fabs(value - threshold) > error) out[k] = value > threshold ? 1 : 0;
-                            else cell(k);
-                        }
-                        return;
-                    }
-                    const Split& t0 = terms[k0];
-                    const Split& t1 = terms[k1];
-                    // The fans' part: their mean at the ends, less (plus) the
-                    // error and how far they may move over half the run.
-                    const double fans = 0.5 * (t0.smooth + t1.smooth),
-                                 spread = error + 0.5 * bracket.drift() * (double(zs[k1]) - double(zs[k0]));
-                    const double lo = double(integer[k0]) + t0.up + t1.down + fans - spread,
-                                 hi = double(integer[k0]) + t1.up + t0.down + fans + spread;
-                    if (lo > threshold || hi < threshold) {
-                        std::memset(out + k0, lo > threshold ? 1 : 0, k1 - k0 + 1);
-                        return;
-                    }
-                    // Where the ends lie on either side of the threshold, cut
-                    // beside the crossing their line predicts (the halves
-                    // then mostly decide at once); else halve, the halves
-                    // sharing the middle cell (one new split a cut).
-                    const double v0 = double(integer[k0]) + t0.up + t0.down + t0.smooth,
-                                 v1 = double(integer[k0]) + t1.up + t1.down + t1.smooth;
-                    if ((v0 - threshold) * (v1 - threshold) < 0.0) {
-                        const double at = (threshold - v0) / (v1 - v0) * double(k1 - k0);
-                        const std::uint32_t m = k0 + std::min(k1 - k0 - 1, std::uint32_t(std::max(0.0, at)));
-                        self(self, k0, m);
-                        self(self, m + 1, k1);
-                        return;
-                    }
-                    const std::uint32_t mid = k0 + (k1 - k0) / 2;
-                    self(self, k0, mid);
-                    self(self, mid, k1);
-                };
-                for (std::uint32_t k0 = 0; k0 < n;) {
-                    std::uint32_t k1 = k0;
-                    while (k1 + 1 < n && integer[k1 + 1] == integer[k0]) ++k1;
-                    if (k1 - k0 + 1 < kShortRun) {
-                        for (std::uint32_t k = k0; k <= k1; ++k) cell(k);
-                    } else {
-                        decide(decide, k0, k1);
-                    }
-                    k0 = k1 + 1;
-                }
-                record(1);
-                continue;
-            }
-            int winding = 0;
-            std::uint32_t filled = 0;
-            for (const auto& [k, delta] : events) {
-                if (k > filled) std::memset(out + filled, insideByRule(winding, options.rule) ? 1 : 0, k - filled);
-                filled = std::max(filled, k);
-                winding += delta;
-            }
-            std::memset(out + filled, insideByRule(winding, options.rule) ? 1 : 0, n - filled);
-        }
+        for (std::size_t column = begin; column < end; ++column, ++local)
+            sweep.column(xs[column / grid.dims.y], ys[column % grid.dims.y], cells + column * n, local);
     });
 }
 

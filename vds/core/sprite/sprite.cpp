@@ -17,6 +17,7 @@
 #include <glm/matrix.hpp>
 
 #include <vds/error.h>
+#include <vds/detail/aligned_axes.h>
 #include <vds/detail/parallel.h>
 
 #include "sprite/sprite_winding.h"
@@ -134,8 +135,9 @@ inline Located locate(const SpriteGrid& grid, float s, float t, float r) {
     return {column, r, in};
 }
 
-// A sprite as baked (not rotated since): its matrix has one non-zero per row
-// and column, so texture coordinates are one product each. The general
+// A sprite whose s, t and r follow the world axes of view `View`'s
+// permutation (detail::alignedAxes: as baked along `View`, or turned onto
+// it by quarter turns): texture coordinates are one product each. The general
 // product adds zeros to it, which changes at most the sign of a zero result
 // (the same column and answer) or turns an infinite coordinate elsewhere into
 // NaN (outside the box either way).
@@ -145,10 +147,7 @@ template <Axis View> struct AxisAligned {
 
     static bool applies(const SpriteGrid& grid, AxisAligned& out) {
         const glm::ivec3 p = axisPermutation(View);
-        if (grid.axis != View) return false;
-        for (int row = 0; row < 3; ++row)
-            for (int col = 0; col < 3; ++col)
-                if ((grid.matrix[col][row] != 0.0f) != (col == p[row])) return false;
+        if (detail::alignedAxes(grid) != p) return false;
         out = {{grid.matrix[p.x][0], grid.matrix[p.y][1], grid.matrix[p.z][2]},
                {grid.position[p.x], grid.position[p.y], grid.position[p.z]}};
         return true;
@@ -218,26 +217,30 @@ namespace {
 // checks and float64 points come from the base class.
 class SpriteView final : public Classifier {
 public:
-    explicit SpriteView(const Sprite& sprite) : sprite_(sprite) {}
+    SpriteView(const Sprite& sprite, const SpriteQueryOptions& query) : sprite_(sprite), query_(query) {}
     Method method() const override { return Method::Sprite; }
     std::size_t memoryBytes() const override { return sprite_.memoryBytes(); }
 
 protected:
     void classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
                         const ClassifyOptions& options) const override {
-        detail::classifySpriteFloats(sprite_, xyz, count, strideBytes, labels, options);
+        detail::classifySpriteFloats(sprite_, caps_, query_, xyz, count, strideBytes, labels, options);
     }
 
 private:
     const Sprite& sprite_;
+    SpriteQueryOptions query_;
+    detail::BoundaryCapsCache caps_; // this call's
 };
 } // namespace
 
-void classify(const Sprite& sprite, const PointsView& points, std::uint8_t* labels, const ClassifyOptions& options) {
-    SpriteView(sprite).classify(points, labels, options);
+void classify(const Sprite& sprite, const PointsView& points, std::uint8_t* labels, const ClassifyOptions& options,
+              const SpriteQueryOptions& query) {
+    SpriteView(sprite, query).classify(points, labels, options);
 }
 
-SpriteClassifier::SpriteClassifier(Sprite sprite) : sprite_(std::move(sprite)) {}
+SpriteClassifier::SpriteClassifier(Sprite sprite, const SpriteQueryOptions& query)
+    : sprite_(std::move(sprite)), query_(query) {}
 
 std::size_t SpriteClassifier::memoryBytes() const {
     return sprite_.memoryBytes() + sprite_.boundaryEdges.size() * sizeof(glm::vec3);
@@ -250,74 +253,42 @@ std::string SpriteClassifier::summary() const {
 
 void SpriteClassifier::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes,
                                       std::uint8_t* labels, const ClassifyOptions& options) const {
-    detail::classifySpriteFloats(sprite_, xyz, count, strideBytes, labels, options);
+    detail::classifySpriteFloats(sprite_, caps_, query_, xyz, count, strideBytes, labels, options);
 }
 
-void detail::classifySpriteFloats(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
-                                  std::uint8_t* labels, const ClassifyOptions& options) {
-    detail::requireBoundaryKnown(sprite, options.rule);
-    if (detail::needsBoundaryTerm(sprite, options.rule))
-        return detail::classifyGeneralizedWinding(sprite, xyz, count, strideBytes, labels, options);
-    assert(strideBytes >= 3 * sizeof(float) && ((xyz && labels) || count == 0));
-    const char* base0 = reinterpret_cast<const char*>(xyz);
-    const auto point = [&](std::size_t k) {
-        glm::vec3 p;
-        std::memcpy(&p, base0 + k * strideBytes, sizeof p);
-        return p;
-    };
+namespace {
+
+// The batch by the packed column table: the located points' records
+// prefetched a batch ahead, by the sprite's own fast placement if it has one.
+void classifyByTable(const Sprite& sprite, const detail::PackedTable& table, const char* xyz, std::size_t count,
+                     std::size_t strideBytes, std::uint8_t* labels, const ClassifyOptions& options) {
     const SpriteGrid& grid = sprite.grid;
-    const std::size_t columns = sprite.offsets.empty() ? 0 : sprite.offsets.size() - 1;
-    // QueryLayout (see <vds/sprite.h>): with the column table each point
-    // misses the cache once, on its column's record, which holds the first
-    // four crossings (most columns have at most four), and is answered
-    // without a branch on its data; a point behind the third crossing of a
-    // deeper column reads it from the sprite. Otherwise each point reads its
-    // offsets, then its crossings: two dependent misses, prefetched in
-    // batches, and a loop over the crossings.
-    const bool packed = options.layout == QueryLayout::Packed ||
-                        (options.layout == QueryLayout::Auto && 2 * count >= columns);
-    // Texel column and texture depth of points [base, base + n), each
-    // column's record (of `recordBytes`, in `records`) prefetched.
-    const auto locateBatch = [&](std::size_t base, std::size_t n, std::ptrdiff_t* column, float* depth, const char* records,
-                            std::size_t recordBytes) {
-        for (std::size_t i = 0; i < n; ++i) {
-            const glm::vec3 t = grid.toTexture(point(base + i));
-            column[i] = detail::columnOf(grid, t);
-            depth[i] = t.z;
-            if (column[i] >= 0) __builtin_prefetch(records + std::size_t(column[i]) * recordBytes);
+    AxisAligned<Axis::Z> z;
+    AxisAligned<Axis::X> x;
+    AxisAligned<Axis::Y> y;
+    const int aligned = AxisAligned<Axis::Z>::applies(grid, z)   ? 1
+                        : AxisAligned<Axis::X>::applies(grid, x) ? 2
+                        : AxisAligned<Axis::Y>::applies(grid, y) ? 3
+                                                                 : 0;
+    parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+        const auto run = [&](const auto& where) {
+            classifyPacked(sprite, table, where, xyz, strideBytes, labels, options.rule, begin, end);
+        };
+        switch (aligned) {
+        case 1: run(z); break;
+        case 2: run(x); break;
+        case 3: run(y); break;
+        default: run(General{});
         }
-    };
-    std::unique_ptr<const detail::PackedTable> packedTable;
-    if (packed && columns > 0) {
-        try {
-            packedTable = std::make_unique<const detail::PackedTable>(sprite, options.threads);
-        } catch (const std::bad_alloc&) {
-            // No room for the table: the sprite's own arrays give the same answers.
-        }
-    }
-    if (packedTable) {
-        const detail::PackedTable& table = *packedTable;
-        AxisAligned<Axis::Z> z;
-        AxisAligned<Axis::X> x;
-        AxisAligned<Axis::Y> y;
-        const int aligned = AxisAligned<Axis::Z>::applies(grid, z)   ? 1
-                            : AxisAligned<Axis::X>::applies(grid, x) ? 2
-                            : AxisAligned<Axis::Y>::applies(grid, y) ? 3
-                                                                     : 0;
-        parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
-            const auto run = [&](const auto& where) {
-                classifyPacked(sprite, table, where, base0, strideBytes, labels, options.rule, begin, end);
-            };
-            switch (aligned) {
-            case 1: run(z); break;
-            case 2: run(x); break;
-            case 3: run(y); break;
-            default: run(General{});
-            }
-        });
-        return;
-    }
-    auto work = [&](std::size_t begin, std::size_t end) {
+    });
+}
+
+// The batch by the sprite's own arrays: each point's offsets, then its
+// crossings, both prefetched a batch at a time.
+void classifyByOffsets(const Sprite& sprite, const char* xyz, std::size_t count, std::size_t strideBytes,
+                       std::uint8_t* labels, const ClassifyOptions& options) {
+    const SpriteGrid& grid = sprite.grid;
+    parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
         constexpr std::size_t kBatch = 32;
         const std::uint32_t* offsets = sprite.offsets.data();
         const float* crossings = sprite.crossings.data();
@@ -326,7 +297,14 @@ void detail::classifySpriteFloats(const Sprite& sprite, const float* xyz, std::s
         std::uint32_t first[kBatch], last[kBatch];
         for (std::size_t base = begin; base < end; base += kBatch) {
             const std::size_t n = std::min(kBatch, end - base);
-            locateBatch(base, n, column, depth, reinterpret_cast<const char*>(offsets), sizeof(std::uint32_t));
+            for (std::size_t i = 0; i < n; ++i) { // texel column and depth, the offsets prefetched
+                glm::vec3 p;
+                std::memcpy(&p, xyz + (base + i) * strideBytes, sizeof p);
+                const glm::vec3 t = grid.toTexture(p);
+                column[i] = detail::columnOf(grid, t);
+                depth[i] = t.z;
+                if (column[i] >= 0) __builtin_prefetch(offsets + column[i]);
+            }
             for (std::size_t i = 0; i < n; ++i) {
                 if (column[i] < 0) continue;
                 first[i] = offsets[column[i]];
@@ -334,13 +312,48 @@ void detail::classifySpriteFloats(const Sprite& sprite, const float* xyz, std::s
                 __builtin_prefetch(crossings + first[i]);
             }
             for (std::size_t i = 0; i < n; ++i)
-                labels[base + i] = column[i] >= 0 && detail::testColumn(crossings + first[i], crossings + last[i], depth[i],
-                                                                options.rule)
-                                       ? 1
-                                       : 0;
+                labels[base + i] =
+                    column[i] >= 0 &&
+                            detail::testColumn(crossings + first[i], crossings + last[i], depth[i], options.rule)
+                        ? 1
+                        : 0;
         }
-    };
-    parallelFor(options.threads, count, std::size_t(1) << 16, work);
+    });
+}
+
+} // namespace
+
+void detail::classifySpriteFloats(const Sprite& sprite, const BoundaryCapsCache& caps, const SpriteQueryOptions& query,
+                                  const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                                  const ClassifyOptions& options) {
+    detail::requireBoundaryKnown(sprite, options.rule);
+    if (detail::needsBoundaryTerm(sprite, options.rule)) {
+        const BoundaryCaps* built =
+            query.boundary == BoundaryEvaluation::Caps ? &caps.get(sprite, options.threads) : nullptr;
+        return detail::classifyGeneralizedWinding(sprite, built, xyz, count, strideBytes, labels, options);
+    }
+    assert(strideBytes >= 3 * sizeof(float) && ((xyz && labels) || count == 0));
+    const char* points = reinterpret_cast<const char*>(xyz);
+    const std::size_t columns = sprite.offsets.empty() ? 0 : sprite.offsets.size() - 1;
+    // QueryLayout (see <vds/sprite.h>): with the column table each point
+    // misses the cache once, on its column's record, which holds the first
+    // four crossings (most columns have at most four), and is answered
+    // without a branch on its data; a point behind the third crossing of a
+    // deeper column reads it from the sprite. Otherwise each point reads its
+    // offsets, then its crossings: two dependent misses, prefetched in
+    // batches, and a loop over the crossings.
+    const bool packed = query.layout == QueryLayout::Packed ||
+                        (query.layout == QueryLayout::Auto && 2 * count >= columns);
+    std::unique_ptr<const detail::PackedTable> table;
+    if (packed && columns > 0) {
+        try {
+            table = std::make_unique<const detail::PackedTable>(sprite, options.threads);
+        } catch (const std::bad_alloc&) {
+            // No room for the table: the sprite's own arrays give the same answers.
+        }
+    }
+    if (table) classifyByTable(sprite, *table, points, count, strideBytes, labels, options);
+    else classifyByOffsets(sprite, points, count, strideBytes, labels, options);
 }
 
 } // namespace vds

@@ -8,6 +8,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -119,323 +120,411 @@ private:
     unsigned threads_;
 };
 
-void SpriteColumns::constantWindings(const CellLattice& cells, const ProjectedMesh* caps,
-                                     std::vector<std::int32_t>& windings, std::vector<std::int32_t>& closed) const {
-    const SpriteGrid& g = sprite_.grid;
-    const glm::ivec3 p = axisPermutation(g.axis);
-    constexpr std::uint32_t kMostLayers = 32; // four bits a layer in two words
-    const std::uint32_t layers = cells.dims[p.z];
-    if (layers == 0 || layers > kMostLayers || !(g.texelSize > 0.0f)) return;
-    const double boxLo = g.box.lo[p.z], depth = double(g.box.hi[p.z]) - boxLo;
-    if (!(depth > 0.0) || !(cells.size[p.z] > 0.0)) return;
-    // In texture depth, layer k spans [first + k step, first + (k + 1) step]
-    // widened by `margin` each way, for the rounding of a point's depth and
-    // of its position from it (float, some 1e-7 of the coordinates'
-    // magnitude), generously. A crossing at depth d lies in the widened
-    // layers from floor((d - first - 2 margin) / step) to
-    // floor((d - first + 2 margin) / step) at most (twice the margin: room
-    // for the rounding of these quotients, taken by the reciprocal); a
-    // layer holding none of a column's crossings has the column's count at
-    // every depth in it, and the crossings before it counted.
-    const double zLo = cells.lo[p.z], zHi = zLo + double(layers) * cells.size[p.z];
-    const double margin =
-        1e-6 * (std::fabs(zLo) + std::fabs(zHi) + std::fabs(boxLo) + std::fabs(double(g.box.hi[p.z])) + depth) / depth;
-    const double first = (zLo - boxLo) / depth, inverse = depth / cells.size[p.z];
-    // Twice the margin in layers, and room for the rounding of x below.
-    const double reach = 2.0 * margin * inverse + 1e-9;
-    const auto layerOf = [&](double d) -> std::int64_t { // floor((d - first) / step) in [-1, layers]
+/// A column's counts, layer by layer, four bits a layer (the count plus 8)
+/// in two words (layers 0-15, 16-31): a crossing adds its sign to every
+/// layer after the ones it may lie in, so that comparing columns is an
+/// exclusive or. Counts beyond +-7 do not fit: such a footprint vouches
+/// for no layer.
+struct Nibbles {
+    std::uint64_t low = 0, high = 0;
+    Nibbles operator^(const Nibbles& o) const { return {low ^ o.low, high ^ o.high}; }
+    Nibbles& operator|=(const Nibbles& o) {
+        low |= o.low;
+        high |= o.high;
+        return *this;
+    }
+    unsigned at(std::uint32_t k) const { return unsigned(((k < 16 ? low >> (4 * k) : high >> (4 * (k - 16)))) & 0xfu); }
+    /// Every nibble of `ones` (each 0 or 1) made 0xf.
+    static Nibbles spread(const Nibbles& ones) { return {ones.low * 0xfu, ones.high * 0xfu}; }
+};
+
+/// The cells' layers along the sprite's axis in texture depth. Layer k
+/// spans [first + k step, first + (k + 1) step] widened by `margin` each
+/// way, for the rounding of a point's depth and of its position from it
+/// (float, some 1e-7 of the coordinates' magnitude), generously. A
+/// crossing at depth d lies in the widened layers from
+/// floor((d - first - 2 margin) / step) to floor((d - first + 2 margin) /
+/// step) at most (twice the margin: room for the rounding of these
+/// quotients, taken by the reciprocal); a layer holding none of a column's
+/// crossings has the column's count at every depth in it, and the
+/// crossings before it counted.
+struct Layers {
+    static constexpr std::uint32_t kMost = 32; // four bits a layer in two words
+    /// Whether the grid's layers and the sprite's depth allow them.
+    static bool fit(const SpriteGrid& g, const CellLattice& cells, const glm::ivec3& p) {
+        const std::uint32_t layers = cells.dims[p.z];
+        if (layers == 0 || layers > kMost || !(g.texelSize > 0.0f)) return false;
+        const double depth = double(g.box.hi[p.z]) - g.box.lo[p.z];
+        return depth > 0.0 && cells.size[p.z] > 0.0;
+    }
+    Layers(const SpriteGrid& g, const CellLattice& cells, const glm::ivec3& p)
+        : count(cells.dims[p.z]), boxLo(g.box.lo[p.z]), depth(double(g.box.hi[p.z]) - boxLo) {
+        const double zLo = cells.lo[p.z], zHi = zLo + double(count) * cells.size[p.z];
+        margin = 1e-6 * (std::fabs(zLo) + std::fabs(zHi) + std::fabs(boxLo) + std::fabs(double(g.box.hi[p.z])) + depth) /
+                 depth;
+        first = (zLo - boxLo) / depth;
+        inverse = depth / cells.size[p.z];
+        // Twice the margin in layers, and room for the rounding of x below.
+        reach = 2.0 * margin * inverse + 1e-9;
+        // after[t]: a 1 in the nibbles of layers t on.
+        for (std::uint32_t t = 0; t <= count; ++t)
+            for (std::uint32_t k = t; k < count; ++k) (k < 16 ? after[t].low : after[t].high) |= std::uint64_t(1) << (4 * (k % 16));
+        for (std::uint32_t k = 0; k < count; ++k) (k < 16 ? zero.low : zero.high) |= std::uint64_t(8) << (4 * (k % 16));
+    }
+    /// floor((d - first) / step) in [-1, count].
+    std::int64_t of(double d) const {
         const double x = (d - first) * inverse;
         if (!(x >= 0.0)) return -1;
-        if (x >= double(layers)) return std::int64_t(layers);
+        if (x >= double(count)) return std::int64_t(count);
         return std::int64_t(x);
-    };
-    // A column's counts, layer by layer, four bits a layer (the count plus
-    // 8) in two words: a crossing adds its sign to every layer after the
-    // ones it may lie in, `after[t]` being a 1 in the nibbles of layers t
-    // on, so that comparing columns is an exclusive or. Counts beyond +-7
-    // do not fit: such a footprint vouches for no layer.
-    struct Nibbles {
-        std::uint64_t low = 0, high = 0; // layers 0-15, 16-31
-        Nibbles operator^(const Nibbles& o) const { return {low ^ o.low, high ^ o.high}; }
-        Nibbles& operator|=(const Nibbles& o) {
-            low |= o.low;
-            high |= o.high;
-            return *this;
+    }
+    /// Counts of one column's crossings [c, last) into `counts`; layers a
+    /// crossing may lie in into `spoilt` (a nibble 0xf each); false where
+    /// a count does not fit.
+    bool column(const float* c, const float* last, Nibbles& counts, Nibbles& spoilt, int& peak) const;
+
+    std::uint32_t count;
+    double boxLo, depth, margin, first, inverse, reach;
+    Nibbles after[kMost + 1];
+    Nibbles zero; ///< every layer counting 0
+};
+
+bool Layers::column(const float* c, const float* last, Nibbles& counts, Nibbles& spoilt, int& peak) const {
+    counts = zero;
+    int running = 0;
+    peak = 0;
+    for (; c != last; ++c) {
+        const double d = std::fabs(double(*c));
+        const double x = (d - first) * inverse;
+        std::int64_t from, to;
+        if (x >= 0.0 && x < double(count)) {
+            const std::int64_t k = std::int64_t(x);
+            const double fraction = x - double(k);
+            from = k - (fraction < reach ? 1 : 0);
+            to = k + (fraction > 1.0 - reach ? 1 : 0);
+        } else if (x < 0.0 || x >= double(count)) {
+            from = of(d - 2.0 * margin);
+            to = of(d + 2.0 * margin);
+        } else {
+            return false; // not a number: columnWinding stops there
         }
-        unsigned at(std::uint32_t k) const { return unsigned(((k < 16 ? low >> (4 * k) : high >> (4 * (k - 16)))) & 0xfu); }
-    };
-    Nibbles after[kMostLayers + 1];
-    for (std::uint32_t t = 0; t <= layers; ++t)
-        for (std::uint32_t k = t; k < layers; ++k) (k < 16 ? after[t].low : after[t].high) |= std::uint64_t(1) << (4 * (k % 16));
-    Nibbles zero; // every layer counting 0
-    for (std::uint32_t k = 0; k < layers; ++k) (k < 16 ? zero.low : zero.high) |= std::uint64_t(8) << (4 * (k % 16));
-    // Counts of one column into `counts`; layers a crossing may lie in into
-    // `spoilt` (a nibble 0xf each); false where a count does not fit.
-    const auto count = [&](const float* c, const float* last, Nibbles& counts, Nibbles& spoilt, int& peak) {
-        counts = zero;
-        int running = 0;
-        peak = 0;
-        for (; c != last; ++c) {
-            const double d = std::fabs(double(*c));
-            const double x = (d - first) * inverse;
-            std::int64_t from, to;
-            if (x >= 0.0 && x < double(layers)) {
-                const std::int64_t k = std::int64_t(x);
-                const double fraction = x - double(k);
-                from = k - (fraction < reach ? 1 : 0);
-                to = k + (fraction > 1.0 - reach ? 1 : 0);
-            } else if (x < 0.0 || x >= double(layers)) {
-                from = layerOf(d - 2.0 * margin);
-                to = layerOf(d + 2.0 * margin);
-            } else {
-                return false; // not a number: columnWinding stops there
-            }
-            from = std::max<std::int64_t>(from, 0);
-            const std::int64_t next = std::min<std::int64_t>(to + 1, layers); // counts it from here on
-            if (from < next) {
-                const Nibbles ones = after[from] ^ after[next];
-                spoilt |= Nibbles{ones.low * 0xfu, ones.high * 0xfu};
-            }
-            const bool enters = crossingEnters(*c);
-            running += enters ? 1 : -1;
-            if (running > 7 || running < -7) return false;
-            peak = std::max(peak, std::abs(running));
-            if (next >= std::int64_t(layers)) break; // it and the rest lie behind every layer
-            if (enters) {
-                counts.low += after[next].low;
-                counts.high += after[next].high;
-            } else {
-                counts.low -= after[next].low;
-                counts.high -= after[next].high;
-            }
+        from = std::max<std::int64_t>(from, 0);
+        const std::int64_t next = std::min<std::int64_t>(to + 1, count); // counts it from here on
+        if (from < next) spoilt |= Nibbles::spread(after[from] ^ after[next]);
+        const bool enters = crossingEnters(*c);
+        running += enters ? 1 : -1;
+        if (running > 7 || running < -7) return false;
+        peak = std::max(peak, std::abs(running));
+        if (next >= std::int64_t(count)) break; // it and the rest lie behind every layer
+        if (enters) {
+            counts.low += after[next].low;
+            counts.high += after[next].high;
+        } else {
+            counts.low -= after[next].low;
+            counts.high -= after[next].high;
         }
-        return true;
-    };
-    // Footprints some boundary edge's box (two texels wider each way)
-    // overlaps: the boundary's sweep passes through no other (the caps'
-    // grid asks for the closed count in the sweep only).
-    const std::size_t footprintCount = std::size_t(cells.dims[p.x]) * cells.dims[p.y];
-    // The footprints, as (i, j) ranges, a box in (s, t) two texels wider
-    // each way overlaps; false for a box that is not finite.
-    const auto overlapped = [&](const float* lo, const float* hi, std::int64_t (&range)[2][2]) {
-        for (int u = 0; u < 2; ++u) {
-            const int axis = u == 0 ? p.x : p.y;
-            const double from = std::floor((double(lo[u]) - 2.0 * double(g.texelSize) - cells.lo[axis]) / cells.size[axis]);
-            const double to = std::floor((double(hi[u]) + 2.0 * double(g.texelSize) - cells.lo[axis]) / cells.size[axis]);
-            if (!(from >= -1e18 && to <= 1e18)) return false; // not NaN, not absurd
-            range[u][0] = std::int64_t(std::max(from, 0.0));
-            range[u][1] = std::int64_t(std::min(to, double(cells.dims[axis]) - 1.0));
+    }
+    return true;
+}
+
+/// The caps' crossings of one column, as the query's count takes them
+/// (ProjectedMesh::winding at the point B is taken at: the texel centre as
+/// ColumnPoints places it, at the query's depth): a cap triangle that
+/// claims the column counts at the depths past its farthest vertex, none
+/// before its nearest; between, its layers are spoilt. The change to the
+/// column's counts (`delta`, nibble by nibble; added to the counts in any
+/// order it gives the same word), the layers spoilt, and the crossings
+/// (for the fit: the column's peak count plus these within +-7).
+struct CapColumn {
+    Nibbles delta, spoilt;
+    int crossings = 0;
+};
+
+/// Where the line t = rowT crosses triangle `tri` in (s, t), from its
+/// edges' crossings of the line, in double: [left, right]; false where it
+/// does not.
+bool rowSpan(const Triangle& tri, float rowT, double& left, double& right) {
+    left = std::numeric_limits<double>::infinity();
+    right = -left;
+    for (int e = 0; e < 3; ++e) {
+        const float* a = tri.v[e];
+        const float* b = tri.v[(e + 1) % 3];
+        if ((a[1] < rowT && b[1] < rowT) || (a[1] > rowT && b[1] > rowT)) continue;
+        if (a[1] == b[1]) { // along the line
+            left = std::min({left, double(a[0]), double(b[0])});
+            right = std::max({right, double(a[0]), double(b[0])});
+            continue;
         }
-        return true;
+        const double x = double(a[0]) + (double(rowT) - double(a[1])) / (double(b[1]) - double(a[1])) *
+                                            (double(b[0]) - double(a[0]));
+        left = std::min(left, x);
+        right = std::max(right, x);
+    }
+    return left <= right;
+}
+
+/// One call of SpriteColumns::constantWindings: the footprints (columns
+/// of cells along the axis) apart, each writing its own cells.
+class ColumnWindingsPass {
+public:
+    ColumnWindingsPass(const Sprite& sprite, const CellLattice& cells, const ProjectedMesh* caps,
+                       std::vector<std::int32_t>& windings, std::vector<std::int32_t>& closed)
+        : sprite_(sprite), g_(sprite.grid), cells_(cells), caps_(caps), p_(axisPermutation(sprite.grid.axis)),
+          layers_(sprite.grid, cells, p_), place_(sprite.grid), windings_(windings), closed_(closed) {
+        if (caps) sweep();
+    }
+    std::size_t footprints() const { return std::size_t(cells_.dims[p_.x]) * cells_.dims[p_.y]; }
+    void footprint(std::size_t f) const;
+
+private:
+    /// A footprint's counts so far, over its columns.
+    struct Compared {
+        // Per column: its counts, and with the caps' crossings added
+        // (`capped`); layers a crossing of the mesh may lie in (`within`),
+        // layers some column counts apart in (`apart`), the same with the
+        // caps (`cappedWithin`, `cappedApart`).
+        Nibbles reference, counts, within, apart;
+        Nibbles cappedReference, capped, cappedWithin, cappedApart;
+        bool counted = false, closes = false, empty = false;
     };
-    std::vector<std::uint8_t> swept(footprintCount, 0);
-    // The caps' triangles whose box overlaps each swept footprint:
-    // `capsIn` from capsFirst[f] to capsFirst[f + 1].
-    std::vector<std::uint32_t> capsFirst, capsIn;
-    if (caps) {
-        for (std::size_t e = 0; e + 1 < sprite_.boundaryEdges.size(); e += 2) {
-            const glm::vec3 &a = sprite_.boundaryEdges[e], &b = sprite_.boundaryEdges[e + 1];
-            const float lo[2] = {std::min(a[p.x], b[p.x]), std::min(a[p.y], b[p.y])};
-            const float hi[2] = {std::max(a[p.x], b[p.x]), std::max(a[p.y], b[p.y])};
+    /// The footprints, as (i, j) ranges, a box in (s, t) two texels wider
+    /// each way overlaps; false for a box that is not finite.
+    bool overlapped(const float* lo, const float* hi, std::int64_t (&range)[2][2]) const;
+    /// The footprints some boundary edge's box (two texels wider each
+    /// way) overlaps, swept_ (the boundary's sweep passes through no
+    /// other: the caps' grid asks for the closed count in the sweep only),
+    /// and the caps' triangles whose box overlaps each: capsIn_ from
+    /// capsFirst_[f] to capsFirst_[f + 1].
+    void sweep();
+    /// The texels whose centres may lie in footprint (i, j) (a texel
+    /// beyond it each way); `empty` where those run past the texture
+    /// (some query there counts 0 at every depth). False where the
+    /// footprint is not finite.
+    bool texels(std::uint32_t i, std::uint32_t j, std::int64_t (&lowest)[2], std::int64_t (&highest)[2],
+                bool& empty) const;
+    /// The caps' crossings of footprint f's columns [lowest, highest].
+    void capColumns(std::size_t f, const std::int64_t (&lowest)[2], const std::int64_t (&highest)[2],
+                    std::vector<CapColumn>& out) const;
+    /// Cap triangle `tri`'s crossings of the columns [lowest, highest]
+    /// near it, into `out` (row by row, `across` a row).
+    void addCapTriangle(const Triangle& tri, const std::int64_t (&lowest)[2], const std::int64_t (&highest)[2],
+                        std::vector<CapColumn>& out) const;
+    /// Every column of the footprint counted and compared; false where a
+    /// count does not fit.
+    bool compare(const std::int64_t (&lowest)[2], const std::int64_t (&highest)[2],
+                 const std::vector<CapColumn>& capColumn, Compared& m) const;
+
+    const Sprite& sprite_;
+    const SpriteGrid& g_;
+    const CellLattice& cells_;
+    const ProjectedMesh* caps_;
+    const glm::ivec3 p_;
+    const Layers layers_;
+    const ColumnPoints place_;
+    std::vector<std::uint8_t> swept_;
+    std::vector<std::uint32_t> capsFirst_, capsIn_;
+    std::vector<std::int32_t>& windings_;
+    std::vector<std::int32_t>& closed_;
+};
+
+bool ColumnWindingsPass::overlapped(const float* lo, const float* hi, std::int64_t (&range)[2][2]) const {
+    for (int u = 0; u < 2; ++u) {
+        const int axis = u == 0 ? p_.x : p_.y;
+        const double from = std::floor((double(lo[u]) - 2.0 * double(g_.texelSize) - cells_.lo[axis]) / cells_.size[axis]);
+        const double to = std::floor((double(hi[u]) + 2.0 * double(g_.texelSize) - cells_.lo[axis]) / cells_.size[axis]);
+        if (!(from >= -1e18 && to <= 1e18)) return false; // not NaN, not absurd
+        range[u][0] = std::int64_t(std::max(from, 0.0));
+        range[u][1] = std::int64_t(std::min(to, double(cells_.dims[axis]) - 1.0));
+    }
+    return true;
+}
+
+void ColumnWindingsPass::sweep() {
+    const std::size_t footprintCount = footprints();
+    swept_.assign(footprintCount, 0);
+    for (std::size_t e = 0; e + 1 < sprite_.boundaryEdges.size(); e += 2) {
+        const glm::vec3 &a = sprite_.boundaryEdges[e], &b = sprite_.boundaryEdges[e + 1];
+        const float lo[2] = {std::min(a[p_.x], b[p_.x]), std::min(a[p_.y], b[p_.y])};
+        const float hi[2] = {std::max(a[p_.x], b[p_.x]), std::max(a[p_.y], b[p_.y])};
+        std::int64_t range[2][2];
+        if (!overlapped(lo, hi, range)) continue;
+        for (std::int64_t j = range[1][0]; j <= range[1][1]; ++j)
+            for (std::int64_t i = range[0][0]; i <= range[0][1]; ++i)
+                swept_[std::size_t(j) * cells_.dims[p_.x] + std::size_t(i)] = 1;
+    }
+    capsFirst_.assign(footprintCount + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+        std::vector<std::uint32_t> next;
+        if (pass == 1) {
+            for (std::size_t f = 0; f < footprintCount; ++f) capsFirst_[f + 1] += capsFirst_[f];
+            capsIn_.resize(capsFirst_[footprintCount]);
+            next.assign(capsFirst_.begin(), capsFirst_.end() - 1);
+        }
+        for (std::size_t k = 0; k < caps_->crossable; ++k) {
+            const Triangle& tri = caps_->tris[k];
+            const float lo[2] = {std::min({tri.v[0][0], tri.v[1][0], tri.v[2][0]}), std::min({tri.v[0][1], tri.v[1][1], tri.v[2][1]})};
+            const float hi[2] = {std::max({tri.v[0][0], tri.v[1][0], tri.v[2][0]}), std::max({tri.v[0][1], tri.v[1][1], tri.v[2][1]})};
             std::int64_t range[2][2];
             if (!overlapped(lo, hi, range)) continue;
             for (std::int64_t j = range[1][0]; j <= range[1][1]; ++j)
-                for (std::int64_t i = range[0][0]; i <= range[0][1]; ++i)
-                    swept[std::size_t(j) * cells.dims[p.x] + std::size_t(i)] = 1;
+                for (std::int64_t i = range[0][0]; i <= range[0][1]; ++i) {
+                    const std::size_t f = std::size_t(j) * cells_.dims[p_.x] + std::size_t(i);
+                    if (!swept_[f]) continue;
+                    if (pass == 0) ++capsFirst_[f + 1];
+                    else capsIn_[next[f]++] = std::uint32_t(k);
+                }
         }
-        capsFirst.assign(footprintCount + 1, 0);
-        for (int pass = 0; pass < 2; ++pass) {
-            std::vector<std::uint32_t> next;
-            if (pass == 1) {
-                for (std::size_t f = 0; f < footprintCount; ++f) capsFirst[f + 1] += capsFirst[f];
-                capsIn.resize(capsFirst[footprintCount]);
-                next.assign(capsFirst.begin(), capsFirst.end() - 1);
-            }
-            for (std::size_t k = 0; k < caps->crossable; ++k) {
-                const Triangle& tri = caps->tris[k];
-                const float lo[2] = {std::min({tri.v[0][0], tri.v[1][0], tri.v[2][0]}), std::min({tri.v[0][1], tri.v[1][1], tri.v[2][1]})};
-                const float hi[2] = {std::max({tri.v[0][0], tri.v[1][0], tri.v[2][0]}), std::max({tri.v[0][1], tri.v[1][1], tri.v[2][1]})};
-                std::int64_t range[2][2];
-                if (!overlapped(lo, hi, range)) continue;
-                for (std::int64_t j = range[1][0]; j <= range[1][1]; ++j)
-                    for (std::int64_t i = range[0][0]; i <= range[0][1]; ++i) {
-                        const std::size_t f = std::size_t(j) * cells.dims[p.x] + std::size_t(i);
-                        if (!swept[f]) continue;
-                        if (pass == 0) ++capsFirst[f + 1];
-                        else capsIn[next[f]++] = std::uint32_t(k);
-                    }
+    }
+}
+
+void ColumnWindingsPass::capColumns(std::size_t f, const std::int64_t (&lowest)[2], const std::int64_t (&highest)[2],
+                                    std::vector<CapColumn>& out) const {
+    const std::int64_t across = highest[0] - lowest[0] + 1;
+    out.assign(std::size_t(across * (highest[1] - lowest[1] + 1)), CapColumn{});
+    for (std::uint32_t c = capsFirst_[f]; c < capsFirst_[f + 1]; ++c) addCapTriangle(caps_->tris[capsIn_[c]], lowest, highest, out);
+}
+
+void ColumnWindingsPass::addCapTriangle(const Triangle& tri, const std::int64_t (&lowest)[2],
+                                        const std::int64_t (&highest)[2], std::vector<CapColumn>& out) const {
+    const std::int64_t across = highest[0] - lowest[0] + 1;
+    const Layers& L = layers_;
+    const double nearest = std::min({tri.v[0][2], tri.v[1][2], tri.v[2][2]});
+    const double farthest = std::max({tri.v[0][2], tri.v[1][2], tri.v[2][2]});
+    const std::int64_t from = std::max<std::int64_t>(L.of((nearest - L.boxLo) / L.depth - 2.0 * L.margin), 0);
+    const std::int64_t next =
+        std::min<std::int64_t>(L.of((farthest - L.boxLo) / L.depth + 2.0 * L.margin) + 1, L.count);
+    Nibbles spoils;
+    if (from < next) spoils = Nibbles::spread(L.after[from] ^ L.after[next]);
+    const Nibbles step = next < std::int64_t(L.count) ? L.after[next] : Nibbles{};
+    const bool enters = (tri.flags & kEntering) != 0;
+    // The footprint's columns within the triangle's box.
+    std::int64_t range[2][2];
+    for (int u = 0; u < 2; ++u) {
+        const float lo = std::min({tri.v[0][u], tri.v[1][u], tri.v[2][u]});
+        const float hi = std::max({tri.v[0][u], tri.v[1][u], tri.v[2][u]});
+        const int axis = u == 0 ? p_.x : p_.y;
+        range[u][0] = std::max<std::int64_t>(lowest[u], std::int64_t(std::floor((double(lo) - double(place_.lo[axis])) / double(place_.texel))) - 1);
+        range[u][1] = std::min<std::int64_t>(highest[u], std::int64_t(std::floor((double(hi) - double(place_.lo[axis])) / double(place_.texel))) + 1);
+    }
+    for (std::int64_t t = range[1][0]; t <= range[1][1]; ++t) {
+        // The row's columns near the triangle: where its centre line meets
+        // the triangle, a column more each way for the rounding; the claims
+        // test decides.
+        const float rowT = place_.lo[p_.y] + (float(t) + 0.5f) * place_.texel;
+        double left, right;
+        if (!rowSpan(tri, rowT, left, right)) continue;
+        const std::int64_t s0 = std::max<std::int64_t>(
+            range[0][0], std::int64_t(std::floor((left - double(place_.lo[p_.x])) / double(place_.texel) - 0.5)) - 1);
+        const std::int64_t s1 = std::min<std::int64_t>(
+            range[0][1], std::int64_t(std::floor((right - double(place_.lo[p_.x])) / double(place_.texel) - 0.5)) + 1);
+        for (std::int64_t s = s0; s <= s1; ++s) {
+            const float q[2] = {place_.lo[p_.x] + (float(s) + 0.5f) * place_.texel, rowT};
+            if (!claims(tri, q)) continue;
+            CapColumn& column = out[std::size_t((t - lowest[1]) * across + (s - lowest[0]))];
+            ++column.crossings;
+            column.spoilt |= spoils;
+            if (enters) {
+                column.delta.low += step.low;
+                column.delta.high += step.high;
+            } else {
+                column.delta.low -= step.low;
+                column.delta.high -= step.high;
             }
         }
     }
-    // The caps' crossings of each column of a footprint, as the query's
-    // count takes them (ProjectedMesh::winding at the point B is taken at:
-    // the texel centre as ColumnPoints places it, at the query's depth): a
-    // cap triangle that claims the column counts at the depths past its
-    // farthest vertex, none before its nearest; between, its layers are
-    // spoilt. Per column: the change to its counts (`delta`, nibble by
-    // nibble; added to the counts in any order it gives the same word),
-    // the layers spoilt, and the crossings (for the fit: the column's peak
-    // count plus these within +-7).
-    struct CapColumn {
-        Nibbles delta, spoilt;
-        int crossings = 0;
-    };
-    const ColumnPoints place(g);
-    const auto capColumns = [&](std::size_t f, const std::int64_t (&lowest)[2], const std::int64_t (&highest)[2],
-                                std::vector<CapColumn>& out) {
-        const std::int64_t across = highest[0] - lowest[0] + 1;
-        out.assign(std::size_t(across * (highest[1] - lowest[1] + 1)), CapColumn{});
-        for (std::uint32_t c = capsFirst[f]; c < capsFirst[f + 1]; ++c) {
-            const Triangle& tri = caps->tris[capsIn[c]];
-            const double nearest = std::min({tri.v[0][2], tri.v[1][2], tri.v[2][2]});
-            const double farthest = std::max({tri.v[0][2], tri.v[1][2], tri.v[2][2]});
-            const std::int64_t from = std::max<std::int64_t>(layerOf((nearest - boxLo) / depth - 2.0 * margin), 0);
-            const std::int64_t next = std::min<std::int64_t>(layerOf((farthest - boxLo) / depth + 2.0 * margin) + 1, layers);
-            Nibbles spoils;
-            if (from < next) {
-                const Nibbles ones = after[from] ^ after[next];
-                spoils = {ones.low * 0xfu, ones.high * 0xfu};
+}
+
+bool ColumnWindingsPass::texels(std::uint32_t i, std::uint32_t j, std::int64_t (&lowest)[2],
+                                std::int64_t (&highest)[2], bool& empty) const {
+    const std::uint32_t at[2] = {i, j};
+    const std::uint32_t extent[2] = {g_.width, g_.height};
+    const int axes[2] = {p_.x, p_.y};
+    const double texel = g_.texelSize;
+    bool fits = true;
+    empty = false;
+    for (int u = 0; u < 2; ++u) {
+        const double lo = cells_.lo[axes[u]] + double(at[u]) * cells_.size[axes[u]];
+        const double hi = lo + cells_.size[axes[u]];
+        const double a = std::floor((lo - double(g_.box.lo[axes[u]])) / texel) - 1.0;
+        const double b = std::floor((hi - double(g_.box.lo[axes[u]])) / texel) + 1.0;
+        if (!(a >= -1e9 && b <= 1e9)) fits = false; // not finite, or absurd
+        empty = empty || a < 0.0 || b >= double(extent[u]);
+        lowest[u] = fits ? std::max<std::int64_t>(0, std::int64_t(a)) : 0;
+        highest[u] = fits ? std::min<std::int64_t>(std::int64_t(extent[u]) - 1, std::int64_t(b)) : -1;
+    }
+    return fits;
+}
+
+bool ColumnWindingsPass::compare(const std::int64_t (&lowest)[2], const std::int64_t (&highest)[2],
+                                 const std::vector<CapColumn>& capColumn, Compared& m) const {
+    for (std::int64_t t = lowest[1]; t <= highest[1]; ++t)
+        for (std::int64_t s = lowest[0]; s <= highest[0]; ++s) {
+            const std::size_t column = std::size_t(t) * g_.width + std::size_t(s);
+            const float* c = sprite_.crossings.data() + sprite_.offsets[column];
+            const float* last = sprite_.crossings.data() + sprite_.offsets[column + 1];
+            int peak = 0;
+            if (c == last) {
+                m.empty = true; // counts 0 at every depth: compared below
+                if (!m.closes) continue;
+                m.counts = layers_.zero;
+            } else if (!layers_.column(c, last, m.counts, m.within, peak)) {
+                return false;
             }
-            const Nibbles step = next < std::int64_t(layers) ? after[next] : Nibbles{};
-            const bool enters = (tri.flags & kEntering) != 0;
-            // The footprint's columns within the triangle's box.
-            std::int64_t range[2][2];
-            for (int u = 0; u < 2; ++u) {
-                const float lo = std::min({tri.v[0][u], tri.v[1][u], tri.v[2][u]});
-                const float hi = std::max({tri.v[0][u], tri.v[1][u], tri.v[2][u]});
-                const int axis = u == 0 ? p.x : p.y;
-                range[u][0] = std::max<std::int64_t>(lowest[u], std::int64_t(std::floor((double(lo) - double(place.lo[axis])) / double(place.texel))) - 1);
-                range[u][1] = std::min<std::int64_t>(highest[u], std::int64_t(std::floor((double(hi) - double(place.lo[axis])) / double(place.texel))) + 1);
+            if (m.closes) {
+                const CapColumn& capsThere =
+                    capColumn[std::size_t((t - lowest[1]) * (highest[0] - lowest[0] + 1) + (s - lowest[0]))];
+                m.closes = peak + capsThere.crossings <= 7;
+                m.capped = {m.counts.low + capsThere.delta.low, m.counts.high + capsThere.delta.high};
+                m.cappedWithin |= capsThere.spoilt;
             }
-            for (std::int64_t t = range[1][0]; t <= range[1][1]; ++t) {
-                // The row's columns near the triangle: where its centre line
-                // meets the triangle (its edges' crossings of the line, in
-                // double), a column more each way for the rounding; the
-                // claims test decides.
-                const float rowT = place.lo[p.y] + (float(t) + 0.5f) * place.texel;
-                double left = std::numeric_limits<double>::infinity(), right = -left;
-                for (int e = 0; e < 3; ++e) {
-                    const float* a = tri.v[e];
-                    const float* b = tri.v[(e + 1) % 3];
-                    if ((a[1] < rowT && b[1] < rowT) || (a[1] > rowT && b[1] > rowT)) continue;
-                    if (a[1] == b[1]) { // along the line
-                        left = std::min({left, double(a[0]), double(b[0])});
-                        right = std::max({right, double(a[0]), double(b[0])});
-                        continue;
-                    }
-                    const double x = double(a[0]) + (double(rowT) - double(a[1])) / (double(b[1]) - double(a[1])) *
-                                                        (double(b[0]) - double(a[0]));
-                    left = std::min(left, x);
-                    right = std::max(right, x);
-                }
-                if (!(left <= right)) continue;
-                const std::int64_t s0 = std::max<std::int64_t>(
-                    range[0][0], std::int64_t(std::floor((left - double(place.lo[p.x])) / double(place.texel) - 0.5)) - 1);
-                const std::int64_t s1 = std::min<std::int64_t>(
-                    range[0][1], std::int64_t(std::floor((right - double(place.lo[p.x])) / double(place.texel) - 0.5)) + 1);
-                for (std::int64_t s = s0; s <= s1; ++s) {
-                    const float q[2] = {place.lo[p.x] + (float(s) + 0.5f) * place.texel, rowT};
-                    if (!claims(tri, q)) continue;
-                    CapColumn& column = out[std::size_t((t - lowest[1]) * across + (s - lowest[0]))];
-                    ++column.crossings;
-                    column.spoilt |= spoils;
-                    if (enters) {
-                        column.delta.low += step.low;
-                        column.delta.high += step.high;
-                    } else {
-                        column.delta.low -= step.low;
-                        column.delta.high -= step.high;
-                    }
-                }
+            // The first column is the reference; the rest compare with it.
+            if (m.counted) {
+                m.apart |= m.counts ^ m.reference;
+                m.cappedApart |= m.capped ^ m.cappedReference;
+            } else {
+                m.reference = m.counts;
+                m.cappedReference = m.capped;
+                m.counted = true;
             }
         }
-    };
-    const double texel = g.texelSize;
-    const std::uint32_t extent[2] = {g.width, g.height};
-    const int axes[2] = {p.x, p.y};
-    // Footprints (columns of cells along the axis) apart, each writing its
-    // own cells.
-    const std::size_t footprints = std::size_t(cells.dims[p.x]) * cells.dims[p.y];
-    parallelFor(threads_, footprints, 8, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t f = begin; f < end; ++f) {
-            const std::uint32_t i = std::uint32_t(f % cells.dims[p.x]), j = std::uint32_t(f / cells.dims[p.x]);
-            // The texels whose centres may lie in the footprint (a texel
-            // beyond it each way); beside the texture if those run past it.
-            const std::uint32_t at[2] = {i, j};
-            std::int64_t lowest[2], highest[2];
-            bool empty = false; // some query there counts 0 at every depth
-            bool fits = true;
-            for (int u = 0; u < 2; ++u) {
-                const double lo = cells.lo[axes[u]] + double(at[u]) * cells.size[axes[u]];
-                const double hi = lo + cells.size[axes[u]];
-                const double a = std::floor((lo - double(g.box.lo[axes[u]])) / texel) - 1.0;
-                const double b = std::floor((hi - double(g.box.lo[axes[u]])) / texel) + 1.0;
-                if (!(a >= -1e9 && b <= 1e9)) fits = false; // not finite, or absurd
-                empty = empty || a < 0.0 || b >= double(extent[u]);
-                lowest[u] = fits ? std::max<std::int64_t>(0, std::int64_t(a)) : 0;
-                highest[u] = fits ? std::min<std::int64_t>(std::int64_t(extent[u]) - 1, std::int64_t(b)) : -1;
-            }
-            if (!fits) continue;
-            // Per column: its counts, and with the caps' crossings added
-            // (`capped`); layers a crossing of the mesh may lie in
-            // (`within`), layers some column counts apart in (`apart`),
-            // the same with the caps (`cappedWithin`, `cappedApart`).
-            Nibbles reference = zero, counts, within, apart;
-            Nibbles cappedReference = zero, capped, cappedWithin, cappedApart;
-            // Beside the texture too: the closed counts speak of the queries
-            // placed in a column (a query beside it asks insideApart).
-            bool counted = false,
-                 closes = caps != nullptr && swept[f] != 0 && lowest[0] <= highest[0] && lowest[1] <= highest[1];
-            thread_local std::vector<CapColumn> capColumn;
-            if (closes) capColumns(f, lowest, highest, capColumn);
-            for (std::int64_t t = lowest[1]; t <= highest[1] && fits; ++t)
-                for (std::int64_t s = lowest[0]; s <= highest[0] && fits; ++s) {
-                    const std::size_t column = std::size_t(t) * g.width + std::size_t(s);
-                    const float* c = sprite_.crossings.data() + sprite_.offsets[column];
-                    const float* last = sprite_.crossings.data() + sprite_.offsets[column + 1];
-                    int peak = 0;
-                    if (c == last) {
-                        empty = true; // counts 0 at every depth: compared below
-                        if (!closes) continue;
-                        counts = zero;
-                    } else {
-                        fits = count(c, last, counts, within, peak);
-                        if (!fits) break;
-                    }
-                    if (closes) {
-                        const CapColumn& capsThere =
-                            capColumn[std::size_t((t - lowest[1]) * (highest[0] - lowest[0] + 1) + (s - lowest[0]))];
-                        closes = peak + capsThere.crossings <= 7;
-                        capped = {counts.low + capsThere.delta.low, counts.high + capsThere.delta.high};
-                        cappedWithin |= capsThere.spoilt;
-                    }
-                    // The first column is the reference; the rest compare with it.
-                    if (counted) {
-                        apart |= counts ^ reference;
-                        cappedApart |= capped ^ cappedReference;
-                    } else {
-                        reference = counts;
-                        cappedReference = capped;
-                        counted = true;
-                    }
-                }
-            if (!fits) continue;
-            // Where a column counts 0 everywhere, only 0 is shared (beside
-            // the texture, the count is 0).
-            if (empty) apart |= reference ^ zero;
-            const Nibbles spoilt{within.low | apart.low, within.high | apart.high};
-            for (std::uint32_t k = 0; k < layers; ++k) {
-                glm::uvec3 cell;
-                cell[p.x] = i;
-                cell[p.y] = j;
-                cell[p.z] = k;
-                if (spoilt.at(k) == 0) windings[cells.index(cell)] = std::int32_t(reference.at(k)) - 8;
-                // The closed count: no crossing of the mesh or the caps
-                // within the layer, and every column's sum alike.
-                if (closes && within.at(k) == 0 && cappedWithin.at(k) == 0 && cappedApart.at(k) == 0)
-                    closed[cells.index(cell)] = std::int32_t(cappedReference.at(k)) - 8;
-            }
-        }
+    return true;
+}
+
+void ColumnWindingsPass::footprint(std::size_t f) const {
+    const std::uint32_t i = std::uint32_t(f % cells_.dims[p_.x]), j = std::uint32_t(f / cells_.dims[p_.x]);
+    std::int64_t lowest[2], highest[2];
+    Compared m;
+    if (!texels(i, j, lowest, highest, m.empty)) return;
+    m.reference = m.cappedReference = layers_.zero;
+    // Beside the texture too: the closed counts speak of the queries
+    // placed in a column (a query beside it asks insideApart).
+    m.closes = caps_ != nullptr && swept_[f] != 0 && lowest[0] <= highest[0] && lowest[1] <= highest[1];
+    thread_local std::vector<CapColumn> capColumn;
+    if (m.closes) capColumns(f, lowest, highest, capColumn);
+    if (!compare(lowest, highest, capColumn, m)) return;
+    // Where a column counts 0 everywhere, only 0 is shared (beside the
+    // texture, the count is 0).
+    if (m.empty) m.apart |= m.reference ^ layers_.zero;
+    const Nibbles spoilt{m.within.low | m.apart.low, m.within.high | m.apart.high};
+    for (std::uint32_t k = 0; k < layers_.count; ++k) {
+        glm::uvec3 cell;
+        cell[p_.x] = i;
+        cell[p_.y] = j;
+        cell[p_.z] = k;
+        if (spoilt.at(k) == 0) windings_[cells_.index(cell)] = std::int32_t(m.reference.at(k)) - 8;
+        // The closed count: no crossing of the mesh or the caps within the
+        // layer, and every column's sum alike.
+        if (m.closes && m.within.at(k) == 0 && m.cappedWithin.at(k) == 0 && m.cappedApart.at(k) == 0)
+            closed_[cells_.index(cell)] = std::int32_t(m.cappedReference.at(k)) - 8;
+    }
+}
+
+void SpriteColumns::constantWindings(const CellLattice& cells, const ProjectedMesh* caps,
+                                     std::vector<std::int32_t>& windings, std::vector<std::int32_t>& closed) const {
+    if (!Layers::fit(sprite_.grid, cells, axisPermutation(sprite_.grid.axis))) return;
+    const ColumnWindingsPass pass(sprite_, cells, caps, windings, closed);
+    parallelFor(threads_, pass.footprints(), 8, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t f = begin; f < end; ++f) pass.footprint(f);
     });
 }
 
@@ -447,95 +536,124 @@ void requireBoundaryKnown(const Sprite& sprite, Rule rule) {
                               "store the boundary edges the generalized winding number needs: bake it again");
 }
 
-void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
-                                std::uint8_t* labels, const ClassifyOptions& options) {
-    const std::size_t edgeCount = sprite.boundaryEdges.size() / 2;
-    const glm::vec3* edges = sprite.boundaryEdges.data();
-    const int axis = axisPermutation(sprite.grid.axis).z;
-    const BoundaryCaps* caps =
-        options.boundary == BoundaryEvaluation::Caps ? &sprite.boundaryCaps.get(sprite, options.threads) : nullptr;
-    const char* base = reinterpret_cast<const char*>(xyz);
-    const SpriteGrid& sg = sprite.grid;
-    const std::uint32_t* offsets = sprite.offsets.data();
-    const float* crossings = sprite.crossings.data();
-    const ColumnPoints place(sg);
-    parallelFor(options.threads, count, 1024, [&](std::size_t begin, std::size_t end) {
-        // In batches, three in flight, so that each cache miss has a whole
-        // batch's work to arrive: find batch k's points (no memory read),
-        // label those whose cell of the caps answers alone and prefetch the
-        // rest's offsets; read batch k - 1's offsets and prefetch their
-        // crossings; count batch k - 2's crossings and label them.
-        constexpr std::size_t kBatch = 32;
-        struct Pending {
-            std::size_t index;         ///< of the point
-            std::ptrdiff_t column;     ///< -1 beside the texture
-            float depth;               ///< texture depth
-            glm::vec3 point;           ///< where B is taken
-            const float *first, *last; ///< the column's crossings (stage 2)
-        };
-        struct Batch {
-            Pending pending[kBatch];
-            std::size_t waiting = 0;
-        };
-        Batch ring[3];
+namespace {
+
+/// classifyGeneralizedWinding's points from one thread, in batches, three
+/// in flight, so that each cache miss has a whole batch's work to arrive:
+/// find batch k's points (no memory read), label those whose cell of the
+/// caps answers alone and prefetch the rest's offsets; read batch k - 1's
+/// offsets and prefetch their crossings; count batch k - 2's crossings and
+/// label them.
+class BatchedLabels {
+public:
+    static constexpr std::size_t kBatch = 32;
+    BatchedLabels(const Sprite& sprite, const BoundaryCaps* caps, const ColumnPoints& place, const char* base,
+                  std::size_t strideBytes, std::uint8_t* labels)
+        : sprite_(sprite), caps_(caps), place_(place), base_(base), strideBytes_(strideBytes), labels_(labels),
+          offsets_(sprite.offsets.data()), crossings_(sprite.crossings.data()),
+          axis_(axisPermutation(sprite.grid.axis).z) {}
+
+    void run(std::size_t begin, std::size_t end) {
         const std::size_t batches = (end - begin + kBatch - 1) / kBatch;
         for (std::size_t k = 0; k < batches + 2; ++k) {
-            if (k < batches) { // stage 1
-                Batch& batch = ring[k % 3];
-                batch.waiting = 0;
-                const std::size_t b0 = begin + k * kBatch, n = std::min(kBatch, end - b0);
-                // Every point placed first, then every cell asked: two
-                // short loops whose iterations overlap, where one long
-                // chain of dependent steps a point did not.
-                glm::vec3 q[kBatch];
-                float depth[kBatch];
-                std::ptrdiff_t column[kBatch];
-                bool finite[kBatch];
-                for (std::size_t i = 0; i < n; ++i) {
-                    glm::vec3 p;
-                    std::memcpy(&p, base + (b0 + i) * strideBytes, sizeof p);
-                    const glm::vec3 t = textureOf(sg, p);
-                    finite[i] = place.place(t, column[i], q[i]);
-                    depth[i] = t.z;
-                }
-                for (std::size_t i = 0; i < n; ++i) {
-                    if (!finite[i]) {
-                        labels[b0 + i] = 0;
-                        continue;
-                    }
-                    const int alone = caps ? caps->insideAlone(q[i], column[i] < 0) : -1;
-                    if (alone >= 0) {
-                        labels[b0 + i] = std::uint8_t(alone);
-                        continue;
-                    }
-                    batch.pending[batch.waiting++] = {b0 + i, column[i], depth[i], q[i], nullptr, nullptr};
-                    if (column[i] >= 0) __builtin_prefetch(offsets + column[i]);
-                }
-            }
-            if (k >= 1 && k - 1 < batches) { // stage 2
-                Batch& batch = ring[(k - 1) % 3];
-                for (std::size_t w = 0; w < batch.waiting; ++w) {
-                    Pending& at = batch.pending[w];
-                    if (at.column < 0) continue;
-                    at.first = crossings + offsets[at.column];
-                    at.last = crossings + offsets[at.column + 1];
-                    __builtin_prefetch(at.first);
-                }
-            }
-            if (k >= 2) { // stage 3
-                const Batch& batch = ring[(k - 2) % 3];
-                for (std::size_t w = 0; w < batch.waiting; ++w) {
-                    const Pending& at = batch.pending[w];
-                    const int winding = at.column >= 0 ? columnWinding(at.first, at.last, at.depth) : 0;
-                    labels[at.index] =
-                        (caps ? (at.column >= 0 ? caps->inside(winding, at.point) : caps->insideApart(winding, at.point))
-                              : generalizedWindingInside(double(winding) +
-                                                         boundaryTermExact(edges, edgeCount, axis, glm::dvec3(at.point))))
-                            ? 1
-                            : 0;
-                }
-            }
+            if (k < batches) place(ring_[k % 3], begin + k * kBatch, std::min(kBatch, end - (begin + k * kBatch)));
+            if (k >= 1 && k - 1 < batches) readOffsets(ring_[(k - 1) % 3]);
+            if (k >= 2) label(ring_[(k - 2) % 3]);
         }
+    }
+
+private:
+    struct Pending {
+        std::size_t index;         ///< of the point
+        std::ptrdiff_t column;     ///< -1 beside the texture
+        float depth;               ///< texture depth
+        glm::vec3 point;           ///< where B is taken
+        const float *first, *last; ///< the column's crossings (stage 2)
+    };
+    struct Batch {
+        Pending pending[kBatch];
+        std::size_t waiting = 0;
+    };
+
+    /// Stage 1: points [b0, b0 + n) placed, labelled where their cell
+    /// answers alone, the rest's offsets prefetched.
+    void place(Batch& batch, std::size_t b0, std::size_t n) {
+        batch.waiting = 0;
+        // Every point placed first, then every cell asked: two short loops
+        // whose iterations overlap, where one long chain of dependent steps
+        // a point did not.
+        glm::vec3 q[kBatch];
+        float depth[kBatch];
+        std::ptrdiff_t column[kBatch];
+        bool finite[kBatch];
+        for (std::size_t i = 0; i < n; ++i) {
+            glm::vec3 p;
+            std::memcpy(&p, base_ + (b0 + i) * strideBytes_, sizeof p);
+            const glm::vec3 t = textureOf(sprite_.grid, p);
+            finite[i] = place_.place(t, column[i], q[i]);
+            depth[i] = t.z;
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            if (!finite[i]) {
+                labels_[b0 + i] = 0;
+                continue;
+            }
+            const int alone = caps_ ? caps_->insideAlone(q[i], column[i] < 0) : -1;
+            if (alone >= 0) {
+                labels_[b0 + i] = std::uint8_t(alone);
+                continue;
+            }
+            batch.pending[batch.waiting++] = {b0 + i, column[i], depth[i], q[i], nullptr, nullptr};
+            if (column[i] >= 0) __builtin_prefetch(offsets_ + column[i]);
+        }
+    }
+
+    /// Stage 2: the pending points' columns found, their crossings
+    /// prefetched.
+    void readOffsets(Batch& batch) const {
+        for (std::size_t w = 0; w < batch.waiting; ++w) {
+            Pending& at = batch.pending[w];
+            if (at.column < 0) continue;
+            at.first = crossings_ + offsets_[at.column];
+            at.last = crossings_ + offsets_[at.column + 1];
+            __builtin_prefetch(at.first);
+        }
+    }
+
+    /// Stage 3: the pending points counted and labelled.
+    void label(const Batch& batch) const {
+        for (std::size_t w = 0; w < batch.waiting; ++w) {
+            const Pending& at = batch.pending[w];
+            const int winding = at.column >= 0 ? columnWinding(at.first, at.last, at.depth) : 0;
+            labels_[at.index] =
+                (caps_ ? (at.column >= 0 ? caps_->inside(winding, at.point) : caps_->insideApart(winding, at.point))
+                       : generalizedWindingInside(double(winding) + boundaryTermExact(sprite_.boundaryEdges.data(),
+                                                                                      sprite_.boundaryEdges.size() / 2,
+                                                                                      axis_, glm::dvec3(at.point))))
+                    ? 1
+                    : 0;
+        }
+    }
+
+    const Sprite& sprite_;
+    const BoundaryCaps* caps_;
+    const ColumnPoints& place_;
+    const char* base_;
+    std::size_t strideBytes_;
+    std::uint8_t* labels_;
+    const std::uint32_t* offsets_;
+    const float* crossings_;
+    int axis_;
+    Batch ring_[3];
+};
+
+} // namespace
+
+void classifyGeneralizedWinding(const Sprite& sprite, const BoundaryCaps* caps, const float* xyz, std::size_t count,
+                                std::size_t strideBytes, std::uint8_t* labels, const ClassifyOptions& options) {
+    const ColumnPoints place(sprite.grid);
+    parallelFor(options.threads, count, 1024, [&](std::size_t begin, std::size_t end) {
+        BatchedLabels(sprite, caps, place, reinterpret_cast<const char*>(xyz), strideBytes, labels).run(begin, end);
     });
 }
 
@@ -553,13 +671,9 @@ void BoundaryCapsCache::reset() noexcept { delete caps_.exchange(nullptr); }
 
 bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world) {
     requireBoundaryKnown(sprite, Rule::GeneralizedWinding);
-    const SpriteGrid& sg = sprite.grid;
-    const glm::vec3 t = sg.toTexture(world);
-    std::ptrdiff_t column;
-    glm::vec3 q;
-    if (!ColumnPoints(sg).place(t, column, q)) return false;
-    const BoundaryCaps& caps = sprite.boundaryCaps.get(sprite);
-    return column >= 0 ? caps.inside(columnCount(sprite, t, column), q) : caps.insideApart(0, q);
+    std::uint8_t label = 0; // the batch's per-edge path, so that one point answers as a batch does
+    classifyGeneralizedWinding(sprite, nullptr, &world.x, 1, sizeof world, &label, {Rule::GeneralizedWinding, 1});
+    return label != 0;
 }
 
 } // namespace vds::detail
@@ -579,7 +693,8 @@ double Sprite::generalizedWinding(const glm::vec3& world) const {
     glm::vec3 q;
     if (!detail::gwnSample(*this, t, winding, q))
         return 0.0;
-    return boundaryCaps.get(*this).generalizedWinding(winding, q, detail::kGeneralizedWindingTolerance);
+    return double(winding) + detail::boundaryTermExact(boundaryEdges.data(), boundaryEdges.size() / 2,
+                                                       axisPermutation(grid.axis).z, glm::dvec3(q));
 }
 
 } // namespace vds

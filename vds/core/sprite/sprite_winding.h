@@ -36,15 +36,16 @@ inline bool needsBoundaryTerm(const Sprite& sprite, Rule rule) {
 }
 
 /// `Sprite::contains` for Rule::GeneralizedWinding on a sprite with
-/// boundary edges: the label of the per-edge sum, by the capped loops.
+/// boundary edges: the label of the per-edge sum.
 bool containsGeneralizedWinding(const Sprite& sprite, const glm::vec3& world);
 
-/// The tolerance of `Sprite::generalizedWinding`'s value.
-constexpr double kGeneralizedWindingTolerance = 1e-3;
+
+class BoundaryCaps;
 
 /// Batch GWN labels for a sprite with boundary edges (sprite.cpp's
-/// `classify` hands over to it), by `options.boundary`.
-void classifyGeneralizedWinding(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
-                                std::uint8_t* labels, const ClassifyOptions& options);
+/// `classify` hands over to it): by `caps`, the sprite's (built by
+/// BoundaryCapsCache::get), or by the per-edge sum where `caps` is null.
+void classifyGeneralizedWinding(const Sprite& sprite, const BoundaryCaps* caps, const float* xyz, std::size_t count,
+                                std::size_t strideBytes, std::uint8_t* labels, const ClassifyOptions& options);
 
 } // namespace vds::detail

@@ -540,8 +540,9 @@ void checkAttributes(std::string_view bytes, int version, const std::string& pat
     }
 }
 
-std::uint64_t readHeader(MemoryIStream& stream, std::string_view bytes, const std::string& path,
-                         Sprite& sprite, int& formatVersion) {
+/// The OpenEXR magic, version field and header of a .vds file: a single
+/// part deep scanline image, its attributes checked before OpenEXR reads them.
+Imf::Header readExrHeader(MemoryIStream& stream, std::string_view bytes, const std::string& path) {
     const std::uint64_t fileSize = bytes.size();
     char head[8] = {};
     if (fileSize < 8) formatFail(path, "not a .vds file (too short for OpenEXR)");
@@ -561,8 +562,14 @@ std::uint64_t readHeader(MemoryIStream& stream, std::string_view bytes, const st
     header.readFrom(stream, headerVersion);
     if (!header.hasType() || header.type() != Imf::DEEPSCANLINE)
         formatFail(path, "not a .vds file (not a deep scanline OpenEXR image)");
+    return header;
+}
 
-    // The image size bounds every allocation OpenEXR makes: check it first.
+/// The image size, which bounds every allocation OpenEXR makes, the
+/// compression, the channels and the format version: checked before any
+/// of the image is read.
+void checkImage(Imf::Header& header, std::uint64_t fileSize, const std::string& path, std::uint32_t& imageWidth,
+                std::uint32_t& imageHeight, int& formatVersion) {
     const Imath::Box2i& window = header.dataWindow();
     const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
     const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
@@ -586,9 +593,14 @@ std::uint64_t readHeader(MemoryIStream& stream, std::string_view bytes, const st
                              std::to_string(kOldestFormatVersion) + " to " + std::to_string(Sprite::kFormatVersion) +
                              ")");
 
+    imageWidth = std::uint32_t(width);
+    imageHeight = std::uint32_t(height);
+}
+
+/// The sprite's attributes: its grid, counts, source, status and (from
+/// format version 2) boundary edges.
+void readAttributes(const Imf::Header& header, const std::string& path, int formatVersion, Sprite& sprite) {
     SpriteGrid& g = sprite.grid;
-    g.width = std::uint32_t(width);
-    g.height = std::uint32_t(height);
     const int axis = value<int>(header, kAxisAttr, path);
     if (axis < 0 || axis > 2)
         formatFail(path, "attribute vds.axis is " + std::to_string(axis) + ", expected 0, 1 or 2");
@@ -625,6 +637,13 @@ std::uint64_t readHeader(MemoryIStream& stream, std::string_view bytes, const st
         sprite.boundaryKnown = sprite.status == SolidStatus::Closed;
     }
 
+}
+
+std::uint64_t readHeader(MemoryIStream& stream, std::string_view bytes, const std::string& path,
+                         Sprite& sprite, int& formatVersion) {
+    Imf::Header header = readExrHeader(stream, bytes, path);
+    checkImage(header, bytes.size(), path, sprite.grid.width, sprite.grid.height, formatVersion);
+    readAttributes(header, path, formatVersion, sprite);
     std::uint64_t checksum = 0;
     if (!parseHex(value<std::string>(header, kChecksumAttr, path), checksum))
         formatFail(path, "attribute vds.checksum is not 16 lowercase hex digits");

@@ -13,9 +13,12 @@
 namespace vds::detail {
 
 /// The sprite's batch on packed or strided float points (`classify` and
-/// `SpriteClassifier` share it): see `classify` in <vds/sprite.h>.
-void classifySpriteFloats(const Sprite& sprite, const float* xyz, std::size_t count, std::size_t strideBytes,
-                          std::uint8_t* labels, const ClassifyOptions& options);
+/// `SpriteClassifier` share it): see `classify` in <vds/sprite.h>. `caps`
+/// holds the sprite's caps for Rule::GeneralizedWinding, built by the first
+/// query that needs them.
+void classifySpriteFloats(const Sprite& sprite, const BoundaryCapsCache& caps, const SpriteQueryOptions& query,
+                          const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
+                          const ClassifyOptions& options);
 
 
 /// SpriteGrid::toTexture, inline for the batches that ask it of every

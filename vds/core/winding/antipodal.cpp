@@ -17,14 +17,10 @@
 
 #include <vds/error.h>
 #include <vds/detail/parallel.h>
+#include <vds/detail/pi.h>
 
 
 namespace vds::detail {
-
-namespace {
-constexpr double kFourPi = 4.0 * 3.14159265358979323846;
-constexpr double kPi = 3.14159265358979323846;
-} // namespace
 
 std::vector<glm::vec3> boundaryEdges(MeshView mesh) {
     std::map<std::tuple<float, float, float>, std::uint32_t> ids;

@@ -23,6 +23,7 @@
 #include <glm/vec3.hpp>
 
 #include <vds/mesh.h>
+#include <vds/detail/pi.h>
 
 namespace vds::detail {
 
@@ -46,8 +47,7 @@ double edgeSolidAngle(int axis, const glm::dvec3& a, const glm::dvec3& b, const 
 // On x86-64 with GCC, the loops that find many edges' angles at once
 // (EdgeAngles::add, the column sweep's) are built twice, for AVX2 (four
 // edges an instruction) and for the baseline (two), and the loader picks
-// the one the machine runs (1.2x on the soup's and the non-manifold
-// shell's edges on our VM). The same IEEE operations either way (no fused
+// the one the machine runs (docs/benchmarks.md). The same IEEE operations either way (no fused
 // multiply-add: -ffp-contract=off), so the same values.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
 #define VDS_EDGE_CLONES __attribute__((target_clones("avx2", "default")))
@@ -83,7 +83,7 @@ struct AngleProduct {
         re /= size;
         im /= size;
     }
-    double angle() const { return std::atan2(im, re) + 2.0 * 3.14159265358979323846 * turns; }
+    double angle() const { return std::atan2(im, re) + 2.0 * kPi * turns; }
 };
 
 /// Two AngleProducts side by side, a lane each (GCC's vectors: SSE2's

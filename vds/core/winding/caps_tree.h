@@ -77,12 +77,16 @@
 #include <optional>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <vds/mesh.h>
 
 #include "predicates/projected_mesh.h"
+#include <vds/detail/chain_tree.h>
+#include "winding/edge_tree.h"
+#include "winding/range_grid.h"
 
 namespace vds::detail {
 
@@ -90,15 +94,6 @@ namespace vds::detail {
 /// the solid angle it subtends, for values (then exactly where the bound
 /// exceeds the value's tolerance).
 constexpr double kCapValueTolerance = 1e-3;
-
-/// One boundary loop and its cap, the fan from its centroid.
-struct CapLoop {
-    glm::dvec3 centroid{0.0};      ///< c: the fan's apex (mean of the loop's vertices, rounded to float)
-    double radius = 0.0;           ///< R: max |vertex - c|
-    double area = 0.0;             ///< sum of the fan triangles' unsigned areas
-    std::uint32_t first = 0;       ///< the loop's first edge in `loopEdges()`
-    std::uint32_t count = 0;       ///< its edges
-};
 
 /// A surface's integral of n . (x - q) / |x - q|^3 dA by its expansion to
 /// first order about c, at y = c - q (|y| = d): vector area A, first
@@ -207,47 +202,15 @@ public:
     /// count and the solid angles are taken at the same point.
     Estimate estimate(const glm::vec3& q, double nodeTolerance) const;
 
-    /// How far B may drift from B(q) along a move from q parallel to the
-    /// axis. Along such a line B is continuous off the boundary curve G
-    /// (where it passes a cap, w_caps and C_caps jump together; across the
-    /// curtain below G, which such a line does not cross, C_caps alone
-    /// steps), and its gradient is the sum over the loops of the
-    /// Biot-Savart integral over the loop, the integral of
-    /// (x - q) x dx / |x - q|^3 over 4 pi (the solid angle's gradient
-    /// depends only on the curve it is bounded by), of norm at most the sum
-    /// over its edges of length / (4 pi distance^2); and, the loop's B
-    /// being its cap's crossing count less its cap's winding number, also
-    /// at most the cap's area times 2 / (4 pi distance^3) (the gradient of
-    /// n . (x - q) / |x - q|^3 has norm at most 2 / |x - q|^3), which is
-    /// smaller for small loops afar. `steepness` is at least the sum over
-    /// the loops of the smaller of the two at q (clusters taken at the
-    /// distance of their bounding balls, which hold their edges and caps),
-    /// `gap` at most q's distance to any edge or far cluster; a move by
-    /// L < gap shrinks every such distance by at most the factor
-    /// 1 - L / gap, so it changes B by at most
-    /// steepness * L / (1 - L / gap)^3.
-    struct Reach {
-        double gap = 0.0;
-        double steepness = 0.0;
-        /// The largest change of B over a move by `length` (+inf from `gap` on).
-        double drift(double length) const {
-            if (!(length < gap)) return std::numeric_limits<double>::infinity();
-            const double shrink = 1.0 - length / gap;
-            return steepness * length / (shrink * shrink * shrink);
-        }
-    };
-    /// Reach{} (no move certain) once the steepness is known to exceed
-    /// `steepest`: where that cannot carry a label one cell further, the
-    /// rest of the sum is not worth taking.
-    Reach reach(const glm::vec3& q, double steepest = std::numeric_limits<double>::infinity()) const;
-    /// The largest change of B (and of w_caps) over a move from q by at
-    /// most `length` in any direction along which B is smooth, the same
-    /// bounds taken term by term: each edge or cluster at distance r
-    /// (beyond `length`) adds its bound at r - length, so that far parts
-    /// are not charged for the nearest one's closeness as Reach::drift
-    /// charges them. +inf past `limit`, or where an edge lies within
-    /// `length` of q.
-    double driftWithin(const glm::vec3& q, double length, double limit) const;
+
+    /// How far B may drift from B(q) along a move from q (Reach, EdgeTree).
+    using Reach = detail::Reach;
+    Reach reach(const glm::vec3& q, double steepest = std::numeric_limits<double>::infinity()) const {
+        return edgeTree_.reach(q, steepest);
+    }
+    double driftWithin(const glm::vec3& q, double length, double limit) const {
+        return edgeTree_.driftWithin(q, length, limit);
+    }
 
     /// `winding + B(q)` within `tolerance` of `winding + boundaryTermExact`,
     /// falling back to the per-edge sum where the estimate's bound is larger.
@@ -324,46 +287,10 @@ public:
     const std::vector<glm::vec3>& loopEdges() const { return loopEdges_; }
     std::size_t edgeCount() const { return edges_.size() / 2; }
 
-    /// A node of either tree: a ball (centre, radius) holding a surface,
-    /// with that surface's moments about the centre.
-    struct Node {
-        glm::dvec3 centre;
-        double radius;
-        double errorScale; ///< 3 S / 4 pi: the bound is errorScale R (D + 3e) / (3 D^4 e^2), e = D - R
-        double area;       ///< unsigned
-        glm::dvec3 vectorArea;
-        std::array<double, 9> moment; ///< M_ij = integral of n_i (x - c)_j dA, row-major
-        /// N_ijk = integral of n_i (x - c)_j (x - c)_k dA, row i holding the
-        /// pairs (j, k) = 00, 11, 22, 01, 02, 12
-        std::array<double, 18> quadrupole;
-        double trace;                 ///< sum of M_ii
-        glm::dvec3 quadrupoleRows;    ///< sum over j of N_ijj, for each i
-        glm::dvec3 quadrupoleColumns; ///< sum over i of N_iik, for each k
-        std::uint32_t first, count; ///< leaf: cap triangles [first, first + count)
-        std::uint32_t left, right;  ///< inner: children (count == 0)
-    };
-
-    /// The tree labels refine (decide): over the loops, then within each
-    /// loop over halves of its edges (chains). A chain a node holds runs
-    /// from P to Q; closed by its chord Q -> P it bounds the fan from its
-    /// centre, a surface inside its ball. Where q's ray misses the ball the
-    /// fan's crossing count is 0, so the chain's edges sum to the chord's
-    /// angle f(P -> Q) less the fan's solid angle, which the expansion
-    /// takes: the fan hugs the chain (a lune, not a cap across the loop).
-    /// Node's moments are its fan's, about `centre` (the ball's centre);
-    /// a leaf's `first`, `count` are edges of loopEdges().
-    struct ChainNode : Node {
-        glm::dvec3 from, to; ///< the chord P -> Q (none for whole loops)
-        bool chord;
-        /// One whole loop: its index in loops(); else (a group of loops, or
-        /// part of one) kNoLoop.
-        std::uint32_t loop;
-        /// Every edge under the node: [edgeFirst, edgeFirst + edgeCount)
-        /// of the chain tree's edges (the loops in the tree's order),
-        /// summed at once where the node is to be opened and holds few.
-        std::uint32_t edgeFirst, edgeCount;
-    };
-    static constexpr std::uint32_t kNoLoop = 0xffffffffu;
+    /// A node of either tree (chain_tree.h).
+    using Node = CapsNode;
+    using ChainNode = vds::detail::ChainNode;
+    static constexpr std::uint32_t kNoLoop = ChainNode::kNoLoop;
     /// [0] is the root; empty where the edges do not close into loops.
     const std::vector<ChainNode>& chains() const { return chains_; }
     /// A node's fan's solid angle seen from q by its expansion to first
@@ -378,108 +305,11 @@ public:
     static double firstOrderBound(const Node& n, double distance);
 
 private:
-    /// The grid of bounds `inside` answers from first: cells of the
-    /// domain's box, their state (0: not yet looked at, 1: a range of B,
-    /// 2: none, 3: being filled, 4: a range of the whole winding number,
-    /// 5: a range of B less the caps' crossing count, -w_caps, 6: a plan:
-    /// the range of -w of the caps of the loops far from the cell, and the
-    /// loops near it) and range, filled on a query's first visit (one
-    /// thread fills a cell; the others go on by the tree meanwhile).
-    struct RangeGrid {
-        Box box;
-        glm::uvec3 dims{0};
-        glm::dvec3 size{0.0};
-        glm::dvec3 inverse{0.0}; ///< 1 / size (0 where size is 0)
-        /// 1 where the surface may meet the cell (CapsSurface::markCells);
-        /// empty without a surface.
-        std::vector<std::uint8_t> met;
-        /// 1 where a cap may meet the cell.
-        std::vector<std::uint8_t> capMet;
-        /// The integer term over each cell where the caller knew it to be
-        /// one integer (CellWindings), else kUnknown; empty without.
-        std::vector<std::int32_t> constantWinding;
-        /// CellWindings' closed counts: in the sweep, where the caps keep
-        /// out of a cell, n - w_caps is the whole winding number.
-        std::vector<std::int32_t> closedWinding;
-        mutable std::atomic<std::size_t> closedCells{0}; ///< state 4 by closedWinding
-        /// A planned cell's near nodes (whole loops, or groups of them),
-        /// then the loops they hold, ascending: nearCount[cell] of the
-        /// first, nearLoops[cell] of the second.
-        std::unique_ptr<std::unique_ptr<std::uint32_t[]>[]> near;
-        std::unique_ptr<std::uint32_t[]> nearCount, nearLoops;
-        /// A planned cell's score of queries the plan did not decide, less
-        /// those it did: past a few, the cell goes back to state 2 (most of
-        /// its queries lie close to 1/2).
-        std::unique_ptr<std::atomic<std::uint8_t>[]> planMisses;
-        /// Per column of cells along the axis: the lowest height along the
-        /// axis of a boundary edge whose projection's box meets the
-        /// column's (+inf: none), so the cells wholly below it are clear
-        /// of the curve and its sweep.
-        std::vector<double> lowestEdge;
-        std::unique_ptr<std::atomic<std::uint8_t>[]> state;
-        /// A cell of state 4: 1 where its range puts every value inside,
-        /// 0 outside, kUndecided where it straddles 1/2, plus kByClosed
-        /// where the range came from a closed count (set before the state
-        /// is published).
-        std::unique_ptr<std::uint8_t[]> alone;
-        std::unique_ptr<double[]> lo, hi;
-        /// The coarse grid's: queries that found no range in the cell
-        /// (states 2 and 6), up to kBusyVisits; from then on they ask the
-        /// fine grid's cell.
-        std::unique_ptr<std::atomic<std::uint16_t>[]> visits;
-        /// The coarse grid's: per block of 2 x 2 x 2 cells, 1 once a cell
-        /// of it tried the block's range (blockRange).
-        std::unique_ptr<std::atomic<std::uint8_t>[]> blockTried;
-        glm::uvec3 blockDims{0};
-    };
-    void buildRangeGrid(const Box& domain, const CellWindings* windings);
-    /// `cellsNow`: allocate its cells' states and ranges too (allocateCells).
-    void buildGrid(RangeGrid& g, const Box& box, double cellsAlong, const CellWindings* windings, bool cellsNow);
-    static void allocateCells(RangeGrid& g);
-    /// The fine grid's cells, allocated on the first call (once, whichever
-    /// thread comes first); false where there is no fine grid.
-    bool fineCells() const;
-    /// The cell's state, filling it on the first visit; `within`: a fine
-    /// cell within a planned coarse one (plan()).
-    std::uint8_t rangeOf(const RangeGrid& g, std::size_t cell, const glm::uvec3& at, bool within = false) const;
-    /// A ball about the box of cells [first, last] of `g`: its centre (a
-    /// float point, as queries are) and a radius holding every point of
-    /// those cells, widened against the rounding of a point's cell index.
-    struct CellsBall {
-        glm::vec3 centre;
-        double half;
-    };
-    static CellsBall ballOf(const RangeGrid& g, const glm::uvec3& first, const glm::uvec3& last);
-    /// Clear of the boundary curve and its sweep along +axis: every edge
-    /// whose projection may meet the cell's column lies above the cell.
-    bool clearOfSweep(const RangeGrid& g, const glm::uvec3& at) const;
-    /// B over the ball: `e` at its centre, to be widened by `drift`; false
-    /// where the two span half a unit or more (no range clear of 1/2).
-    bool rangeOver(const CellsBall& ball, Estimate& e, double& drift) const;
-    /// On a coarse cell's fill (the caller owns `cell`, state 3), once a
-    /// block: where no cell of its block of 2 x 2 x 2 meets the surface
-    /// (or, without one, every cell is clear of the boundary's sweep and
-    /// the caller knew one integer term for them all), the range of the
-    /// whole winding number over the block, clear of 1/2, for every cell
-    /// of it not yet filled: one fill for eight far from the surface.
-    /// True where `cell` got it (then state 4 is the caller's to publish).
-    bool blockRange(const RangeGrid& g, std::size_t cell, const glm::uvec3& at) const;
-    /// Whether a coarse cell without a range has had queries enough to
-    /// ask the fine grid (counting this one).
-    bool busy(std::size_t cell) const;
-    /// insideBy() in cell `cell` of `g`, of state `state`.
-    template <class Winding>
-    bool insideIn(const RangeGrid& g, std::size_t cell, std::uint8_t state, const glm::vec3& q,
-                  const Winding& windingAt, bool apart) const;
-    /// inside(), asking `windingAt()` for the integer term only where the
-    /// cell's range does not answer without it.
-    template <class Winding>
-    bool insideBy(const glm::vec3& q, const Winding& windingAt, bool apart) const;
-    static constexpr std::uint8_t kUndecided = 2;
-    static constexpr std::uint8_t kByClosed = 4;
-    /// The cell q lies in; false outside the grid.
-    static inline bool cellOf(const RangeGrid& g, const glm::vec3& q, std::size_t& cell, glm::uvec3& at);
+    // ---- the caps and their tree of cap triangles, for values (caps_tree.cpp)
     double exact(int winding, const glm::vec3& q) const;
+    /// Loop `loop`'s cap: its centroid, radius and area, its fan among the
+    /// caps' triangles, and (appended to `tris`) in double.
+    void addCap(CapLoop& loop, std::vector<std::array<glm::dvec3, 3>>& tris);
     static void finish(Node& node);
     static double firstOrder(const Node& n, const glm::dvec3& y, double d2, double d);
     static double expansion(const Node& n, const glm::dvec3& y, double d2, double d);
@@ -488,25 +318,19 @@ private:
     std::uint32_t build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,
                         const std::vector<std::array<glm::dvec3, 3>>& tris,
                         std::vector<glm::dvec3>& unsignedMoments);
+    /// build()'s leaf `node` (its ball set) at `index`: its triangles'
+    /// moments, and the triangles themselves into leafTris_.
+    void buildLeaf(Node& node, std::uint32_t index, std::uint32_t first, std::uint32_t last,
+                   const std::vector<std::uint32_t>& order, const std::vector<std::array<glm::dvec3, 3>>& tris,
+                   std::vector<glm::dvec3>& unsignedMoments);
+    /// build()'s inner `node` at `index`: its children's moments moved to
+    /// its centre and summed.
+    void gatherChildren(Node& node, std::uint32_t index, std::vector<glm::dvec3>& unsignedMoments);
 
-    int axisIndex_;
-    const CapsSurface* surface_ = nullptr;
-    bool closed_ = true;
-    std::vector<glm::vec3> edges_;
-    std::vector<glm::vec3> loopEdges_;
-    std::vector<CapLoop> loops_;
-    std::vector<glm::vec3> capPositions_;
-    std::vector<glm::uvec3> capTriangles_;
-    std::vector<std::uint32_t> capLoopOf_; ///< the loop of each cap triangle
-    /// The cap triangles q's ray towards -axis crosses in front of q, as
-    /// (loop, +1 or -1): C_caps loop by loop, counted as projected_ counts.
-    void capCrossings(const glm::vec3& q, std::vector<std::pair<std::uint32_t, int>>& out) const;
-    /// A cell's plan, on the fill: false where the far loops' range would
-    /// be too wide to help.
-    bool plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c, double half, bool within) const;
-    /// decide() from a planned cell's near loops; false where that does
-    /// not decide (the far range is as wide as the rest of the distance).
-    bool decidePlanned(const RangeGrid& g, int winding, const glm::vec3& q, std::size_t cell, Estimate& out) const;
+    // ---- the chain tree labels refine (chain_tree.cpp)
+    void buildChains();
+    std::uint32_t buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first, std::uint32_t last);
+    std::uint32_t buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count, std::uint32_t treeFirst);
     /// refine()'s first round over chain nodes `roots`, each taken by its
     /// first-order term or its edges summed (as refine's first cut takes
     /// them, in the same order: the same value and bound), in one pass with
@@ -525,33 +349,73 @@ private:
     /// far range left (planned) or of budget.
     bool refine(int winding, const glm::vec3& q, double margin, const std::uint32_t* roots, std::size_t rootCount,
                 double farLo, double farHi, Estimate& out) const;
+    struct Refinement; ///< refine()'s running state (chain_tree.cpp)
+
+    // ---- a grid cell's plan (cell_plans.cpp)
+    /// The cap triangles q's ray towards -axis crosses in front of q, as
+    /// (loop, +1 or -1): C_caps loop by loop, counted as projected_ counts.
+    void capCrossings(const glm::vec3& q, std::vector<std::pair<std::uint32_t, int>>& out) const;
+    /// A cell's plan, on the fill: false where the far loops' range would
+    /// be too wide to help.
+    bool plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c, double half, bool within) const;
+    /// decide() from a planned cell's near loops; false where that does
+    /// not decide (the far range is as wide as the rest of the distance).
+    bool decidePlanned(const RangeGrid& g, int winding, const glm::vec3& q, std::size_t cell, Estimate& out) const;
+
+    // ---- the grids of bounds (range_grid.cpp)
+    void buildRangeGrid(const Box& domain, const CellWindings* windings);
+    /// `cellsNow`: allocate its cells' states and ranges too (RangeGrid::allocate).
+    void buildGrid(RangeGrid& g, const Box& box, double cellsAlong, const CellWindings* windings, bool cellsNow);
+    /// The fine grid's cells, allocated on the first call (once, whichever
+    /// thread comes first); false where there is no fine grid.
+    bool fineCells() const;
+    /// The cell's state, filling it on the first visit; `within`: a fine
+    /// cell within a planned coarse one (plan()).
+    CellState rangeOf(const RangeGrid& g, std::size_t cell, const glm::uvec3& at, bool within = false) const;
+    /// Clear of the boundary curve and its sweep along +axis: every edge
+    /// whose projection may meet the cell's column lies above the cell.
+    bool clearOfSweep(const RangeGrid& g, const glm::uvec3& at) const;
+    /// B over the ball: `e` at its centre, to be widened by `drift`; false
+    /// where the two span half a unit or more (no range clear of 1/2).
+    bool rangeOver(const CellsBall& ball, Estimate& e, double& drift) const;
+    /// On a coarse cell's fill (the caller owns `cell`, Filling), once a
+    /// block: where no cell of its block of 2 x 2 x 2 meets the surface
+    /// (or, without one, every cell is clear of the boundary's sweep and
+    /// the caller knew one integer term for them all), the range of the
+    /// whole winding number over the block, clear of 1/2, for every cell
+    /// of it not yet filled: one fill for eight far from the surface.
+    /// True where `cell` got it (then WindingRange is the caller's to publish).
+    bool blockRange(const RangeGrid& g, std::size_t cell, const glm::uvec3& at) const;
+    /// Whether a coarse cell without a range has had queries enough to
+    /// ask the fine grid (counting this one).
+    bool busy(std::size_t cell) const;
+    /// insideBy() in cell `cell` of `g`, of state `state`.
+    template <class Winding>
+    bool insideIn(const RangeGrid& g, std::size_t cell, CellState state, const glm::vec3& q,
+                  const Winding& windingAt, bool apart) const;
+    /// inside(), asking `windingAt()` for the integer term only where the
+    /// cell's range does not answer without it.
+    template <class Winding>
+    bool insideBy(const glm::vec3& q, const Winding& windingAt, bool apart) const;
+
+    int axisIndex_;
+    const CapsSurface* surface_ = nullptr;
+    bool closed_ = true;
+    std::vector<glm::vec3> edges_;
+    std::vector<glm::vec3> loopEdges_;
+    std::vector<CapLoop> loops_;
+    std::vector<glm::vec3> capPositions_;
+    std::vector<glm::uvec3> capTriangles_;
+    std::vector<std::uint32_t> capLoopOf_; ///< the loop of each cap triangle
     std::vector<std::array<glm::dvec3, 3>> leafTris_; ///< cap triangles in tree order
     std::vector<Node> nodes_;                         ///< [0] is the root
     std::optional<ProjectedMesh> projected_;          ///< the caps, for C_caps
-    /// The tree reach() walks: over the loops (each ball holds its loop's
-    /// edges and cap), then within each loop over its edges.
-    struct EdgeNode {
-        glm::dvec3 centre;
-        double radius;
-        double length;              ///< of its edges, summed
-        double capArea;             ///< of its loops' caps (whole loops only)
-        std::uint32_t first, count; ///< leaf: edges [first, first + count) of treeEdges_
-        std::uint32_t left, right;  ///< inner: children (count == 0); a loop's node: its edges' subtree in left
-        bool wholeLoops;            ///< its edges are whole loops, capped
-        bool loopNode;              ///< one loop
-    };
-    void buildReach();
-    std::uint32_t buildLoops(std::vector<std::uint32_t>& nodes, std::uint32_t first, std::uint32_t last);
-    std::uint32_t buildEdges(std::uint32_t first, std::uint32_t last);
-    void buildChains();
-    std::uint32_t buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first, std::uint32_t last);
-    std::uint32_t buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count, std::uint32_t treeFirst);
     std::vector<ChainNode> chains_;
     /// loopEdges_ with the loops in the chain tree's order, so that every
     /// chain node's edges lie together (ChainNode::edgeFirst).
     std::vector<glm::vec3> chainEdges_;
     /// The grid of bounds, and one of cells half as wide along each side
-    /// over the same box: a coarse cell without a range (states 2 and 6)
+    /// over the same box: a coarse cell without a range (NoRange, Planned)
     /// that many queries land in hands them to its fine cells, whose
     /// ranges and far ranges, taken over half the width, keep clear of 1/2
     /// more often (the near loops a plan keeps are about as many: a soup's
@@ -561,36 +425,48 @@ private:
     mutable RangeGrid fine_; ///< its cells allocated by fineCells()
     mutable std::once_flag fineOnce_;
     mutable std::atomic<bool> fineReady_{false};
-    std::vector<glm::vec3> treeEdges_; ///< edges_ in the tree's order
-    std::vector<EdgeNode> edgeNodes_; ///< a tree over edges_, for reach(); [0] is the root
+    EdgeTree edgeTree_; ///< for reach() and driftWithin()
 };
 
 // Inline: asked once a query (a sprite's batch asks insideAlone of every point).
 
-bool BoundaryCaps::cellOf(const RangeGrid& g, const glm::vec3& q, std::size_t& cell, glm::uvec3& at) {
-    if (!g.state) return false;
-    for (int a = 0; a < 3; ++a) {
-        // By the reciprocal: its extra rounding (a few ulps of the index)
-        // is far inside the slack the cells are widened by.
-        const double x = g.size[a] > 0.0 ? (double(q[a]) - double(g.box.lo[a])) * g.inverse[a]
-                                         : (q[a] == g.box.lo[a] ? 0.0 : -1.0);
-        if (!(x >= 0.0 && x < double(g.dims[a]))) return false;
-        at[a] = std::uint32_t(x);
-    }
-    cell = (std::size_t(at.z) * g.dims.y + at.y) * g.dims.x + at.x;
-    return true;
-}
-
 int BoundaryCaps::insideAlone(const glm::vec3& q, bool apart) const {
     std::size_t cell;
     glm::uvec3 at;
-    if (!cellOf(ranges_, q, cell, at)) return -1;
-    std::uint8_t state = ranges_.state[cell].load(std::memory_order_acquire);
-    if (state == 0) state = rangeOf(ranges_, cell, at);
-    if (state != 4) return -1;
-    const std::uint8_t label = ranges_.alone[cell];
-    if (apart && (label & kByClosed)) return -1;
-    return (label & ~kByClosed) == kUndecided ? -1 : int(label & ~kByClosed);
+    if (!ranges_.cellOf(q, cell, at)) return -1;
+    CellState state = ranges_.state[cell].load(std::memory_order_acquire);
+    if (state == CellState::Unvisited) state = rangeOf(ranges_, cell, at);
+    if (state != CellState::WindingRange) return -1;
+    const CellVerdict verdict = ranges_.alone[cell];
+    if ((apart && verdict.byClosed()) || verdict.label() == CellLabel::Undecided) return -1;
+    return verdict.label() == CellLabel::Inside ? 1 : 0;
+}
+
+// Inline: taken once a node by the walks of the labels and values.
+//
+// The node's integral of n . (x - q) / |x - q|^3 dA by its Taylor expansion
+// about its centre to second order, at y = c - q (|y| = d): with
+// K_i(y) = y_i / d^3, the terms are A . K, M_ij dK_i/dy_j and
+// N_ijk d2K_i/dy_j dy_k / 2, where dK_i/dy_j = delta_ij / d^3 - 3 y_i y_j / d^5
+// and d2K_i/dy_j dy_k = -3 (delta_ij y_k + delta_ik y_j + delta_jk y_i) / d^5
+// + 15 y_i y_j y_k / d^7.
+inline double BoundaryCaps::firstOrder(const Node& n, const glm::dvec3& y, double d2, double d) {
+    return firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
+}
+
+inline double BoundaryCaps::expansion(const Node& n, const glm::dvec3& y, double d2, double d) {
+    const double inv2 = 1.0 / d2, inv3 = inv2 / d;
+    const std::array<double, 18>& N = n.quadrupole;
+    const double yy[6] = {y.x * y.x, y.y * y.y, y.z * y.z, 2.0 * y.x * y.y, 2.0 * y.x * y.z, 2.0 * y.y * y.z};
+    double yNyy = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const double* row = N.data() + 6 * i;
+        yNyy += y[i] * (row[0] * yy[0] + row[1] * yy[1] + row[2] * yy[2] + row[3] * yy[3] + row[4] * yy[4] +
+                        row[5] * yy[5]);
+    }
+    const double second =
+        0.5 * inv2 * (-3.0 * (2.0 * glm::dot(n.quadrupoleColumns, y) + glm::dot(n.quadrupoleRows, y)) + 15.0 * yNyy * inv2);
+    return firstOrder(n, y, d2, d) + second * inv3;
 }
 
 } // namespace vds::detail

@@ -69,7 +69,7 @@ std::vector<glm::vec3> surfacePoints(MeshView mesh, std::size_t n, float spread,
 
 // Slice through the box centre across `axis`: grey inside, white outside,
 // red where the sprite says inside but the solid is not, blue the reverse.
-Image sliceImage(const Sprite& sprite, const ExactClassifier& exact, const Box& box, int axis, Rule rule,
+Image sliceImage(const SpriteClassifier& sprite, const ExactClassifier& exact, const Box& box, int axis, Rule rule,
                  std::uint32_t size) {
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     const glm::vec3 lo = box.lo - 0.05f * (box.hi - box.lo), hi = box.hi + 0.05f * (box.hi - box.lo);
@@ -88,7 +88,7 @@ Image sliceImage(const Sprite& sprite, const ExactClassifier& exact, const Box& 
     std::vector<std::uint8_t> a(points.size()), b(points.size());
     ClassifyOptions o;
     o.rule = rule;
-    classify(sprite, {points.data(), points.size()}, a.data(), o);
+    sprite.classify({points.data(), points.size()}, a.data(), o);
     exact.classify({points.data(), points.size()}, b.data(), o);
     Image image(w, h);
     for (std::size_t k = 0; k < points.size(); ++k) {
@@ -114,6 +114,86 @@ Image sliceImage(const Sprite& sprite, const ExactClassifier& exact, const Box& 
     return image;
 }
 
+// What the evaluation holds across resolutions: the exact classifier, the
+// distance field and the uniform points with their exact labels.
+struct Yardstick {
+    const ExactClassifier& exact;
+    const SurfaceDistance& field;
+    const std::vector<glm::vec3>& uniform;
+    const std::vector<std::uint8_t>& uniformExact;
+    double uniformExactSeconds;
+};
+
+// The sprite's size in texels, bytes and file bytes.
+void describe(EvalRow& row, const Sprite& sprite) {
+    row.width = sprite.width();
+    row.height = sprite.height();
+    row.depthComplexity = sprite.depthComplexity;
+    row.texelSize = sprite.grid.texelSize;
+    row.memoryBytes = sprite.memoryBytes();
+    row.denseBytes = sprite.denseBytes();
+    row.fileBytes = encodeSprite(sprite).size();
+}
+
+// The distances of (a sample of) the wrong points to the surface, in texels.
+void measureDistances(EvalRow& row, std::vector<glm::vec3>& wrong, const SurfaceDistance& field, float texel,
+                      std::size_t sample, std::mt19937& rng) {
+    std::shuffle(wrong.begin(), wrong.end(), rng);
+    wrong.resize(std::min(wrong.size(), sample));
+    double sum = 0.0;
+    for (const auto& p : wrong) {
+        const double d = double(field.distance(p)) / double(texel);
+        row.maxWrongDistanceTexels = std::max(row.maxWrongDistanceTexels, d);
+        sum += d;
+        row.wrongBeyondTexelDiagonal += d > std::sqrt(2.0);
+    }
+    row.distancesMeasured = wrong.size();
+    row.meanWrongDistanceTexels = wrong.empty() ? 0.0 : sum / double(wrong.size());
+}
+
+// The sprite's labels of the uniform points and of points near the surface
+// against the exact ones: rates, wrong counts, distances, slice images.
+void score(EvalRow& row, const SpriteClassifier& vds, const Yardstick& y, const TriangleMesh& mesh, const Box& box,
+           const EvalOptions& options, std::mt19937& rng) {
+    ClassifyOptions classifyOptions;
+    classifyOptions.rule = options.rule;
+    classifyOptions.threads = options.threads;
+    const std::vector<glm::vec3>& uniform = y.uniform;
+    const float texel = vds.sprite().grid.texelSize;
+    const std::vector<glm::vec3> near = surfacePoints(mesh, options.surfacePoints, 4.0f * texel, rng);
+    std::vector<std::uint8_t> uniformVds(uniform.size()), nearVds(near.size()), nearExact(near.size());
+    double t0 = now();
+    vds.classify({uniform.data(), uniform.size()}, uniformVds.data(), classifyOptions);
+    const double vdsSeconds = now() - t0;
+    t0 = now();
+    y.exact.classify({near.data(), near.size()}, nearExact.data(), classifyOptions);
+    const double nearExactSeconds = now() - t0;
+    vds.classify({near.data(), near.size()}, nearVds.data(), classifyOptions);
+    row.vdsPointsPerSecond = vdsSeconds > 0 ? double(uniform.size()) / vdsSeconds : 0.0;
+    const double exactSeconds = y.uniformExactSeconds + nearExactSeconds;
+    row.exactPointsPerSecond = exactSeconds > 0 ? double(uniform.size() + near.size()) / exactSeconds : 0.0;
+
+    std::vector<glm::vec3> wrong;
+    row.uniformPoints = uniform.size();
+    row.surfacePoints = near.size();
+    for (std::size_t k = 0; k < uniform.size(); ++k)
+        if (uniformVds[k] != y.uniformExact[k]) wrong.push_back(uniform[k]);
+    row.uniformWrong = wrong.size();
+    for (std::size_t k = 0; k < near.size(); ++k)
+        if (nearVds[k] != nearExact[k]) wrong.push_back(near[k]);
+    row.surfaceWrong = wrong.size() - row.uniformWrong;
+    measureDistances(row, wrong, y.field, texel, options.distanceSample, rng);
+
+    if (!options.imagePrefix.empty()) {
+        for (int axis = 0; axis < 3; ++axis) {
+            const std::string path =
+                options.imagePrefix + "-" + std::to_string(row.resolution) + "-" + "xyz"[axis] + ".png";
+            writePng(sliceImage(vds, y.exact, box, axis, options.rule, options.imageSize), path);
+            row.images.push_back(path);
+        }
+    }
+}
+
 } // namespace
 
 EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlContext* gl,
@@ -135,9 +215,7 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
 
     const CurrentContext restore; // the caller's context is current again on return
     std::optional<GlContext> own;
-    if (!gl && options.method != BakeMethod::Cpu) {
-        gl = &own.emplace();
-    }
+    if (!gl && options.method != BakeMethod::Cpu) gl = &own.emplace();
     ClassifyOptions classifyOptions;
     classifyOptions.rule = options.rule;
     classifyOptions.threads = options.threads;
@@ -148,9 +226,9 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
     std::mt19937 rng(options.seed);
     const std::vector<glm::vec3> uniform = uniformPoints(box, options.uniformPoints, rng);
     std::vector<std::uint8_t> uniformExact(uniform.size());
-    double t0 = now();
+    const double t0 = now();
     exact.classify({uniform.data(), uniform.size()}, uniformExact.data(), classifyOptions);
-    const double uniformExactSeconds = now() - t0;
+    const Yardstick yardstick{exact, field, uniform, uniformExact, now() - t0};
 
     for (std::uint32_t resolution : options.resolutions) {
         EvalRow row;
@@ -161,60 +239,12 @@ EvalReport evaluate(const TriangleMesh& mesh, const EvalOptions& options, GlCont
         bakeOptions.method = options.method;
         bakeOptions.sourceName = mesh.name;
         say("baking at " + std::to_string(resolution));
-        t0 = now();
-        const Sprite sprite = gl ? bake(*gl, mesh, bakeOptions) : bake(mesh, bakeOptions);
-        row.bakeSeconds = now() - t0;
-        row.width = sprite.width();
-        row.height = sprite.height();
-        row.depthComplexity = sprite.depthComplexity;
-        row.texelSize = sprite.grid.texelSize;
-        row.memoryBytes = sprite.memoryBytes();
-        row.denseBytes = sprite.denseBytes();
-        row.fileBytes = encodeSprite(sprite).size();
-
+        const double bakeStart = now();
+        const SpriteClassifier vds(gl ? bake(*gl, mesh, bakeOptions) : bake(mesh, bakeOptions));
+        row.bakeSeconds = now() - bakeStart;
+        describe(row, vds.sprite());
         say("classifying at " + std::to_string(resolution));
-        const std::vector<glm::vec3> near = surfacePoints(mesh, options.surfacePoints, 4.0f * sprite.grid.texelSize, rng);
-        std::vector<std::uint8_t> uniformVds(uniform.size()), nearVds(near.size()), nearExact(near.size());
-        t0 = now();
-        classify(sprite, {uniform.data(), uniform.size()}, uniformVds.data(), classifyOptions);
-        const double vdsSeconds = now() - t0;
-        t0 = now();
-        exact.classify({near.data(), near.size()}, nearExact.data(), classifyOptions);
-        const double nearExactSeconds = now() - t0;
-        classify(sprite, {near.data(), near.size()}, nearVds.data(), classifyOptions);
-        row.vdsPointsPerSecond = vdsSeconds > 0 ? double(uniform.size()) / vdsSeconds : 0.0;
-        const double exactSeconds = uniformExactSeconds + nearExactSeconds;
-        row.exactPointsPerSecond = exactSeconds > 0 ? double(uniform.size() + near.size()) / exactSeconds : 0.0;
-
-        std::vector<glm::vec3> wrong;
-        row.uniformPoints = uniform.size();
-        row.surfacePoints = near.size();
-        for (std::size_t k = 0; k < uniform.size(); ++k)
-            if (uniformVds[k] != uniformExact[k]) wrong.push_back(uniform[k]);
-        row.uniformWrong = wrong.size();
-        for (std::size_t k = 0; k < near.size(); ++k)
-            if (nearVds[k] != nearExact[k]) wrong.push_back(near[k]);
-        row.surfaceWrong = wrong.size() - row.uniformWrong;
-        std::shuffle(wrong.begin(), wrong.end(), rng);
-        wrong.resize(std::min(wrong.size(), options.distanceSample));
-        double sum = 0.0;
-        for (const auto& p : wrong) {
-            const double d = double(field.distance(p)) / double(sprite.grid.texelSize);
-            row.maxWrongDistanceTexels = std::max(row.maxWrongDistanceTexels, d);
-            sum += d;
-            row.wrongBeyondTexelDiagonal += d > std::sqrt(2.0);
-        }
-        row.distancesMeasured = wrong.size();
-        row.meanWrongDistanceTexels = wrong.empty() ? 0.0 : sum / double(wrong.size());
-
-        if (!options.imagePrefix.empty()) {
-            for (int axis = 0; axis < 3; ++axis) {
-                const std::string path =
-                    options.imagePrefix + "-" + std::to_string(resolution) + "-" + "xyz"[axis] + ".png";
-                writePng(sliceImage(sprite, exact, box, axis, options.rule, options.imageSize), path);
-                row.images.push_back(path);
-            }
-        }
+        score(row, vds, yardstick, mesh, box, options, rng);
         report.rows.push_back(row);
     }
     return report;

@@ -113,14 +113,87 @@ std::string tooltip(const CompareRow& r) {
            format("%.3f", 100.0 * r.errorRate) + " % wrong";
 }
 
+// Where the chart's frame lies and how values map into it: x is log2 of
+// bytes over whole powers of two, y the error % from 0.
+struct Plot {
+    double left = 70, right = 0, top = 40, bottom = 0;
+    double x0 = 0, x1 = 1, yMax = 1;
+    double px(double bytes) const { return left + (std::log2(bytes) - x0) / (x1 - x0) * (right - left); }
+    double py(double percent) const { return bottom - percent / yMax * (bottom - top); }
+};
+
+const char *const kBlack = "black", *const kGrey = "#d7d7d7", *const kDark = "#5a5a5a";
+
+bool thick(const std::string& method) { return method == "sprite" || method == "solid"; }
+
+// The grid, ticks, values and titles.
+void drawAxes(Svg& svg, const Plot& p, const std::string& meshName) {
+    const int xStep = p.x1 - p.x0 > 12 ? 2 : 1;
+    for (double e = p.x0; e <= p.x1; e += xStep) {
+        const double x = p.px(std::exp2(e));
+        svg.line(x, p.top, x, p.bottom, kGrey, 1);
+        svg.line(x, p.bottom, x, p.bottom + 5, kBlack, 1);
+        svg.text(x, p.bottom + 19, byteLabel(std::exp2(e)), "middle");
+    }
+    for (int k = 0; k <= 5; ++k) {
+        const double v = p.yMax * k / 5.0, y = p.py(v);
+        svg.line(p.left, y, p.right, y, kGrey, 1);
+        svg.line(p.left - 5, y, p.left, y, kBlack, 1);
+        svg.text(p.left - 9, y + 4, format("%g", v), "end");
+    }
+    svg.line(p.left, p.top, p.left, p.bottom, kBlack, 2);
+    svg.line(p.left, p.bottom, p.right, p.bottom, kBlack, 2);
+    svg.text(p.left, p.top - 16, "error % (all points) against memory (bytes, log scale): " + meshName, "start");
+    svg.text((p.left + p.right) / 2, p.bottom + 40, "memory", "middle", kDark);
+}
+
+// One method's rows: resolution rows as a line with dots, memory rows as
+// rings. The twins that often coincide (parity/winding, raster/compute) are
+// drawn thick first and thin on top, so both stay visible.
+void drawSeries(Svg& svg, const Plot& p, const CompareResult& result, const std::string& method) {
+    const char* colour = methodColour(method);
+    std::vector<const CompareRow*> series;
+    for (const CompareRow& r : result.rows)
+        if (r.name() == method && r.series == "resolution" && r.memoryBytes > 0) series.push_back(&r);
+    std::sort(series.begin(), series.end(),
+              [](const CompareRow* a, const CompareRow* b) { return a->memoryBytes < b->memoryBytes; });
+    std::vector<std::pair<double, double>> points;
+    for (const CompareRow* r : series) points.emplace_back(p.px(double(r->memoryBytes)), p.py(100.0 * r->errorRate));
+    if (!points.empty()) svg.polyline(points, colour, thick(method) ? 6 : 2);
+    for (std::size_t k = 0; k < series.size(); ++k)
+        svg.circle(points[k].first, points[k].second, thick(method) ? 6 : 4, colour, false, tooltip(*series[k]));
+    for (const CompareRow& r : result.rows)
+        if (r.name() == method && r.series == "memory" && r.memoryBytes > 0)
+            svg.circle(p.px(double(r.memoryBytes)), p.py(100.0 * r.errorRate), thick(method) ? 9 : 7, colour, true,
+                       tooltip(r));
+}
+
+void drawLegend(Svg& svg, const Plot& p, const std::vector<std::string>& methods) {
+    double y = p.top;
+    for (const std::string& method : methods) {
+        const char* colour = methodColour(method);
+        svg.line(p.right + 20, y, p.right + 44, y, colour, thick(method) ? 6 : 2);
+        svg.circle(p.right + 32, y, thick(method) ? 6 : 4, colour, false, "");
+        svg.text(p.right + 52, y + 4, method, "start");
+        y += 22;
+    }
+    y += 10;
+    svg.circle(p.right + 32, y, 4, kDark, false, "");
+    svg.text(p.right + 52, y + 4, "resolution", "start");
+    y += 22;
+    svg.circle(p.right + 32, y, 7, kDark, true, "");
+    svg.text(p.right + 52, y + 4, "memory budget", "start");
+}
+
 } // namespace
 
 std::string errorChart(const CompareResult& result, std::uint32_t width, std::uint32_t height) {
     width = std::max<std::uint32_t>(width, 400);
     height = std::max<std::uint32_t>(height, 300);
     Svg svg(width, height);
-    const char *black = "black", *grey = "#d7d7d7", *dark = "#5a5a5a";
-    const double left = 70, right = double(width) - 190, top = 40, bottom = double(height) - 50;
+    Plot plot;
+    plot.right = double(width) - 190;
+    plot.bottom = double(height) - 50;
 
     double lo = 1e300, hi = 0.0, errMax = 0.0;
     std::vector<std::string> methods; // in the order of the rows
@@ -135,68 +208,12 @@ std::string errorChart(const CompareResult& result, std::uint32_t width, std::ui
         lo = 1024.0;
         hi = 1 << 20;
     }
-    // x: log2 of bytes, whole powers of two; y: error % from 0.
-    const double x0 = std::floor(std::log2(lo)), x1 = std::max(std::ceil(std::log2(hi)), x0 + 1.0);
-    const double yMax = niceCeil(errMax * 1.05);
-    const auto px = [&](double bytes) { return left + (std::log2(bytes) - x0) / (x1 - x0) * (right - left); };
-    const auto py = [&](double percent) { return bottom - percent / yMax * (bottom - top); };
-
-    // Grid, ticks and values.
-    const int xStep = x1 - x0 > 12 ? 2 : 1;
-    for (double e = x0; e <= x1; e += xStep) {
-        const double x = px(std::exp2(e));
-        svg.line(x, top, x, bottom, grey, 1);
-        svg.line(x, bottom, x, bottom + 5, black, 1);
-        svg.text(x, bottom + 19, byteLabel(std::exp2(e)), "middle");
-    }
-    for (int k = 0; k <= 5; ++k) {
-        const double v = yMax * k / 5.0, y = py(v);
-        svg.line(left, y, right, y, grey, 1);
-        svg.line(left - 5, y, left, y, black, 1);
-        svg.text(left - 9, y + 4, format("%g", v), "end");
-    }
-    svg.line(left, top, left, bottom, black, 2);
-    svg.line(left, bottom, right, bottom, black, 2);
-    svg.text(left, top - 16, "error % (all points) against memory (bytes, log scale): " + result.meshName, "start");
-    svg.text((left + right) / 2, bottom + 40, "memory", "middle", dark);
-
-    // Series: resolution rows as lines with dots, memory rows as rings. The
-    // twins that often coincide (parity/winding, raster/compute) are drawn
-    // thick first and thin on top, so both stay visible.
-    const auto thick = [](const std::string& method) { return method == "sprite" || method == "solid"; };
-    for (const std::string& method : methods) {
-        const char* colour = methodColour(method);
-        std::vector<const CompareRow*> series;
-        for (const CompareRow& r : result.rows)
-            if (r.name() == method && r.series == "resolution" && r.memoryBytes > 0) series.push_back(&r);
-        std::sort(series.begin(), series.end(),
-                  [](const CompareRow* a, const CompareRow* b) { return a->memoryBytes < b->memoryBytes; });
-        std::vector<std::pair<double, double>> points;
-        for (const CompareRow* r : series) points.emplace_back(px(double(r->memoryBytes)), py(100.0 * r->errorRate));
-        if (!points.empty()) svg.polyline(points, colour, thick(method) ? 6 : 2);
-        for (std::size_t k = 0; k < series.size(); ++k)
-            svg.circle(points[k].first, points[k].second, thick(method) ? 6 : 4, colour, false, tooltip(*series[k]));
-        for (const CompareRow& r : result.rows)
-            if (r.name() == method && r.series == "memory" && r.memoryBytes > 0)
-                svg.circle(px(double(r.memoryBytes)), py(100.0 * r.errorRate), thick(method) ? 9 : 7, colour, true,
-                           tooltip(r));
-    }
-
-    // Legend.
-    double y = top;
-    for (const std::string& method : methods) {
-        const char* colour = methodColour(method);
-        svg.line(right + 20, y, right + 44, y, colour, thick(method) ? 6 : 2);
-        svg.circle(right + 32, y, thick(method) ? 6 : 4, colour, false, "");
-        svg.text(right + 52, y + 4, method, "start");
-        y += 22;
-    }
-    y += 10;
-    svg.circle(right + 32, y, 4, dark, false, "");
-    svg.text(right + 52, y + 4, "resolution", "start");
-    y += 22;
-    svg.circle(right + 32, y, 7, dark, true, "");
-    svg.text(right + 52, y + 4, "memory budget", "start");
+    plot.x0 = std::floor(std::log2(lo));
+    plot.x1 = std::max(std::ceil(std::log2(hi)), plot.x0 + 1.0);
+    plot.yMax = niceCeil(errMax * 1.05);
+    drawAxes(svg, plot, result.meshName);
+    for (const std::string& method : methods) drawSeries(svg, plot, result, method);
+    drawLegend(svg, plot, methods);
     return svg.finish();
 }
 

@@ -187,25 +187,183 @@ std::string formatBytes(std::size_t b) {
 
 } // namespace
 
-CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* gl) {
+namespace {
+
+// One comparison: the sample points with their exact labels, and the rows
+// measured so far.
+class Comparison {
+public:
+    Comparison(MeshView mesh, const CompareOptions& options, GlContext& gl, bool gwn, CompareResult& result)
+        : mesh_(mesh), options_(options), gl_(gl), gwn_(gwn), result_(result) {}
+
+    void sampleAndClassify();
+    /// Builds `method` at `resolution` (a VDS: at its bake resolution) and
+    /// scores it by `rule` (a sprite answers every rule; the others parity).
+    Built measure(Method method, Rule rule, const std::string& series, std::uint64_t target, std::uint32_t resolution,
+                  Built* prebuilt);
+    /// The sprite by each rule the comparison scores it by, one build.
+    Built measureSprite(const std::string& series, std::uint64_t target, std::uint32_t resolution, Built* prebuilt) {
+        Built sprite = measure(Method::Sprite, Rule::Parity, series, target, resolution, prebuilt);
+        sprite = measure(Method::Sprite, Rule::Winding, series, target, resolution, &sprite);
+        if (gwn_) sprite = measure(Method::Sprite, Rule::GeneralizedWinding, series, target, resolution, &sprite);
+        return sprite;
+    }
+    /// Every method within `budget` bytes; the VDS's bake resolution from
+    /// `perColumn` bytes a column (then shrunk until the bake fits).
+    void measureWithin(std::size_t budget, double perColumn, const std::vector<Method>& methods);
+
+private:
+    /// Throughput: whole passes over the points for at least 0.1 s.
+    double pointsPerSecond(const Classifier& classifier, Rule rule);
+    void score(CompareRow& row);
+
+    MeshView mesh_;
+    const CompareOptions& options_;
+    GlContext& gl_;
+    bool gwn_;
+    CompareResult& result_;
+    Samples samples_;
+    std::unique_ptr<DistanceCache> distances_;
+    std::vector<std::uint8_t> labels_;
+};
+
+void Comparison::sampleAndClassify() {
+    samples_ = samplePoints(mesh_, result_.bounds, options_);
+    const std::size_t count = samples_.points.size();
+    result_.uniformPoints = samples_.uniform;
+    result_.surfacePoints = count - samples_.uniform;
+    auto start = std::chrono::steady_clock::now();
+    const ExactClassifier exact(mesh_, Axis::Z);
+    result_.exactBuildSeconds = secondsSince(start);
+    samples_.parity.resize(count);
+    samples_.winding.resize(count);
+    ClassifyOptions parity;
+    parity.threads = options_.threads;
+    start = std::chrono::steady_clock::now();
+    exact.classify(PointsView(samples_.points.data(), count), samples_.parity.data(), parity);
+    result_.exactPointsPerSecond = double(count) / std::max(secondsSince(start), 1e-9);
+    ClassifyOptions winding = parity;
+    winding.rule = Rule::Winding;
+    exact.classify(PointsView(samples_.points.data(), count), samples_.winding.data(), winding);
+    if (gwn_) {
+        samples_.gwn.resize(count);
+        ClassifyOptions generalized = parity;
+        generalized.rule = Rule::GeneralizedWinding;
+        exact.classify(PointsView(samples_.points.data(), count), samples_.gwn.data(), generalized);
+    }
+    const std::vector<std::uint8_t>& inside = gwn_ ? samples_.gwn : samples_.parity;
+    for (std::size_t k = 0; k < samples_.uniform; ++k) result_.uniformInside += inside[k];
+    distances_ = std::make_unique<DistanceCache>(mesh_, count);
+    labels_.resize(count);
+}
+
+double Comparison::pointsPerSecond(const Classifier& classifier, Rule rule) {
+    ClassifyOptions o;
+    o.threads = options_.threads;
+    o.rule = rule;
+    const std::size_t count = samples_.points.size();
+    const auto queryStart = std::chrono::steady_clock::now();
+    std::size_t passes = 0;
+    do {
+        classifier.classify(PointsView(samples_.points.data(), count), labels_.data(), o);
+        ++passes;
+    } while (secondsSince(queryStart) < 0.1);
+    return double(passes * count) / std::max(secondsSince(queryStart), 1e-9);
+}
+
+// The row's errors: the last labels against the truth by its rule.
+void Comparison::score(CompareRow& row) {
+    const std::size_t count = samples_.points.size();
+    const std::vector<std::uint8_t>& truth = gwn_                      ? samples_.gwn
+                                             : row.rule == Rule::Winding ? samples_.winding
+                                                                         : samples_.parity;
+    for (std::size_t k = 0; k < count; ++k) {
+        if (labels_[k] == truth[k]) continue;
+        (k < samples_.uniform ? row.uniformWrong : row.surfaceWrong) += 1;
+        row.worstErrorDistance = std::max(row.worstErrorDistance, (*distances_)(samples_.points, k));
+    }
+    row.uniformErrorRate = samples_.uniform ? double(row.uniformWrong) / double(samples_.uniform) : 0.0;
+    row.surfaceErrorRate = count > samples_.uniform ? double(row.surfaceWrong) / double(count - samples_.uniform) : 0.0;
+    row.errorRate = count ? double(row.uniformWrong + row.surfaceWrong) / double(count) : 0.0;
+    row.worstErrorCells = row.cellSize > 0.0 ? row.worstErrorDistance / row.cellSize : 0.0;
+}
+
+Built Comparison::measure(Method method, Rule rule, const std::string& series, std::uint64_t target,
+                          std::uint32_t resolution, Built* prebuilt) {
+    Built built = prebuilt ? std::move(*prebuilt) : build(mesh_, method, resolution, gl_, options_.meshName);
+    CompareRow row;
+    row.method = method;
+    row.rule = rule;
+    row.series = series;
+    row.target = target;
+    row.resolution = resolution;
+    row.buildSeconds = built.seconds;
+    row.pointsPerSecond = pointsPerSecond(*built.classifier, rule);
+    if (const Sprite* sprite = built.sprite()) {
+        row.cells = glm::uvec3(sprite->width(), sprite->height(), sprite->depthComplexity);
+        row.cellSize = sprite->grid.texelSize;
+        row.memoryBytes = sprite->memoryBytes();
+        if (rule == Rule::GeneralizedWinding) row.memoryBytes += sprite->boundaryEdges.size() * sizeof(glm::vec3);
+        row.gpuBytes = sprite->denseBytes();
+    } else {
+        const Model& model = *built.model();
+        row.cells = model.cells();
+        row.cellSize = model.cellSize();
+        row.memoryBytes = model.memoryBytes();
+        row.gpuBytes = model.gpuBytes();
+    }
+    score(row);
+    result_.rows.push_back(row);
+    return built;
+}
+
+void Comparison::measureWithin(std::size_t budget, double perColumn, const std::vector<Method>& methods) {
+    const Box& box = result_.bounds;
+    std::uint32_t vds = largestWithin(budget, [&](std::uint32_t n) {
+        const SpriteGrid g = makeGrid(box, Axis::Z, n);
+        return std::size_t(double(g.width) * g.height * perColumn + 4.0);
+    });
+    for (int attempt = 0; vds > 0 && attempt < 4; ++attempt) {
+        Built sprite = buildOnce(mesh_, Method::Sprite, vds, gl_, options_.meshName);
+        if (sprite.memoryBytes() > budget) {
+            vds = std::uint32_t(double(vds) * std::sqrt(double(budget) / double(sprite.memoryBytes())) * 0.98);
+            continue;
+        }
+        sprite = build(mesh_, Method::Sprite, vds, gl_, options_.meshName); // timed
+        measureSprite("memory", budget, vds, &sprite);
+        break;
+    }
+    for (Method method : methods) {
+        if (method == Method::Sprite) continue;
+        const std::uint32_t r = largestWithin(budget, [&](std::uint32_t n) { return voxelMemory(box, method, n); });
+        if (r > 0) measure(method, Rule::Parity, "memory", budget, r, nullptr);
+    }
+}
+
+// Throws unless the mesh and the options can be compared.
+void requireComparable(const MeshReport& validation, const CompareOptions& options, bool gwn) {
     // The rows hold the sprite to both rules, so both must define inside;
     // the generalized winding number is defined for every usable mesh.
-    const bool gwn = options.rule == Rule::GeneralizedWinding;
-    const MeshReport validation = validateMesh(mesh);
     requireUsable(validation, options.meshName);
     requireVolume(validation, options.meshName);
     requireInsideDefined(validation, options.meshName, gwn ? Rule::GeneralizedWinding : Rule::Winding);
-    const bool voxels = !gwn || validation.closed(); // the voxel builders need a closed mesh
     if (options.resolutions.empty()) throw InvalidArgument("compare needs at least one resolution");
     for (std::uint32_t r : options.resolutions)
         if (r == 0 || r > kMaxCompareResolution)
             throw InvalidArgument("compare resolution " + std::to_string(r) + " is out of range (1 to " +
                                   std::to_string(kMaxCompareResolution) + ")");
+}
+
+} // namespace
+
+CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* gl) {
+    const bool gwn = options.rule == Rule::GeneralizedWinding;
+    const MeshReport validation = validateMesh(mesh);
+    requireComparable(validation, options, gwn);
+    const bool voxels = !gwn || validation.closed(); // the voxel builders need a closed mesh
     const CurrentContext restore; // the caller's context is current again on return
     std::optional<GlContext> own;
-    if (!gl) {
-        gl = &own.emplace();
-    }
+    if (!gl) gl = &own.emplace();
     CompareResult result;
     if (gwn) {
         result.truth = "generalized-winding";
@@ -219,137 +377,32 @@ CompareResult compare(MeshView mesh, const CompareOptions& options, GlContext* g
     result.validation = validation.summary();
     result.bounds = meshBounds(mesh);
     const Box& box = result.bounds;
-
+    Comparison comparison(mesh, options, *gl, gwn, result);
     report(options, "sampling points and classifying them exactly");
-    Samples samples = samplePoints(mesh, box, options);
-    const std::size_t count = samples.points.size();
-    result.uniformPoints = samples.uniform;
-    result.surfacePoints = count - samples.uniform;
-    auto start = std::chrono::steady_clock::now();
-    const ExactClassifier exact(mesh, Axis::Z);
-    result.exactBuildSeconds = secondsSince(start);
-    samples.parity.resize(count);
-    samples.winding.resize(count);
-    ClassifyOptions parity;
-    parity.threads = options.threads;
-    start = std::chrono::steady_clock::now();
-    exact.classify(PointsView(samples.points.data(), count), samples.parity.data(), parity);
-    result.exactPointsPerSecond = double(count) / std::max(secondsSince(start), 1e-9);
-    ClassifyOptions winding = parity;
-    winding.rule = Rule::Winding;
-    exact.classify(PointsView(samples.points.data(), count), samples.winding.data(), winding);
-    if (gwn) {
-        samples.gwn.resize(count);
-        ClassifyOptions generalized = parity;
-        generalized.rule = Rule::GeneralizedWinding;
-        exact.classify(PointsView(samples.points.data(), count), samples.gwn.data(), generalized);
-    }
-    const std::vector<std::uint8_t>& inside = gwn ? samples.gwn : samples.parity;
-    for (std::size_t k = 0; k < samples.uniform; ++k) result.uniformInside += inside[k];
-    DistanceCache distances(mesh, count);
+    comparison.sampleAndClassify();
 
     report(options, "warming up (shader compilation)");
     const std::vector<Method> methods = comparedMethods(voxels);
     for (Method method : methods) buildOnce(mesh, method, 8, *gl, options.meshName);
 
-    std::vector<std::uint8_t> labels(count);
-    // Builds `method` at `resolution` (a VDS: at its bake resolution) and
-    // scores it by `rule` (a sprite answers every rule; the others parity).
-    const auto measure = [&](Method method, Rule rule, const std::string& series, std::uint64_t target,
-                             std::uint32_t resolution, Built* prebuilt) {
-        Built built = prebuilt ? std::move(*prebuilt) : build(mesh, method, resolution, *gl, options.meshName);
-        CompareRow row;
-        row.method = method;
-        row.rule = rule;
-        row.series = series;
-        row.target = target;
-        row.resolution = resolution;
-        row.buildSeconds = built.seconds;
-        // Throughput: whole passes over the points for at least 0.1 s.
-        ClassifyOptions o;
-        o.threads = options.threads;
-        o.rule = rule;
-        const auto queryStart = std::chrono::steady_clock::now();
-        std::size_t passes = 0;
-        do {
-            built.classifier->classify(PointsView(samples.points.data(), count), labels.data(), o);
-            ++passes;
-        } while (secondsSince(queryStart) < 0.1);
-        row.pointsPerSecond = double(passes * count) / std::max(secondsSince(queryStart), 1e-9);
-        if (const Sprite* sprite = built.sprite()) {
-            row.cells = glm::uvec3(sprite->width(), sprite->height(), sprite->depthComplexity);
-            row.cellSize = sprite->grid.texelSize;
-            row.memoryBytes = sprite->memoryBytes();
-            if (rule == Rule::GeneralizedWinding) row.memoryBytes += sprite->boundaryEdges.size() * sizeof(glm::vec3);
-            row.gpuBytes = sprite->denseBytes();
-        } else {
-            const Model& model = *built.model();
-            row.cells = model.cells();
-            row.cellSize = model.cellSize();
-            row.memoryBytes = model.memoryBytes();
-            row.gpuBytes = model.gpuBytes();
-        }
-        const std::vector<std::uint8_t>& truth = gwn                    ? samples.gwn
-                                                 : rule == Rule::Winding ? samples.winding
-                                                                         : samples.parity;
-        for (std::size_t k = 0; k < count; ++k) {
-            if (labels[k] == truth[k]) continue;
-            (k < samples.uniform ? row.uniformWrong : row.surfaceWrong) += 1;
-            row.worstErrorDistance = std::max(row.worstErrorDistance, distances(samples.points, k));
-        }
-        row.uniformErrorRate = samples.uniform ? double(row.uniformWrong) / double(samples.uniform) : 0.0;
-        row.surfaceErrorRate =
-            count > samples.uniform ? double(row.surfaceWrong) / double(count - samples.uniform) : 0.0;
-        row.errorRate = count ? double(row.uniformWrong + row.surfaceWrong) / double(count) : 0.0;
-        row.worstErrorCells = row.cellSize > 0.0 ? row.worstErrorDistance / row.cellSize : 0.0;
-        result.rows.push_back(row);
-        return built;
-    };
-    // The sprite by each rule the comparison scores it by, one build.
-    const auto measureSprite = [&](const std::string& series, std::uint64_t target, std::uint32_t resolution,
-                                   Built* prebuilt) {
-        Built sprite = measure(Method::Sprite, Rule::Parity, series, target, resolution, prebuilt);
-        sprite = measure(Method::Sprite, Rule::Winding, series, target, resolution, &sprite);
-        if (gwn) sprite = measure(Method::Sprite, Rule::GeneralizedWinding, series, target, resolution, &sprite);
-        return sprite;
-    };
-
     std::vector<std::size_t> budgets = options.memoryBudgets;
     for (std::uint32_t r : options.resolutions) {
         report(options, "resolution " + std::to_string(r));
         if (options.memoryBudgets.empty()) budgets.push_back(voxelMemory(box, Method::Solid, r));
-        measureSprite("resolution", r, vdsResolution(box, r), nullptr);
+        comparison.measureSprite("resolution", r, vdsResolution(box, r), nullptr);
         for (Method method : methods)
-            if (method != Method::Sprite) measure(method, Rule::Parity, "resolution", r, r, nullptr);
+            if (method != Method::Sprite) comparison.measure(method, Rule::Parity, "resolution", r, r, nullptr);
     }
 
     // A VDS probe bake gives the crossings per column, to pick bake resolutions
-    // for the budgets (then shrunk until the bake fits).
+    // for the budgets.
     const std::uint32_t probeResolution = vdsResolution(box, options.resolutions.front());
     const Built probe = buildOnce(mesh, Method::Sprite, probeResolution, *gl, options.meshName);
     const double columns0 = double(probe.sprite()->width()) * probe.sprite()->height();
     const double perColumn = 4.0 + 4.0 * double(probe.sprite()->crossings.size()) / columns0;
     for (std::size_t budget : budgets) {
         report(options, "memory budget " + formatBytes(budget));
-        std::uint32_t vds = largestWithin(budget, [&](std::uint32_t n) {
-            const SpriteGrid g = makeGrid(box, Axis::Z, n);
-            return std::size_t(double(g.width) * g.height * perColumn + 4.0);
-        });
-        for (int attempt = 0; vds > 0 && attempt < 4; ++attempt) {
-            Built sprite = buildOnce(mesh, Method::Sprite, vds, *gl, options.meshName);
-            if (sprite.memoryBytes() > budget) {
-                vds = std::uint32_t(double(vds) * std::sqrt(double(budget) / double(sprite.memoryBytes())) * 0.98);
-                continue;
-            }
-            sprite = build(mesh, Method::Sprite, vds, *gl, options.meshName); // timed
-            measureSprite("memory", budget, vds, &sprite);
-            break;
-        }
-        for (Method method : methods) {
-            if (method == Method::Sprite) continue;
-            const std::uint32_t r = largestWithin(budget, [&](std::uint32_t n) { return voxelMemory(box, method, n); });
-            if (r > 0) measure(method, Rule::Parity, "memory", budget, r, nullptr);
-        }
+        comparison.measureWithin(budget, perColumn, methods);
     }
     report(options, "done");
     return result;

@@ -1,27 +1,12 @@
 // vds: the GPU sprite behind the classify contract (<vds/gl/classifier.h>).
 #include <vds/gl/classifier.h>
 
-#include <cmath>
+#include <vds/detail/aligned_axes.h>
 
 namespace vds {
 
-namespace {
-
-// True when each texture axis still follows one world axis (the sprite was
-// moved or scaled since the bake, not rotated): the GPU sweep's precondition.
-bool axisAligned(const SpriteGrid& grid) {
-    for (int row = 0; row < 3; ++row) {
-        int nonZero = 0;
-        for (int col = 0; col < 3; ++col) nonZero += grid.matrix[col][row] != 0.0f;
-        if (nonZero != 1) return false;
-    }
-    return true;
-}
-
-} // namespace
-
 GpuSpriteClassifier::GpuSpriteClassifier(const GlContext& gl, const Sprite& sprite)
-    : gl_(gl), axisAligned_(axisAligned(sprite.grid)),
+    : gl_(gl), sweepsByColumns_(detail::sweepsByColumns(sprite.grid)),
       summary_("sprite-gpu " + std::to_string(sprite.width()) + " x " + std::to_string(sprite.height()) + " x " +
                std::to_string(sprite.depthComplexity) + " along " + toString(sprite.grid.axis)) {
     const CurrentContext current(gl_);
@@ -51,7 +36,7 @@ void GpuSpriteClassifier::classifyFloats(const float* xyz, std::size_t count, st
 }
 
 void GpuSpriteClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
-    if (!axisAligned_ || grid.cellCount() > (std::uint64_t(1) << 32)) return Classifier::sweep(grid, cells, options);
+    if (!sweepsByColumns_ || grid.cellCount() > (std::uint64_t(1) << 32)) return Classifier::sweep(grid, cells, options);
     const CurrentContext current(gl_);
     occupancy_->occupancy(*sprite_, grid, cells, options);
 }

@@ -1,6 +1,6 @@
 #include <vds/gl/sprite.h>
 
-#include <vds/detail/boundary_loops.h>
+#include "boundary_loops.h"
 
 #include <algorithm>
 #include <cassert>

@@ -21,6 +21,10 @@ GpuBitGrid::GpuBitGrid(const BitGrid& grid)
     : stamp_(vds::detail::ContextStamp::current("GpuBitGrid")), grid_(grid.grid),
       bytes_(grid.words.size() * sizeof(std::uint32_t)) {
     detail::requireStorageSize(bytes_, "the voxel words");
+    GLint maxTexels = 0; // the usamplerBuffer's limit, one word a texel
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+    if (grid.words.size() > std::size_t(maxTexels))
+        throw OutOfMemory("the voxel grid exceeds GL's texture buffer size; lower the resolution");
     words_ = Buffer::create();
     glNamedBufferStorage(words_.id(), GLsizeiptr(std::max<std::size_t>(bytes_, 4)), grid.words.empty() ? nullptr : grid.words.data(), 0);
     checkGl("uploading the voxel words");

@@ -20,7 +20,6 @@
 #include <vds/detail/parallel.h>
 
 #include "gl_util.h"
-#include "slicemap_texture.h"
 
 namespace vds::voxel {
 
@@ -324,61 +323,40 @@ GpuRefractionCaster::GpuRefractionCaster(const GlContext& gl, const SlicedVoxels
     : GpuRefractionCaster((CurrentContext(gl), voxels)) {}
 
 GpuRefractionCaster::GpuRefractionCaster(const Slicemap& map)
-    : method_(RefractionMethod::SlicemapTwoSurface), stamp_(vds::detail::ContextStamp::current("GpuRefractionCaster")), grid_(map.grid) {
+    : GpuCaster("GpuRefractionCaster"), method_(RefractionMethod::SlicemapTwoSurface) {
     if (map.slicing != Slicing::Local) throw InvalidArgument("two-surface refraction needs a locally sliced slicemap");
-    detail::SlicemapTextures t = detail::uploadSlicemap(map);
-    maps_ = std::move(t.maps);
-    ranges_ = std::move(t.ranges);
-    backLayer_ = std::int32_t(map.renderTargets);
+    upload(map);
     columnStep_ = map.grid.cellSize;
-    gpuBytes_ = t.bytes;
 }
 
 GpuRefractionCaster::GpuRefractionCaster(const Sprite& sprite)
-    : method_(RefractionMethod::SpriteTwoSurface), stamp_(vds::detail::ContextStamp::current("GpuRefractionCaster")) {
+    : GpuCaster("GpuRefractionCaster"), method_(RefractionMethod::SpriteTwoSurface) {
     if (sprite.grid.axis != Axis::Z) throw InvalidArgument("refraction needs a sprite baked along z (the view)");
-    sprite_ = GpuSprite(sprite, GpuSpriteParts::TextureOnly);
+    upload(sprite);
     depthLo_ = sprite.grid.box.lo.z;
     depthExtent_ = sprite.grid.box.hi.z - sprite.grid.box.lo.z;
     columnStep_ = sprite.grid.texelSize;
-    gpuBytes_ = sprite.denseBytes();
 }
 
 GpuRefractionCaster::GpuRefractionCaster(const SlicedVoxels& voxels)
-    : method_(RefractionMethod::VoxelMarch), stamp_(vds::detail::ContextStamp::current("GpuRefractionCaster")), grid_(voxels.grid) {
-    const VoxelGrid& g = voxels.grid;
-    maps_ = Texture::create(GL_TEXTURE_3D);
-    glTextureStorage3D(maps_.id(), 1, GL_RGBA32F, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(g.size.z));
-    detail::nearestFiltering(maps_);
-    glTextureSubImage3D(maps_.id(), 0, 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(g.size.z), GL_RGBA,
-                        GL_FLOAT, voxels.voxels.data());
-    gpuBytes_ = voxels.memoryBytes();
-    checkGl("uploading voxel normals");
+    : GpuCaster("GpuRefractionCaster"), method_(RefractionMethod::VoxelMarch) {
+    upload(voxels.grid, GL_RGBA32F, GL_RGBA, &voxels.voxels.data()->x, voxels.memoryBytes(), "uploading voxel normals");
 }
 
 void GpuRefractionCaster::setUniforms(GLuint program) const {
     switch (method_) {
     case RefractionMethod::SlicemapTwoSurface:
-        glBindTextureUnit(0, maps_.id());
-        glBindTextureUnit(1, ranges_.id());
-        glUniform1i(glGetUniformLocation(program, "u_slicemap"), 0);
-        glUniform1i(glGetUniformLocation(program, "u_ranges"), 1);
-        detail::setGridUniform(program, "u_map.grid", grid_);
-        glUniform1i(glGetUniformLocation(program, "u_map.backLayer"), backLayer_);
+        setSlicemapUniforms(program);
         glUniform1f(glGetUniformLocation(program, "u_columnStep"), columnStep_);
         break;
     case RefractionMethod::SpriteTwoSurface:
-        sprite_.setUniforms(program, "u_ldi", "u_placement", 0);
+        setSpriteUniforms(program);
         glUniform1f(glGetUniformLocation(program, "u_depthLo"), depthLo_);
         glUniform1f(glGetUniformLocation(program, "u_depthExtent"), depthExtent_);
         glUniform1f(glGetUniformLocation(program, "u_columnStep"), columnStep_);
         break;
     case RefractionMethod::VoxelMarch:
-    case RefractionMethod::Exact:
-        glBindTextureUnit(0, maps_.id());
-        glUniform1i(glGetUniformLocation(program, "u_voxels"), 0);
-        detail::setGridUniform(program, "u_grid", grid_);
-        break;
+    case RefractionMethod::Exact: setVolumeUniforms(program, "u_voxels"); break;
     }
 }
 
@@ -393,23 +371,9 @@ RefractionImage renderRefraction(const GlContext& gl, const GpuRefractionCaster&
                              {GL_FRAGMENT_SHADER, "voxel/refraction.frag", ""}},
                             defines);
     });
-    const GLsizei w = GLsizei(view.width), h = GLsizei(view.height);
-    Texture hits = Texture::create(GL_TEXTURE_2D), colours = Texture::create(GL_TEXTURE_2D);
-    glTextureStorage2D(hits.id(), 1, GL_RGBA32F, w, h);
-    glTextureStorage2D(colours.id(), 1, GL_RGBA8, w, h);
-    Framebuffer fbo = Framebuffer::create();
-    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, hits.id(), 0);
-    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT1, colours.id(), 0);
-    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(fbo.id(), 2, buffers);
-    if (glCheckNamedFramebufferStatus(fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw GlError("the refraction framebuffer is incomplete");
-    VertexArray vao = VertexArray::create();
-
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    glViewport(0, 0, w, h);
-    glUseProgram(program.id());
+    const detail::PlaneTargets targets({GL_RGBA32F, GL_RGBA8}, GLsizei(view.width), GLsizei(view.height), "refraction");
     const GLuint id = program.id();
+    targets.use(id);
     glUniform2f(glGetUniformLocation(id, "u_lo"), view.lo.x, view.lo.y);
     glUniform2f(glGetUniformLocation(id, "u_hi"), view.hi.x, view.hi.y);
     glUniform2f(glGetUniformLocation(id, "u_size"), float(view.width), float(view.height));
@@ -421,24 +385,19 @@ RefractionImage renderRefraction(const GlContext& gl, const GpuRefractionCaster&
     glUniform1f(glGetUniformLocation(id, "u_refraction.backgroundZ"), view.backgroundZ);
     glUniform1i(glGetUniformLocation(id, "u_refraction.maxSteps"), GLint(std::min<std::uint32_t>(parameters.maxSteps, 1u << 30)));
     caster.setUniforms(id);
-    glBindVertexArray(vao.id());
-
-    const detail::DrawTimes times = detail::timedFullScreenDraw("rendering refraction");
+    const detail::DrawTimes times = targets.draw("rendering refraction");
 
     RefractionImage image;
     image.width = view.width;
     image.height = view.height;
-    image.hits.resize(std::size_t(w) * std::size_t(h));
+    image.hits.resize(std::size_t(view.width) * view.height);
     image.rgba.resize(image.hits.size() * 4);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(hits.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(image.hits.size() * sizeof(glm::vec4)), image.hits.data());
-    glGetTextureImage(colours.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(image.rgba.size()), image.rgba.data());
+    glGetTextureImage(targets[0].id(), 0, GL_RGBA, GL_FLOAT, GLsizei(image.hits.size() * sizeof(glm::vec4)),
+                      image.hits.data());
+    glGetTextureImage(targets[1].id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(image.rgba.size()), image.rgba.data());
     image.gpuMilliseconds = times.gpuMilliseconds;
     image.wallMilliseconds = times.wallMilliseconds;
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    for (GLuint unit = 0; unit < 2; ++unit) glBindTextureUnit(unit, 0);
     checkGl("reading refraction back");
     return image;
 }

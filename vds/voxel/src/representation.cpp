@@ -13,10 +13,10 @@
 #include <vds/error.h>
 #include <vds/detail/parallel.h>
 #include <vds/gl/shader.h>
+#include <vds/voxel/gpu_grid.h>
 #include <vds/voxel/solid.h>
 
 #include "gl_util.h"
-#include "slicemap_texture.h"
 
 namespace vds::voxel {
 
@@ -29,7 +29,7 @@ Model::Model(Representation representation, Slicemap slicemap, double buildSecon
 Model::Model(Representation representation, BitGrid solid, double buildSeconds)
     : representation_(representation), data_(std::move(solid)), buildSeconds_(buildSeconds) {}
 
-bool Model::contains(const glm::vec3& p) const {
+bool Model::inside(const glm::vec3& p) const {
     if (const Slicemap* map = slicemap()) return map->contains(p);
     return std::get<BitGrid>(data_).contains(p);
 }
@@ -57,7 +57,7 @@ void Model::classifyFloats(const float* xyz, std::size_t count, std::size_t stri
         for (std::size_t k = begin; k < end; ++k) {
             glm::vec3 p;
             std::memcpy(&p, base + k * strideBytes, sizeof p);
-            labels[k] = contains(p) ? 1 : 0;
+            labels[k] = inside(p) ? 1 : 0;
         }
     });
 }
@@ -130,9 +130,8 @@ Model buildModel(const GlContext& gl, MeshView mesh, Representation representati
 // The model's GL objects and the lookup program, made once per classifier.
 struct GpuModelClassifier::Resources {
     GLuint program = 0; // from the context's cache
-    Buffer words;
-    Texture wordTexture;
-    detail::SlicemapTextures slicemapTextures;
+    GpuBitGrid bits;       // Solid methods
+    GpuSlicemap slicemap;  // Slicemap methods
 };
 
 GpuModelClassifier::GpuModelClassifier(const GlContext& gl, Model model)
@@ -145,26 +144,8 @@ GpuModelClassifier::GpuModelClassifier(const GlContext& gl, Model model)
     gpu_->program = gl.program(std::string("voxel.classify.") + define, [&] {
         return buildProgram({{GL_COMPUTE_SHADER, "voxel/classify.comp", ""}}, std::string("#define ") + define + "\n");
     }).id();
-    const GLuint id = gpu_->program;
-    if (!map) {
-        const BitGrid& bits = *model_.solid();
-        GLint maxTexels = 0;
-        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-        if (bits.words.size() > std::size_t(maxTexels))
-            throw OutOfMemory("the voxel grid exceeds GL's texture buffer size; lower the resolution");
-        gpu_->words = Buffer::create();
-        glNamedBufferStorage(gpu_->words.id(), GLsizeiptr(bits.memoryBytes()), bits.words.data(), 0);
-        gpu_->wordTexture = Texture::create(GL_TEXTURE_BUFFER);
-        glTextureBuffer(gpu_->wordTexture.id(), GL_R32UI, gpu_->words.id());
-        glProgramUniform1i(id, glGetUniformLocation(id, "u_voxels"), 0);
-        detail::setGridUniform(id, "u_voxelGrid", bits.grid);
-    } else {
-        gpu_->slicemapTextures = detail::uploadSlicemap(*map);
-        glProgramUniform1i(id, glGetUniformLocation(id, "u_slicemap"), 0);
-        if (map->slicing == Slicing::Local) glProgramUniform1i(id, glGetUniformLocation(id, "u_ranges"), 1);
-        detail::setGridUniform(id, "u_map.grid", map->grid);
-        glProgramUniform1i(id, glGetUniformLocation(id, "u_map.backLayer"), GLint(map->renderTargets));
-    }
+    if (map) gpu_->slicemap = GpuSlicemap(*map);
+    else gpu_->bits = GpuBitGrid(*model_.solid());
     checkGl("uploading a voxel representation");
 }
 
@@ -182,12 +163,8 @@ void GpuModelClassifier::classifyFloats(const float* xyz, std::size_t count, std
     const CurrentContext current(gl_);
     const Slicemap* map = model_.slicemap();
     const GLuint id = gpu_->program;
-    if (!map) {
-        glBindTextureUnit(0, gpu_->wordTexture.id());
-    } else {
-        glBindTextureUnit(0, gpu_->slicemapTextures.maps.id());
-        if (map->slicing == Slicing::Local) glBindTextureUnit(1, gpu_->slicemapTextures.ranges.id());
-    }
+    if (map) gpu_->slicemap.setUniforms(id, "u_slicemap", "u_ranges", "u_map", 0);
+    else gpu_->bits.setUniforms(id, "u_voxels", "u_voxelGrid", 0);
     checkGl("binding a voxel representation");
     const std::size_t batch = std::size_t(1) << 22;
     Buffer pointBuffer = Buffer::create(), labelBuffer = Buffer::create();

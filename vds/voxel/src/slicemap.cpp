@@ -165,6 +165,88 @@ RangeMaps renderRanges(const GlContext& gl, const detail::MeshBuffers& mesh, Sli
     return maps;
 }
 
+// The slicemap's grid for `slices` slices along z: columns as
+// makeVoxelGrid's, 32 slices a word, four words a render target.
+Slicemap emptySlicemap(const Box& box, std::uint32_t resolution, std::uint32_t slices, Slicing slicing) {
+    Slicemap map;
+    map.slicing = slicing;
+    map.grid = makeVoxelGrid(box, resolution, ~std::uint64_t(0));
+    map.grid.size.z = slices;
+    map.grid.scale.z = float(double(slices) / (double(box.hi.z) - double(box.lo.z)));
+    map.words = slices / 32;
+    map.renderTargets = (map.words + 3) / 4;
+    return map;
+}
+
+// True when both maps fit one pass (twice the targets as draw buffers);
+// throws where GL cannot draw even one, or the read-back would pass 2 GiB.
+bool fitsOnePass(const Slicemap& map) {
+    GLint maxDrawBuffers = 0, maxAttachments = 0;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
+    glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &maxAttachments);
+    const std::uint32_t maxTargets = std::uint32_t(std::min(maxDrawBuffers, maxAttachments));
+    const std::uint32_t targets = map.renderTargets, slices = map.grid.size.z;
+    if (targets > maxTargets)
+        throw InvalidArgument(std::to_string(slices) + " slices need " + std::to_string(targets) +
+                              " render targets, more than GL allows here (" + std::to_string(maxTargets) + ")");
+    const std::size_t columns = std::size_t(map.grid.size.x) * map.grid.size.y;
+    if (columns * 2 * targets * 16 > std::size_t(std::numeric_limits<GLsizei>::max()))
+        throw OutOfMemory("a slicemap of " + std::to_string(map.grid.size.x) + "x" + std::to_string(map.grid.size.y) +
+                          "x" + std::to_string(slices) + " needs more than 2 GiB; lower the resolution");
+    return 2 * targets <= maxTargets;
+}
+
+// Draws the mesh into the front and back layers (one pass for both, or a
+// pass each), OR-ing each fragment's slice bit.
+void drawSlices(const detail::MeshBuffers& buffers, const Program& program, const Texture& layers,
+                const RangeMaps& ranges, Slicemap& map, std::uint32_t viewport, bool onePass) {
+    const std::uint32_t targets = map.renderTargets, outputs = onePass ? 2 * targets : targets;
+    const GLint facing = glGetUniformLocation(program.id(), "u_facing");
+    const detail::RasterState state(map.grid, viewport);
+    glUseProgram(program.id());
+    glBindTextureUnit(0, ranges.near.id());
+    glBindTextureUnit(1, ranges.far.id());
+    glEnable(GL_COLOR_LOGIC_OP);
+    glLogicOp(GL_OR);
+    const std::uint32_t passes = onePass ? 1 : 2;
+    for (std::uint32_t pass = 0; pass < passes; ++pass) {
+        Framebuffer fbo = Framebuffer::create();
+        std::vector<GLenum> drawBuffers(outputs);
+        for (std::uint32_t t = 0; t < outputs; ++t) {
+            glNamedFramebufferTextureLayer(fbo.id(), GL_COLOR_ATTACHMENT0 + t, layers.id(), 0,
+                                           GLint(pass * targets + t));
+            drawBuffers[t] = GL_COLOR_ATTACHMENT0 + t;
+        }
+        glNamedFramebufferDrawBuffers(fbo.id(), GLsizei(outputs), drawBuffers.data());
+        requireComplete(fbo, "slicemap");
+        const GLuint zero[4] = {0, 0, 0, 0};
+        for (std::uint32_t t = 0; t < outputs; ++t) glClearNamedFramebufferuiv(fbo.id(), GL_COLOR, GLint(t), zero);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        glProgramUniform1i(program.id(), facing, onePass ? 0 : GLint(pass + 1));
+        buffers.draw();
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+    map.passes += passes;
+}
+
+// Layer-major texels (RGBA words) -> per-column words of each map.
+void readSlices(const Texture& layers, Slicemap& map) {
+    const std::size_t columns = std::size_t(map.grid.size.x) * map.grid.size.y;
+    const std::uint32_t targets = map.renderTargets;
+    std::vector<std::uint32_t> texels(columns * 4 * 2 * targets);
+    glGetTextureImage(layers.id(), 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, GLsizei(texels.size() * sizeof(std::uint32_t)),
+                      texels.data());
+    checkGl("slicemap pass");
+    map.front.assign(columns * map.words, 0u);
+    map.back.assign(columns * map.words, 0u);
+    for (std::size_t c = 0; c < columns; ++c)
+        for (std::uint32_t w = 0; w < map.words; ++w) {
+            const std::size_t layer = w / 4, channel = w % 4;
+            map.front[c * map.words + w] = texels[(layer * columns + c) * 4 + channel];
+            map.back[c * map.words + w] = texels[((targets + layer) * columns + c) * 4 + channel];
+        }
+}
+
 } // namespace
 
 Slicemap buildSlicemap(const GlContext& gl, MeshView mesh, const Box& box, std::uint32_t resolution,
@@ -175,30 +257,11 @@ Slicemap buildSlicemap(const GlContext& gl, MeshView mesh, const Box& box, std::
         throw InvalidArgument("slicemap slices " + std::to_string(slices) + " must be a multiple of 32 in [32, " +
                               std::to_string(kMaxSlices) + "]");
     const CurrentContext current(gl); // the caller's context is current again on return
-    Slicemap map;
-    map.slicing = options.slicing;
-    map.grid = makeVoxelGrid(box, resolution, ~std::uint64_t(0));
-    map.grid.size.z = slices;
-    map.grid.scale.z = float(double(slices) / (double(box.hi.z) - double(box.lo.z)));
-    map.words = slices / 32;
-    map.renderTargets = (map.words + 3) / 4;
+    Slicemap map = emptySlicemap(box, resolution, slices, options.slicing);
     const VoxelGrid& grid = map.grid;
     const std::uint32_t viewport = detail::rasterViewport(grid);
-
-    GLint maxDrawBuffers = 0, maxAttachments = 0;
-    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
-    glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &maxAttachments);
-    const std::uint32_t maxTargets = std::uint32_t(std::min(maxDrawBuffers, maxAttachments));
-    const std::uint32_t targets = map.renderTargets;
-    if (targets > maxTargets)
-        throw InvalidArgument(std::to_string(slices) + " slices need " + std::to_string(targets) +
-                              " render targets, more than GL allows here (" + std::to_string(maxTargets) + ")");
-    const bool onePass = 2 * targets <= maxTargets;
-    const std::size_t columns = std::size_t(grid.size.x) * grid.size.y;
-    if (columns * 2 * targets * 16 > std::size_t(std::numeric_limits<GLsizei>::max()))
-        throw OutOfMemory("a slicemap of " + std::to_string(grid.size.x) + "x" + std::to_string(grid.size.y) + "x" +
-                          std::to_string(slices) + " needs more than 2 GiB; lower the resolution");
-    const std::uint32_t outputs = onePass ? 2 * targets : targets;
+    const bool onePass = fitsOnePass(map);
+    const std::uint32_t targets = map.renderTargets, outputs = onePass ? 2 * targets : targets;
 
     const detail::MeshBuffers buffers(mesh);
     RangeMaps ranges;
@@ -221,50 +284,10 @@ Slicemap buildSlicemap(const GlContext& gl, MeshView mesh, const Box& box, std::
     glProgramUniform1i(program.id(), glGetUniformLocation(program.id(), "u_slices"), GLint(slices));
     glProgramUniform1i(program.id(), glGetUniformLocation(program.id(), "u_near"), 0);
     glProgramUniform1i(program.id(), glGetUniformLocation(program.id(), "u_far"), 1);
-    const GLint facing = glGetUniformLocation(program.id(), "u_facing");
-    {
-        const detail::RasterState state(grid, viewport);
-        glUseProgram(program.id());
-        glBindTextureUnit(0, ranges.near.id());
-        glBindTextureUnit(1, ranges.far.id());
-        glEnable(GL_COLOR_LOGIC_OP);
-        glLogicOp(GL_OR);
-        const std::uint32_t passes = onePass ? 1 : 2;
-        for (std::uint32_t pass = 0; pass < passes; ++pass) {
-            Framebuffer fbo = Framebuffer::create();
-            std::vector<GLenum> drawBuffers(outputs);
-            for (std::uint32_t t = 0; t < outputs; ++t) {
-                glNamedFramebufferTextureLayer(fbo.id(), GL_COLOR_ATTACHMENT0 + t, layers.id(), 0,
-                                               GLint(pass * targets + t));
-                drawBuffers[t] = GL_COLOR_ATTACHMENT0 + t;
-            }
-            glNamedFramebufferDrawBuffers(fbo.id(), GLsizei(outputs), drawBuffers.data());
-            requireComplete(fbo, "slicemap");
-            const GLuint zero[4] = {0, 0, 0, 0};
-            for (std::uint32_t t = 0; t < outputs; ++t) glClearNamedFramebufferuiv(fbo.id(), GL_COLOR, GLint(t), zero);
-            glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-            glProgramUniform1i(program.id(), facing, onePass ? 0 : GLint(pass + 1));
-            buffers.draw();
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        }
-        map.passes += passes;
-    }
+    drawSlices(buffers, program, layers, ranges, map, viewport, onePass);
     glBindTextureUnit(0, 0);
     glBindTextureUnit(1, 0);
-
-    // Layer-major texels (RGBA words) -> per-column words of each map.
-    std::vector<std::uint32_t> texels(columns * 4 * 2 * targets);
-    glGetTextureImage(layers.id(), 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, GLsizei(texels.size() * sizeof(std::uint32_t)),
-                      texels.data());
-    checkGl("slicemap pass");
-    map.front.assign(columns * map.words, 0u);
-    map.back.assign(columns * map.words, 0u);
-    for (std::size_t c = 0; c < columns; ++c)
-        for (std::uint32_t w = 0; w < map.words; ++w) {
-            const std::size_t layer = w / 4, channel = w % 4;
-            map.front[c * map.words + w] = texels[(layer * columns + c) * 4 + channel];
-            map.back[c * map.words + w] = texels[((targets + layer) * columns + c) * 4 + channel];
-        }
+    readSlices(layers, map);
     return map;
 }
 

@@ -18,7 +18,6 @@
 #include <vds/detail/parallel.h>
 
 #include "gl_util.h"
-#include "slicemap_texture.h"
 
 namespace vds::voxel {
 
@@ -205,58 +204,34 @@ GpuTransmittanceCaster::GpuTransmittanceCaster(const GlContext& gl, const Sprite
     : GpuTransmittanceCaster((CurrentContext(gl), sprite)) {}
 
 GpuTransmittanceCaster::GpuTransmittanceCaster(const Slicemap& map)
-    : source_(TransmittanceSource::SlicemapSurfaces), stamp_(vds::detail::ContextStamp::current("GpuTransmittanceCaster")), grid_(map.grid), local_(map.slicing == Slicing::Local) {
-    detail::SlicemapTextures t = detail::uploadSlicemap(map);
-    maps_ = std::move(t.maps);
-    ranges_ = std::move(t.ranges);
-    backLayer_ = std::int32_t(map.renderTargets);
-    gpuBytes_ = t.bytes;
+    : GpuCaster("GpuTransmittanceCaster"), source_(TransmittanceSource::SlicemapSurfaces),
+      local_(map.slicing == Slicing::Local) {
+    upload(map);
 }
 
 GpuTransmittanceCaster::GpuTransmittanceCaster(const SlicedVoxels& voxels)
-    : source_(TransmittanceSource::VoxelAbsorption), stamp_(vds::detail::ContextStamp::current("GpuTransmittanceCaster")), grid_(voxels.grid) {
-    const VoxelGrid& g = voxels.grid;
+    : GpuCaster("GpuTransmittanceCaster"), source_(TransmittanceSource::VoxelAbsorption) {
     std::vector<float> absorption(voxels.voxels.size());
     for (std::size_t k = 0; k < absorption.size(); ++k)
         absorption[k] = voxels.voxels[k].w * voxels.absorptionPerFragment;
-    maps_ = Texture::create(GL_TEXTURE_3D);
-    glTextureStorage3D(maps_.id(), 1, GL_R32F, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(g.size.z));
-    detail::nearestFiltering(maps_);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage3D(maps_.id(), 0, 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(g.size.z), GL_RED,
-                        GL_FLOAT, absorption.data());
-    gpuBytes_ = absorption.size() * sizeof(float);
-    checkGl("uploading per-voxel absorption");
+    upload(voxels.grid, GL_R32F, GL_RED, absorption.data(), absorption.size() * sizeof(float),
+           "uploading per-voxel absorption");
 }
 
 GpuTransmittanceCaster::GpuTransmittanceCaster(const Sprite& sprite)
-    : source_(TransmittanceSource::SpriteThickness), stamp_(vds::detail::ContextStamp::current("GpuTransmittanceCaster")) {
+    : GpuCaster("GpuTransmittanceCaster"), source_(TransmittanceSource::SpriteThickness) {
     if (sprite.grid.axis != Axis::Z)
         throw InvalidArgument("a transmittance sprite must be baked along z (the light, in light space)");
-    sprite_ = GpuSprite(sprite, GpuSpriteParts::TextureOnly);
+    upload(sprite);
     depthExtent_ = sprite.grid.box.hi.z - sprite.grid.box.lo.z;
-    gpuBytes_ = sprite.denseBytes();
 }
 
 void GpuTransmittanceCaster::setUniforms(GLuint program) const {
     switch (source_) {
-    case TransmittanceSource::SlicemapSurfaces:
-        glBindTextureUnit(0, maps_.id());
-        glUniform1i(glGetUniformLocation(program, "u_slicemap"), 0);
-        detail::setGridUniform(program, "u_map.grid", grid_);
-        glUniform1i(glGetUniformLocation(program, "u_map.backLayer"), backLayer_);
-        if (local_) {
-            glBindTextureUnit(1, ranges_.id());
-            glUniform1i(glGetUniformLocation(program, "u_ranges"), 1);
-        }
-        break;
-    case TransmittanceSource::VoxelAbsorption:
-        glBindTextureUnit(0, maps_.id());
-        glUniform1i(glGetUniformLocation(program, "u_absorption"), 0);
-        detail::setGridUniform(program, "u_grid", grid_);
-        break;
+    case TransmittanceSource::SlicemapSurfaces: setSlicemapUniforms(program); break;
+    case TransmittanceSource::VoxelAbsorption: setVolumeUniforms(program, "u_absorption"); break;
     case TransmittanceSource::SpriteThickness:
-        sprite_.setUniforms(program, "u_ldi", "u_placement", 0);
+        setSpriteUniforms(program);
         glUniform1f(glGetUniformLocation(program, "u_depthExtent"), depthExtent_);
         break;
     }
@@ -276,19 +251,9 @@ TransmittanceImage renderTransmittance(const GlContext& gl, const GpuTransmittan
                              {GL_FRAGMENT_SHADER, "voxel/transmittance_plane.frag", ""}},
                             defines);
     });
-    const GLsizei w = GLsizei(plane.width), h = GLsizei(plane.height);
-    Texture target = Texture::create(GL_TEXTURE_2D);
-    glTextureStorage2D(target.id(), 1, GL_RG32F, w, h);
-    Framebuffer fbo = Framebuffer::create();
-    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
-    if (glCheckNamedFramebufferStatus(fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw GlError("the transmittance framebuffer is incomplete");
-    VertexArray vao = VertexArray::create();
-
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    glViewport(0, 0, w, h);
-    glUseProgram(program.id());
+    const detail::PlaneTargets targets({GL_RG32F}, GLsizei(plane.width), GLsizei(plane.height), "transmittance");
     const GLuint id = program.id();
+    targets.use(id);
     glUniform3fv(glGetUniformLocation(id, "u_origin"), 1, &plane.origin[0]);
     glUniform3fv(glGetUniformLocation(id, "u_u"), 1, &plane.u[0]);
     glUniform3fv(glGetUniformLocation(id, "u_v"), 1, &plane.v[0]);
@@ -297,22 +262,16 @@ TransmittanceImage renderTransmittance(const GlContext& gl, const GpuTransmittan
     glUniform1f(glGetUniformLocation(id, "u_sigma"), parameters.sigma);
     glUniform1f(glGetUniformLocation(id, "u_extinction"), parameters.extinction);
     caster.setUniforms(id);
-    glBindVertexArray(vao.id());
-
-    const detail::DrawTimes times = detail::timedFullScreenDraw("rendering transmittance");
+    const detail::DrawTimes times = targets.draw("rendering transmittance");
 
     TransmittanceImage image;
     image.width = plane.width;
     image.height = plane.height;
-    std::vector<float> texels(std::size_t(w) * std::size_t(h) * 2);
+    std::vector<float> texels(std::size_t(plane.width) * plane.height * 2);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTextureImage(target.id(), 0, GL_RG, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+    glGetTextureImage(targets[0].id(), 0, GL_RG, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
     image.gpuMilliseconds = times.gpuMilliseconds;
     image.wallMilliseconds = times.wallMilliseconds;
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    for (GLuint unit = 0; unit < 2; ++unit) glBindTextureUnit(unit, 0);
     checkGl("reading transmittance back");
     image.quantity.resize(texels.size() / 2);
     image.transmittance.resize(texels.size() / 2);

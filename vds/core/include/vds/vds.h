@@ -104,8 +104,18 @@
 //   A method that cannot answer `options.rule` throws InvalidArgument before
 //   touching a point (`requireRule`), never answering another rule.
 //   `options.stats` (ClassifyStats {certain, exact}) says how points were
-//   answered. `Scalar` is the points' scalar type; `QueryLayout` and
-//   `BoundaryEvaluation` tune the sprite.
+//   answered. `Scalar` is the points' scalar type. ClassifyOptions holds
+//   what a query asks (rule, threads, stats); how a method answers is fixed
+//   when its classifier is made (a sprite's SpriteQueryOptions {QueryLayout,
+//   BoundaryEvaluation}, a certified classifier's resolution).
+//
+//   The engine layer under the contract: free functions and classes each
+//   method's Classifier is a thin shell over, for callers who hold the
+//   method's own data and want no Classifier object — classify(sprite, ...)
+//   and occupancy(sprite | mesh, ...) on the CPU, GpuClassifier::classify
+//   and GpuOccupancy on the GPU (GL buffers in and out). They give the
+//   Classifier's answers; a Classifier is the one door for everything else
+//   (the CLI, Python, evaluation and benchmarks dispatch through it).
 //   enum class Method: sprite, exact, certified, sprite-gpu, slicemap,
 //     slicemap-local, solid, solid-compute, slicemap-gpu, slicemap-local-gpu,
 //     solid-gpu, solid-compute-gpu, and custom (a Classifier written outside
@@ -166,10 +176,12 @@
 //     box are outside. Errors lie within about half a texel diagonal of the
 //     surface (docs/accuracy.md). Sprite::transform(mat4) moves it without
 //     baking again.
-//   classify(sprite, PointsView, labels, ClassifyOptions)
-//     batches on threads; the same answers as `contains`. QueryLayout::Auto
-//     builds a 16-byte-a-column table for large batches.
-//   SpriteClassifier(sprite)   the same as a Classifier (Method::Sprite).
+//   classify(sprite, PointsView, labels, ClassifyOptions, SpriteQueryOptions)
+//     the engine: batches on threads; the same answers as `contains`.
+//     QueryLayout::Auto builds a 16-byte-a-column table for large batches;
+//     BoundaryEvaluation::Caps builds the boundary's caps for the call.
+//   SpriteClassifier(sprite, SpriteQueryOptions)   the same as a Classifier
+//     (Method::Sprite), which keeps the caps between batches.
 //
 // ---- 6. Ask it for a whole grid ------------------------------------------------
 //
@@ -271,7 +283,9 @@
 //     exactCrossingsInFront)                      <vds/voxel/transmittance.h>;
 //     refraction (RefractionMethod, RefractionView, RefractionParameters,
 //     RefractionImage, refractionColour, refractOnCpu, refractExactly,
-//     GpuRefractionCaster, renderRefraction)        <vds/voxel/refraction.h>
+//     GpuRefractionCaster, renderRefraction)        <vds/voxel/refraction.h>;
+//     both casters upload through one base, detail::GpuCaster
+//     (a GpuSlicemap, a sprite's texture or a 3D texture) <vds/voxel/caster.h>
 //
 // ---- 10. Measuring (vds::eval) ------------------------------------------------
 //

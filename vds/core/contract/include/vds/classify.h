@@ -10,7 +10,7 @@
 // sprite). Core's methods (sprite, exact, certified) are classes here and
 // in <vds/sprite.h>, <vds/exact.h>, <vds/certified.h>; the GPU and voxel
 // methods live in the layers above (<vds/gl/classifier.h>,
-// <vds/voxel/classifier.h>), and `vds::makeClassifier` in <vds/all.h> (the
+// <vds/voxel/representation.h>), and `vds::makeClassifier` in <vds/all.h> (the
 // umbrella, vds::vds) makes any of them by `Method`. A method that cannot
 // answer a rule refuses it with `InvalidArgument` before touching a point,
 // never answering another rule instead.
@@ -60,29 +60,6 @@ struct PointsView {
     PointsView slice(std::size_t first, std::size_t n) const;
 };
 
-/// How a sprite's batch reads the sprite (`Method::Sprite` only).
-enum class QueryLayout : std::uint8_t {
-    Auto,    ///< Packed when the batch has at least half as many points as the sprite has columns
-    Offsets, ///< the sprite's own arrays: offsets, then crossings (two dependent cache misses a point)
-    /// A table of 16 bytes a column with its first four crossings (32 bytes
-    /// and eight where many columns have more), built for the call in huge
-    /// pages: one cache miss a point and no branch on the data, unless it
-    /// lies behind those crossings. The same answers as Offsets.
-    Packed,
-};
-
-/// How a sprite evaluates the boundary term of Rule::GeneralizedWinding.
-enum class BoundaryEvaluation : std::uint8_t {
-    /// The boundary's loops and chains closed by fans (caps_tree.h): a
-    /// coarse grid of proven ranges of the term answers most points, a tree
-    /// of chords and multipole expansions with proven error bounds the
-    /// rest, and the per-edge sum wherever those bounds could change a
-    /// label. The same labels as Exact; about O(log edges) a point near the
-    /// boundary, O(1) in most of the box. Built once per sprite.
-    Caps,
-    Exact, ///< the per-edge sum for every point: O(boundary edges) a point
-};
-
 /// What a batch did, for methods that answer some points by a proof and the
 /// rest by an exact fallback (`Method::Certified`). Other methods count
 /// every point under `certain` (an approximate method's answers are its own).
@@ -91,12 +68,12 @@ struct ClassifyStats {
     std::size_t exact = 0;   ///< answered by the exact classifier
 };
 
-/// The one options struct of every classify and occupancy call.
+/// The one options struct of every classify and occupancy call: what each
+/// query asks. How a method is built (a sprite's `SpriteQueryOptions`, a
+/// certified classifier's resolution) is fixed when its classifier is made.
 struct ClassifyOptions {
     Rule rule = Rule::Parity;
     unsigned threads = 0;          ///< CPU threads, 0: one per hardware thread (GPU methods ignore it)
-    QueryLayout layout = QueryLayout::Auto;                 ///< Method::Sprite only
-    BoundaryEvaluation boundary = BoundaryEvaluation::Caps; ///< Rule::GeneralizedWinding on open sprites only
     ClassifyStats* stats = nullptr; ///< if set, filled by the call (caller-owned)
 };
 

@@ -3,7 +3,7 @@
 //
 // A grid column along a sprite's view axis meets the column's crossings in
 // depth order, so one walk over them labels every cell of the column; the
-// cost is writing the labels. `voxelize` does the same on the triangles
+// cost is writing the labels. `occupancy(mesh, ...)` does the same on the triangles
 // themselves with the exact classifier's predicates: for each triangle a
 // column's centre ray claims (the top-left rule of <vds/exact.h>), a binary
 // search over the column's cell centres with the exact orientation

@@ -7,16 +7,18 @@
 //           occlusion query (the paper's method);
 //  - Lists: one pass of per-pixel fragment lists; counting, a GPU prefix
 //           sum and a per-column sort in compute build the sprite's columns
-//           on the GPU, read back once (the default: fastest on GPUs, and on
-//           llvmpipe faster than the CPU baker on the bundled meshes);
+//           on the GPU, read back once (fastest on GPUs);
 //  - Cpu:   exact ray casting on the CPU (<vds/exact.h>), no GL needed.
-// Crossings at equal depth are ordered by triangle index in all three.
+// Crossings at equal depth are ordered by triangle index in all three. The
+// default, `BakeMethod::Auto`, is Lists on a GPU and Cpu on a software
+// renderer (`chooseBakeMethod` in <vds/gl/bake.h>).
 //
 // Which layer bakes: vds::core has the Cpu method, `bakeCpu` below, and no
-// GL word. vds::gl has the GL methods, `bakeOnGl(mesh, options, gl)` in
+// GL word. vds::gl has the GL methods, `bakeOnGl(gl, mesh, options)` in
 // <vds/gl/bake.h>, on a context the caller passes. `vds::bake(mesh,
-// options)`, which picks by `options.method` and makes a context when none
-// is given, lives in the umbrella (<vds/all.h>, vds::vds).
+// options)` and `vds::bake(gl, mesh, options)`, which pick by
+// `options.method` and make a context when none is given, live in the
+// umbrella (<vds/all.h>, vds::vds).
 #pragma once
 
 #include <array>

@@ -81,12 +81,45 @@ enum class SolidStatus : std::uint8_t {
 
 struct Sprite;
 
+/// How a sprite's batch reads the sprite (`Method::Sprite` only).
+enum class QueryLayout : std::uint8_t {
+    Auto,    ///< Packed when the batch has at least half as many points as the sprite has columns
+    Offsets, ///< the sprite's own arrays: offsets, then crossings (two dependent cache misses a point)
+    /// A table of 16 bytes a column with its first four crossings (32 bytes
+    /// and eight where many columns have more), built for the call in huge
+    /// pages: one cache miss a point and no branch on the data, unless it
+    /// lies behind those crossings. The same answers as Offsets.
+    Packed,
+};
+
+/// How a sprite evaluates the boundary term of Rule::GeneralizedWinding.
+enum class BoundaryEvaluation : std::uint8_t {
+    /// The boundary's loops and chains closed by fans (the caps): a
+    /// coarse grid of proven ranges of the term answers most points, a tree
+    /// of chords and multipole expansions with proven error bounds the
+    /// rest, and the per-edge sum wherever those bounds could change a
+    /// label. The same labels as Exact; about O(log edges) a point near the
+    /// boundary, O(1) in most of the box. Built once per
+    /// SpriteClassifier (once per call of the free `classify`).
+    Caps,
+    Exact, ///< the per-edge sum for every point: O(boundary edges) a point
+};
+
+
+/// How a sprite answers a batch: fixed when its `SpriteClassifier` is made
+/// (or passed to the free `classify` beside the per-query options).
+struct SpriteQueryOptions {
+    QueryLayout layout = QueryLayout::Auto;
+    /// Rule::GeneralizedWinding on sprites with boundary edges only.
+    BoundaryEvaluation boundary = BoundaryEvaluation::Caps;
+};
+
 namespace detail {
 class BoundaryCaps;
 /// A sprite's derived data for Rule::GeneralizedWinding (its boundary loops
-/// and their caps, caps_tree.h), built from `Sprite::boundaryEdges` on
-/// first use, thread safe. Not part of the sprite's value: a copy or an
-/// assignment starts empty, a move takes it along.
+/// and their caps), built from `Sprite::boundaryEdges` on first use, thread
+/// safe; held by `SpriteClassifier`, not by the plain-data `Sprite`. A copy
+/// or an assignment starts empty, a move takes it along.
 class BoundaryCapsCache {
 public:
     BoundaryCapsCache() noexcept = default;
@@ -108,8 +141,8 @@ public:
     /// The caps of the sprite's boundary edges for the integer term along
     /// its axis, built by the first caller, with the sprite's box as the
     /// domain of their grid of bounds and its columns telling the cells
-    /// over which their count is one integer (SpriteColumns, antipodal.cpp),
-    /// found on `threads` threads (0: all cores).
+    /// over which their count is one integer, found on `threads` threads
+    /// (0: all cores).
     const BoundaryCaps& get(const Sprite& sprite, unsigned threads = 1) const;
 
 private:
@@ -149,9 +182,6 @@ struct Sprite {
     /// False only for a sprite of an open mesh read from a version-1 file:
     /// its boundary was never stored, and Rule::GeneralizedWinding refuses it.
     bool boundaryKnown = true;
-    /// Built from `boundaryEdges` by the first generalized-winding query;
-    /// change `boundaryEdges` only before that (or on a copy).
-    detail::BoundaryCapsCache boundaryCaps;
 
     std::uint32_t width() const { return grid.width; }
     std::uint32_t height() const { return grid.height; }
@@ -160,7 +190,9 @@ struct Sprite {
     /// Points outside the box [0,1]^3 in texture space are outside. A point
     /// exactly at a stored depth does not count that crossing: on an entering
     /// surface it is outside, on a leaving one inside.
-    /// With Rule::GeneralizedWinding: `generalizedWinding(world) > 1/2`.
+    /// With Rule::GeneralizedWinding: `generalizedWinding(world) > 1/2`, by
+    /// the per-edge sum (O(boundary edges) a point; a `SpriteClassifier`
+    /// builds the caps once and answers batches from them, same labels).
     bool contains(const glm::vec3& world, Rule rule = Rule::Parity) const;
 
     /// The generalized winding number at a world point, by the Antipodal
@@ -180,10 +212,9 @@ struct Sprite {
     /// Points outside the box get 0 (the sprite knows nothing there; the
     /// GWN of a surface inside a box is at most 1/2 outside it for a
     /// surface that covers no direction twice). Without boundary edges the
-    /// value is the winding number. The boundary term comes from the capped
-    /// boundary loops (`BoundaryEvaluation::Caps`) within 1e-3 of the
-    /// per-edge sum (which it takes wherever it cannot prove that). Throws
-    /// `InvalidArgument` when `boundaryKnown` is false.
+    /// value is the winding number. The boundary term is the per-edge sum,
+    /// O(boundary edges) a call. Throws `InvalidArgument` when
+    /// `boundaryKnown` is false.
     double generalizedWinding(const glm::vec3& world) const;
 
     /// Moves the sprite by `model`, on top of its current placement: a sprite
@@ -202,18 +233,24 @@ struct Sprite {
     void checkConsistent() const;
 };
 
-/// The sprite's answers for `points` (world coordinates, the placement
-/// applied), the contract of <vds/classify.h>: the same answers as
-/// `Sprite::contains`, batched on `options.threads` threads (the sprite is
-/// only read). `SpriteClassifier` is the same as a `Classifier`.
+/// The engine under `SpriteClassifier` (the engine layer of <vds/vds.h>):
+/// the sprite's answers for `points` (world coordinates, the placement
+/// applied), the same answers as `Sprite::contains`, batched on
+/// `options.threads` threads (the sprite is only read), read as `query`
+/// says. Rule::GeneralizedWinding with `BoundaryEvaluation::Caps` builds the
+/// caps for this call alone: ask a `SpriteClassifier`, which keeps them,
+/// for more than one batch.
 void classify(const Sprite& sprite, const PointsView& points, std::uint8_t* labels,
-              const ClassifyOptions& options = {});
+              const ClassifyOptions& options = {}, const SpriteQueryOptions& query = {});
 
-/// `Method::Sprite` as a `Classifier` (<vds/classify.h>): owns its sprite.
+/// `Method::Sprite` as a `Classifier` (<vds/classify.h>): owns its sprite,
+/// answers every batch as `query` says and keeps the sprite's caps for
+/// Rule::GeneralizedWinding (built by the first such query).
 class SpriteClassifier final : public Classifier {
 public:
-    explicit SpriteClassifier(Sprite sprite);
+    explicit SpriteClassifier(Sprite sprite, const SpriteQueryOptions& query = {});
     const Sprite& sprite() const { return sprite_; }
+    const SpriteQueryOptions& query() const { return query_; }
     Method method() const override { return Method::Sprite; }
     std::size_t memoryBytes() const override;
     std::string summary() const override;
@@ -225,6 +262,8 @@ protected:
 
 private:
     Sprite sprite_;
+    SpriteQueryOptions query_;
+    detail::BoundaryCapsCache caps_;
 };
 
 } // namespace vds

@@ -35,12 +35,13 @@ public:
 protected:
     void classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
                         const ClassifyOptions& options) const override;
-    /// The GPU column sweep when the sprite is not rotated, else cell centres.
+    /// The GPU column sweep when the sprite's axes are aligned with the
+    /// grid's (detail::sweepsByColumns), else cell centres.
     void sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const override;
 
 private:
     const GlContext& gl_;
-    bool axisAligned_ = true;
+    bool sweepsByColumns_ = true;
     std::string summary_;
     std::optional<GpuSprite> sprite_;
     mutable std::optional<GpuClassifier> classifier_;

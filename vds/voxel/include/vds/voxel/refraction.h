@@ -40,6 +40,7 @@
 #include <vds/gl/sprite.h>
 #include <vds/mesh.h>
 #include <vds/sprite.h>
+#include <vds/voxel/caster.h>
 #include <vds/voxel/slicemap.h>
 #include <vds/voxel/slicing.h>
 
@@ -110,7 +111,7 @@ RefractionImage refractExactly(MeshView viewSpaceMesh, const RefractionView& vie
 /// the context (and thread) it was made in: the constructors taking a
 /// `GlContext` make it current for the call, the others use the current
 /// one (of any origin). `render*` refuses a caster of another context.
-class GpuRefractionCaster {
+class GpuRefractionCaster : public detail::GpuCaster {
 public:
     explicit GpuRefractionCaster(const Slicemap& map); ///< local slicing only (`InvalidArgument`)
     explicit GpuRefractionCaster(const Sprite& sprite); ///< Axis::Z only (`InvalidArgument`)
@@ -119,24 +120,15 @@ public:
     GpuRefractionCaster(const GlContext& gl, const Slicemap& map);
     GpuRefractionCaster(const GlContext& gl, const Sprite& sprite);
     GpuRefractionCaster(const GlContext& gl, const SlicedVoxels& voxels);
-    /// Throws a one-line `GlError` naming `what` unless the caster's context is current on its thread.
-    void requireContext(const char* what) const { stamp_.check(what); }
 
     RefractionMethod method() const { return method_; }
-    std::size_t gpuBytes() const { return gpuBytes_; }
     /// Binds textures to units 0 and 1 and sets the uniforms
     /// shaders/voxel/refraction.frag declares for this method in `program` (in use).
     void setUniforms(GLuint program) const;
 
 private:
     RefractionMethod method_;
-    vds::detail::ContextStamp stamp_;
-    Texture maps_, ranges_;
-    GpuSprite sprite_;
-    VoxelGrid grid_;
-    std::int32_t backLayer_ = 0;
     float depthLo_ = 0.0f, depthExtent_ = 0.0f, columnStep_ = 0.0f;
-    std::size_t gpuBytes_ = 0;
 };
 
 /// Renders the rays of `view` with one full-screen draw into an RGBA32F

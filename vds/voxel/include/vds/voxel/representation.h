@@ -80,8 +80,9 @@ public:
     Representation representation() const { return representation_; }
 
     Method method() const override { return methodOf(representation_); }
-    /// Inside test of a point in mesh coordinates; points outside the grid are outside.
-    bool contains(const glm::vec3& p) const;
+    /// `contains(p, rule)`: the inside test of a point in mesh coordinates,
+    /// points outside the grid outside; rules other than parity are refused.
+    using Classifier::contains;
 
     /// Wall-clock seconds of the build on the GPU, read-back included (the
     /// first build on a context also compiles its shaders).
@@ -107,6 +108,9 @@ protected:
                         const ClassifyOptions& options) const override;
 
 private:
+    /// The lookup of one point (parity).
+    bool inside(const glm::vec3& p) const;
+
     Representation representation_;
     std::variant<Slicemap, BitGrid> data_;
     double buildSeconds_ = 0.0;

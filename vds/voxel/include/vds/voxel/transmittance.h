@@ -43,6 +43,7 @@
 #include <vds/gl/sprite.h>
 #include <vds/mesh.h>
 #include <vds/sprite.h>
+#include <vds/voxel/caster.h>
 #include <vds/voxel/light_frame.h>
 #include <vds/voxel/slicemap.h>
 #include <vds/voxel/slicing.h>
@@ -141,7 +142,7 @@ TransmittanceImage transmittanceOnCpu(const ReceiverPlane& plane, const LightFra
 /// the context (and thread) it was made in: the constructors taking a
 /// `GlContext` make it current for the call, the others use the current
 /// one (of any origin). `render*` refuses a caster of another context.
-class GpuTransmittanceCaster {
+class GpuTransmittanceCaster : public detail::GpuCaster {
 public:
     /// Uploads a slicemap pair (uniform or local): RGBA32UI array texture,
     /// plus an RGBA32F range texture for local slicing.
@@ -155,8 +156,6 @@ public:
     GpuTransmittanceCaster(const GlContext& gl, const Slicemap& map);
     GpuTransmittanceCaster(const GlContext& gl, const SlicedVoxels& voxels);
     GpuTransmittanceCaster(const GlContext& gl, const Sprite& sprite);
-    /// Throws a one-line `GlError` naming `what` unless the caster's context is current on its thread.
-    void requireContext(const char* what) const { stamp_.check(what); }
 
     TransmittanceSource source() const { return source_; }
     /// A slicemap with local slicing (the shader then reads the ranges too).
@@ -165,21 +164,11 @@ public:
     /// shaders/voxel/transmittance_plane.frag declares for this source in
     /// `program` (in use).
     void setUniforms(GLuint program) const;
-    /// Bytes of the GL textures.
-    std::size_t gpuBytes() const { return gpuBytes_; }
 
 private:
     TransmittanceSource source_;
-    vds::detail::ContextStamp stamp_;
-    Texture maps_, ranges_;
-    GpuSprite sprite_;
-    VoxelGrid grid_;
-    std::int32_t backLayer_ = 0;
     bool local_ = false;
-    glm::mat3 matrix_{1.0f};
-    glm::vec3 position_{0.0f};
     float depthExtent_ = 0.0f;
-    std::size_t gpuBytes_ = 0;
 };
 
 /// Renders the receiver plane into an RG32F target (quantity, light left)

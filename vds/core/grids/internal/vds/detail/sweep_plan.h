@@ -4,7 +4,7 @@
 // construction.
 //
 // With a sprite whose texture s, t and r each follow one world axis (depth
-// growing along its view axis `a`), a grid column along `a` falls in one
+// growing along the world axis `a` r follows: detail::sweepsByColumns), a grid column along `a` falls in one
 // texel column, and a cell's texture depth depends on its slice alone:
 // one depth per slice, shared by every column, increasing; cells with
 // depth outside [0, 1] are outside.
@@ -16,14 +16,16 @@
 
 #include <glm/vec3.hpp>
 
+#include <vds/detail/aligned_axes.h>
 #include <vds/grid.h>
 #include <vds/sprite.h>
 
 namespace vds::detail {
 
 struct SweepPlan {
-    /// False for a sprite rotated against the grid: no column sweep, each
-    /// cell is classified on its own (the other fields are unset).
+    /// False unless `sweepsByColumns(sprite)` (a sprite rotated against the
+    /// grid, or mirrored along its axis): no column sweep, each cell is
+    /// classified on its own (the other fields are unset).
     bool aligned = false;
     int a = 2, u = 0, v = 1;  ///< the sweep axis and the column axes (u, v): the sprite's permutation
     std::uint32_t n = 0;      ///< cells along `a`
@@ -48,5 +50,10 @@ struct SweepPlan {
 /// width, height, matrix and position; its `axis` is not read: the matrix
 /// says which world axis depth follows). Texels computed on `threads`.
 SweepPlan planSweep(const SpriteGrid& sprite, const Grid& grid, unsigned threads);
+
+/// `occupancy(sprite, ...)` (<vds/occupancy.h>) with a sprite's caps cache:
+/// its `SpriteClassifier`'s, or the call's.
+void occupancyOfSprite(const Sprite& sprite, const BoundaryCapsCache& caps, const Grid& grid, std::uint8_t* cells,
+                       const ClassifyOptions& options);
 
 } // namespace vds::detail

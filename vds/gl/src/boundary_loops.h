@@ -1,4 +1,4 @@
-// vds internal: a boundary's edges and its chain tree (caps_tree.h,
+// vds internal: a boundary's edges and its chain tree (<vds/detail/chain_tree.h>,
 // BoundaryCaps::chains) packed for the GLSL include (vpt.glsl's
 // VdsBoundaryEdges), so that a shader takes each node whose ball the
 // point's ray misses by its chord and its fan's expansion instead of

@@ -1,0 +1,406 @@
+// vds: the chain tree labels refine (BoundaryCaps::decide): its build, a
+// node taken by its chord and expansion, and the decide-or-refine loop.
+#include "winding/caps_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "winding/antipodal.h"
+#include "winding/caps_math.h"
+#include <vds/detail/tree_walk.h>
+
+namespace vds::detail {
+
+using namespace caps;
+
+namespace {
+/// Largest error bound of a node that labels take by its expansion; nodes
+/// erring by more are opened at once (they cannot help decide a label, and
+/// keeping every taken bound small keeps the running sums' drift small).
+constexpr double kMaxTakenBound = 0.25;
+/// Labels refine by the expansion to second order once the value lies
+/// within this of the threshold (decide()); farther out, first order
+/// (tuning: docs/benchmarks.md).
+constexpr double kFineBelow = 0.1;
+/// decide() opens, a round at a time, the taken nodes whose bound is at
+/// least this fraction of the largest: the fewest rounds for the nodes
+/// opened (tuning: docs/benchmarks.md).
+constexpr double kOpenFraction = 0.5;
+/// decide() gives up for the per-edge sum where this times its predicted
+/// work (rising as the square root of the shrink of the bound still
+/// needed) passes the budget: it bounds the work a point near 1/2 may
+/// spend on the tree before the per-edge sum (tuning: docs/benchmarks.md).
+constexpr double kGiveUp = 1.5;
+} // namespace
+
+// ------------------------------------------------------------ labels
+//
+// The tree labels refine: over the loops (each node's surface the loops'
+// fans, no chord), then within a loop over halves of its edges. A chain of
+// edges running from P to Q, closed by its chord Q -> P, bounds the fan
+// (g, b, a) over its edges a -> b and the chord, g the mean of its
+// vertices; the fan lies in the node's ball. Where q's ray towards -axis
+// misses the ball, the ray crosses no fan, so by the caps' identity (B of a
+// closed loop = its cap's crossing count less its cap's winding number,
+// caps_tree.h) the chain's per-edge angles sum to the chord's angle
+// f(P -> Q) (edgeSolidAngle, exact) less the fan's solid angle, which the
+// expansion takes. A chain's fan is a thin lune along the boundary, not a
+// cap across the loop: points near a large opening, where the caps' fans
+// all meet, are decided by a few chains of the loop near them, the rest of
+// the loop by chords. Leaves sum their edges' angles as the per-edge sum
+// does.
+
+namespace {
+/// Most edges a chain leaf holds.
+constexpr std::uint32_t kLeafEdges = 4;
+} // namespace
+
+namespace {
+/// A chain node's fan: its moments about the node's centre.
+void setFan(BoundaryCaps::Node& node, const Moments& m) {
+    node.vectorArea = m.vectorArea;
+    node.moment = m.moment;
+    node.quadrupole = m.quadrupole;
+    node.area = m.area;
+    node.errorScale = 3.0 * m.second / kFourPi;
+}
+} // namespace
+
+void BoundaryCaps::buildChains() {
+    std::vector<std::uint32_t> order(loops_.size());
+    for (std::uint32_t l = 0; l < order.size(); ++l) order[l] = l;
+    chains_.reserve(2 * (edges_.size() / 2) / 2 + 2 * loops_.size() + 2);
+    buildChainGroup(order, 0, std::uint32_t(order.size()));
+}
+
+std::uint32_t BoundaryCaps::buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first,
+                                            std::uint32_t last) {
+    if (last - first == 1) {
+        const CapLoop& loop = loops_[loops[first]];
+        const std::uint32_t treeFirst = std::uint32_t(chainEdges_.size() / 2);
+        chainEdges_.insert(chainEdges_.end(), loopEdges_.begin() + 2 * std::ptrdiff_t(loop.first),
+                          loopEdges_.begin() + 2 * std::ptrdiff_t(loop.first + loop.count));
+        return buildChain(loops[first], loop.first, loop.count, treeFirst);
+    }
+    const std::uint32_t index = std::uint32_t(chains_.size());
+    const std::uint32_t treeFirst = std::uint32_t(chainEdges_.size() / 2);
+    chains_.emplace_back();
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    glm::dvec3 clo = lo, chi = hi;
+    std::vector<std::array<glm::dvec3, 3>> tris;
+    for (std::uint32_t l = first; l < last; ++l) {
+        const CapLoop& loop = loops_[loops[l]];
+        clo = glm::min(clo, loop.centroid);
+        chi = glm::max(chi, loop.centroid);
+        for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k) {
+            const glm::dvec3 a(loopEdges_[2 * k]), b(loopEdges_[2 * k + 1]);
+            lo = glm::min(lo, a);
+            hi = glm::max(hi, a);
+            tris.push_back({loop.centroid, b, a});
+        }
+    }
+    ChainNode node{};
+    node.centre = 0.5 * (lo + hi);
+    // The ball holds every fan's corners (the centroids, rounded to float,
+    // may lie off a flat loop's hull), so the fans too.
+    for (const auto& t : tris)
+        node.radius = std::max({node.radius, glm::length(t[0] - node.centre), glm::length(t[2] - node.centre)});
+    setFan(node, momentsOf(tris, 0, tris.size(), node.centre));
+    finish(node);
+    node.chord = false;
+    node.loop = kNoLoop;
+    const glm::dvec3 extent = chi - clo;
+    const int split = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    const std::uint32_t middle = first + (last - first) / 2;
+    std::nth_element(loops.begin() + first, loops.begin() + middle, loops.begin() + last,
+                     [&](std::uint32_t x, std::uint32_t y) { return loops_[x].centroid[split] < loops_[y].centroid[split]; });
+    node.left = buildChainGroup(loops, first, middle);
+    node.right = buildChainGroup(loops, middle, last);
+    node.edgeFirst = treeFirst;
+    node.edgeCount = std::uint32_t(chainEdges_.size() / 2) - treeFirst;
+    chains_[index] = node;
+    return index;
+}
+
+std::uint32_t BoundaryCaps::buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count,
+                                       std::uint32_t treeFirst) {
+    const std::uint32_t index = std::uint32_t(chains_.size());
+    chains_.emplace_back();
+    ChainNode node{};
+    const bool whole = count == loops_[loop].count;
+    glm::dvec3 apex(0.0);
+    if (whole) {
+        apex = loops_[loop].centroid;
+    } else {
+        for (std::uint32_t k = first; k < first + count; ++k) apex += glm::dvec3(loopEdges_[2 * k]);
+        apex += glm::dvec3(loopEdges_[2 * (first + count - 1) + 1]);
+        apex /= double(count + 1);
+    }
+    std::vector<std::array<glm::dvec3, 3>> tris;
+    for (std::uint32_t k = first; k < first + count; ++k) {
+        const glm::dvec3 a(loopEdges_[2 * k]), b(loopEdges_[2 * k + 1]);
+        tris.push_back({apex, b, a});
+        node.radius = std::max({node.radius, glm::length(a - apex), glm::length(b - apex)});
+    }
+    node.from = glm::dvec3(loopEdges_[2 * first]);
+    node.to = glm::dvec3(loopEdges_[2 * (first + count - 1) + 1]);
+    node.chord = !whole;
+    node.loop = whole ? loop : kNoLoop;
+    if (node.chord) tris.push_back({apex, node.from, node.to}); // the chord Q -> P closes the chain
+    node.centre = apex;
+    setFan(node, momentsOf(tris, 0, tris.size(), apex));
+    finish(node);
+    node.edgeFirst = treeFirst;
+    node.edgeCount = count;
+    if (count <= kLeafEdges) {
+        node.first = first;
+        node.count = count;
+        chains_[index] = node;
+        return index;
+    }
+    const std::uint32_t half = count / 2;
+    node.left = buildChain(loop, first, half, treeFirst);
+    node.right = buildChain(loop, first + half, count - half, treeFirst + half);
+    chains_[index] = node;
+    return index;
+}
+
+bool BoundaryCaps::takeNode(const ChainNode& n, const glm::dvec3& p, bool fine, double& bound, double& value) const {
+    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
+    const glm::dvec3 y = n.centre - p;
+    const double d2 = glm::dot(y, y);
+    const double reach = n.radius * (1.0 + 1e-12);
+    // q's ray towards -axis misses the ball: the fan's crossing count is 0
+    const bool misses = y[s] * y[s] + y[t] * y[t] > reach * reach || p[a] < n.centre[a] - reach;
+    if (!misses || !(d2 > reach * reach)) return false;
+    const double d = std::sqrt(d2), e = d - reach;
+    bound = fine ? n.errorScale * remainderFactor(d, e, reach) : n.errorScale * firstOrderFactor(d, e);
+    if (!(bound <= kMaxTakenBound)) return false;
+    value = fine ? -expansion(n, y, d2, d) : -firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
+    if (n.chord) value += edgeSolidAngle(a, n.from, n.to, p);
+    return true;
+}
+
+bool BoundaryCaps::firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount,
+                            double farLo, double farHi, Estimate& out) const {
+    const glm::dvec3 p(q);
+    const int a = axisIndex_;
+    double angles = 0.0, bound = 0.5 * (farHi - farLo), work = 0.0;
+    EdgeAngles leafSum;
+    bool leaves = false;
+    for (std::size_t r = 0; r < rootCount; ++r) {
+        // refine()'s open() on a root, its first step: the same tests and
+        // terms (not `fine`: the first cut is first order).
+        const ChainNode& n = chains_[roots[r]];
+        double b, value;
+        if (takeNode(n, p, false, b, value)) {
+            work += n.chord ? 2.0 : 1.0;
+            angles += value;
+            bound += b;
+            continue;
+        }
+        if (n.count == 0 && n.edgeCount > kDirectEdges) return false; // refine splits it
+        work += double(n.edgeCount);
+        leafSum.add(&chainEdges_[2 * std::size_t(n.edgeFirst)], n.edgeCount, a, p);
+        leaves = true;
+    }
+    // As refine() finds its first value (margin 1).
+    const double offset = double(winding) - 0.5 - kGeneralizedWindingTie + 0.5 * (farLo + farHi);
+    const double value = offset + (angles + (leaves ? leafSum.angle() : 0.0)) / kFourPi;
+    if (!(std::fabs(value) > bound + kRoundingSlack)) return false;
+    out = {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack, work};
+    return true;
+}
+
+BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, double margin) const {
+    if (!closed_) return {exact(winding, q), 0.0};
+    if (chains_.empty()) return {double(winding), 0.0};
+    const std::uint32_t root = 0;
+    Estimate out;
+    if (refine(winding, q, margin, &root, 1, 0.0, 0.0, out)) return out;
+    return {exact(winding, q), 0.0, out.work + double(edges_.size() / 2)};
+}
+
+/// refine()'s running state: the cut of the chain tree taken so far, its
+/// per-edge angles' sum (in radians: of the taken nodes, and of the
+/// leaves' edges as the per-edge sum takes them, EdgeAngles: one atan2
+/// when a label is tried, not one an edge) and its summed bounds.
+struct BoundaryCaps::Refinement {
+    struct Taken {
+        double bound;
+        double value; ///< the node's edges' angles by its chord and expansion
+        std::uint32_t node;
+    };
+    Refinement(const BoundaryCaps& of, const glm::vec3& q, double farHalfWidth, std::vector<Taken>& takenNodes,
+               std::vector<Taken>& openingNodes)
+        : caps(of), p(q), axis(of.axisIndex_), farBound(farHalfWidth), budget(double(of.edges_.size() / 2)),
+          bound(farHalfWidth), taken(takenNodes), opening(openingNodes) {}
+
+    /// Opens the subtree at `index`: nodes q's ray misses and far enough by
+    /// expansion, the rest down to nodes of at most kDirectEdges edges,
+    /// whose edges are summed exactly. False once the work exceeds the
+    /// budget. `expand`: not by its own expansion (a node taken before).
+    bool open(std::uint32_t index, bool expand) {
+        return walkTree(index, [&](std::uint32_t i, TreeStack& stack) {
+            if (work > budget) return false;
+            const ChainNode& n = caps.chains_[i];
+            double b, value;
+            if (!(expand && i == index) && caps.takeNode(n, p, fine, b, value)) {
+                work += n.chord ? 2.0 : 1.0;
+                angles += value;
+                bound += b;
+                taken.push_back({b, value, i});
+                return true;
+            }
+            if (n.count == 0 && n.edgeCount > kDirectEdges) {
+                stack.push(n.left);
+                stack.push(n.right);
+                return true;
+            }
+            work += double(n.edgeCount);
+            leafSum.add(&caps.chainEdges_[2 * std::size_t(n.edgeFirst)], n.edgeCount, axis, p);
+            leavesChanged = true;
+            return true;
+        });
+    }
+
+    /// Rounds of opening until the value, less (1/2 + tie) by `offset`,
+    /// lies farther than `margin` times the bound from the threshold (then
+    /// `out` and true), or no round can get it there.
+    bool decide(double offset, double margin, Estimate& out);
+    /// Opens every taken node whose bound is at least kOpenFraction of the
+    /// largest, adding to `moved` how far that may move the value; false
+    /// once the work exceeds the budget.
+    bool openRound(double& moved);
+
+    const BoundaryCaps& caps;
+    const glm::dvec3 p;
+    const int axis;
+    /// What stands for the loops not in `roots`: half the width of the
+    /// range of their part.
+    const double farBound;
+    /// Work spent, in nodes taken (a chord's angle and an expansion) and
+    /// edges summed: past the edge count the per-edge sum decides.
+    const double budget;
+    double work = 0.0;
+    double angles = 0.0, bound;
+    EdgeAngles leafSum;
+    bool fine = false;
+    /// The leaves' angle, taken again (an atan2) only after edges were
+    /// summed.
+    bool leavesChanged = false;
+    double leaves = 0.0;
+    std::vector<Taken>& taken;
+    std::vector<Taken>& opening;
+};
+
+bool BoundaryCaps::Refinement::decide(double offset, double margin, Estimate& out) {
+    // The value is found (the leaves' atan2) only where it may decide:
+    // opening a node of bound b moves the value by at most b plus the
+    // bounds its children add (the node's edges lie within b of its
+    // value, the children's values within theirs of them), so |value|
+    // is at most |the last one found| + `moved`, and while that is
+    // within margin * bound no value decides.
+    double value = 0.0, moved = 0.0;
+    bool found = false;
+    while (true) {
+        const bool find = !found || std::fabs(value) + moved > margin * bound + kRoundingSlack;
+        if (find) {
+            if (leavesChanged) {
+                leaves = leafSum.angle();
+                leavesChanged = false;
+            }
+            value = offset + (angles + leaves) / kFourPi;
+            moved = 0.0;
+            found = true;
+            // The running sums drift by some 1e-13 at most (each taken
+            // bound is at most kMaxTakenBound), within the slack.
+            if (std::fabs(value) > margin * bound + kRoundingSlack) {
+                out = {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack, work};
+                return true;
+            }
+            // Within the far range's half width of 1/2 no refining
+            // decides.
+            if (std::fabs(value) <= margin * farBound + kRoundingSlack) return false;
+            // The bound must shrink by margin * bound / |value|, which
+            // takes about the work so far times its square root (a
+            // node's first-order bound falls as its radius cubed, but
+            // the cut's nodes rise faster than the radius falls, and a
+            // taken node costs about three edges of the per-edge sum):
+            // where that passes the budget, the per-edge sum is the
+            // cheaper.
+            if (kGiveUp * work * std::sqrt(margin * bound / std::fabs(value)) > budget) return false;
+        }
+        if (taken.empty() || work > budget) return false;
+        // Close to the threshold, the nodes opened from here are taken
+        // to second order (their bound about R / D of the first
+        // order's, for about twice the work; bulk points stop at the
+        // first cut; kFineBelow).
+        fine = std::fabs(value) < kFineBelow;
+        if (!openRound(moved)) return false;
+    }
+}
+
+bool BoundaryCaps::Refinement::openRound(double& moved) {
+    double largest = 0.0;
+    for (const Taken& tk : taken) largest = std::max(largest, tk.bound);
+    const double least = kOpenFraction * largest;
+    opening.clear();
+    std::size_t kept = 0;
+    for (const Taken& tk : taken) {
+        if (tk.bound >= least) {
+            opening.push_back(tk);
+            angles -= tk.value;
+            bound -= tk.bound;
+            moved += tk.bound;
+        } else {
+            taken[kept++] = tk;
+        }
+    }
+    taken.resize(kept);
+    if (taken.empty()) bound = farBound; // no drift left where nothing is taken
+    const double before = bound;
+    bool more = true;
+    for (std::size_t k = 0; k < opening.size() && more; ++k) {
+        const ChainNode& n = caps.chains_[opening[k].node];
+        if (n.count == 0) more = open(n.left, false) && open(n.right, false);
+        else more = open(opening[k].node, true); // a leaf: summed exactly
+    }
+    if (!more) return false;
+    moved += bound - before;
+    return true;
+}
+
+bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const std::uint32_t* roots,
+                          std::size_t rootCount, double farLo, double farHi, Estimate& out) const {
+    thread_local std::vector<Refinement::Taken> taken, opening;
+    taken.clear();
+    // Decide-or-refine: start from the coarsest cut whose nodes each err by
+    // at most kMaxTakenBound, then open, a round at a time, every taken
+    // node whose bound is at least kOpenFraction of the largest, until the
+    // value lies farther from 1/2 than the summed bounds.
+    Refinement refinement(*this, q, 0.5 * (farHi - farLo), taken, opening);
+    // value - (1/2 + tie) = offset + angles / 4 pi; the estimate lies
+    // within bound + kRoundingSlack of the per-edge sum, so a value farther
+    // than that from the threshold has the per-edge sum's label.
+    const double offset = double(winding) - 0.5 - kGeneralizedWindingTie + 0.5 * (farLo + farHi);
+    bool opened = true;
+    for (std::size_t r = 0; r < rootCount && opened; ++r) opened = refinement.open(roots[r], false);
+    if (opened && refinement.decide(offset, margin, out)) return true;
+    out.work = refinement.work;
+    return false;
+}
+
+ChainTree chainTreeOf(const glm::vec3* edges, std::size_t edgeCount, Axis axis) {
+    const BoundaryCaps caps(edges, edgeCount, axis);
+    ChainTree tree;
+    tree.closed = caps.closed();
+    tree.loopEdges = caps.loopEdges();
+    tree.nodes = caps.chains();
+    return tree;
+}
+
+} // namespace vds::detail

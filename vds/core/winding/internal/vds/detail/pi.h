@@ -1,0 +1,11 @@
+// vds internal: pi, once, for the solid angles of the winding number and
+// anything else in the library that measures angles.
+#pragma once
+
+namespace vds::detail {
+
+constexpr double kPi = 3.14159265358979323846;
+/// The full solid angle: a winding number is a sum of solid angles over it.
+constexpr double kFourPi = 4.0 * kPi;
+
+} // namespace vds::detail
