@@ -206,9 +206,9 @@ TEST_F(GwnGpuTest, EveryProgramMatchesTheCpuBesideInFrontAndBehindTheBox) {
             for (Rule rule : {Rule::Parity, Rule::Winding, Rule::GeneralizedWinding}) {
                 ClassifyOptions options;
                 options.rule = rule;
-                options.boundary = BoundaryEvaluation::Exact;
                 std::vector<std::uint8_t> cpu(points.size());
-                classify(sprite, {points.data(), points.size()}, cpu.data(), options);
+                classify(sprite, {points.data(), points.size()}, cpu.data(), options,
+                         {QueryLayout::Auto, BoundaryEvaluation::Exact});
                 for (GpuSpriteParts parts : {GpuSpriteParts::ColumnsOnly, GpuSpriteParts::TextureOnly}) {
                     const GpuSprite gpu(sprite, parts);
                     std::vector<std::uint8_t> labels(points.size(), 7);
