@@ -53,6 +53,7 @@
 #include <vds/vds_file.h>
 
 #include "arrays.h"
+#include "distance.h"
 
 namespace py = pybind11;
 using vds::python::DTypeError;
@@ -816,6 +817,7 @@ rule: "parity" (odd crossings in front), "winding" (non-zero winding) or
 PYBIND11_MODULE(_vds, m) {
     m.doc() = "vds: point-in-solid tests with volumetric depth sprites (the compiled part; use `import vds`)";
     registerExceptions(m);
+    vds::python::registerDistance(m);
     pthread_atfork(nullptr, nullptr, &forgetGlThreadInChild);
 
     py::class_<vds::Grid>(m, "Grid", R"doc(

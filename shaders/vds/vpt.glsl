@@ -403,4 +403,24 @@ bool vdsParityTestPaper(sampler3D ldi, vec3 T, int depth, bool initParity) {
     return parity;
 }
 
+// ---- Distance to the border --------------------------------------------------
+// A distance texture (<vds/gl/distance.h>, `uploadDistanceTexture`): the
+// signed distances of a vds::Grid's cell centres over the box [lo, hi]
+// (SignedDistance::grid), one R32F texel a cell, linear filtering, clamped
+// to the edge. Cell (i, j, k)'s centre lo + (i + 1/2, j + 1/2, k + 1/2) *
+// (hi - lo) / dims is texel (i, j, k)'s centre, so the lookup is the
+// trilinear interpolation of the exact distances around `world`: negative
+// inside by the grid's rule, and within half a cell's diagonal of the exact
+// signed distance (distance is 1-Lipschitz, and the interpolation weights
+// average the corners' offsets: sqrt(sum_a t_a (1 - t_a) h_a^2) <= |h| / 2),
+// plus the filter's weight rounding (8 bits on many GPUs: 1/256 of a cell's
+// change, below |h| sqrt(3) / 256). Exact at the cell centres to float
+// rounding. Between the outermost cell centres and the box, and outside it,
+// the edge cells' values are repeated: the bound grows by the distance to
+// the cell-centre box. Where the sign changes within a cell (on the surface)
+// the sign of the lookup can differ from the classifier's.
+float vdsDistance(sampler3D field, vec3 lo, vec3 hi, vec3 world) {
+    return texture(field, (world - lo) / (hi - lo)).r;
+}
+
 #endif
