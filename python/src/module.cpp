@@ -34,6 +34,7 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "distance.h"
 
 namespace py = pybind11;
 using vds::python::DTypeError;
@@ -222,6 +223,7 @@ PYBIND11_MODULE(_vds, m) {
     using namespace vds::python;
     m.doc() = "vds: point-in-solid tests with volumetric depth sprites (the compiled part; use `import vds`)";
     registerExceptions(m);
+    vds::python::registerDistance(m);
     pthread_atfork(nullptr, nullptr, &forgetGlThreadInChild);
     bindGrid(m);
     bindSprite(m);

@@ -53,6 +53,7 @@ from ._vds import (  # noqa: F401  (the public API)
     IoError,
     MeshWarning,
     OutOfMemory,
+    SignedDistance,
     Sprite,
     _gpu_resident,
     _mesh_copies,
@@ -60,19 +61,23 @@ from ._vds import (  # noqa: F401  (the public API)
     __version__,
     _release_gl,
     bake,
+    closest_points,
     from_bytes,
     gl_available,
     gl_unavailable_reason,
     load_mesh,
     occupancy,
     read,
+    sdf,
+    signed_distance,
     validate_mesh,
 )
 
 __all__ = [
     "Classifier", "DTypeError", "Error", "ExactClassifier", "FormatError", "GlError", "GlUnavailable", "Grid",
-    "InvalidArgument", "InvalidMesh", "IoError", "MeshWarning", "MethodInfo", "OutOfMemory", "Sprite", "bake",
-    "exact_contains", "from_bytes", "gl_available", "gl_unavailable_reason", "load_mesh", "methods", "occupancy", "read", "validate_mesh",
+    "InvalidArgument", "InvalidMesh", "IoError", "MeshWarning", "MethodInfo", "OutOfMemory", "SignedDistance", "Sprite", "bake",
+    "closest_points", "exact_contains", "from_bytes", "gl_available", "gl_unavailable_reason", "load_mesh", "methods",
+    "occupancy", "read", "sdf", "signed_distance", "validate_mesh",
     "winding_numbers",
 ]
 

@@ -239,6 +239,21 @@ float vdsNodeExpansion(int at, vec3 y) {
     return (first + second) / (d2 * sqrt(d2));
 }
 
+// Whether the node whose ball is `ball` (centre, radius) and whose bound's
+// scale is `errorScale` may be taken whole at q by its chord and expansion:
+// q's ray towards -r misses the ball (the fan's crossing count is 0), q lies
+// outside it and the expansion's remainder bound is at most
+// VDS_NODE_TOLERANCE.
+bool vdsNodeTaken(vec4 ball, float errorScale, vec3 q) {
+    vec3 y = ball.xyz - q;
+    float r2 = ball.w * ball.w;
+    float d2 = dot(y, y);
+    float d = sqrt(d2);
+    float e = d - ball.w;
+    return (y.x * y.x + y.y * y.y > r2 || q.z < ball.z - ball.w) && e > 0.0 &&
+           errorScale * ball.w * (d + 3.0 * e) <= VDS_NODE_TOLERANCE * 3.0 * d2 * d2 * e * e;
+}
+
 // The boundary term at q (the bake's frame, (s, t, r) order): the sum over
 // the edges of their solid angles, over 4 pi. With the chain tree
 // (GpuSprite::setBoundaryUniforms sets nodeCount; C++ caps_tree.h,
@@ -273,15 +288,7 @@ float vdsBoundaryTerm(VdsBoundary boundary, vec3 q) {
             vec4 links = vdsBoundaryEdges[at + 1]; // errorScale, skip, first edge, count << 2 | flags
             int skip = floatBitsToInt(links.y);
             int flags = floatBitsToInt(links.w);
-            vec3 y = ball.xyz - q;
-            float r2 = ball.w * ball.w;
-            float d2 = dot(y, y);
-            float d = sqrt(d2);
-            float e = d - ball.w;
-            // q's ray towards -r misses the ball (the fan's crossing count
-            // is 0), q lies outside it and the bound allows
-            if ((y.x * y.x + y.y * y.y > r2 || q.z < ball.z - ball.w) && e > 0.0 &&
-                links.x * ball.w * (d + 3.0 * e) <= VDS_NODE_TOLERANCE * 3.0 * d2 * d2 * e * e) {
+            if (vdsNodeTaken(ball, links.x, q)) {
                 taken[takenCount] = at;
                 takenCount += 1;
                 if ((flags & 2) != 0) {
@@ -394,6 +401,26 @@ bool vdsParityTestPaper(sampler3D ldi, vec3 T, int depth, bool initParity) {
         if (T.z < abs(texture(ldi, vec3(T.xy, offset * (float(i) + 0.5))).r)) parity = !parity;
     }
     return parity;
+}
+
+// ---- Distance to the border --------------------------------------------------
+// A distance texture (<vds/gl/distance.h>, `uploadDistanceTexture`): the
+// signed distances of a vds::Grid's cell centres over the box [lo, hi]
+// (SignedDistance::grid), one R32F texel a cell, linear filtering, clamped
+// to the edge. Cell (i, j, k)'s centre lo + (i + 1/2, j + 1/2, k + 1/2) *
+// (hi - lo) / dims is texel (i, j, k)'s centre, so the lookup is the
+// trilinear interpolation of the exact distances around `world`: negative
+// inside by the grid's rule, and within half a cell's diagonal of the exact
+// signed distance (distance is 1-Lipschitz, and the interpolation weights
+// average the corners' offsets: sqrt(sum_a t_a (1 - t_a) h_a^2) <= |h| / 2),
+// plus the filter's weight rounding (8 bits on many GPUs: 1/256 of a cell's
+// change, below |h| sqrt(3) / 256). Exact at the cell centres to float
+// rounding. Between the outermost cell centres and the box, and outside it,
+// the edge cells' values are repeated: the bound grows by the distance to
+// the cell-centre box. Where the sign changes within a cell (on the surface)
+// the sign of the lookup can differ from the classifier's.
+float vdsDistance(sampler3D field, vec3 lo, vec3 hi, vec3 world) {
+    return texture(field, (world - lo) / (hi - lo)).r;
 }
 
 #endif

@@ -105,5 +105,12 @@ void addInfo(CLI::App& app);
 void addEval(CLI::App& app);
 void addCompare(CLI::App& app);
 void addVoxelize(CLI::App& app);
+void addDistance(CLI::App& app);
+/// What `vds distance` and `vds sdf` refuse, as classify does: an unusable or
+/// flat mesh, and one whose inside `rule` does not define unless `allowOpen`;
+/// warns of non-manifold edges ("vds COMMAND: warning: ...").
+void checkSignedMesh(const vds::TriangleMesh& mesh, const std::string& name, vds::Rule rule, bool allowOpen,
+                     const char* command);
+void addSdf(CLI::App& app);
 
 } // namespace cli

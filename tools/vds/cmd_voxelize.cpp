@@ -49,10 +49,9 @@ vds::Box loadSprite(const VoxelizeArgs& a, vds::Sprite& sprite) {
     return sprite.grid.box;
 }
 
-/// Reads the mesh INPUT names, refuses one with no volume, warns as the rule
-/// asks (it is answered anyway); its bounds.
-vds::Box loadMesh(const VoxelizeArgs& a, vds::TriangleMesh& mesh) {
-    mesh = vds::loadMesh(a.input);
+/// Validates the mesh INPUT names: refuses one with no volume, warns as the
+/// rule asks (it is answered anyway); its bounds.
+vds::Box checkedBounds(const VoxelizeArgs& a, const vds::TriangleMesh& mesh) {
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, a.input);
     vds::requireVolume(report, a.input);
@@ -71,8 +70,16 @@ void voxelize(VoxelizeArgs& a) {
     const bool fromSprite = a.input.size() > 4 && a.input.compare(a.input.size() - 4, 4, ".vds") == 0;
     vds::TriangleMesh mesh;
     vds::Sprite sprite;
-    const vds::Box bounds = fromSprite ? loadSprite(a, sprite) : loadMesh(a, mesh);
-    phase("load", secondsSince(start));
+    vds::Box bounds;
+    if (fromSprite) {
+        bounds = loadSprite(a, sprite);
+    } else {
+        mesh = vds::loadMesh(a.input);
+        phase("read", secondsSince(start));
+        start = std::chrono::steady_clock::now();
+        bounds = checkedBounds(a, mesh);
+    }
+    phase(fromSprite ? "read" : "validate", secondsSince(start));
     vds::Grid grid;
     grid.box = bounds;
     if (!a.box.empty()) grid.box = vds::Box{{a.box[0], a.box[1], a.box[2]}, {a.box[3], a.box[4], a.box[5]}};
@@ -86,7 +93,11 @@ void voxelize(VoxelizeArgs& a) {
              std::to_string(grid.dims.z) + " cells " + (fromSprite ? "from the sprite" : "exactly from the mesh"));
     // The mesh's exact classifier is built once (every slab sweeps through it).
     std::optional<vds::ExactClassifier> exact;
-    if (!fromSprite) exact.emplace(mesh, vds::Axis::Z);
+    if (!fromSprite) {
+        start = std::chrono::steady_clock::now();
+        exact.emplace(mesh, vds::Axis::Z);
+        phase("index", secondsSince(start));
+    }
     const auto label = [&](const vds::Grid& g, std::uint8_t* out) {
         if (fromSprite) vds::occupancy(sprite, g, out, a.options);
         else exact->occupancy(g, out, a.options);

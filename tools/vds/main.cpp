@@ -167,6 +167,8 @@ int main(int argc, char** argv) {
     cli::addEval(app);
     cli::addCompare(app);
     cli::addVoxelize(app);
+    cli::addDistance(app);
+    cli::addSdf(app);
     app.add_subcommand("help", "print this help")->callback([&app] {
         std::fputs(app.get_formatter()->make_help(&app, "vds", CLI::AppFormatMode::Normal).c_str(), stdout);
     });

@@ -217,6 +217,15 @@
 //     the exact classifier's answers at close to a sprite's speed: per
 //     texel, bands where the surface may be; outside them the answer is
 //     proven, inside them the exact classifier decides. <vds/certified.h>
+//   SignedDistance(mesh, rule)                             <vds/distance.h>
+//     exact distances to the triangles (a 4-wide SAH hierarchy, the closest
+//     point in double): `distance` (signed: negative exactly where the exact
+//     classifier of the rule says inside), `unsignedDistance`,
+//     `closestPoints` (a ClosestPoint each: point, distance, triangle, its
+//     Feature and index), `grid` (a signed distance grid over a Grid, full
+//     or a band clamped to +-band), with DistanceOptions{threads,
+//     maxDistance} and DistanceGridOptions{threads, band}.
+//     `closestPointOnTriangle(p, a, b, c)`: the one closest-point kernel.
 //
 // ---- 8. On the GPU (vds::gl) --------------------------------------------------
 //
@@ -256,6 +265,9 @@
 //                                                        <vds/gl/classifier.h>
 //   GpuOccupancy         occupancy grids in a compute shader, into a GL
 //                        buffer or host memory.          <vds/gl/occupancy.h>
+//   uploadDistanceTexture(grid, cells)  a signed distance grid as a 3D
+//                        texture for `vdsDistance` in vpt.glsl (within half
+//                        a cell's diagonal of the exact distance). <vds/gl/distance.h>
 //   GpuBake bakeToGpu(gl, mesh, options, parts)  a GpuSprite straight from
 //                        the fragment-list bake, nothing read back. <vds/gl/bake.h>
 //   setStyleUniforms(program, solids, StyleOptions)  the uniforms of
@@ -315,6 +327,7 @@
 #include <vds/bake.h>
 #include <vds/certified.h>
 #include <vds/classify.h>
+#include <vds/distance.h>
 #include <vds/enum_names.h>
 #include <vds/error.h>
 #include <vds/exact.h>

@@ -1,0 +1,135 @@
+"""Exact distances from Python: vds.signed_distance, vds.closest_points,
+vds.sdf and vds.SignedDistance against a brute-force distance computed here
+in numpy (plane or nearest edge, over every triangle), the sign against the
+exact classifier of the same rule, and bad input."""
+import numpy as np
+import pytest
+
+import vds
+from conftest import box_mesh, sphere_mesh
+
+
+def _segment_distance(P, A, B):
+    AB = B - A
+    t = np.clip(np.einsum("pij,pij->pi", P[:, None, :] - A, AB[None]) / np.maximum(np.einsum("ij,ij->i", AB, AB), 1e-300),
+                0.0, 1.0)
+    return np.linalg.norm(P[:, None, :] - (A + t[..., None] * AB), axis=-1)
+
+
+def brute_force(V, F, P, as_float32=True):
+    """Distance of each point to the nearest triangle: to the plane where the
+    point projects inside the triangle, else to the nearest of its edges."""
+    P = (P.astype(np.float32) if as_float32 else P).astype(np.float64)  # points as the library reads them
+    V = np.asarray(V).astype(np.float32).astype(np.float64)
+    A, B, C = (V[F[:, k]].astype(np.float64) for k in range(3))
+    edges = np.minimum(np.minimum(_segment_distance(P, A, B), _segment_distance(P, B, C)), _segment_distance(P, C, A))
+    N = np.cross(B - A, C - A)
+    inside = np.ones(edges.shape, bool)
+    for X, Y in ((A, B), (B, C), (C, A)):
+        inside &= np.einsum("pij,ij->pi", np.cross(Y - X, P[:, None, :] - X), N) >= 0
+    plane = np.abs(np.einsum("pij,ij->pi", P[:, None, :] - A, N)) / np.linalg.norm(N, axis=1)
+    return np.where(inside, np.minimum(plane, edges), edges).min(axis=1)
+
+
+def sample(V, n=300, seed=1):
+    rng = np.random.default_rng(seed)
+    lo, hi = V.min(0), V.max(0)
+    pad = 0.2 * (hi - lo)
+    return rng.uniform(lo - pad, hi + pad, size=(n, 3)).astype(np.float32)
+
+
+def open_cup():
+    V, F = sphere_mesh(segments=32, rings=16)
+    centroids = V[F].mean(axis=1)
+    return V, F[centroids[:, 2] < 0.5]
+
+
+@pytest.mark.parametrize("mesh, rule", [(sphere_mesh(segments=32, rings=16), "parity"),
+                                        (box_mesh((0, 0, 0), (1, 2, 3)), "winding"),
+                                        (open_cup(), "generalized-winding")])
+def test_signed_distance_equals_brute_force_and_the_classifier(mesh, rule):
+    V, F = mesh
+    P = sample(V)
+    d = vds.signed_distance(V, F, P, rule=rule)
+    assert d.dtype == np.float64 and d.shape == (len(P),)
+    np.testing.assert_allclose(np.abs(d), brute_force(V, F, P), rtol=0, atol=1e-12)
+    inside = vds.exact_contains(V, F, P, rule=rule)
+    np.testing.assert_array_equal(np.signbit(d), inside)
+    assert 0 < inside.sum() < len(P)
+
+
+def test_closest_points_lie_at_the_distance():
+    V, F = sphere_mesh(segments=32, rings=16)
+    P = sample(V, 200, seed=2)
+    Q, d, T = vds.closest_points(V, F, P)
+    assert Q.shape == (len(P), 3) and T.dtype == np.uint32
+    np.testing.assert_allclose(np.linalg.norm(P.astype(np.float64) - Q, axis=1), d, rtol=0, atol=1e-12)
+    V = V.astype(np.float32)
+    np.testing.assert_allclose(d, brute_force(V, F, P), rtol=0, atol=1e-12)
+    # Each closest point lies on its own triangle.
+    for k in range(0, len(P), 7):
+        assert brute_force(V, F[T[k:k + 1]], Q[k:k + 1], as_float32=False)[0] < 1e-12
+
+
+def test_one_query_many_calls_and_double_points():
+    V, F = sphere_mesh(segments=32, rings=16)
+    query = vds.SignedDistance(V, F, rule="winding")
+    P = sample(V, 100, seed=3)
+    np.testing.assert_array_equal(query.distance(P.astype(np.float64)), query.distance(P))
+    np.testing.assert_array_equal(np.abs(query.distance(P)), query.unsigned_distance(P, threads=1))
+    assert query.rule == "winding"
+
+
+def test_sdf_equals_the_distances_of_the_cell_centres():
+    V, F = sphere_mesh(segments=32, rings=16)
+    grid = vds.Grid((-1.3, -1.2, -1.1), (1.2, 1.3, 1.4), (17, 19, 21))
+    cells = vds.sdf(V, F, grid, rule="parity")
+    assert cells.dtype == np.float32 and cells.shape == grid.shape
+    centres = grid.cell_centres().reshape(-1, 3)
+    expected = vds.signed_distance(V, F, centres).astype(np.float32).reshape(grid.shape)
+    np.testing.assert_array_equal(cells, expected)
+    np.testing.assert_array_equal(np.signbit(cells), vds.occupancy(V, F, grid))
+    band = vds.sdf(V, F, grid, band=0.1)
+    far = np.abs(expected) >= np.float32(0.1)
+    assert far.any() and (~far).any()
+    np.testing.assert_array_equal(band[~far], expected[~far])
+    np.testing.assert_array_equal(band[far], np.where(np.signbit(expected[far]), -0.1, 0.1).astype(np.float32))
+
+
+def test_bad_input_raises_one_clear_error():
+    V, F = sphere_mesh(segments=16, rings=8)
+    P = np.array([[0, 0, 0], [np.nan, 0, 0]], np.float32)
+    with pytest.raises(vds.InvalidArgument, match="not finite"):
+        vds.signed_distance(V, F, P)
+    with pytest.raises(vds.InvalidMesh):
+        vds.signed_distance(np.zeros((0, 3)), np.zeros((0, 3), np.int32), P[:1])
+    flat = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float)
+    with pytest.raises(vds.InvalidMesh, match="flat"):
+        vds.signed_distance(flat, np.array([[0, 1, 2]]), P[:1], rule="generalized-winding")
+    with pytest.warns(vds.MeshWarning, match="open"):
+        vds.signed_distance(*open_cup(), P[:1], rule="parity")
+    grid = vds.Grid((-1, -1, -1), (1, 1, 1), 4)
+    for band in (-1.0, float("nan"), float("inf")):
+        with pytest.raises(vds.InvalidArgument):
+            vds.sdf(V, F, grid, band=band)
+
+
+def test_the_command_line_gives_the_same_values(tmp_path):
+    """vds distance (the C++ library through the CLI) and Python on the same points."""
+    import pathlib
+    import subprocess
+
+    tool = pathlib.Path(vds.__file__).resolve().parents[2] / "tools" / "vds"
+    if not tool.exists():
+        pytest.skip("the vds tool is not built beside this module")
+    V, F = sphere_mesh(segments=32, rings=16)
+    with open(tmp_path / "sphere.obj", "w") as f:
+        f.writelines(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in V.astype(np.float32))
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in F)
+    P = sample(V, 200, seed=4)
+    np.save(tmp_path / "points.npy", P)
+    subprocess.run([str(tool), "distance", str(tmp_path / "sphere.obj"), str(tmp_path / "points.npy"), "-o",
+                    str(tmp_path / "d.npy"), "--closest-points", str(tmp_path / "q.npy"), "--rule", "winding",
+                    "--quiet"], check=True, capture_output=True)
+    np.testing.assert_array_equal(np.load(tmp_path / "d.npy"), vds.signed_distance(V, F, P, rule="winding"))
+    np.testing.assert_array_equal(np.load(tmp_path / "q.npy"), vds.closest_points(V, F, P)[0])

@@ -1,0 +1,292 @@
+// Exact signed distances (<vds/distance.h>) against a brute-force double-
+// precision reference by another formula (the distance to the plane where
+// the projection falls inside, else the nearest of the three segments),
+// over every triangle, on closed and open meshes built in code; the sign
+// against the same rule's exact classifier on every point; grids against
+// the per-point distance of their cell centres; and bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include <vds/distance.h>
+#include <vds/error.h>
+
+#include "points.h"
+#include "solids.h"
+
+namespace vds {
+namespace {
+
+double segmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+    const glm::dvec3 ab = b - a;
+    const double len2 = glm::dot(ab, ab);
+    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (a + t * ab));
+}
+
+/// Distance to one triangle: the plane's where p projects inside (all three
+/// edge normals' sides agree), else the nearest edge's.
+double triangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const double n2 = glm::dot(n, n);
+    const double edges = std::min({segmentDistance(p, a, b), segmentDistance(p, b, c), segmentDistance(p, c, a)});
+    if (!(n2 > 0.0)) return edges;
+    const bool inside = glm::dot(glm::cross(b - a, p - a), n) >= 0.0 && glm::dot(glm::cross(c - b, p - b), n) >= 0.0 &&
+                        glm::dot(glm::cross(a - c, p - c), n) >= 0.0;
+    return inside ? std::min(edges, std::abs(glm::dot(p - a, n)) / std::sqrt(n2)) : edges;
+}
+
+double bruteForce(const TriangleMesh& mesh, const glm::vec3& point) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const glm::uvec3& t : mesh.triangles)
+        best = std::min(best, triangleDistance(glm::dvec3(point), glm::dvec3(mesh.positions[t.x]),
+                                               glm::dvec3(mesh.positions[t.y]), glm::dvec3(mesh.positions[t.z])));
+    return best;
+}
+
+double diagonal(const TriangleMesh& mesh) {
+    const Box b = meshBounds(mesh);
+    return glm::length(glm::dvec3(b.hi) - glm::dvec3(b.lo));
+}
+
+/// Random points in and around the box, the corners, edge midpoints and
+/// points just off every few triangles (both sides): far, near and on.
+std::vector<glm::vec3> samplePoints(const TriangleMesh& mesh, std::size_t randomCount) {
+    std::vector<glm::vec3> points = test::randomPoints(meshBounds(mesh), randomCount, 0.3f, 7);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> offset(-0.02f, 0.02f);
+    for (std::size_t t = 0; t < mesh.triangles.size(); t += 1 + mesh.triangles.size() / 400) {
+        const glm::uvec3 v = mesh.triangles[t];
+        const glm::vec3 a = mesh.positions[v.x], b = mesh.positions[v.y], c = mesh.positions[v.z];
+        const glm::vec3 centroid = (a + b + c) / 3.0f;
+        points.insert(points.end(), {a, (a + b) * 0.5f, centroid, centroid + glm::vec3(offset(rng), offset(rng), offset(rng))});
+    }
+    return points;
+}
+
+struct Case {
+    std::string name;
+    TriangleMesh mesh;
+    Rule rule;
+};
+
+std::vector<Case> cases() {
+    using namespace solids;
+    return {
+        {"sphere", sphere(glm::vec3(0.1f, -0.2f, 0.3f), 1.0f, 48).mesh, Rule::Parity},
+        {"torus", torus(glm::vec3(0.0f), 1.0f, 0.3f, 40).mesh, Rule::Winding},
+        {"shell", shell(glm::vec3(0.0f), 1.0f, 0.6f, 32).mesh, Rule::Parity},
+        {"overlapping boxes", overlappingBoxes(glm::vec3(0.0f), glm::vec3(1.0f), glm::vec3(0.5f), glm::vec3(1.5f)).mesh,
+         Rule::Winding},
+        {"boxes sharing an edge", boxesSharingAnEdge(glm::vec3(0.0f), 1.0f).mesh, Rule::Parity},
+        {"knot", torusKnot(glm::vec3(0.0f), 1.0f, 2, 3, 0.2f, 120, 12).mesh, Rule::GeneralizedWinding},
+        {"cup", sphereCup(), Rule::GeneralizedWinding},
+        {"sphere with holes", sphereWithHoles(), Rule::GeneralizedWinding},
+        {"overlapping shells", overlappingShells(), Rule::GeneralizedWinding},
+        {"soup", looseTriangles(300, 0.3f, 5), Rule::GeneralizedWinding},
+        {"bowl with disk", bowlWithDisk(), Rule::GeneralizedWinding},
+    };
+}
+
+TEST(Distance, EqualsBruteForceAndSignEqualsTheExactClassifier) {
+    for (const Case& c : cases()) {
+        SCOPED_TRACE(c.name);
+        const SignedDistance distance(c.mesh, c.rule, c.name);
+        const std::vector<glm::vec3> points = samplePoints(c.mesh, 1500);
+        std::vector<double> d(points.size());
+        distance.distance(points, d.data(), DistanceOptions{2});
+        std::vector<std::uint8_t> inside(points.size());
+        ClassifyOptions classify;
+        classify.rule = c.rule;
+        distance.classifier().classify(points, inside.data(), classify);
+        const double tolerance = 1e-6 * diagonal(c.mesh);
+        std::size_t insideCount = 0;
+        for (std::size_t k = 0; k < points.size(); ++k) {
+            ASSERT_NEAR(std::abs(d[k]), bruteForce(c.mesh, points[k]), tolerance) << "point " << k;
+            ASSERT_EQ(std::signbit(d[k]), inside[k] != 0) << "point " << k;
+            insideCount += inside[k];
+        }
+        EXPECT_GT(insideCount, 0u); // both signs were exercised
+        EXPECT_LT(insideCount, points.size());
+    }
+}
+
+TEST(Distance, IsWithinTheHeadersBoundOfTheReference) {
+    // The header's bound, 2^-45 L: far tighter than the 1e-6 of the diagonal.
+    const TriangleMesh mesh = solids::torusKnot(glm::vec3(3.0f), 2.0f, 2, 3, 0.4f, 100, 10).mesh;
+    const SignedDistance distance(mesh, Rule::Winding);
+    for (const glm::vec3& p : samplePoints(mesh, 500)) {
+        const double bound = std::ldexp(1.0, -45) * 6.0;
+        ASSERT_NEAR(std::abs(distance.distance(p)), bruteForce(mesh, p), bound);
+    }
+}
+
+TEST(Distance, ClosestPointsLieOnTheirTriangleAtTheDistance) {
+    const TriangleMesh mesh = solids::sphereWithHoles();
+    const SignedDistance distance(mesh, Rule::GeneralizedWinding);
+    const std::vector<glm::vec3> points = samplePoints(mesh, 500);
+    std::vector<ClosestPoint> closest(points.size());
+    distance.closestPoints(points, closest.data());
+    std::vector<double> unsignedD(points.size());
+    distance.unsignedDistance(points, unsignedD.data());
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const ClosestPoint& c = closest[k];
+        ASSERT_LT(c.triangle, mesh.triangles.size());
+        const glm::uvec3 t = mesh.triangles[c.triangle];
+        const glm::dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), cc(mesh.positions[t.z]);
+        EXPECT_NEAR(triangleDistance(c.point, a, b, cc), 0.0, 1e-12);
+        EXPECT_NEAR(glm::length(glm::dvec3(points[k]) - c.point), c.distance, 1e-12);
+        EXPECT_EQ(c.distance, unsignedD[k]);
+        EXPECT_NEAR(c.distance, bruteForce(mesh, points[k]), 1e-12);
+        if (c.feature == Feature::Vertex) {
+            EXPECT_EQ(c.point, glm::dvec3(mesh.positions[t[c.index]]));
+        }
+    }
+}
+
+TEST(Distance, NamesTheFeature) {
+    const glm::dvec3 a(0.0), b(1.0, 0.0, 0.0), c(0.0, 1.0, 0.0);
+    const ClosestPoint face = closestPointOnTriangle(glm::dvec3(0.25, 0.25, 1.0), a, b, c);
+    EXPECT_EQ(face.feature, Feature::Face);
+    EXPECT_EQ(face.point, glm::dvec3(0.25, 0.25, 0.0));
+    EXPECT_EQ(face.distance, 1.0);
+    const ClosestPoint edge = closestPointOnTriangle(glm::dvec3(1.0, 1.0, 0.0), a, b, c);
+    EXPECT_EQ(edge.feature, Feature::Edge);
+    EXPECT_EQ(edge.index, 1);
+    EXPECT_EQ(edge.point, glm::dvec3(0.5, 0.5, 0.0));
+    const ClosestPoint vertex = closestPointOnTriangle(glm::dvec3(-1.0, -2.0, 3.0), a, b, c);
+    EXPECT_EQ(vertex.feature, Feature::Vertex);
+    EXPECT_EQ(vertex.index, 0);
+    // A degenerate triangle (a segment) answers as its edges.
+    const ClosestPoint segment = closestPointOnTriangle(glm::dvec3(0.5, 1.0, 0.0), a, b, b);
+    EXPECT_EQ(segment.point, glm::dvec3(0.5, 0.0, 0.0));
+    EXPECT_EQ(segment.distance, 1.0);
+}
+
+TEST(Distance, DoublePointsAreRoundedToFloatLikeTheClassifier) {
+    const TriangleMesh mesh = solids::sphere(glm::vec3(0.0f), 1.0f, 32).mesh;
+    const SignedDistance distance(mesh, Rule::Parity);
+    const std::vector<double> xyz = {0.1, 0.2, 0.3, 1.0 / 3.0, 2.0, -0.7, 0.0, 0.0, 0.999999999};
+    std::vector<double> fromDoubles(3), fromFloats(3);
+    distance.distance(PointsView::doubles(xyz.data(), 3), fromDoubles.data());
+    std::vector<glm::vec3> rounded;
+    for (int k = 0; k < 3; ++k) rounded.emplace_back(float(xyz[3 * k]), float(xyz[3 * k + 1]), float(xyz[3 * k + 2]));
+    distance.distance(rounded, fromFloats.data());
+    EXPECT_EQ(fromDoubles, fromFloats);
+    EXPECT_LT(fromFloats[0], 0.0);
+    EXPECT_GT(fromFloats[1], 0.0);
+}
+
+TEST(Distance, MaxDistanceClampsFarPoints) {
+    const TriangleMesh mesh = solids::box(glm::vec3(0.0f), glm::vec3(1.0f)).mesh;
+    const SignedDistance distance(mesh, Rule::Parity);
+    const std::vector<glm::vec3> points = {glm::vec3(0.5f), glm::vec3(0.5f, 0.5f, 1.1f), glm::vec3(3.0f, 0.5f, 0.5f)};
+    std::vector<double> d(3);
+    DistanceOptions options;
+    options.maxDistance = 0.25;
+    distance.distance(points, d.data(), options);
+    EXPECT_EQ(d[0], -0.25); // 0.5 from the faces, inside
+    EXPECT_NEAR(d[1], 0.1, 1e-7);
+    EXPECT_EQ(d[2], 0.25);
+    std::vector<ClosestPoint> c(3);
+    distance.closestPoints(points, c.data(), options);
+    EXPECT_EQ(c[2].triangle, kNoTriangle);
+    EXPECT_EQ(c[2].distance, 0.25);
+}
+
+TEST(Distance, GridEqualsThePointDistancesOfItsCellCentres) {
+    for (const Case& c : {cases()[2], cases()[7]}) {
+        SCOPED_TRACE(c.name);
+        const SignedDistance distance(c.mesh, c.rule);
+        Grid grid;
+        grid.box = meshBounds(c.mesh);
+        grid.box.lo -= glm::vec3(0.2f);
+        grid.box.hi += glm::vec3(0.1f);
+        grid.dims = glm::uvec3(19, 23, 29);
+        std::vector<float> full(grid.cellCount()), band(grid.cellCount());
+        distance.grid(grid, full.data(), DistanceGridOptions{2, 0.0});
+        const double width = 0.15;
+        distance.grid(grid, band.data(), DistanceGridOptions{2, width});
+        std::vector<glm::vec3> centres;
+        for (std::uint32_t i = 0; i < grid.dims.x; ++i)
+            for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+                for (std::uint32_t k = 0; k < grid.dims.z; ++k) centres.push_back(grid.cellCentre(i, j, k));
+        std::vector<double> d(centres.size());
+        distance.distance(centres, d.data());
+        std::size_t clamped = 0;
+        for (std::size_t n = 0; n < d.size(); ++n) {
+            ASSERT_EQ(full[n], float(d[n])) << "cell " << n;
+            const bool far = std::abs(d[n]) >= width;
+            ASSERT_EQ(band[n], far ? float(std::signbit(d[n]) ? -width : width) : float(d[n])) << "cell " << n;
+            clamped += far;
+        }
+        EXPECT_GT(clamped, 0u);
+        EXPECT_LT(clamped, d.size());
+    }
+}
+
+TEST(Distance, GridCellsFarInsideARoundSolidSearchTheWholeHierarchy) {
+    // Near the centre of a fine sphere every triangle is nearly as near as
+    // the nearest: the bricks' lists grow past their cap, and those cells
+    // search the hierarchy from their neighbour's triangle instead.
+    const TriangleMesh mesh = solids::sphere(glm::vec3(0.0f), 1.0f, 200).mesh;
+    const SignedDistance distance(mesh, Rule::Parity);
+    Grid grid;
+    grid.box = {glm::vec3(-0.3f), glm::vec3(0.3f)};
+    grid.dims = glm::uvec3(9, 8, 7);
+    std::vector<float> cells(grid.cellCount());
+    distance.grid(grid, cells.data(), DistanceGridOptions{2, 0.0});
+    for (std::uint32_t i = 0; i < grid.dims.x; ++i)
+        for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+            for (std::uint32_t k = 0; k < grid.dims.z; ++k) {
+                const glm::vec3 p = grid.cellCentre(i, j, k);
+                ASSERT_EQ(cells[grid.index(i, j, k)], float(distance.distance(p)));
+                ASSERT_NEAR(cells[grid.index(i, j, k)], -bruteForce(mesh, p), 1e-6);
+            }
+}
+
+TEST(Distance, BadInputGetsOneClearError) {
+    const TriangleMesh sphere = solids::sphere(glm::vec3(0.0f), 1.0f, 16).mesh;
+    const SignedDistance distance(sphere, Rule::Parity);
+    std::vector<glm::vec3> points = {glm::vec3(0.0f), glm::vec3(std::nanf(""), 0.0f, 0.0f)};
+    std::vector<double> out = {7.0, 7.0};
+    try {
+        distance.distance(points, out.data());
+        FAIL() << "a NaN point was answered";
+    } catch (const InvalidArgument& e) {
+        EXPECT_NE(std::string(e.what()).find("point 1 is not finite"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(out, (std::vector<double>{7.0, 7.0})); // nothing written
+    EXPECT_THROW(distance.distance(points[1]), InvalidArgument);
+    EXPECT_THROW(distance.unsignedDistance(PointsView(points), out.data(), DistanceOptions{0, -1.0}), InvalidArgument);
+
+    Grid grid;
+    grid.box = meshBounds(sphere);
+    grid.dims = glm::uvec3(4);
+    std::vector<float> cells(grid.cellCount());
+    for (double band : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()})
+        EXPECT_THROW(distance.grid(grid, cells.data(), DistanceGridOptions{1, band}), InvalidArgument) << band;
+
+    EXPECT_THROW(SignedDistance(TriangleMesh{}, Rule::Parity), InvalidMesh);
+    TriangleMesh flat;
+    flat.positions = {glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)};
+    flat.triangles = {glm::uvec3(0, 1, 2)};
+    EXPECT_THROW(SignedDistance(flat, Rule::GeneralizedWinding), InvalidMesh);
+    // An open mesh by parity: answered like the exact classifier (crossings as for a surface), not refused.
+    const TriangleMesh cup = solids::sphereCup();
+    const SignedDistance byParity(cup, Rule::Parity);
+    EXPECT_EQ(std::signbit(byParity.distance(glm::vec3(0.0f))), byParity.classifier().contains(glm::vec3(0.0f)));
+    TriangleMesh badIndex = sphere;
+    badIndex.triangles[3].y = 100000;
+    EXPECT_THROW(SignedDistance(badIndex, Rule::Parity), InvalidMesh);
+}
+
+} // namespace
+} // namespace vds

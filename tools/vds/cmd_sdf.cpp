@@ -1,0 +1,94 @@
+// vds sdf: a signed distance grid of a mesh, full or a narrow band, into a
+// float32 .npy file.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <vds/distance.h>
+#include <vds/mesh_io.h>
+#include <vds/npy.h>
+#include <vds/sprite.h>
+
+#include "cli.h"
+
+namespace cli {
+
+namespace {
+
+struct SdfArgs {
+    std::string mesh, output;
+    std::uint32_t dims = 0;
+    std::vector<std::uint32_t> dimsXyz;
+    std::vector<float> box;
+    double pad = 0.0;
+    double band = 0.0;
+    const CLI::Option* bandGiven = nullptr;
+    vds::Rule rule = vds::Rule::Parity;
+    vds::DistanceGridOptions options;
+    bool allowOpen = false, quiet = false;
+};
+
+void sdf(SdfArgs& a) {
+    if ((a.dims == 0) == a.dimsXyz.empty()) throw CLI::ValidationError("give --dims N or --dims-xyz NX NY NZ");
+    if (a.bandGiven->count() && !(std::isfinite(a.band) && a.band > 0.0))
+        throw CLI::ValidationError("--band: the band's half-width must be a finite distance above 0 (leave it out "
+                                   "for the full grid), not " + std::to_string(a.band));
+    if (!(std::isfinite(a.pad) && a.pad >= 0.0 && a.pad <= 10.0))
+        throw CLI::ValidationError("--pad: a fraction of the box's size from 0 to 10, not " + std::to_string(a.pad));
+    const auto progress = progressPrinter(a.quiet);
+    const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
+    checkSignedMesh(mesh, a.mesh, a.rule, a.allowOpen, "sdf");
+    const vds::SignedDistance query(mesh, a.rule, a.mesh);
+    progress("built " + query.summary());
+    vds::Grid grid;
+    grid.box = vds::meshBounds(mesh);
+    if (!a.box.empty()) grid.box = vds::Box{{a.box[0], a.box[1], a.box[2]}, {a.box[3], a.box[4], a.box[5]}};
+    const glm::vec3 margin = float(a.pad) * (grid.box.hi - grid.box.lo);
+    grid.box.lo -= margin;
+    grid.box.hi += margin;
+    grid.dims = a.dims ? glm::uvec3(a.dims) : glm::uvec3(a.dimsXyz[0], a.dimsXyz[1], a.dimsXyz[2]);
+    vds::checkGrid(grid);
+    a.options.band = a.band;
+    std::vector<float> cells(grid.cellCount());
+    const auto start = std::chrono::steady_clock::now();
+    query.grid(grid, cells.data(), a.options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    vds::writeNpy(a.output, "<f4", {grid.dims.x, grid.dims.y, grid.dims.z}, cells.data(), cells.size() * sizeof(float));
+    std::size_t inside = 0;
+    for (float v : cells) inside += std::signbit(v);
+    std::printf("wrote %s: %ux%ux%u cells, %zu inside, %s, %s rule, in %.3f s\n", a.output.c_str(), grid.dims.x,
+                grid.dims.y, grid.dims.z, inside,
+                a.band > 0.0 ? ("band " + std::to_string(a.band)).c_str() : "full grid", vds::toString(a.rule), seconds);
+}
+
+} // namespace
+
+void addSdf(CLI::App& app) {
+    const auto [c, a] = addCommand<SdfArgs>(
+        app, "sdf", "signed distance grid of a mesh (full or a narrow band), into a float32 .npy file",
+        "  vds sdf MESH --dims N [--band W] -o SDF.npy [--rule RULE] [--box ...] [--pad F]\n"
+        "SDF.npy: float32 of shape (NX, NY, NZ), indexed [i][j][k], the signed distance of the centre of\n"
+        "cell (i, j, k), lo + (i + 1/2, j + 1/2, k + 1/2) * (hi - lo) / (NX, NY, NZ), as 'vds voxelize'\n"
+        "places them: box [lo, hi] the mesh's bounds (or --box) grown by --pad times its size on every\n"
+        "side. Negative exactly where 'vds voxelize' with the same rule says inside. With --band W\n"
+        "(mesh units), cells farther than W from the surface hold -W or +W.",
+        sdf);
+    addMesh(*c, a->mesh);
+    c->add_option("-o,--output", a->output, "output .npy (written whole or not at all)")->required()->type_name("FILE");
+    c->add_option("--dims", a->dims, "cells along each axis")->transform(wholeNumber(1, vds::kMaxResolution))->type_name("N");
+    c->add_option("--dims-xyz", a->dimsXyz, "cells along x, y and z")
+        ->expected(3)
+        ->transform(wholeNumber(1, vds::kMaxResolution))
+        ->type_name("NX NY NZ");
+    c->add_option("--box", a->box, "the grid's box instead of the mesh's bounds")->expected(6)->type_name("X0 Y0 Z0 X1 Y1 Z1");
+    c->add_option("--pad", a->pad, "grow the box by this fraction of its size on every side")->type_name("F");
+    a->bandGiven = c->add_option("--band", a->band, "narrow band half-width W, mesh units: farther cells hold +-W")
+                       ->type_name("W");
+    addEnum(*c, "--rule", a->rule, "what is inside (negative): parity, winding, or generalized-winding (open meshes)");
+    c->add_flag("--allow-open", a->allowOpen, "sign an open mesh by crossing count anyway");
+    addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
+}
+
+} // namespace cli

@@ -1,0 +1,399 @@
+// vds: the distance hierarchy's build and nearest-triangle search (bvh.h).
+#include "distance/bvh.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "distance/triangle_distance.h"
+
+namespace vds::detail {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr int kBins = 16;
+/// Below this depth of the binary tree the surface-area heuristic decides;
+/// past it, median splits, so the depth (and the search's stack) stays
+/// bounded by kSahDepth + log2(triangles) whatever the input.
+constexpr int kSahDepth = 48;
+/// The search's stack: three entries a level at most over
+/// kSahDepth + 32 levels.
+constexpr int kStackEntries = 3 * (kSahDepth + 32) + 4;
+/// A box is pruned when its float squared distance exceeds the best squared
+/// distance by this relative margin: above the few float roundings of a box
+/// distance (4 * 2^-24) and of the bound itself (2^-24).
+constexpr double kPruneMargin = 1.0 + 1.0 / (1 << 20);
+/// A float plane distance |n . p - w| is within kPlaneError (|p|_1 + 2
+/// max |v|_1) of the exact distance to the plane: the normal's rounding to
+/// float (sqrt(3) 2^-24 relative), the offset's (2^-24) and four float
+/// roundings of the dot product (4 2^-24), with a factor of 2 to spare.
+constexpr float kPlaneError = 1e-6f;
+
+struct Aabb {
+    glm::vec3 lo{kInf}, hi{-kInf};
+    void grow(const glm::vec3& p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    void grow(const Aabb& b) {
+        lo = glm::min(lo, b.lo);
+        hi = glm::max(hi, b.hi);
+    }
+    float area() const {
+        const glm::vec3 e = glm::max(hi - lo, glm::vec3(0.0f));
+        return e.x * e.y + e.y * e.z + e.z * e.x;
+    }
+};
+
+struct Prim {
+    Aabb box;
+    glm::vec3 centroid;
+    std::uint32_t index;
+};
+
+struct BuildNode {
+    Aabb box;
+    std::uint32_t left = 0, right = 0; ///< children (inner)
+    std::uint32_t first = 0, count = 0; ///< prims (leaf: count > 0)
+    bool leaf() const { return count > 0; }
+};
+
+/// The binned SAH split of prims [first, first + count): the prims of the
+/// left side first, and their count (0: no split worth a node found).
+class BinaryBuilder {
+public:
+    explicit BinaryBuilder(std::vector<Prim>& prims) : prims_(prims) {}
+
+    std::uint32_t build(std::uint32_t first, std::uint32_t count, int depth) {
+        const std::uint32_t self = std::uint32_t(nodes.size());
+        nodes.emplace_back();
+        Aabb box, centroids;
+        for (std::uint32_t k = first; k < first + count; ++k) {
+            box.grow(prims_[k].box);
+            centroids.grow(prims_[k].centroid);
+        }
+        nodes[self].box = box;
+        if (count <= kLeafTriangles) {
+            nodes[self].first = first;
+            nodes[self].count = count;
+            return self;
+        }
+        std::uint32_t leftCount = depth < kSahDepth ? sahSplit(first, count, centroids) : 0;
+        if (leftCount == 0 || leftCount == count) leftCount = medianSplit(first, count, centroids);
+        const std::uint32_t left = build(first, leftCount, depth + 1);
+        const std::uint32_t right = build(first + leftCount, count - leftCount, depth + 1);
+        nodes[self].left = left;
+        nodes[self].right = right;
+        return self;
+    }
+
+    std::vector<BuildNode> nodes;
+
+private:
+    static int binOf(float c, float lo, float scale) {
+        return std::min(kBins - 1, std::max(0, int((c - lo) * scale)));
+    }
+
+    std::uint32_t sahSplit(std::uint32_t first, std::uint32_t count, const Aabb& centroids) {
+        float bestCost = std::numeric_limits<float>::infinity();
+        int bestAxis = -1, bestBin = 0;
+        for (int a = 0; a < 3; ++a) {
+            const float extent = centroids.hi[a] - centroids.lo[a];
+            if (!(extent > 0.0f)) continue;
+            const float scale = float(kBins) / extent;
+            Aabb bins[kBins];
+            std::uint32_t counts[kBins] = {};
+            for (std::uint32_t k = first; k < first + count; ++k) {
+                const int b = binOf(prims_[k].centroid[a], centroids.lo[a], scale);
+                bins[b].grow(prims_[k].box);
+                ++counts[b];
+            }
+            float rightCost[kBins];
+            Aabb right;
+            std::uint32_t rightCount = 0;
+            for (int b = kBins - 1; b > 0; --b) {
+                right.grow(bins[b]);
+                rightCount += counts[b];
+                rightCost[b] = right.area() * float(rightCount);
+            }
+            Aabb left;
+            std::uint32_t leftCount = 0;
+            for (int b = 0; b < kBins - 1; ++b) {
+                left.grow(bins[b]);
+                leftCount += counts[b];
+                const float cost = left.area() * float(leftCount) + rightCost[b + 1];
+                if (leftCount > 0 && leftCount < count && cost < bestCost) {
+                    bestCost = cost;
+                    bestAxis = a;
+                    bestBin = b;
+                }
+            }
+        }
+        if (bestAxis < 0) return 0;
+        const float lo = centroids.lo[bestAxis];
+        const float scale = float(kBins) / (centroids.hi[bestAxis] - lo);
+        const auto mid = std::partition(prims_.begin() + first, prims_.begin() + first + count, [&](const Prim& p) {
+            return binOf(p.centroid[bestAxis], lo, scale) <= bestBin;
+        });
+        return std::uint32_t(mid - (prims_.begin() + first));
+    }
+
+    /// Half the prims by centroid along the longest extent (by index when
+    /// every centroid is the same point).
+    std::uint32_t medianSplit(std::uint32_t first, std::uint32_t count, const Aabb& centroids) {
+        const glm::vec3 e = centroids.hi - centroids.lo;
+        const int a = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+        const std::uint32_t half = count / 2;
+        std::nth_element(prims_.begin() + first, prims_.begin() + first + half, prims_.begin() + first + count,
+                         [a](const Prim& l, const Prim& r) { return l.centroid[a] < r.centroid[a]; });
+        return half;
+    }
+
+    std::vector<Prim>& prims_;
+};
+
+std::int32_t leafReference(std::uint32_t first, std::uint32_t count) {
+    return ~std::int32_t(first << 2 | (count - 1));
+}
+
+/// The four-wide tree of a binary one, depth first.
+class Collapser {
+public:
+    Collapser(const std::vector<BuildNode>& binary, std::vector<BvhNode>& nodes) : binary_(binary), nodes_(nodes) {}
+
+    std::uint32_t emit(std::uint32_t b) {
+        const std::uint32_t self = std::uint32_t(nodes_.size());
+        nodes_.emplace_back();
+        std::uint32_t kids[4];
+        int n = 0;
+        if (binary_[b].leaf()) {
+            kids[n++] = b;
+        } else {
+            kids[n++] = binary_[b].left;
+            kids[n++] = binary_[b].right;
+        }
+        while (n < 4) { // open the inner child with the largest surface
+            int widest = -1;
+            for (int k = 0; k < n; ++k)
+                if (!binary_[kids[k]].leaf() &&
+                    (widest < 0 || binary_[kids[k]].box.area() > binary_[kids[widest]].box.area()))
+                    widest = k;
+            if (widest < 0) break;
+            const BuildNode& open = binary_[kids[widest]];
+            kids[widest] = open.left;
+            kids[n++] = open.right;
+        }
+        for (int k = 0; k < 4; ++k) {
+            const bool used = k < n;
+            const Aabb box = used ? binary_[kids[k]].box : Aabb{};
+            for (int a = 0; a < 3; ++a) {
+                nodes_[self].lo[a][k] = box.lo[a];
+                nodes_[self].hi[a][k] = box.hi[a];
+            }
+            std::int32_t reference = kEmptyChild;
+            if (used && binary_[kids[k]].leaf()) reference = leafReference(binary_[kids[k]].first, binary_[kids[k]].count);
+            else if (used) reference = std::int32_t(emit(kids[k]));
+            nodes_[self].child[k] = reference;
+        }
+        return self;
+    }
+
+private:
+    const std::vector<BuildNode>& binary_;
+    std::vector<BvhNode>& nodes_;
+};
+
+/// Squared distances from p to the four child boxes of `node` (infinity
+/// for an empty slot).
+inline void boxDistances(const BvhNode& node, const glm::vec3& p, float d2[4]) {
+#if defined(__SSE2__)
+    const __m128 zero = _mm_setzero_ps();
+    __m128 sum = zero;
+    for (int a = 0; a < 3; ++a) {
+        const __m128 q = _mm_set1_ps(p[a]);
+        const __m128 below = _mm_sub_ps(_mm_load_ps(node.lo[a]), q);
+        const __m128 above = _mm_sub_ps(q, _mm_load_ps(node.hi[a]));
+        const __m128 d = _mm_max_ps(_mm_max_ps(below, above), zero);
+        sum = _mm_add_ps(sum, _mm_mul_ps(d, d));
+    }
+    _mm_storeu_ps(d2, sum);
+#else
+    for (int k = 0; k < 4; ++k) {
+        float s = 0.0f;
+        for (int a = 0; a < 3; ++a) {
+            const float d = std::max(std::max(node.lo[a][k] - p[a], p[a] - node.hi[a][k]), 0.0f);
+            s += d * d;
+        }
+        d2[k] = s;
+    }
+#endif
+}
+
+float pruneBound(double distance2) { return float(distance2 * kPruneMargin); }
+
+} // namespace
+
+Bvh::Bvh(MeshView mesh) {
+    std::vector<Prim> prims;
+    prims.reserve(mesh.triangleCount);
+    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
+        const glm::uvec3 v = mesh.triangles[t];
+        Prim prim;
+        for (int c = 0; c < 3; ++c) prim.box.grow(mesh.positions[v[c]]);
+        prim.centroid = (prim.box.lo + prim.box.hi) * 0.5f;
+        prim.index = std::uint32_t(t);
+        prims.push_back(prim);
+    }
+    BinaryBuilder builder(prims);
+    builder.build(0, std::uint32_t(prims.size()), 0);
+    nodes_.reserve(builder.nodes.size() / 2 + 1);
+    Collapser(builder.nodes, nodes_).emit(0);
+    triangles_.resize(prims.size());
+    planes_.resize(prims.size());
+    for (std::size_t s = 0; s < prims.size(); ++s) {
+        const glm::uvec3 v = mesh.triangles[prims[s].index];
+        const BvhTriangle t{mesh.positions[v.x], mesh.positions[v.y], mesh.positions[v.z], prims[s].index};
+        triangles_[s] = t;
+        const glm::dvec3 n = glm::cross(glm::dvec3(t.b) - glm::dvec3(t.a), glm::dvec3(t.c) - glm::dvec3(t.a));
+        const double length = glm::length(n);
+        // A degenerate triangle's plane bounds nothing: the zero plane gives |0 - 0| = 0.
+        const glm::vec3 unit = length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.0f);
+        planes_[s] = glm::vec4(unit, float(glm::dot(glm::dvec3(unit), glm::dvec3(t.a))));
+        for (const glm::vec3& corner : {t.a, t.b, t.c})
+            verticesL1_ = std::max(verticesL1_, std::abs(corner.x) + std::abs(corner.y) + std::abs(corner.z));
+    }
+}
+
+double Bvh::distance2(const glm::vec3& p, std::uint32_t slot) const {
+    const BvhTriangle& t = triangles_[slot];
+    const glm::dvec3 q(p);
+    const glm::dvec3 d = q - closestOnTriangle(q, glm::dvec3(t.a), glm::dvec3(t.b), glm::dvec3(t.c)).point;
+    return d.x * d.x + d.y * d.y + d.z * d.z;
+}
+
+ClosestPoint Bvh::closest(const glm::vec3& p, std::uint32_t slot) const {
+    const BvhTriangle& t = triangles_[slot];
+    const glm::dvec3 q(p);
+    const TriangleHit hit = closestOnTriangle(q, glm::dvec3(t.a), glm::dvec3(t.b), glm::dvec3(t.c));
+    const glm::dvec3 d = q - hit.point;
+    return {hit.point, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z), t.index, hit.feature, hit.index};
+}
+
+void Bvh::nearest(const glm::vec3& p, NearestState& state) const {
+    struct Entry {
+        float distance2;
+        std::int32_t node;
+    };
+    Entry stack[kStackEntries];
+    int top = 0;
+    stack[top++] = {0.0f, 0};
+    float bound = pruneBound(state.distance2);
+    while (top > 0) {
+        const Entry e = stack[--top];
+        if (e.distance2 > bound) continue;
+        const BvhNode& node = nodes_[std::size_t(e.node)];
+        float d2[4];
+        boxDistances(node, p, d2);
+        int order[4], n = 0;
+        for (int k = 0; k < 4; ++k) {
+            if (node.child[k] == kEmptyChild || d2[k] > bound) continue;
+            int at = n++; // insertion by distance, nearest first
+            while (at > 0 && d2[order[at - 1]] > d2[k]) {
+                order[at] = order[at - 1];
+                --at;
+            }
+            order[at] = k;
+        }
+        // Leaves now, nearest first, so the bound tightens before the inner
+        // children are pushed (farthest first: the nearest is popped next).
+        for (int i = 0; i < n; ++i) {
+            const std::int32_t ref = node.child[order[i]];
+            if (ref < 0 && d2[order[i]] <= bound) searchLeaf(p, ref, state, bound);
+        }
+        for (int i = n - 1; i >= 0; --i) {
+            const std::int32_t ref = node.child[order[i]];
+            if (ref >= 0 && d2[order[i]] <= bound) stack[top++] = {d2[order[i]], ref};
+        }
+    }
+}
+
+void Bvh::searchLeaf(const glm::vec3& p, std::int32_t leaf, NearestState& state, float& bound) const {
+    const std::uint32_t code = std::uint32_t(~leaf);
+    const std::uint32_t first = code >> 2, end = first + (code & 3u) + 1;
+    const float slack = kPlaneError * (std::abs(p.x) + std::abs(p.y) + std::abs(p.z) + 2.0f * verticesL1_);
+    for (std::uint32_t s = first; s < end; ++s) {
+        const glm::vec4& plane = planes_[s];
+        const float below = std::abs(plane.x * p.x + plane.y * p.y + plane.z * p.z - plane.w) - slack;
+        if (below > 0.0f && below * below > bound) continue;
+        const double t2 = distance2(p, s);
+        if (t2 < state.distance2) {
+            state.distance2 = t2;
+            state.slot = s;
+            bound = pruneBound(t2);
+        }
+    }
+}
+
+bool Bvh::leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, std::vector<BvhNode>& out,
+                     std::size_t maxGroups) const {
+    const float bound = pruneBound(reach2);
+    int slot = 4; // the next free slot of out.back()
+    const auto keep = [&](const BvhNode& node, int k) {
+        if (slot == 4) {
+            out.emplace_back();
+            BvhNode& fresh = out.back();
+            for (int a = 0; a < 3; ++a)
+                for (int s = 0; s < 4; ++s) {
+                    fresh.lo[a][s] = kInf;
+                    fresh.hi[a][s] = -kInf;
+                }
+            std::fill(fresh.child, fresh.child + 4, kEmptyChild);
+            slot = 0;
+        }
+        BvhNode& into = out.back();
+        for (int a = 0; a < 3; ++a) {
+            into.lo[a][slot] = node.lo[a][k];
+            into.hi[a][slot] = node.hi[a][k];
+        }
+        into.child[slot++] = node.child[k];
+    };
+    std::int32_t stack[kStackEntries];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const BvhNode& node = nodes_[std::size_t(stack[--top])];
+        for (int k = 0; k < 4; ++k) {
+            if (node.child[k] == kEmptyChild) continue;
+            float d2 = 0.0f; // box to box: the gap along each axis
+            for (int a = 0; a < 3; ++a) {
+                const float gap = std::max(std::max(node.lo[a][k] - hi[a], lo[a] - node.hi[a][k]), 0.0f);
+                d2 += gap * gap;
+            }
+            if (d2 > bound) continue;
+            if (node.child[k] >= 0) stack[top++] = node.child[k];
+            else keep(node, k);
+        }
+        if (out.size() > maxGroups) return false;
+    }
+    return true;
+}
+
+void Bvh::nearestAmong(const glm::vec3& p, const std::vector<BvhNode>& leaves, NearestState& state) const {
+    float bound = pruneBound(state.distance2);
+    for (const BvhNode& group : leaves) {
+        float d2[4];
+        boxDistances(group, p, d2);
+        for (int k = 0; k < 4; ++k)
+            if (d2[k] <= bound && group.child[k] != kEmptyChild) searchLeaf(p, group.child[k], state, bound);
+    }
+}
+
+} // namespace vds::detail

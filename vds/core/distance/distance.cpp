@@ -1,0 +1,232 @@
+// vds: exact signed distances to a triangle mesh (<vds/distance.h>): the
+// hierarchy (bvh.h) finds the nearest triangle, the exact classifier of the
+// same rule gives the sign.
+#include <vds/distance.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <vds/detail/parallel.h>
+#include <vds/error.h>
+
+#include "distance/bvh.h"
+#include "distance/triangle_distance.h"
+
+namespace vds {
+
+namespace {
+
+/// Points a chunk of a batch: enough to amortise a chunk's classify call.
+constexpr std::size_t kChunkPoints = 512;
+/// Triangles a hierarchy can reference (29 bits of a leaf reference).
+constexpr std::size_t kMaxTriangles = (std::size_t(1) << 29) - 1;
+
+/// Cells a brick has along each axis: the unit of a grid's coherence.
+constexpr std::uint32_t kBrick = 8;
+/// The same for a full grid, whose bricks gather every leaf within their
+/// centre's distance plus their half-diagonal: smaller bricks, shorter lists.
+constexpr std::uint32_t kFullGridBrick = 4;
+/// Groups of four leaves a brick's list may hold before its cells search the
+/// whole hierarchy instead: a group costs each cell one SIMD box test, the
+/// hierarchy a few nodes a level (docs/benchmarks.md, exact distances).
+constexpr std::size_t kMaxBrickGroups = 1024;
+
+struct Brick {
+    glm::uvec3 lo, hi; ///< cells [lo, hi)
+};
+
+/// The first point that is not finite after rounding to float, or count.
+std::size_t firstNonFinite(const PointsView& points) {
+    for (std::size_t k = 0; k < points.count; ++k) {
+        const glm::vec3 p = points[k];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return k;
+    }
+    return points.count;
+}
+
+void checkBatch(const PointsView& points, const DistanceOptions& options) {
+    if (!(options.maxDistance > 0.0))
+        throw InvalidArgument("the largest distance to search must be above 0, not " +
+                              std::to_string(options.maxDistance));
+    const std::size_t bad = firstNonFinite(points);
+    if (bad < points.count)
+        throw InvalidArgument("point " + std::to_string(bad) + " is not finite (" +
+                              std::to_string(points[bad].x) + ", " + std::to_string(points[bad].y) + ", " +
+                              std::to_string(points[bad].z) + "): it has no distance");
+}
+
+} // namespace
+
+struct SignedDistance::Impl {
+    Impl(MeshView mesh, Rule r) : rule(r), bvh(mesh), exact(mesh, Axis::Z) {}
+    Rule rule;
+    detail::Bvh bvh;
+    ExactClassifier exact;
+
+    /// The nearest triangle within `maxDistance`, starting from `seed`'s
+    /// distance when one is given.
+    detail::NearestState nearest(const glm::vec3& p, double maxDistance, std::uint32_t seed = kNoTriangle) const {
+        detail::NearestState state{maxDistance * maxDistance};
+        if (seed != kNoTriangle) {
+            const double d2 = bvh.distance2(p, seed);
+            if (d2 < state.distance2) state = {d2, seed};
+        }
+        bvh.nearest(p, state);
+        return state;
+    }
+    double unsignedAt(const glm::vec3& p, double maxDistance) const {
+        const detail::NearestState s = nearest(p, maxDistance);
+        return s.slot == kNoTriangle ? maxDistance : std::sqrt(s.distance2);
+    }
+    void fillBrick(const Grid& grid, const Brick& brick, double band, const std::uint8_t* inside, float* cells,
+                   std::vector<detail::BvhNode>& leaves) const;
+    ClosestPoint closestAt(const glm::vec3& p, double maxDistance) const {
+        const detail::NearestState s = nearest(p, maxDistance);
+        if (s.slot != kNoTriangle) return bvh.closest(p, s.slot);
+        ClosestPoint none;
+        none.point = glm::dvec3(std::nan(""));
+        none.distance = maxDistance;
+        return none;
+    }
+};
+
+SignedDistance::SignedDistance(MeshView mesh, Rule rule, const std::string& meshName) {
+    const MeshReport report = validateMesh(mesh);
+    requireUsable(report, meshName);
+    requireVolume(report, meshName);
+    if (mesh.triangleCount > kMaxTriangles)
+        throw InvalidMesh(meshName + " has " + std::to_string(mesh.triangleCount) +
+                          " triangles, more than a distance hierarchy holds (" + std::to_string(kMaxTriangles) + ")");
+    impl_ = std::make_unique<Impl>(mesh, rule);
+}
+
+SignedDistance::~SignedDistance() = default;
+SignedDistance::SignedDistance(SignedDistance&&) noexcept = default;
+SignedDistance& SignedDistance::operator=(SignedDistance&&) noexcept = default;
+
+Rule SignedDistance::rule() const { return impl_->rule; }
+const ExactClassifier& SignedDistance::classifier() const { return impl_->exact; }
+std::size_t SignedDistance::triangleCount() const { return impl_->bvh.triangleCount(); }
+
+std::size_t SignedDistance::memoryBytes() const { return impl_->bvh.memoryBytes() + impl_->exact.memoryBytes(); }
+
+std::string SignedDistance::summary() const {
+    return "distance on " + std::to_string(triangleCount()) + " triangles, " + std::to_string(impl_->bvh.nodeCount()) +
+           " nodes, signed by " + toString(impl_->rule);
+}
+
+void SignedDistance::unsignedDistance(const PointsView& points, double* out, const DistanceOptions& options) const {
+    checkBatch(points, options);
+    parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) out[k] = impl_->unsignedAt(points[k], options.maxDistance);
+    });
+}
+
+void SignedDistance::distance(const PointsView& points, double* out, const DistanceOptions& options) const {
+    checkBatch(points, options);
+    parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
+        std::uint8_t inside[kChunkPoints];
+        ClassifyOptions classify;
+        classify.rule = impl_->rule;
+        classify.threads = 1;
+        impl_->exact.classify(points.slice(begin, end - begin), inside, classify);
+        for (std::size_t k = begin; k < end; ++k) {
+            const double d = impl_->unsignedAt(points[k], options.maxDistance);
+            out[k] = inside[k - begin] ? -d : d;
+        }
+    });
+}
+
+void SignedDistance::closestPoints(const PointsView& points, ClosestPoint* out, const DistanceOptions& options) const {
+    checkBatch(points, options);
+    parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) out[k] = impl_->closestAt(points[k], options.maxDistance);
+    });
+}
+
+double SignedDistance::distance(const glm::vec3& p) const {
+    double d = 0.0;
+    distance(PointsView(&p, 1), &d, DistanceOptions{1});
+    return d;
+}
+
+ClosestPoint SignedDistance::closest(const glm::vec3& p) const {
+    ClosestPoint c;
+    closestPoints(PointsView(&p, 1), &c, DistanceOptions{1});
+    return c;
+}
+
+
+/// One brick of a grid: the leaves that can hold any of its cells' nearest
+/// triangle (those within the band, or within the distance of the brick's
+/// centre plus its half-diagonal, which bounds every cell's distance) are
+/// gathered once; each cell then searches them, starting from the nearest
+/// triangle of the cell before it in its column.
+void SignedDistance::Impl::fillBrick(const Grid& grid, const Brick& brick, double band, const std::uint8_t* inside,
+                                     float* cells, std::vector<detail::BvhNode>& leaves) const {
+    const glm::vec3 lo = grid.cellCentre(brick.lo.x, brick.lo.y, brick.lo.z);
+    const glm::vec3 hi = grid.cellCentre(brick.hi.x - 1, brick.hi.y - 1, brick.hi.z - 1);
+    double reach = band;
+    if (band == 0.0) {
+        const glm::vec3 centre = (lo + hi) * 0.5f;
+        const double radius = std::max(glm::length(glm::dvec3(hi) - glm::dvec3(centre)),
+                                       glm::length(glm::dvec3(lo) - glm::dvec3(centre)));
+        reach = (std::sqrt(nearest(centre, std::numeric_limits<double>::infinity()).distance2) + radius) * (1.0 + 1e-9);
+    }
+    leaves.clear();
+    const bool useList = bvh.leavesNear(lo, hi, reach * reach, leaves, kMaxBrickGroups);
+    const double start2 = band > 0.0 ? band * band : std::numeric_limits<double>::infinity();
+    for (std::uint32_t i = brick.lo.x; i < brick.hi.x; ++i)
+        for (std::uint32_t j = brick.lo.y; j < brick.hi.y; ++j) {
+            std::uint32_t seed = kNoTriangle;
+            for (std::uint32_t k = brick.lo.z; k < brick.hi.z; ++k) {
+                const glm::vec3 p = grid.cellCentre(i, j, k);
+                detail::NearestState s{start2};
+                if (seed != kNoTriangle) {
+                    const double d2 = bvh.distance2(p, seed);
+                    if (d2 < s.distance2) s = {d2, seed};
+                }
+                if (useList) bvh.nearestAmong(p, leaves, s);
+                else bvh.nearest(p, s);
+                if (s.slot != kNoTriangle) seed = s.slot;
+                const double d = s.slot == kNoTriangle ? band : std::sqrt(s.distance2);
+                const std::size_t at = grid.index(i, j, k);
+                cells[at] = inside[at] ? -float(d) : float(d);
+            }
+        }
+}
+
+void SignedDistance::grid(const Grid& grid, float* cells, const DistanceGridOptions& options) const {
+    checkGrid(grid);
+    if (!std::isfinite(options.band) || options.band < 0.0)
+        throw InvalidArgument("the band's half-width must be a finite distance >= 0 (0: the full grid), not " +
+                              std::to_string(options.band));
+    std::vector<std::uint8_t> inside(grid.cellCount());
+    ClassifyOptions classify;
+    classify.rule = impl_->rule;
+    classify.threads = options.threads;
+    impl_->exact.occupancy(grid, inside.data(), classify);
+    const std::uint32_t side = options.band > 0.0 ? kBrick : kFullGridBrick;
+    const glm::uvec3 bricks = (grid.dims + glm::uvec3(side - 1)) / side;
+    const std::size_t count = std::size_t(bricks.x) * bricks.y * bricks.z;
+    parallelFor(options.threads, count, 4, [&](std::size_t begin, std::size_t end) {
+        std::vector<detail::BvhNode> leaves;
+        for (std::size_t b = begin; b < end; ++b) {
+            const glm::uvec3 at(std::uint32_t(b / (std::size_t(bricks.y) * bricks.z)),
+                                std::uint32_t(b / bricks.z % bricks.y), std::uint32_t(b % bricks.z));
+            const Brick brick{at * side, glm::min((at + 1u) * side, grid.dims)};
+            impl_->fillBrick(grid, brick, options.band, inside.data(), cells, leaves);
+        }
+    });
+}
+
+ClosestPoint closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                    const glm::dvec3& c) {
+    const detail::TriangleHit hit = detail::closestOnTriangle(p, a, b, c);
+    return {hit.point, std::sqrt(detail::distance2(p, hit.point)), kNoTriangle, hit.feature, hit.index};
+}
+
+} // namespace vds

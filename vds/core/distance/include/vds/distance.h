@@ -1,0 +1,156 @@
+// vds: distance to the border — the unsigned and signed distance of points
+// to a triangle mesh, the closest point and the triangle (and feature of it)
+// it lies on, and signed distance grids over a `Grid`.
+//
+// The shape beside `Classifier` (<vds/classify.h>): built once from a mesh
+// and a `Rule`, then asked for many points (a `PointsView`, float or double,
+// any stride) into caller-owned arrays, with one options struct. The sign is
+// the classifier's: `SignedDistance` holds an `ExactClassifier` of the same
+// mesh and asks it, so a distance is negative exactly where that classifier
+// says inside by the rule (see `distance`).
+//
+// Unsigned distance: a 4-wide bounding volume hierarchy over the triangles
+// (binned surface-area heuristic, nodes of 128 bytes in depth-first order,
+// the four children's box distances in one SIMD step), searched nearest box
+// first; the closest point on each candidate triangle is computed in double
+// (Ericson, "Real-Time Collision Detection", 2005, 5.1.5).
+//
+// Error bound. Points are rounded to float first (as every classifier does,
+// <vds/classify.h>), and the distance is that of the float point. The box
+// tests prune only boxes whose distance exceeds the best found by a margin
+// of 2^-20 relative (more than float rounding of a box distance can make),
+// so no triangle that could be nearest is skipped. The closest point on a
+// triangle is a convex combination of its corners computed in double, so
+// the distance returned is within 2^-45 * L of the exact distance from the
+// float point to the triangles, L = the largest coordinate magnitude of the
+// point and the mesh (measured against a brute-force reference by another
+// formula in tests/core/distance_test.cpp; far below float precision).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include <vds/classify.h>
+#include <vds/enum_names.h>
+#include <vds/exact.h>
+#include <vds/grid.h>
+#include <vds/mesh.h>
+#include <vds/rule.h>
+
+namespace vds {
+
+/// Where on its triangle a closest point lies.
+enum class Feature : std::uint8_t {
+    Face,   ///< inside the triangle
+    Edge,   ///< on edge `index`: from corner index to corner (index + 1) % 3
+    Vertex, ///< at corner `index`
+};
+
+template <> struct EnumNames<Feature> {
+    static constexpr const char* kind = "feature";
+    static constexpr EnumName<Feature> table[] = {
+        {"face", Feature::Face}, {"edge", Feature::Edge}, {"vertex", Feature::Vertex}};
+};
+
+/// No triangle: a search bounded by `DistanceOptions::maxDistance` found none.
+constexpr std::uint32_t kNoTriangle = 0xffffffffu;
+
+/// The nearest point of the surface to a query point.
+struct ClosestPoint {
+    glm::dvec3 point{0.0};  ///< on the surface, mesh coordinates
+    double distance = 0.0;  ///< unsigned, mesh units (|query - point|)
+    std::uint32_t triangle = kNoTriangle; ///< index into the mesh's triangles
+    Feature feature = Feature::Face;
+    std::uint8_t index = 0; ///< the edge or corner of `feature` (0 for Face)
+};
+
+/// The one options struct of every distance call.
+struct DistanceOptions {
+    unsigned threads = 0; ///< CPU threads, 0: one per hardware thread
+    /// Search no farther: a point farther than this from every triangle gets
+    /// distance `maxDistance` (signed as its label) and no triangle. Cheaper
+    /// for points far away; > 0 (infinity: no bound).
+    double maxDistance = std::numeric_limits<double>::infinity();
+};
+
+/// Options of a signed distance grid.
+struct DistanceGridOptions {
+    unsigned threads = 0; ///< CPU threads, 0: one per hardware thread
+    /// Narrow band half-width in mesh units: cells farther than this from
+    /// the surface get exactly -band (inside) or +band (outside). 0: the
+    /// full grid, every cell exact. Must be finite and >= 0.
+    double band = 0.0;
+};
+
+/// Exact distances to one mesh, signed by one rule. Read-only once built:
+/// queries may run from any number of threads at once.
+class SignedDistance {
+public:
+    /// Copies the triangles and builds the hierarchy (O(n log n); about 70
+    /// bytes a triangle) and the exact classifier along z (about 100 more). Throws
+    /// `InvalidMesh` (naming `meshName`) for a mesh that is empty, not
+    /// finite or has bad indices, or that is flat (it bounds no volume, so
+    /// no sign). Like `ExactClassifier`, any other mesh is answered by any
+    /// rule: on an open mesh parity and winding count crossings as for a
+    /// surface, and only Rule::GeneralizedWinding means inside; callers that
+    /// want to refuse it check `requireInsideDefined` first (the CLI does).
+    SignedDistance(MeshView mesh, Rule rule, const std::string& meshName = "mesh");
+    ~SignedDistance();
+    SignedDistance(SignedDistance&&) noexcept;
+    SignedDistance& operator=(SignedDistance&&) noexcept;
+
+    Rule rule() const;
+    /// The classifier the signs come from.
+    const ExactClassifier& classifier() const;
+    std::size_t triangleCount() const;
+    /// Bytes the queries read (hierarchy, triangles and the classifier).
+    std::size_t memoryBytes() const;
+    /// One line, e.g. "distance on 5856 triangles, 1953 nodes, generalized-winding".
+    std::string summary() const;
+
+    /// Signed distances: `out[k]` = -d where the classifier says point k is
+    /// inside by `rule()`, +d elsewhere, d the unsigned distance (so
+    /// `std::signbit(out[k])` is the label, also on the surface, where d is
+    /// -0.0 inside). `out` holds `points.count` doubles, caller-owned.
+    /// Throws `InvalidArgument` naming the first point that is not finite
+    /// (after rounding to float) or a bad `options.maxDistance`; nothing is
+    /// written then.
+    void distance(const PointsView& points, double* out, const DistanceOptions& options = {}) const;
+    /// Unsigned distances, as `distance` without the sign (no classifier).
+    void unsignedDistance(const PointsView& points, double* out, const DistanceOptions& options = {}) const;
+    /// The closest point of each point (`points.count` entries); throws as `distance`.
+    void closestPoints(const PointsView& points, ClosestPoint* out, const DistanceOptions& options = {}) const;
+
+    /// One point (rounded to float like a batch); throws as `distance`.
+    double distance(const glm::vec3& p) const;
+    ClosestPoint closest(const glm::vec3& p) const;
+
+    /// The signed distance of every cell centre of `grid` (`Grid::cellCentre`,
+    /// index order `Grid::index`) as float: `cells` holds `grid.cellCount()`
+    /// floats. Each cell's distance is the nearest float to `distance` of its
+    /// centre, and its sign the label `occupancy` of the same classifier
+    /// gives (one sweep a column). Cells go by bricks (8^3 cells, 4^3 for a
+    /// full grid): the leaves that can hold a brick's nearest triangles are
+    /// gathered once, and each cell starts from the nearest triangle of the
+    /// cell before it; in band mode a brick no leaf comes near is filled
+    /// without a search. Throws like `checkGrid` and `InvalidArgument` for
+    /// a bad band.
+    void grid(const Grid& grid, float* cells, const DistanceGridOptions& options = {}) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Closest point on the triangle (a, b, c) to p, in double (Ericson 5.1.5);
+/// a degenerate triangle (a segment or a point) answers as its edges do.
+/// The one copy the hierarchy and `SignedDistance` use.
+ClosestPoint closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                    const glm::dvec3& c);
+
+} // namespace vds
