@@ -60,6 +60,29 @@ vds::Box checkedBounds(const VoxelizeArgs& a, const vds::TriangleMesh& mesh) {
     return report.bounds;
 }
 
+/// The grid asked for: the input's bounds (or --box), --dims or --dims-xyz cells.
+vds::Grid gridOf(const VoxelizeArgs& a, const vds::Box& bounds) {
+    vds::Grid grid;
+    grid.box = bounds;
+    if (!a.box.empty()) grid.box = vds::Box{{a.box[0], a.box[1], a.box[2]}, {a.box[3], a.box[4], a.box[5]}};
+    grid.dims = a.dims ? glm::uvec3(a.dims) : glm::uvec3(a.dimsXyz[0], a.dimsXyz[1], a.dimsXyz[2]);
+    vds::checkGrid(grid);
+    return grid;
+}
+
+/// The x layers labelled a call. --packed labels the grid a slab at a time
+/// (at most 2^26 cells), packing each slab's rows as it goes: the unpacked
+/// grid is never held whole. Unpacked, the grid goes in kProgressSlabs
+/// slabs, so that a sweep past a second (the generalized winding number of
+/// a messy scan) reports progress. Slabs have the whole grid's cell centres
+/// (Grid::slabX), so the labels are the same as in one call.
+std::uint32_t slabLayers(bool packed, const vds::Grid& grid) {
+    constexpr std::uint32_t kProgressSlabs = 16;
+    const std::size_t layer = std::size_t(grid.dims.y) * grid.dims.z;
+    return packed ? std::uint32_t(std::clamp<std::size_t>((std::size_t(1) << 26) / layer, 1, grid.dims.x))
+                  : std::max<std::uint32_t>(1, (grid.dims.x + kProgressSlabs - 1) / kProgressSlabs);
+}
+
 void voxelize(VoxelizeArgs& a) {
     if ((a.dims == 0) == a.dimsXyz.empty()) throw CLI::ValidationError("give --dims N or --dims-xyz NX NY NZ");
     const auto progress = progressPrinter(a.quiet);
@@ -80,15 +103,7 @@ void voxelize(VoxelizeArgs& a) {
         bounds = checkedBounds(a, mesh);
     }
     phase(fromSprite ? "read" : "validate", secondsSince(start));
-    vds::Grid grid;
-    grid.box = bounds;
-    if (!a.box.empty()) grid.box = vds::Box{{a.box[0], a.box[1], a.box[2]}, {a.box[3], a.box[4], a.box[5]}};
-    if (a.dims) {
-        grid.dims = glm::uvec3(a.dims);
-    } else {
-        grid.dims = glm::uvec3(a.dimsXyz[0], a.dimsXyz[1], a.dimsXyz[2]);
-    }
-    vds::checkGrid(grid);
+    const vds::Grid grid = gridOf(a, bounds);
     progress("labelling " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) + "x" +
              std::to_string(grid.dims.z) + " cells " + (fromSprite ? "from the sprite" : "exactly from the mesh"));
     // The mesh's exact classifier is built once (every slab sweeps through it).
@@ -102,17 +117,8 @@ void voxelize(VoxelizeArgs& a) {
         if (fromSprite) vds::occupancy(sprite, g, out, a.options);
         else exact->occupancy(g, out, a.options);
     };
-    // --packed labels the grid a slab of x layers at a time (at most 2^26
-    // cells), packing each slab's rows as it goes: the unpacked grid is never
-    // held whole. Slabs have the whole grid's cell centres (Grid::slabX), so
-    // the labels are the same as in one call.
-    // Unpacked, the grid goes in kProgressSlabs slabs, so that a sweep past a
-    // second (the generalized winding number of a messy scan) reports progress.
     const std::size_t layer = std::size_t(grid.dims.y) * grid.dims.z;
-    constexpr std::uint32_t kProgressSlabs = 16;
-    const std::uint32_t slab =
-        a.packed ? std::uint32_t(std::clamp<std::size_t>((std::size_t(1) << 26) / layer, 1, grid.dims.x))
-                 : std::max<std::uint32_t>(1, (grid.dims.x + kProgressSlabs - 1) / kProgressSlabs);
+    const std::uint32_t slab = slabLayers(a.packed, grid);
     const std::size_t rowBytes = (std::size_t(grid.dims.z) + 7) / 8, rows = std::size_t(grid.dims.x) * grid.dims.y;
     std::vector<std::uint8_t> cells, bits;
     start = std::chrono::steady_clock::now();
