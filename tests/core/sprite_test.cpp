@@ -4,6 +4,8 @@
 #include <random>
 #include <utility>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
@@ -276,3 +278,35 @@ TEST(ChooseViewAxis, CountsExactlyWhatTheBakerMakesAtThatResolution) {
 
 } // namespace
 } // namespace vds
+
+namespace {
+
+// The distance grid a sprite carries: cubic cells, `resolution` along the
+// longest side, two cells past the baked box on every side, and every cell
+// the analytic signed distance of a box at its centre (inside negative).
+TEST(SpriteDistanceTest, BakedGridIsTheExactDistanceOverThePaddedBox) {
+    const glm::vec3 lo(-1.0f, -0.5f, -0.25f), hi(1.0f, 0.5f, 0.25f);
+    const vds::TriangleMesh mesh = vds::solids::box(lo, hi).mesh;
+    const vds::SpriteDistance d = vds::bakeDistance(mesh, {lo, hi}, 24, vds::Rule::Winding, 2);
+    EXPECT_EQ(d.grid.dims.x, 24u);
+    ASSERT_EQ(d.cells.size(), d.grid.cellCount());
+    const float cell = (d.grid.box.hi.x - d.grid.box.lo.x) / 24.0f;
+    EXPECT_NEAR(d.grid.box.lo.x, lo.x - 2.0f * cell, 1e-5f);
+    EXPECT_LE(d.grid.box.lo.z, lo.z - 2.0f * cell + 1e-5f);
+    EXPECT_GE(d.grid.box.hi.y, hi.y + 2.0f * cell - 1e-5f);
+    for (std::uint32_t i = 0; i < d.grid.dims.x; ++i)
+        for (std::uint32_t j = 0; j < d.grid.dims.y; ++j)
+            for (std::uint32_t k = 0; k < d.grid.dims.z; ++k) {
+                const glm::vec3 p = d.grid.cellCentre(i, j, k);
+                const glm::vec3 q = glm::max(glm::abs(p) - hi, glm::vec3(0.0f)); // outside part, per axis
+                const glm::vec3 in = glm::abs(p) - hi;
+                const double analytic = glm::length(glm::dvec3(q)) +
+                                        std::min(0.0, double(std::max(in.x, std::max(in.y, in.z))));
+                EXPECT_NEAR(d.cells[d.grid.index(i, j, k)], analytic, 1e-6) << i << " " << j << " " << k;
+            }
+    EXPECT_THROW(vds::bakeDistance(mesh, {lo, hi}, 3, vds::Rule::Winding), vds::InvalidArgument);
+    EXPECT_THROW(vds::bakeDistance(mesh, {lo, hi}, vds::kMaxDistanceResolution + 1, vds::Rule::Winding),
+                 vds::InvalidArgument);
+}
+
+} // namespace

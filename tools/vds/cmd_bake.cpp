@@ -16,6 +16,8 @@ struct BakeArgs {
     std::string mesh, output, axis = "auto";
     vds::BakeOptions options;
     bool quiet = false, verbose = false;
+    std::uint32_t distance = 0; ///< cells of the distance grid along its longest side, 0: none
+    vds::Rule distanceRule = vds::Rule::GeneralizedWinding;
 };
 
 void bake(BakeArgs& a) {
@@ -47,12 +49,18 @@ void bake(BakeArgs& a) {
     progress("baking " + a.mesh + " (" + std::to_string(mesh.triangles.size()) + " triangles) at " +
              std::to_string(a.options.resolution) + " along " + vds::toString(*a.options.axis) + " with " +
              vds::toString(a.options.method));
-    const vds::Sprite sprite = vds::bake(mesh, a.options);
+    vds::Sprite sprite = vds::bake(mesh, a.options);
+    if (a.distance > 0) {
+        progress("distance grid of " + std::to_string(a.distance) + " cells along the longest side, " +
+                 vds::toString(a.distanceRule) + " rule");
+        sprite.distance = vds::bakeDistance(mesh, sprite.grid.box, a.distance, a.distanceRule);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (a.verbose) std::fputs(timings.report().c_str(), stderr);
     vds::writeSprite(sprite, a.output);
-    std::printf("wrote %s: %ux%u texels, depth complexity %u, %zu crossings, baked in %.2f s\n", a.output.c_str(),
-                sprite.width(), sprite.height(), sprite.depthComplexity, sprite.crossings.size(), seconds);
+    std::printf("wrote %s: %ux%u texels, depth complexity %u, %zu crossings%s, baked in %.2f s\n", a.output.c_str(),
+                sprite.width(), sprite.height(), sprite.depthComplexity, sprite.crossings.size(),
+                sprite.distance.empty() ? "" : ", a signed distance grid", seconds);
 }
 
 } // namespace
@@ -75,6 +83,13 @@ void addBake(CLI::App& app) {
     addEnum(*c, "--method", a->options.method,
             "auto: GL fragment lists on a GPU, the CPU baker on a software renderer or without GL; or lists, "
             "peel (depth peeling), cpu (exact ray casting)");
+    c->add_option("--distance", a->distance,
+                  "also store a signed distance grid of N cells along the longest side (exact distances, for "
+                  "vdsDistance in GLSL; format version 3)")
+        ->check(CLI::Range(4u, vds::kMaxDistanceResolution))
+        ->type_name("N");
+    addEnum(*c, "--distance-rule", a->distanceRule,
+            "the sign of the distance grid: parity, winding, or generalized-winding (open meshes too)");
     c->add_flag("--verbose", a->verbose,
                 "say which axis and bake method auto chose and why, and the time of each phase (validation, "
                 "upload, raster, scan, sort, read-back...)");
