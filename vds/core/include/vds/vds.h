@@ -217,6 +217,9 @@
 //     or a band clamped to +-band), with DistanceOptions{threads,
 //     maxDistance} and DistanceGridOptions{threads, band}.
 //     `closestPointOnTriangle(p, a, b, c)`: the one closest-point kernel.
+//   SpriteDistance bakeDistance(mesh, box, n, rule)           <vds/sprite.h>
+//     the distance grid a sprite carries (`Sprite::distance`, file format 3,
+//     `vds bake --distance N`), for `vdsDistance` in GLSL (`GpuSprite::distance`).
 //
 // ---- 8. On the GPU (vds::gl) --------------------------------------------------
 //
