@@ -403,6 +403,15 @@ void SceneRenderer::Impl::buildPrograms() {
                             defines + "#define SCENE_PEEL\n");
 }
 
+void SceneRenderer::replaceSprite(std::size_t index, const Sprite& sprite) {
+    Impl& d = *impl_;
+    if (index >= d.scene.solids.size()) throw InvalidArgument("no solid " + std::to_string(index));
+    if (d.lookup != Lookup::Vds) throw InvalidArgument("replaceSprite: the scene's inside test is not the VDS");
+    d.baked[index] = sprite;
+    d.sprites[index] = GpuSprite(sprite, GpuSpriteParts::TextureOnly);
+    place(index, d.scene.solids[index].placement);
+}
+
 void SceneRenderer::place(std::size_t index, const glm::mat4& placement) {
     Impl& d = *impl_;
     if (index >= d.scene.solids.size()) throw InvalidArgument("no solid " + std::to_string(index));

@@ -101,6 +101,10 @@ public:
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
+    /// Replaces solid `index`'s sprite by `sprite` (a re-bake of a solid
+    /// whose vertices moved: `Baker::rebake`), at the solid's placement.
+    /// Lookup::Vds only; throws InvalidArgument otherwise.
+    void replaceSprite(std::size_t index, const Sprite& sprite);
     /// Moves solid `index` to `placement` (mesh -> world) without re-baking.
     void place(std::size_t index, const glm::mat4& placement);
     /// Renders a `size` x `size` picture.

@@ -1,5 +1,8 @@
 #include <chrono>
 #include <cstdio>
+#include <future>
+#include <memory>
+#include <optional>
 
 #include <vds/all.h>
 #include <vds/bake.h>
@@ -12,6 +15,16 @@ namespace cli {
 
 namespace {
 
+// A GL bake's context, made on another thread while this one reads the mesh,
+// validates it and counts the axis (EGL's start is tens of milliseconds, as
+// long as that work), then released there for this thread to take.
+std::future<std::unique_ptr<vds::GlContext>> contextInBackground() {
+    return std::async(std::launch::async, [] {
+        const vds::CurrentContext none; // none is current on a new thread: its end releases the context
+        return std::make_unique<vds::GlContext>();
+    });
+}
+
 struct BakeArgs {
     std::string mesh, output, axis = "auto";
     vds::BakeOptions options;
@@ -23,13 +36,16 @@ struct BakeArgs {
 void bake(BakeArgs& a) {
     const auto progress = progressPrinter(a.quiet);
     const auto start = std::chrono::steady_clock::now();
+    const bool onGl = a.options.method == vds::BakeMethod::Lists || a.options.method == vds::BakeMethod::Peel;
+    std::optional<std::future<std::unique_ptr<vds::GlContext>>> context;
+    if (onGl) context = contextInBackground();
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
     a.options.sourceName = mesh.name;
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, a.mesh);
     vds::requireVolume(report, a.mesh);
     if (a.axis == "auto") {
-        const vds::AxisChoice choice = vds::chooseViewAxis(mesh, a.options.resolution);
+        const vds::AxisChoice choice = vds::chooseViewAxis(mesh, report, a.options.resolution);
         a.options.axis = choice.axis;
         if (a.verbose) std::fprintf(stderr, "%s: the fewest layers\n", choice.summary().c_str());
     } else {
@@ -49,7 +65,12 @@ void bake(BakeArgs& a) {
     progress("baking " + a.mesh + " (" + std::to_string(mesh.triangles.size()) + " triangles) at " +
              std::to_string(a.options.resolution) + " along " + vds::toString(*a.options.axis) + " with " +
              vds::toString(a.options.method));
-    vds::Sprite sprite = vds::bake(mesh, a.options);
+    std::unique_ptr<vds::GlContext> gl;
+    if (context) {
+        gl = context->get(); // rethrows GL's refusal, as the bake would have
+        gl->makeCurrent();
+    }
+    vds::Sprite sprite = gl ? vds::bake(*gl, mesh, a.options) : vds::bake(mesh, a.options);
     if (a.distance > 0) {
         progress("distance grid of " + std::to_string(a.distance) + " cells along the longest side, " +
                  vds::toString(a.distanceRule) + " rule");

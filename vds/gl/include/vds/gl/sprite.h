@@ -235,8 +235,6 @@ private:
     const GlContext* gl_ = nullptr;
     detail::ContextStamp stamp_;
     std::size_t batch_ = std::size_t(1) << 22;
-    const Program* columns_ = nullptr;
-    const Program* texture_ = nullptr;
     std::uint64_t maxBlock_ = 0;
     std::size_t maxDispatch_ = 0;
     std::array<Slot, 2> slots_;
