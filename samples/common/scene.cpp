@@ -407,8 +407,11 @@ void SceneRenderer::replaceSprite(std::size_t index, const Sprite& sprite) {
     Impl& d = *impl_;
     if (index >= d.scene.solids.size()) throw InvalidArgument("no solid " + std::to_string(index));
     if (d.lookup != Lookup::Vds) throw InvalidArgument("replaceSprite: the scene's inside test is not the VDS");
-    d.baked[index] = sprite;
+    if (d.scene.distanceWidth > 0.0f && sprite.distance.empty())
+        throw InvalidArgument("replaceSprite: the scene draws distances and the sprite carries no distance grid");
     d.sprites[index] = GpuSprite(sprite, GpuSpriteParts::TextureOnly);
+    d.baked[index] = sprite;
+    d.baked[index].distance = {}; // on the GPU; place() copies the rest
     place(index, d.scene.solids[index].placement);
 }
 

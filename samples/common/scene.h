@@ -103,7 +103,9 @@ public:
 
     /// Replaces solid `index`'s sprite by `sprite` (a re-bake of a solid
     /// whose vertices moved: `Baker::rebake`), at the solid's placement.
-    /// Lookup::Vds only; throws InvalidArgument otherwise.
+    /// Lookup::Vds only; throws InvalidArgument otherwise, and when the
+    /// scene draws its distance effects (`Scene::distanceWidth`) and
+    /// `sprite` carries no distance grid.
     void replaceSprite(std::size_t index, const Sprite& sprite);
     /// Moves solid `index` to `placement` (mesh -> world) without re-baking.
     void place(std::size_t index, const glm::mat4& placement);
