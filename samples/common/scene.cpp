@@ -21,6 +21,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <vds/all.h>
+#include <vds/distance.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>

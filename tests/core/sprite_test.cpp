@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <vds/bake.h>
+#include <vds/distance.h>
 #include <vds/error.h>
 #include <vds/exact.h>
 #include "solids.h"

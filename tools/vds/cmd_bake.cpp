@@ -5,6 +5,7 @@
 #include <optional>
 
 #include <vds/all.h>
+#include <vds/distance.h>
 #include <vds/bake.h>
 #include <vds/mesh_io.h>
 #include <vds/vds_file.h>

@@ -222,7 +222,7 @@
 //     or a band clamped to +-band), with DistanceOptions{threads,
 //     maxDistance} and DistanceGridOptions{threads, band}.
 //     `closestPointOnTriangle(p, a, b, c)`: the one closest-point kernel.
-//   SpriteDistance bakeDistance(mesh, box, n, rule)           <vds/sprite.h>
+//   SpriteDistance bakeDistance(mesh, box, n, rule)         <vds/distance.h>
 //     the distance grid a sprite carries (`Sprite::distance`, file format 3,
 //     `vds bake --distance N`), for `vdsDistance` in GLSL (`GpuSprite::distance`).
 //

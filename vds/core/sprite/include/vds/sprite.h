@@ -94,15 +94,6 @@ struct SpriteDistance {
 /// Largest cells along any side of a sprite's distance grid.
 constexpr std::uint32_t kMaxDistanceResolution = 1024;
 
-/// The distance grid of `mesh` for a sprite: cubic cells, `resolution`
-/// along the longest side of `box` (the baked box) grown by two cells on
-/// every side, so that the band of a clip or a lens reaches past the
-/// surface there; signed by `rule` (`SignedDistance`), on `threads` threads
-/// (0: all). Throws `InvalidArgument` for a resolution below 4 or above
-/// `kMaxDistanceResolution`, and as `SignedDistance` does for the mesh.
-SpriteDistance bakeDistance(const TriangleMesh& mesh, const Box& box, std::uint32_t resolution, Rule rule,
-                            unsigned threads = 0);
-
 struct Sprite;
 
 /// How a sprite's batch reads the sprite (`Method::Sprite` only).

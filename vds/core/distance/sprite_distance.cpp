@@ -1,11 +1,10 @@
-// vds: the distance grid a sprite carries (<vds/sprite.h>, `SpriteDistance`),
+// vds: the distance grid a sprite carries (`SpriteDistance`, <vds/sprite.h>),
 // the exact signed distances of `SignedDistance::grid` over the baked box.
-#include <vds/sprite.h>
+#include <vds/distance.h>
 
 #include <algorithm>
 #include <string>
 
-#include <vds/distance.h>
 #include <vds/error.h>
 
 namespace vds {
