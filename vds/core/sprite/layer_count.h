@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include <vds/mesh.h>
 #include <vds/sprite.h>
@@ -19,5 +20,18 @@ struct LayerCount {
 /// of every triangle's box (see layer_count.cpp), in time proportional to
 /// the rows the triangles span rather than the texels they cover.
 LayerCount countLayers(MeshView mesh, const SpriteGrid& grid, unsigned threads);
+
+/// `countLayers` for several grids in turn (the three axes of
+/// `chooseViewAxis`), reusing its buffers from one count to the next.
+class LayerCounter {
+public:
+    LayerCounter();
+    ~LayerCounter();
+    LayerCount count(MeshView mesh, const SpriteGrid& grid, unsigned threads);
+
+private:
+    struct Buffers;
+    std::unique_ptr<Buffers> buffers_;
+};
 
 } // namespace vds::detail
