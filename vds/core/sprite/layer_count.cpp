@@ -193,6 +193,63 @@ struct RowCounts {
     }
 };
 
+// The most runs over one texel of a row. A row of few runs (a small
+// mesh's triangles span many rows, so its rows hold a few dozen runs over
+// thousands of texels) sorts its runs' ends: the count is largest just after
+// a start, where it is the starts up to there less the ends up to there. A
+// row of many runs sums its difference array over the texels they touch.
+class RowMost {
+public:
+    explicit RowMost(std::uint32_t width) : diff_(std::size_t(width) + 1), width_(width) {}
+
+    std::int32_t most(const std::pair<std::uint32_t, std::uint32_t>* runs, std::size_t k, std::uint64_t& claimed) {
+        if (k == 0) return 0;
+        std::uint32_t lo = width_, hi = 0; // the row's texels that runs touch
+        for (std::size_t r = 0; r < k; ++r) {
+            claimed += runs[r].second - runs[r].first;
+            lo = std::min(lo, runs[r].first);
+            hi = std::max(hi, runs[r].second);
+        }
+        return k * kSortedPerTexel < hi - lo ? byEnds(runs, k) : bySum(runs, k, lo, hi);
+    }
+
+private:
+    // A sort of k ends costs about what a sum over this many texels a run does.
+    static constexpr std::size_t kSortedPerTexel = 16;
+
+    std::int32_t byEnds(const std::pair<std::uint32_t, std::uint32_t>* runs, std::size_t k) {
+        starts_.resize(k);
+        ends_.resize(k);
+        for (std::size_t r = 0; r < k; ++r) {
+            starts_[r] = runs[r].first;
+            ends_[r] = runs[r].second;
+        }
+        std::sort(starts_.begin(), starts_.end());
+        std::sort(ends_.begin(), ends_.end());
+        std::size_t ended = 0;
+        std::int32_t best = 0;
+        for (std::size_t r = 0; r < k; ++r) { // runs [a, b): b <= x has ended at x
+            while (ended < k && ends_[ended] <= starts_[r]) ++ended;
+            best = std::max(best, std::int32_t(r + 1 - ended));
+        }
+        return best;
+    }
+    std::int32_t bySum(const std::pair<std::uint32_t, std::uint32_t>* runs, std::size_t k, std::uint32_t lo, std::uint32_t hi) {
+        for (std::size_t r = 0; r < k; ++r) {
+            ++diff_[runs[r].first];
+            --diff_[runs[r].second];
+        }
+        std::int32_t running = 0, best = 0;
+        for (std::uint32_t i = lo; i < hi; ++i) best = std::max(best, running += diff_[i]);
+        std::fill(diff_.begin() + lo, diff_.begin() + hi + 1, 0); // the row's differences sum to 0
+        return best;
+    }
+
+    std::vector<std::int32_t> diff_;
+    std::vector<std::uint32_t> starts_, ends_;
+    std::uint32_t width_;
+};
+
 } // namespace
 
 // The runs and their buckets, kept from one axis's count to the next: their
@@ -246,23 +303,11 @@ LayerCount LayerCounter::count(MeshView mesh, const SpriteGrid& grid, unsigned t
     std::atomic<std::uint32_t> most{0};
     std::atomic<std::uint64_t> total{0};
     parallelFor(threads, grid.height, 64, [&](std::size_t begin, std::size_t end) {
-        std::vector<std::int32_t> diff(std::size_t(grid.width) + 1);
+        RowMost row(grid.width);
         std::int32_t best = 0;
         std::uint64_t claimed = 0;
-        for (std::size_t j = begin; j < end; ++j) {
-            if (start[j] == start[j + 1]) continue;
-            std::uint32_t lo = grid.width, hi = 0; // the row's texels that runs touch
-            for (std::uint32_t k = start[j]; k < start[j + 1]; ++k) {
-                ++diff[byRow[k].first];
-                --diff[byRow[k].second];
-                claimed += byRow[k].second - byRow[k].first;
-                lo = std::min(lo, byRow[k].first);
-                hi = std::max(hi, byRow[k].second);
-            }
-            std::int32_t running = 0;
-            for (std::uint32_t i = lo; i < hi; ++i) best = std::max(best, running += diff[i]);
-            std::fill(diff.begin() + lo, diff.begin() + hi + 1, 0); // the row's differences sum to 0
-        }
+        for (std::size_t j = begin; j < end; ++j)
+            best = std::max(best, row.most(byRow.data() + start[j], start[j + 1] - start[j], claimed));
         total.fetch_add(claimed);
         std::uint32_t seen = most.load();
         while (std::uint32_t(best) > seen && !most.compare_exchange_weak(seen, std::uint32_t(best))) {
