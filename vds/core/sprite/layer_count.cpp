@@ -240,7 +240,14 @@ private:
             --diff_[runs[r].second];
         }
         std::int32_t running = 0, best = 0;
-        for (std::uint32_t i = lo; i < hi; ++i) best = std::max(best, running += diff_[i]);
+        std::uint32_t i = lo;
+        for (; i + 4 <= hi; i += 4) { // four texels a step: the sums within the step do not wait on `running`
+            const std::int32_t* d = diff_.data() + i;
+            const std::int32_t p1 = d[0], p2 = p1 + d[1], p3 = p2 + d[2], p4 = p3 + d[3];
+            best = std::max(best, running + std::max(std::max(p1, p2), std::max(p3, p4)));
+            running += p4;
+        }
+        for (; i < hi; ++i) best = std::max(best, running += diff_[i]);
         std::fill(diff_.begin() + lo, diff_.begin() + hi + 1, 0); // the row's differences sum to 0
         return best;
     }
