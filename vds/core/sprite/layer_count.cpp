@@ -270,10 +270,6 @@ struct LayerCounter::Buffers {
 LayerCounter::LayerCounter() : buffers_(std::make_unique<Buffers>()) {}
 LayerCounter::~LayerCounter() = default;
 
-LayerCount countLayers(MeshView mesh, const SpriteGrid& grid, unsigned threads) {
-    return LayerCounter().count(mesh, grid, threads);
-}
-
 LayerCount LayerCounter::count(MeshView mesh, const SpriteGrid& grid, unsigned threads) {
     const glm::ivec3 perm = axisPermutation(grid.axis);
     // Texel centres along s and t, as the baker's `texelCentre` rounds them
