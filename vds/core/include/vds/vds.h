@@ -150,6 +150,11 @@
 //     the GL methods (Lists: fragment lists; Peel: depth peeling) on the
 //     caller's context; the same layers as the CPU baker up to the
 //     rasterizer's sub-texel snapping.
+//   chooseViewAxisOnGl(gl, mesh, resolution)  the auto axis counted in the
+//                        GL bakers' own raster on a GPU.  <vds/gl/bake.h>
+//   Baker(mesh, options)  a deforming mesh: validated once, then
+//                        `updateVertices` and `rebake`, each re-bake equal
+//                        to a fresh bake bit for bit.     <vds/gl/baker.h>
 //   Sprite bake([gl,] mesh, options)                       <vds/all.h>
 //     any BakeMethod; without a context the GL methods use a private one.
 //   BakeOptions::timings -> BakeTimings: wall and GPU time of each BakePhase
