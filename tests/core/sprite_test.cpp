@@ -277,6 +277,41 @@ TEST(ChooseViewAxis, CountsExactlyWhatTheBakerMakesAtThatResolution) {
         }
 }
 
+// The count's two paths (a row through a vertex or along an edge: the claim
+// test at both ends; a row through the interior: the edges' slopes and a
+// margin) give the baker's counts where rows run through vertices and along
+// edges: every vertex of a sphere snapped onto texel centres (s and t),
+// inside two corner boxes that fix the bounds, and a thin tilted slab.
+TEST(ChooseViewAxis, CountsExactlyWithVerticesOnTexelCentres) {
+    constexpr std::uint32_t kResolution = 40;
+    const TriangleMesh anchors = solids::merge(solids::box({-2.0f, -2.0f, -2.0f}, {-1.9f, -1.9f, -1.9f}).mesh,
+                                               solids::box({1.9f, 1.9f, 1.9f}, {2.0f, 2.0f, 2.0f}).mesh);
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+        TriangleMesh sphere = solids::sphere({0.1f, -0.05f, 0.0f}, 1.3f, 16).mesh;
+        const SpriteGrid grid = makeGrid(validateMesh(anchors).bounds, axis, kResolution);
+        const glm::ivec3 perm = axisPermutation(axis);
+        const glm::vec3 first = grid.texelCentre(0, 0, 0.0f), next = grid.texelCentre(1, 1, 0.0f);
+        for (glm::vec3& p : sphere.positions)
+            for (int c : {perm.x, perm.y}) { // the nearest centre: i or j from the even spacing
+                const float k = std::round((p[c] - first[c]) / (next[c] - first[c]));
+                const glm::vec3 centre = grid.texelCentre(std::uint32_t(k), std::uint32_t(k), 0.0f);
+                p[c] = centre[c];
+            }
+        TriangleMesh slab = solids::box({-1.5f, -0.01f, -1.2f}, {1.5f, 0.01f, 1.2f}).mesh;
+        for (glm::vec3& p : slab.positions) p = glm::vec3(p.x + 0.2f * p.z, p.y + 0.3f * p.x, p.z);
+        for (const TriangleMesh& mesh : {solids::merge(sphere, anchors), solids::merge(slab, anchors)}) {
+            ASSERT_EQ(validateMesh(mesh).bounds.lo, validateMesh(anchors).bounds.lo);
+            const AxisChoice choice = chooseViewAxis(mesh, kResolution);
+            BakeOptions o;
+            o.resolution = kResolution;
+            o.axis = axis;
+            const Sprite sprite = bakeCpu(mesh, o);
+            EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis);
+            EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis);
+        }
+    }
+}
+
 } // namespace
 } // namespace vds
 

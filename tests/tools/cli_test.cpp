@@ -620,7 +620,7 @@ namespace {
 TEST_F(Cli, BakeVerbosePrintsEveryPhase) {
     Result r = vds("bake " + p("box.obj") + " -o " + p("v.vds") + " --resolution 32 --method lists --verbose --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
-    for (const char* phase : {"validation", "upload", "raster", "scan", "sort", "read-back", "total"})
+    for (const char* phase : {"validation", "upload", "raster", "scan", "sort", "read-back", "total", "before the bake: read "})
         EXPECT_NE(r.output.find(phase), std::string::npos) << phase << " missing in:\n" << r.output;
     // The defaults, axis and method auto, say what they measured and chose
     // (a box has two layers along every axis: the tie goes to fewer crossings).
