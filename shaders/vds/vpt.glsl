@@ -415,12 +415,19 @@ bool vdsParityTestPaper(sampler3D ldi, vec3 T, int depth, bool initParity) {
 // average the corners' offsets: sqrt(sum_a t_a (1 - t_a) h_a^2) <= |h| / 2),
 // plus the filter's weight rounding (8 bits on many GPUs: 1/256 of a cell's
 // change, below |h| sqrt(3) / 256). Exact at the cell centres to float
-// rounding. Between the outermost cell centres and the box, and outside it,
-// the edge cells' values are repeated: the bound grows by the distance to
-// the cell-centre box. Where the sign changes within a cell (on the surface)
-// the sign of the lookup can differ from the classifier's.
+// rounding. Beyond the outermost cell centres (the cell-centre box), the
+// lookup is that at the box's nearest point c, its magnitude grown by
+// |world - c|: the far end of what 1-Lipschitz allows, so values keep growing
+// away from the grid (a band or a fade does not smear along the clamped
+// edge) and the bound grows by 2 |world - c|. Where the sign changes within
+// a cell (on the surface) the sign of the lookup can differ from the
+// classifier's.
 float vdsDistance(sampler3D field, vec3 lo, vec3 hi, vec3 world) {
-    return texture(field, (world - lo) / (hi - lo)).r;
+    vec3 halfCell = 0.5 * (hi - lo) / vec3(textureSize(field, 0));
+    vec3 nearest = clamp(world, lo + halfCell, hi - halfCell);
+    float d = texture(field, (nearest - lo) / (hi - lo)).r;
+    float away = length(world - nearest);
+    return d < 0.0 ? d - away : d + away;
 }
 
 #endif

@@ -103,8 +103,9 @@ AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution, unsigned thre
 AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads) {
     AxisChoice choice;
     choice.resolution = resolution;
+    detail::LayerCounter counter;
     for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
-        const detail::LayerCount count = detail::countLayers(mesh, makeGrid(report.bounds, axis, resolution), threads);
+        const detail::LayerCount count = counter.count(mesh, makeGrid(report.bounds, axis, resolution), threads);
         choice.layers[std::size_t(axis)] = count.most;
         choice.crossings[std::size_t(axis)] = count.total;
     }

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -62,6 +63,39 @@ void rowSpan(const Triangle& tri, double t, double& lo, double& hi) {
         hi = std::max(hi, s);
     }
 }
+
+// The triangle's three edges as s = s0 + (t - t0) * slope, for rows through
+// no vertex: the slope's one division is made once a triangle instead of
+// once a row. Its error is a few units in the last place of double, as
+// rowSpan's (the differences of floats are exact in double), so the same
+// margin covers both.
+struct Edges {
+    double t0[3], tLo[3], tHi[3], s0[3], slope[3];
+
+    explicit Edges(const Triangle& tri) {
+        for (int e = 0; e < 3; ++e) {
+            const float* a = tri.v[e];
+            const float* b = tri.v[(e + 1) % 3];
+            t0[e] = a[1];
+            s0[e] = a[0];
+            tLo[e] = std::min(a[1], b[1]);
+            tHi[e] = std::max(a[1], b[1]);
+            slope[e] = a[1] == b[1] ? 0.0 : (double(b[0]) - double(a[0])) / (double(b[1]) - double(a[1]));
+        }
+    }
+    /// rowSpan for a row t equal to no vertex's t: it crosses two edges
+    /// strictly between their ends, or none.
+    void span(double t, double& lo, double& hi) const {
+        lo = 1e300;
+        hi = -1e300;
+        for (int e = 0; e < 3; ++e) {
+            if (!(t > tLo[e] && t < tHi[e])) continue;
+            const double s = s0[e] + (t - t0[e]) * slope[e];
+            lo = std::min(lo, s);
+            hi = std::max(hi, s);
+        }
+    }
+};
 
 // The texel centres along one axis (increasing, nearly evenly spaced) and
 // the binary searches on them, started from the even spacing's guess.
@@ -110,14 +144,15 @@ struct RowCounts {
         // What the double intersection may err by, with a wide margin
         // (a few double ulps of the coordinates, taken as 2^-40 of them).
         const double tol = 0x1p-40 * 3.0 * std::max({std::fabs(tri.v[0][0]), std::fabs(tri.v[1][0]), std::fabs(tri.v[2][0])});
+        const Edges edges(tri);
         for (std::ptrdiff_t j = j0; j < j1; ++j) {
             const float row = t.at[std::size_t(j)];
-            double lo, hi;
-            rowSpan(tri, double(row), lo, hi);
-            if (lo > hi) continue;
             std::ptrdiff_t a, b;
             if (row == tri.v[0][1] || row == tri.v[1][1] || row == tri.v[2][1]) {
                 // Through a vertex (or along an edge): the ends by the claim test.
+                double lo, hi;
+                rowSpan(tri, double(row), lo, hi);
+                if (lo > hi) continue;
                 a = s.first(lo) - kWiden;
                 b = s.past(hi) + kWiden;
                 a = std::max<std::ptrdiff_t>(a, 0);
@@ -128,6 +163,9 @@ struct RowCounts {
                 // (lo, hi) lies in the open triangle, one farther outside
                 // outside the closed one; only an end within tol of lo or
                 // hi takes the claim test.
+                double lo, hi;
+                edges.span(double(row), lo, hi);
+                if (lo > hi) continue;
                 a = s.first(lo - tol);
                 b = s.past(hi + tol);
                 const auto inside = [&](std::ptrdiff_t i) {
@@ -155,9 +193,84 @@ struct RowCounts {
     }
 };
 
+// The most runs over one texel of a row. A row of few runs (a small
+// mesh's triangles span many rows, so its rows hold a few dozen runs over
+// thousands of texels) sorts its runs' ends: the count is largest just after
+// a start, where it is the starts up to there less the ends up to there. A
+// row of many runs sums its difference array over the texels they touch.
+class RowMost {
+public:
+    explicit RowMost(std::uint32_t width) : diff_(std::size_t(width) + 1), width_(width) {}
+
+    std::int32_t most(const std::pair<std::uint32_t, std::uint32_t>* runs, std::size_t k, std::uint64_t& claimed) {
+        if (k == 0) return 0;
+        std::uint32_t lo = width_, hi = 0; // the row's texels that runs touch
+        for (std::size_t r = 0; r < k; ++r) {
+            claimed += runs[r].second - runs[r].first;
+            lo = std::min(lo, runs[r].first);
+            hi = std::max(hi, runs[r].second);
+        }
+        return k * kSortedPerTexel < hi - lo ? byEnds(runs, k) : bySum(runs, k, lo, hi);
+    }
+
+private:
+    // A sort of k ends costs about what a sum over this many texels a run does.
+    static constexpr std::size_t kSortedPerTexel = 16;
+
+    std::int32_t byEnds(const std::pair<std::uint32_t, std::uint32_t>* runs, std::size_t k) {
+        starts_.resize(k);
+        ends_.resize(k);
+        for (std::size_t r = 0; r < k; ++r) {
+            starts_[r] = runs[r].first;
+            ends_[r] = runs[r].second;
+        }
+        std::sort(starts_.begin(), starts_.end());
+        std::sort(ends_.begin(), ends_.end());
+        std::size_t ended = 0;
+        std::int32_t best = 0;
+        for (std::size_t r = 0; r < k; ++r) { // runs [a, b): b <= x has ended at x
+            while (ended < k && ends_[ended] <= starts_[r]) ++ended;
+            best = std::max(best, std::int32_t(r + 1 - ended));
+        }
+        return best;
+    }
+    std::int32_t bySum(const std::pair<std::uint32_t, std::uint32_t>* runs, std::size_t k, std::uint32_t lo, std::uint32_t hi) {
+        for (std::size_t r = 0; r < k; ++r) {
+            ++diff_[runs[r].first];
+            --diff_[runs[r].second];
+        }
+        std::int32_t running = 0, best = 0;
+        std::uint32_t i = lo;
+        for (; i + 4 <= hi; i += 4) { // four texels a step: the sums within the step do not wait on `running`
+            const std::int32_t* d = diff_.data() + i;
+            const std::int32_t p1 = d[0], p2 = p1 + d[1], p3 = p2 + d[2], p4 = p3 + d[3];
+            best = std::max(best, running + std::max(std::max(p1, p2), std::max(p3, p4)));
+            running += p4;
+        }
+        for (; i < hi; ++i) best = std::max(best, running += diff_[i]);
+        std::fill(diff_.begin() + lo, diff_.begin() + hi + 1, 0); // the row's differences sum to 0
+        return best;
+    }
+
+    std::vector<std::int32_t> diff_;
+    std::vector<std::uint32_t> starts_, ends_;
+    std::uint32_t width_;
+};
+
 } // namespace
 
-LayerCount countLayers(MeshView mesh, const SpriteGrid& grid, unsigned threads) {
+// The runs and their buckets, kept from one axis's count to the next: their
+// pages are then faulted in once (tens of MB for a million triangles), not
+// once an axis, and the chunks' vectors keep their capacity.
+struct LayerCounter::Buffers {
+    std::vector<std::vector<Run>> runs;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> byRow;
+};
+
+LayerCounter::LayerCounter() : buffers_(std::make_unique<Buffers>()) {}
+LayerCounter::~LayerCounter() = default;
+
+LayerCount LayerCounter::count(MeshView mesh, const SpriteGrid& grid, unsigned threads) {
     const glm::ivec3 perm = axisPermutation(grid.axis);
     // Texel centres along s and t, as the baker's `texelCentre` rounds them
     // (a baking grid is axis-aligned: s follows i alone, t follows j alone).
@@ -169,7 +282,9 @@ LayerCount countLayers(MeshView mesh, const SpriteGrid& grid, unsigned threads) 
     // The runs, chunk by chunk of triangles, then bucketed by row: each row's
     // difference array is then small enough to stay in the core's cache.
     constexpr std::size_t kChunk = 4096;
-    std::vector<std::vector<Run>> runs((mesh.triangleCount + kChunk - 1) / kChunk);
+    std::vector<std::vector<Run>>& runs = buffers_->runs;
+    runs.resize((mesh.triangleCount + kChunk - 1) / kChunk);
+    for (auto& chunk : runs) chunk.clear();
     parallelFor(threads, mesh.triangleCount, kChunk, [&](std::size_t begin, std::size_t end) {
         std::vector<Run>& out = runs[begin / kChunk];
         for (std::size_t k = begin; k < end; ++k) {
@@ -181,7 +296,8 @@ LayerCount countLayers(MeshView mesh, const SpriteGrid& grid, unsigned threads) 
     for (const auto& chunk : runs)
         for (const Run& r : chunk) ++start[r.row + 1];
     for (std::size_t j = 0; j < grid.height; ++j) start[j + 1] += start[j];
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> byRow(start.back());
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>& byRow = buffers_->byRow;
+    byRow.resize(start.back());
     {
         std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
         for (const auto& chunk : runs)
@@ -190,23 +306,11 @@ LayerCount countLayers(MeshView mesh, const SpriteGrid& grid, unsigned threads) 
     std::atomic<std::uint32_t> most{0};
     std::atomic<std::uint64_t> total{0};
     parallelFor(threads, grid.height, 64, [&](std::size_t begin, std::size_t end) {
-        std::vector<std::int32_t> diff(std::size_t(grid.width) + 1);
+        RowMost row(grid.width);
         std::int32_t best = 0;
         std::uint64_t claimed = 0;
-        for (std::size_t j = begin; j < end; ++j) {
-            if (start[j] == start[j + 1]) continue;
-            std::uint32_t lo = grid.width, hi = 0; // the row's texels that runs touch
-            for (std::uint32_t k = start[j]; k < start[j + 1]; ++k) {
-                ++diff[byRow[k].first];
-                --diff[byRow[k].second];
-                claimed += byRow[k].second - byRow[k].first;
-                lo = std::min(lo, byRow[k].first);
-                hi = std::max(hi, byRow[k].second);
-            }
-            std::int32_t running = 0;
-            for (std::uint32_t i = lo; i < hi; ++i) best = std::max(best, running += diff[i]);
-            std::fill(diff.begin() + lo, diff.begin() + hi + 1, 0); // the row's differences sum to 0
-        }
+        for (std::size_t j = begin; j < end; ++j)
+            best = std::max(best, row.most(byRow.data() + start[j], start[j + 1] - start[j], claimed));
         total.fetch_add(claimed);
         std::uint32_t seen = most.load();
         while (std::uint32_t(best) > seen && !most.compare_exchange_weak(seen, std::uint32_t(best))) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include <vds/mesh.h>
 #include <vds/sprite.h>
@@ -14,10 +15,21 @@ struct LayerCount {
     std::uint64_t total = 0;  ///< crossings in all
 };
 
-/// The counts of the CPU baker's sprite of `mesh` along `grid.axis` at
-/// `grid`'s texel centres, by its claim rule: equal to counting every texel
-/// of every triangle's box (see layer_count.cpp), in time proportional to
-/// the rows the triangles span rather than the texels they cover.
-LayerCount countLayers(MeshView mesh, const SpriteGrid& grid, unsigned threads);
+/// The counts of the CPU baker's sprite of `mesh` along a grid's axis at
+/// the grid's texel centres, by its claim rule: equal to counting every
+/// texel of every triangle's box (see layer_count.cpp), in time proportional
+/// to the rows the triangles span rather than the texels they cover. One
+/// counter counts several grids in turn (the three axes of
+/// `chooseViewAxis`), reusing its buffers from one count to the next.
+class LayerCounter {
+public:
+    LayerCounter();
+    ~LayerCounter();
+    LayerCount count(MeshView mesh, const SpriteGrid& grid, unsigned threads);
+
+private:
+    struct Buffers;
+    std::unique_ptr<Buffers> buffers_;
+};
 
 } // namespace vds::detail

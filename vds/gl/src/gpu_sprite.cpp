@@ -1,4 +1,5 @@
 #include <vds/gl/sprite.h>
+#include <vds/gl/distance.h>
 
 #include "boundary_loops.h"
 
@@ -89,6 +90,8 @@ GpuSprite& GpuSprite::operator=(GpuSprite&& o) noexcept {
         boundaryKnown_ = o.boundaryKnown_;
         boundaryLo_ = o.boundaryLo_;
         boundaryStep_ = o.boundaryStep_;
+        distance_ = std::move(o.distance_);
+        distanceBox_ = o.distanceBox_;
     }
     return *this;
 }
@@ -101,6 +104,7 @@ void GpuSprite::releaseIfForeign() noexcept {
     offsets_.release();
     crossings_.release();
     boundaryEdges_.release();
+    distance_.release();
 }
 
 void GpuSprite::requireContext(const char* what) const { context_.check(what); }
@@ -127,6 +131,10 @@ void GpuSprite::upload(const Sprite& sprite, GpuSpriteParts parts) {
         glTextureSubImage3D(texture_.id(), 0, 0, 0, 0, GLsizei(w), GLsizei(h), GLsizei(d), GL_RED, GL_FLOAT,
                             dense.data());
         checkGl("uploading the sprite texture");
+    }
+    if (!sprite.distance.empty()) {
+        distance_ = uploadDistanceTexture(sprite.distance.grid, sprite.distance.cells.data());
+        distanceBox_ = sprite.distance.grid.box;
     }
     if (parts != GpuSpriteParts::TextureOnly) {
         offsets_ = detail::uploadBuffer(sprite.offsets.data(), sprite.offsets.size() * 4, "uploading the sprite's columns");
@@ -184,6 +192,16 @@ void GpuSprite::setUniforms(GLuint program, const std::string& sampler, const st
                               &matrix_[0][0]);
     glProgramUniform3fv(program, glGetUniformLocation(program, (placement + ".position").c_str()), 1, &position_[0]);
     checkGl("GpuSprite::setUniforms");
+}
+
+void GpuSprite::setDistanceUniforms(GLuint program, const std::string& sampler, const std::string& lo,
+                                    const std::string& hi, GLuint unit) const {
+    if (!distance_) throw InvalidArgument("the sprite carries no distance grid (bake it with --distance)");
+    glBindTextureUnit(unit, distance_.id());
+    glProgramUniform1i(program, glGetUniformLocation(program, sampler.c_str()), GLint(unit));
+    glProgramUniform3fv(program, glGetUniformLocation(program, lo.c_str()), 1, &distanceBox_.lo[0]);
+    glProgramUniform3fv(program, glGetUniformLocation(program, hi.c_str()), 1, &distanceBox_.hi[0]);
+    checkGl("GpuSprite::setDistanceUniforms");
 }
 
 // --- GpuClassifier ---------------------------------------------------------
