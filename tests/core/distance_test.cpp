@@ -128,6 +128,39 @@ TEST(Distance, IsWithinTheHeadersBoundOfTheReference) {
     }
 }
 
+TEST(Distance, SlabBoundsHoldJustOffATiltedPatchFarFromTheOrigin) {
+    // A finely cut tilted square at 1000 units, its nodes' slabs about as
+    // thin as float allows, and points a few float steps off it: the float
+    // product n . p is off by about their distance, so a slab bound without
+    // its rounding slack and outward rounding rules out the triangle nearest
+    // the point and answers a farther one. One far triangle gives the mesh a
+    // volume.
+    TriangleMesh mesh;
+    const std::uint32_t n = 40;
+    const glm::vec3 origin(1000.0f, 1100.0f, 900.0f), u(0.8f, 0.36f, -0.48f), v(-0.6f, 0.48f, -0.64f);
+    for (std::uint32_t i = 0; i <= n; ++i)
+        for (std::uint32_t j = 0; j <= n; ++j) mesh.positions.push_back(origin + u * (float(i) / n) + v * (float(j) / n));
+    for (std::uint32_t i = 0; i < n; ++i)
+        for (std::uint32_t j = 0; j < n; ++j) {
+            const std::uint32_t a = i * (n + 1) + j;
+            mesh.triangles.emplace_back(a, a + n + 1, a + 1);
+            mesh.triangles.emplace_back(a + 1, a + n + 1, a + n + 2);
+        }
+    const std::uint32_t far = std::uint32_t(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), {origin - glm::vec3(50.0f), origin - glm::vec3(50.0f, 49.0f, 50.0f),
+                                                 origin - glm::vec3(50.0f, 50.0f, 49.0f)});
+    mesh.triangles.emplace_back(far, far + 1, far + 2);
+    const SignedDistance distance(mesh, Rule::GeneralizedWinding);
+    const glm::vec3 normal = glm::normalize(glm::cross(u, v));
+    std::vector<glm::vec3> points;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> inSquare(0.02f, 0.98f), off(-4e-4f, 4e-4f);
+    for (int k = 0; k < 4000; ++k) points.push_back(origin + u * inSquare(rng) + v * inSquare(rng) + normal * off(rng));
+    std::vector<double> d(points.size());
+    distance.unsignedDistance(points, d.data(), DistanceOptions{2});
+    for (std::size_t k = 0; k < points.size(); ++k) ASSERT_NEAR(d[k], bruteForce(mesh, points[k]), 1e-9) << "point " << k;
+}
+
 TEST(Distance, ClosestPointsLieOnTheirTriangleAtTheDistance) {
     const TriangleMesh mesh = solids::sphereWithHoles();
     const SignedDistance distance(mesh, Rule::GeneralizedWinding);
