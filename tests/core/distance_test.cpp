@@ -285,6 +285,43 @@ TEST(Distance, GridCellsFarInsideARoundSolidSearchTheWholeHierarchy) {
             }
 }
 
+TEST(Distance, PropagatedGridIsExactNearTheSurfaceAndWithinItsBoundBeyond) {
+    // FarCells::Propagated against the exact grid (itself held to the point
+    // distances above) on closed and open meshes, every cell: the same sign,
+    // never below the exact distance, exact within 3/2 of a cell diagonal of
+    // the surface and within 4 diagonals beyond (the header's bound).
+    for (const Case& c : {cases()[0], cases()[2], cases()[5], cases()[6], cases()[9]}) {
+        SCOPED_TRACE(c.name);
+        const SignedDistance distance(c.mesh, c.rule);
+        Grid grid;
+        grid.box = meshBounds(c.mesh);
+        grid.box.lo -= glm::vec3(0.3f);
+        grid.box.hi += glm::vec3(0.2f);
+        grid.dims = glm::uvec3(30, 27, 33);
+        std::vector<float> exact(grid.cellCount()), propagated(grid.cellCount());
+        distance.grid(grid, exact.data(), DistanceGridOptions{2, 0.0});
+        DistanceGridOptions options{2, 0.0};
+        options.far = FarCells::Propagated;
+        distance.grid(grid, propagated.data(), options);
+        const double diagonal = glm::length(glm::dvec3(grid.box.hi - grid.box.lo) / glm::dvec3(grid.dims));
+        std::size_t near = 0, differ = 0;
+        for (std::size_t n = 0; n < exact.size(); ++n) {
+            ASSERT_EQ(std::signbit(propagated[n]), std::signbit(exact[n])) << "cell " << n;
+            const double d = std::abs(double(exact[n])), e = std::abs(double(propagated[n])) - d;
+            if (d < 1.5 * diagonal) {
+                ASSERT_EQ(propagated[n], exact[n]) << "cell " << n;
+                ++near;
+            }
+            ASSERT_GE(e, -1e-6 * d) << "cell " << n;
+            ASSERT_LE(e, 4.0 * diagonal + 1e-6 * d) << "cell " << n;
+            differ += e != 0.0;
+        }
+        EXPECT_GT(near, 0u); // both sides of the band were exercised
+        EXPECT_LT(near, exact.size());
+        RecordProperty(c.name + " cells differing", std::to_string(differ));
+    }
+}
+
 TEST(Distance, BadInputGetsOneClearError) {
     const TriangleMesh sphere = solids::sphere(glm::vec3(0.0f), 1.0f, 16).mesh;
     const SignedDistance distance(sphere, Rule::Parity);
