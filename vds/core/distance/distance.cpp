@@ -7,6 +7,8 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <vds/detail/parallel.h>
@@ -240,46 +242,83 @@ std::vector<detail::NearestState> SignedDistance::Impl::latticeTriangles(const G
     return nearestOf;
 }
 
-/// The cells between lattice cells m and m + 1: the nearest of the eight
-/// corners' triangles, then an exact search where the corners' distances
-/// less their distance to the cell (1-Lipschitz) leave it possibly within
-/// kExactDiagonals of the surface (FarCells::Propagated states the bound).
+/// The eight lattice cells around a propagated brick: their cell indices
+/// (bit a of a corner's number: the high end on axis a), distances and
+/// nearest triangles.
+struct BrickCorners {
+    glm::uvec3 lo, hi; ///< the low and high corners' cells
+    glm::dvec3 corner[8];
+    double cornerDistance[8];
+    std::uint32_t slot[8];
+    std::uint32_t central = kNoTriangle; ///< of those, the nearest to the brick's centre
+    /// No cell of the brick is nearer the surface than this (1-Lipschitz
+    /// from the farthest corner).
+    double nearestCell = 0.0;
+};
+
+BrickCorners brickCorners(const Grid& grid, const Lattice& lattice, const glm::uvec3& m,
+                          const detail::NearestState* nearestOf, const detail::Bvh& bvh) {
+    BrickCorners b;
+    const glm::uvec3 top = glm::min(m + 1u, lattice.count - 1u);
+    b.lo = {lattice.cell(m.x, 0), lattice.cell(m.y, 1), lattice.cell(m.z, 2)};
+    b.hi = {lattice.cell(top.x, 0), lattice.cell(top.y, 1), lattice.cell(top.z, 2)};
+    double farthest = 0.0;
+    for (int c = 0; c < 8; ++c) {
+        const glm::uvec3 at(c & 1 ? top.x : m.x, c & 2 ? top.y : m.y, c & 4 ? top.z : m.z);
+        b.corner[c] = grid.cellCentre(lattice.cell(at.x, 0), lattice.cell(at.y, 1), lattice.cell(at.z, 2));
+        const detail::NearestState& q = nearestOf[lattice.index(at)];
+        b.cornerDistance[c] = std::sqrt(q.distance2);
+        b.slot[c] = q.slot;
+        farthest = std::max(farthest, b.cornerDistance[c]);
+    }
+    b.nearestCell = farthest - glm::length(b.corner[7] - b.corner[0]);
+    const glm::vec3 centre((b.corner[0] + b.corner[7]) * 0.5);
+    double best = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < 8; ++c) {
+        const double d2 = c > 0 && b.slot[c] == b.slot[c - 1] ? best : bvh.distance2(centre, b.slot[c]);
+        if (d2 < best) best = d2, b.central = b.slot[c];
+    }
+    return b;
+}
+
+/// The cells between lattice cells m and m + 1 (FarCells::Propagated states
+/// the bound). Each takes the nearest of three triangles: its nearest
+/// corner's (which makes the bound), the cell's before it in the column
+/// (which carries the nearest feature along) and the corners' nearest to the
+/// brick's centre; then an exact search where the
+/// corners' distances less their distance to the cell (1-Lipschitz) leave
+/// it possibly within kExactDiagonals of the surface.
 void SignedDistance::Impl::propagateBrick(const Grid& grid, const Lattice& lattice, const glm::uvec3& m,
                                           const detail::NearestState* nearestOf, const std::uint8_t* inside,
                                           float* cells) const {
-    glm::dvec3 corner[8];
-    double cornerDistance[8];
-    std::uint32_t slots[8];
-    int count = 0;
-    for (int c = 0; c < 8; ++c) {
-        const glm::uvec3 at = glm::min(m + glm::uvec3(c & 1, c >> 1 & 1, c >> 2 & 1), lattice.count - 1u);
-        corner[c] = grid.cellCentre(lattice.cell(at.x, 0), lattice.cell(at.y, 1), lattice.cell(at.z, 2));
-        const detail::NearestState& q = nearestOf[lattice.index(at)];
-        cornerDistance[c] = std::sqrt(q.distance2);
-        if (std::find(slots, slots + count, q.slot) == slots + count) slots[count++] = q.slot;
-    }
+    const BrickCorners b = brickCorners(grid, lattice, m, nearestOf, bvh);
     const glm::dvec3 step = glm::dvec3(grid.box.hi - grid.box.lo) / glm::dvec3(grid.dims);
     const double exactWithin = kExactDiagonals * glm::length(step);
-    const glm::uvec3 lo(lattice.cell(m.x, 0), lattice.cell(m.y, 1), lattice.cell(m.z, 2));
     glm::uvec3 hi;
-    for (int a = 0; a < 3; ++a) hi[a] = m[a] + 1 < lattice.count[a] ? lattice.cell(m[a] + 1, a) : grid.dims[a];
-    for (std::uint32_t i = lo.x; i < hi.x; ++i)
-        for (std::uint32_t j = lo.y; j < hi.y; ++j)
-            for (std::uint32_t k = lo.z; k < hi.z; ++k) {
+    for (int a = 0; a < 3; ++a) hi[a] = m[a] + 1 < lattice.count[a] ? b.hi[a] : grid.dims[a];
+    for (std::uint32_t i = b.lo.x; i < hi.x; ++i)
+        for (std::uint32_t j = b.lo.y; j < hi.y; ++j) {
+            std::uint32_t previous = kNoTriangle;
+            for (std::uint32_t k = b.lo.z; k < hi.z; ++k) {
                 const glm::vec3 p = grid.cellCentre(i, j, k);
-                double below = 0.0; // a lower bound of the cell's distance
-                for (int c = 0; c < 8; ++c)
-                    below = std::max(below, cornerDistance[c] - glm::length(glm::dvec3(p) - corner[c]));
-                detail::NearestState s{std::numeric_limits<double>::infinity()};
-                for (int c = 0; c < count; ++c) {
-                    const double d2 = bvh.distance2(p, slots[c]);
-                    if (d2 < s.distance2) s = {d2, slots[c]};
-                }
+                const int c = (i - b.lo.x > b.hi.x - i ? 1 : 0) | (j - b.lo.y > b.hi.y - j ? 2 : 0) |
+                              (k - b.lo.z > b.hi.z - k ? 4 : 0);
+                detail::NearestState s{bvh.distance2(p, b.slot[c]), b.slot[c]};
+                for (const std::uint32_t other : {previous, b.central})
+                    if (other != kNoTriangle && other != s.slot) {
+                        const double d2 = bvh.distance2(p, other);
+                        if (d2 < s.distance2) s = {d2, other};
+                    }
+                double below = b.nearestCell; // a lower bound of the cell's distance
+                for (int q = 0; q < 8 && below < exactWithin; ++q)
+                    below = std::max(below, b.cornerDistance[q] - glm::length(glm::dvec3(p) - b.corner[q]));
                 if (below < exactWithin) bvh.nearest(p, s);
+                previous = s.slot;
                 const double d = std::sqrt(s.distance2);
                 const std::size_t at = grid.index(i, j, k);
                 cells[at] = inside[at] ? -float(d) : float(d);
             }
+        }
 }
 
 void SignedDistance::Impl::propagatedGrid(const Grid& grid, const std::uint8_t* inside, float* cells,
