@@ -104,7 +104,7 @@ struct DistanceGridOptions {
     unsigned threads = 0; ///< CPU threads, 0: one per hardware thread
     /// Narrow band half-width in mesh units: cells farther than this from
     /// the surface get exactly -band (inside) or +band (outside). 0: the
-    /// full grid, every cell exact. Must be finite and >= 0.
+    /// full grid, its far cells as `far` says. Must be finite and >= 0.
     double band = 0.0;
     /// The full grid's far cells (band 0 only; a band is always exact).
     FarCells far = FarCells::Exact;
@@ -161,8 +161,9 @@ public:
     /// full grid): the leaves that can hold a brick's nearest triangles are
     /// gathered once, and each cell starts from the nearest triangle of the
     /// cell before it; in band mode a brick no leaf comes near is filled
-    /// without a search. Throws like `checkGrid` and `InvalidArgument` for
-    /// a bad band.
+    /// without a search. A full grid with `FarCells::Propagated` is a
+    /// closest-feature transform instead, within the bound that enum states.
+    /// Throws like `checkGrid` and `InvalidArgument` for a bad band.
     void grid(const Grid& grid, float* cells, const DistanceGridOptions& options = {}) const;
 
 private:
