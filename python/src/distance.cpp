@@ -133,7 +133,7 @@ winding: crossings are counted as for a surface).)doc")
              py::arg("threads") = 0,
              "float32 array of grid.shape: the signed distance of every cell centre (grid.cell_centres()); "
              "band > 0: cells farther than band from the surface hold -band or +band; propagated: the full grid "
-             "as a closest-feature transform, exact within 1.5 cell diagonals of the surface, beyond it never "
+             "as a closest-feature transform, exact within a cell diagonal of the surface, beyond it never "
              "below the distance and within 4 cell diagonals above it.")
         .def_property_readonly("rule", &PySignedDistance::rule)
         .def("__repr__", [](const PySignedDistance& s) { return "<vds.SignedDistance: " + s.summary() + ">"; });

@@ -103,7 +103,7 @@ def test_propagated_sdf_is_exact_near_the_surface_and_within_its_bound_beyond():
     propagated = vds.sdf(V, F, grid, propagated=True).astype(np.float64)
     diagonal = np.linalg.norm((np.array([1.2, 1.3, 1.4]) - np.array([-1.3, -1.2, -1.1])) / np.array(grid.shape))
     np.testing.assert_array_equal(np.signbit(propagated), np.signbit(exact))
-    near = np.abs(exact) < 1.5 * diagonal
+    near = np.abs(exact) < diagonal
     assert near.any() and (~near).any()
     np.testing.assert_array_equal(propagated[near], exact[near])
     error = np.abs(propagated) - np.abs(exact)

@@ -79,7 +79,7 @@ void addSdf(CLI::App& app) {
         "places them: box [lo, hi] the mesh's bounds (or --box) grown by --pad times its size on every\n"
         "side. Negative exactly where 'vds voxelize' with the same rule says inside. With --band W\n"
         "(mesh units), cells farther than W from the surface hold -W or +W. With --propagated, the full\n"
-        "grid as a closest-feature transform: exact within 1.5 cell diagonals of the surface, beyond it\n"
+        "grid as a closest-feature transform: exact within a cell diagonal of the surface, beyond it\n"
         "never below the distance and within 4 cell diagonals above it (many times faster).",
         sdf);
     addMesh(*c, a->mesh);

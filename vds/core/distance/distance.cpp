@@ -40,7 +40,7 @@ constexpr std::size_t kMaxBrickGroups = 1024;
 /// on each axis: its bound is 2 (kLatticeStep / 2) cell diagonals.
 constexpr std::uint32_t kLatticeStep = 4;
 /// Cell diagonals from the surface within which a propagated grid is exact.
-constexpr double kExactDiagonals = 1.5;
+constexpr double kExactDiagonals = 1.0;
 
 struct Brick {
     glm::uvec3 lo, hi; ///< cells [lo, hi)

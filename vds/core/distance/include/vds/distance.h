@@ -83,14 +83,14 @@ enum class FarCells : std::uint8_t {
     /// Every cell exact (the nearest float to `distance` of its centre).
     Exact,
     /// A closest-feature transform: the grid's cells at every 4th index on
-    /// each axis (and its last) are exact; every other cell takes the
-    /// nearest of the triangles nearest to the 8 such cells around it, d'.
-    /// d' is the distance to a triangle of the mesh, so d' >= d, and for the
-    /// corner q it took the triangle of, d' <= d(q) + |c - q| <= d + 2 |c - q|
-    /// (distance is 1-Lipschitz): d <= d' <= d + 2 delta, delta the distance
-    /// from the cell's centre to the nearest of those 8 centres, at most two
-    /// cell diagonals. Where max over the 8 of d(q) - |c - q| (a lower bound
-    /// of d) is below 3/2 of a cell diagonal the cell is searched exactly,
+    /// each axis (and its last) are exact; every other cell c takes d', the
+    /// distance to the nearest of three triangles: the nearest triangle of
+    /// the nearest such corner q, the previous cell's in its column, and of
+    /// the 8 corners' the one nearest the brick's centre. d' is a distance to
+    /// a triangle of the mesh, so d' >= d, and d' <= d(q) + |c - q| <=
+    /// d + 2 |c - q| (distance is 1-Lipschitz), |c - q| at most two cell
+    /// diagonals. Where max over the 8 of d(q) - |c - q| (a lower bound
+    /// of d) is below one cell diagonal the cell is searched exactly,
     /// so every cell nearer the surface than that is exact, as in `Exact`;
     /// farther ones are within 4 cell diagonals of exact (plus the float
     /// rounding of the cell; in practice within a cell), the sign exact
