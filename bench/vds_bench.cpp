@@ -37,11 +37,13 @@
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
+#include <vds/gl/occupancy.h>
 #include <vds/gl/context.h>
 #include <vds/gl/bake.h>
 #include <vds/gl/sprite.h>
 #include <vds/mesh_io.h>
 #include <vds/vds_file.h>
+#include "plain_kernels.h"
 #include "solids.h"
 
 namespace {
@@ -93,6 +95,10 @@ struct Settings {
     std::size_t points = 10000000;
     std::size_t exactPoints = 1000000;
     std::uint32_t classifyResolution = 2048;
+    double warmUp = 0.5;              // seconds of GPU work before each timed GPU figure
+    std::size_t gwnPoints = 1000000;  // points a mesh for the generalized winding table
+    std::uint32_t gwnResolution = 1024;
+    std::uint32_t gwnDims = 256;      // cells a side of the occupancy grids
     unsigned bakeRuns = 2;
     unsigned classifyRuns = 2;
     bool cpuBake = true, peel = true, bakeTable = true, classifyTable = true, sizes = true;
@@ -149,6 +155,31 @@ double gpuSeconds(const std::function<void()>& f, double* wall) {
     vds::checkGl("timing a dispatch");
     const double s = 1e-9 * double(ns);
     return s < 1e-3 * *wall || s > *wall ? -1.0 : s;
+}
+
+// A GPU figure: the best wall time (glFinish) and GL timer (1e300: none).
+struct Timed {
+    double wall = 1e300, gpu = 1e300;
+    double best() const { return gpu < 1e300 ? gpu : wall; } ///< the GL timer where the driver has one
+};
+
+// Warms the GPU up with `dispatch`, then times it, best of the runs.
+Timed timeGpu(const Settings& set, const std::function<void()>& dispatch) {
+    vds::bench::warmUp(dispatch, set.warmUp);
+    Timed t;
+    for (unsigned k = 0; k < std::max(1u, set.classifyRuns); ++k) {
+        double w = 0;
+        const double g = gpuSeconds(dispatch, &w);
+        t.wall = std::min(t.wall, w);
+        if (g > 0) t.gpu = std::min(t.gpu, g);
+    }
+    return t;
+}
+
+void readLabels(GLuint labels, std::size_t n, std::vector<std::uint8_t>& out) {
+    std::vector<std::uint8_t> bytes((n + 3) / 4 * 4);
+    glGetNamedBufferSubData(labels, 0, GLsizeiptr(bytes.size()), bytes.data());
+    out.assign(bytes.begin(), bytes.begin() + std::ptrdiff_t(n));
 }
 
 std::vector<BenchMesh> loadMeshes(const Settings& set) {
@@ -337,6 +368,29 @@ void coherentPoints(const vds::SpriteGrid& grid, std::vector<glm::vec3>& points)
     }
 }
 
+// One set of resident points: vds's classifier and the plain kernel on the
+// same buffers, timed after the warm-up, their labels read back.
+struct ResidentCase {
+    const std::vector<glm::vec3>& points;
+    Timed& vds;
+    Timed& plain;
+    std::vector<std::uint8_t>& vdsLabels;
+    std::vector<std::uint8_t>& plainLabels;
+};
+
+void measureResident(const Settings& set, vds::GpuClassifier& classifier, const vds::bench::PlainKernels& plain,
+                     const vds::GpuSprite& gpu, const ResidentCase& c) {
+    const std::size_t n = c.points.size();
+    vds::Buffer points = vds::Buffer::create(), labels = vds::Buffer::create();
+    glNamedBufferStorage(points.id(), GLsizeiptr(n * 12), c.points.data(), 0);
+    glNamedBufferStorage(labels.id(), GLsizeiptr((n + 3) / 4 * 4), nullptr, 0);
+    vds::checkGl("allocating the benchmark's buffers");
+    c.vds = timeGpu(set, [&] { classifier.classify(gpu, points.id(), n, labels.id()); });
+    readLabels(labels.id(), n, c.vdsLabels);
+    c.plain = timeGpu(set, [&] { plain.parity(gpu, points.id(), n, labels.id()); });
+    readLabels(labels.id(), n, c.plainLabels);
+}
+
 void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMesh>& meshes) {
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     const std::size_t n = set.points;
@@ -344,14 +398,18 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
     std::puts("`random`: uniform in the mesh box grown by 10%. `coherent`: 32 points a column, columns in raster order.");
     std::printf("CPU: vds::classify on 1 and %u threads. GPU host -> host: GpuClassifier from and to host arrays, the\n"
                 "transfers included. GPU resident: points and labels in GL buffers (wall time with glFinish, and the\n"
-                "GL timer), best of %u. `exact`: the exact classifier on the first %zu random points, %u threads;\n"
+                "GL timer), best of %u, each after %.1f s of warm-up. `plain`: the plainest GL kernel over the same\n"
+                "buffers in the same run (bench/plain_kernels.h; GL timer where there is one), and vds / plain.\n"
+                "`exact`: the exact classifier on the first %zu random points, %u threads;\n"
                 "`VDS vs exact`: share of those points where the sprite answers otherwise (all near the surface).\n\n",
-                threads, set.classifyRuns, std::min(n, set.exactPoints), threads);
+                threads, set.classifyRuns, set.warmUp, std::min(n, set.exactPoints), threads);
     std::printf("| mesh | w x h x d | CPU 1 thr | CPU %u thr | GPU host -> host | GPU resident random | "
-                "(GPU timer) | GPU resident coherent | (GPU timer) | exact | GPU == CPU | VDS vs exact |\n",
+                "(GPU timer) | plain random | vds / plain | GPU resident coherent | (GPU timer) | plain coherent | "
+                "vds / plain | exact | GPU == CPU | VDS vs exact |\n",
                 threads);
-    std::puts("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|");
+    std::puts("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|");
     vds::GpuClassifier classifier(gl);
+    const vds::bench::PlainKernels plain(gl);
     std::vector<glm::vec3> unit(n), random(n), coherent(n);
     {
         std::mt19937 rng(42);
@@ -359,7 +417,6 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
         for (auto& p : unit) p = glm::vec3(u(rng), u(rng), u(rng));
     }
     std::vector<std::uint8_t> cpu1(n), cpuN(n), hostToHost(n), resident(n), coherentCpu(n), coherentGpu(n);
-    const std::size_t labelBytes = (n + 3) / 4 * 4;
     for (const auto& m : meshes) {
         vds::BakeOptions o;
         o.resolution = set.classifyResolution;
@@ -374,33 +431,16 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
         all.threads = threads;
         const double t1 = best(1, [&] { vds::classify(sprite, vds::PointsView(random.data(), n), cpu1.data(), one); });
         const double tN = best(set.classifyRuns, [&] { vds::classify(sprite, vds::PointsView(random.data(), n), cpuN.data(), all); });
-        classifier.classify(gpu, vds::PointsView(random.data(), std::min<std::size_t>(n, 4096)), hostToHost.data()); // warm-up
+        vds::bench::warmUp([&] { classifier.classify(gpu, vds::PointsView(random.data(), std::min<std::size_t>(n, 1 << 20)),
+                                                     hostToHost.data()); }, set.warmUp);
         const double tHost = best(set.classifyRuns, [&] { classifier.classify(gpu, vds::PointsView(random.data(), n), hostToHost.data()); });
 
         // Resident: the points uploaded once, the labels left in GL.
-        double residentWall = 1e300, residentGpu = 1e300, coherentWall = 1e300, coherentGpu_ = 1e300;
-        {
-            vds::Buffer randomBuffer = vds::Buffer::create(), coherentBuffer = vds::Buffer::create(),
-                        labels = vds::Buffer::create();
-            glNamedBufferStorage(randomBuffer.id(), GLsizeiptr(n * 12), random.data(), 0);
-            glNamedBufferStorage(coherentBuffer.id(), GLsizeiptr(n * 12), coherent.data(), 0);
-            glNamedBufferStorage(labels.id(), GLsizeiptr(labelBytes), nullptr, 0);
-            vds::checkGl("allocating the benchmark's buffers");
-            auto measure = [&](const vds::Buffer& points, double& wall, double& gpuTime, std::vector<std::uint8_t>& out) {
-                classifier.classify(gpu, points.id(), n, labels.id()); // warm-up
-                for (unsigned k = 0; k < std::max(1u, set.classifyRuns); ++k) {
-                    double w = 0;
-                    const double g = gpuSeconds([&] { classifier.classify(gpu, points.id(), n, labels.id()); }, &w);
-                    wall = std::min(wall, w);
-                    if (g > 0) gpuTime = std::min(gpuTime, g);
-                }
-                std::vector<std::uint8_t> bytes(labelBytes);
-                glGetNamedBufferSubData(labels.id(), 0, GLsizeiptr(labelBytes), bytes.data());
-                std::copy(bytes.begin(), bytes.begin() + std::ptrdiff_t(n), out.begin());
-            };
-            measure(randomBuffer, residentWall, residentGpu, resident);
-            measure(coherentBuffer, coherentWall, coherentGpu_, coherentGpu);
-        }
+        Timed vdsRandom, vdsCoherent, plainRandom, plainCoherent;
+        std::vector<std::uint8_t> plainLabels(n), plainCoherentLabels(n);
+        const ResidentCase randomCase{random, vdsRandom, plainRandom, resident, plainLabels};
+        const ResidentCase coherentCase{coherent, vdsCoherent, plainCoherent, coherentGpu, plainCoherentLabels};
+        for (const ResidentCase& c : {randomCase, coherentCase}) measureResident(set, classifier, plain, gpu, c);
         vds::classify(sprite, vds::PointsView(coherent.data(), n), coherentCpu.data(), all);
 
         const std::size_t ne = std::min(n, set.exactPoints);
@@ -409,15 +449,103 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
         const double tExact = seconds([&] { exact.classify(vds::PointsView(random.data(), ne), exactLabels.data(), all); });
         std::size_t differ = 0;
         for (std::size_t k = 0; k < ne; ++k) differ += cpuN[k] != exactLabels[k];
-        const bool equal = cpu1 == cpuN && cpuN == hostToHost && cpuN == resident && coherentCpu == coherentGpu;
+        const bool equal = cpu1 == cpuN && cpuN == hostToHost && cpuN == resident && coherentCpu == coherentGpu &&
+                           plainLabels == cpuN && plainCoherentLabels == coherentCpu;
         const double points = double(n);
-        std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.4f %% |\n", m.mesh.name.c_str(),
-                    sizeText(sprite.width(), sprite.height(), sprite.depthComplexity).c_str(), rate(points, t1).c_str(),
-                    rate(points, tN).c_str(), rate(points, tHost).c_str(), rate(points, residentWall).c_str(),
-                    residentGpu < 1e300 ? rate(points, residentGpu).c_str() : "-", rate(points, coherentWall).c_str(),
-                    coherentGpu_ < 1e300 ? rate(points, coherentGpu_).c_str() : "-", rate(double(ne), tExact).c_str(),
-                    equal ? "yes" : "NO", 100.0 * double(differ) / double(std::max<std::size_t>(ne, 1)));
+        std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.4f %% |\n",
+                    m.mesh.name.c_str(), sizeText(sprite.width(), sprite.height(), sprite.depthComplexity).c_str(),
+                    rate(points, t1).c_str(), rate(points, tN).c_str(), rate(points, tHost).c_str(),
+                    rate(points, vdsRandom.wall).c_str(), vdsRandom.gpu < 1e300 ? rate(points, vdsRandom.gpu).c_str() : "-",
+                    rate(points, plainRandom.best()).c_str(), ratio(plainRandom.best(), vdsRandom.best()).c_str(),
+                    rate(points, vdsCoherent.wall).c_str(),
+                    vdsCoherent.gpu < 1e300 ? rate(points, vdsCoherent.gpu).c_str() : "-",
+                    rate(points, plainCoherent.best()).c_str(), ratio(plainCoherent.best(), vdsCoherent.best()).c_str(),
+                    rate(double(ne), tExact).c_str(), equal ? "yes" : "NO",
+                    100.0 * double(differ) / double(std::max<std::size_t>(ne, 1)));
         std::fflush(stdout);
+    }
+}
+
+// The generalized winding number on the GPU, open meshes only: vds's
+// program against the brute-force plain kernel, and the occupancy sweeps.
+void gwnTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMesh>& meshes) {
+    const std::size_t n = set.gwnPoints;
+    std::printf("\n## Generalized winding number on the GPU: %zu points a mesh, sprites at %u (G points/s)\n\n", n,
+                set.gwnResolution);
+    std::puts("Open meshes only. Points uniform in the box grown by 10%, resident in GL; best of the runs after the");
+    std::puts("warm-up. `brute force`: the plain kernel summing every boundary edge for every point (bench/plain_kernels.h),");
+    std::puts("and its edge terms/s. `differ`: labels unlike the CPU's (float against double, near 1/2). Occupancy:");
+    std::printf("%u^3 cells over the box, G cells/s, generalized winding against parity.\n\n", set.gwnDims);
+    std::puts("| mesh | boundary edges | vds | brute force | vds / brute | G edge terms/s (brute) | differ | "
+              "occupancy GWN | occupancy parity | GWN / parity |");
+    std::puts("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    vds::GpuClassifier classifier(gl);
+    vds::GpuOccupancy occupancy(gl);
+    const vds::bench::PlainKernels plain(gl);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-0.1f, 1.1f);
+    std::vector<glm::vec3> points(n);
+    for (const auto& m : meshes) {
+        vds::BakeOptions o;
+        o.resolution = set.gwnResolution;
+        const vds::Sprite sprite = vds::bake(gl, m.mesh, o);
+        if (sprite.boundaryEdges.empty()) continue;
+        const vds::GpuSprite gpu(sprite, vds::GpuSpriteParts::ColumnsOnly);
+        for (auto& p : points) p = sprite.grid.box.lo + glm::vec3(u(rng), u(rng), u(rng)) * (sprite.grid.box.hi - sprite.grid.box.lo);
+        vds::Buffer pointBuffer = vds::Buffer::create(), labels = vds::Buffer::create();
+        glNamedBufferStorage(pointBuffer.id(), GLsizeiptr(n * 12), points.data(), 0);
+        glNamedBufferStorage(labels.id(), GLsizeiptr((n + 3) / 4 * 4), nullptr, 0);
+        std::vector<std::uint8_t> cpu(n), mine(n), brute(n);
+        vds::ClassifyOptions gwn;
+        gwn.rule = vds::Rule::GeneralizedWinding;
+        vds::classify(sprite, vds::PointsView(points.data(), n), cpu.data(), gwn);
+        const Timed tv = timeGpu(set, [&] { classifier.classify(gpu, pointBuffer.id(), n, labels.id(), gwn); });
+        readLabels(labels.id(), n, mine);
+        const Timed tb = timeGpu(set, [&] { plain.generalizedWinding(gpu, pointBuffer.id(), n, labels.id()); });
+        readLabels(labels.id(), n, brute);
+        std::size_t differ = 0;
+        for (std::size_t k = 0; k < n; ++k) differ += (cpu[k] != mine[k]) + (cpu[k] != brute[k]);
+        vds::Grid grid;
+        grid.box = sprite.grid.box;
+        grid.dims = glm::uvec3(set.gwnDims);
+        const std::uint64_t cells = grid.cellCount();
+        vds::Buffer cellBuffer = vds::Buffer::create();
+        glNamedBufferStorage(cellBuffer.id(), GLsizeiptr((cells + 3) / 4 * 4), nullptr, 0);
+        vds::ClassifyOptions parity;
+        const Timed og = timeGpu(set, [&] { occupancy.occupancy(gpu, grid, cellBuffer.id(), gwn); });
+        const Timed op = timeGpu(set, [&] { occupancy.occupancy(gpu, grid, cellBuffer.id(), parity); });
+        const double edges = double(sprite.boundaryEdges.size() / 2);
+        std::printf("| %s | %.0f | %s | %s | %s | %s | %zu | %s | %s | %s |\n", m.mesh.name.c_str(), edges,
+                    rate(double(n), tv.best()).c_str(), rate(double(n), tb.best()).c_str(),
+                    ratio(tb.best(), tv.best()).c_str(), rate(double(n) * edges, tb.best()).c_str(), differ,
+                    rate(double(cells), og.best()).c_str(), rate(double(cells), op.best()).c_str(),
+                    ratio(op.best(), og.best()).c_str());
+        std::fflush(stdout);
+    }
+}
+
+// --quick and --full: the settings they stand for.
+void applyMode(Settings& set, bool quick, bool full) {
+    if (quick) {
+        set.mode = "quick";
+        set.resolutions = {512};
+        set.knotResolutions = {512};
+        set.sphereResolutions = {1024};
+        set.points = 1000000;
+        set.classifyResolution = 1024;
+        set.gwnPoints = 100000;
+        set.gwnDims = 64;
+        set.bakeRuns = 1;
+        set.classifyRuns = 1;
+        set.sizes = false;
+    } else if (full) {
+        set.mode = "full";
+        set.resolutions = {512, 1024, 2048};
+        set.knotResolutions = {1024, 2048};
+        set.sphereResolutions = {1024, 2048};
+        set.points = 100000000;
+        set.bakeRuns = 3;
+        set.classifyRuns = 5;
     }
 }
 
@@ -442,6 +570,10 @@ int main(int argc, char** argv) {
     app.add_option("--points", points, "points classified per mesh (default 10M)");
     app.add_option("--classify-resolution", classifyResolution, "resolution of the sprites classified against (default 2048)");
     app.add_option("--runs", runs, "runs of each timed step; the best is reported (default 2)");
+    app.add_option("--warm-up", set.warmUp, "seconds of GPU work before each timed GPU figure (default 0.5)");
+    app.add_option("--gwn-points", set.gwnPoints,
+                   "points a mesh for the generalized winding table, open meshes only (default 1M; 0: no table)");
+    app.add_option("--gwn-dims", set.gwnDims, "cells a side of its occupancy grids (default 256)");
     app.add_option("--meshes", set.meshDir, "folder of .obj meshes (default bench/meshes: bench/fetch-meshes.sh fills it)");
     app.add_flag("--no-cpu-bake", noCpuBake, "skip the exact CPU baker");
     app.add_flag("--no-peel", noPeel, "skip depth peeling");
@@ -450,25 +582,7 @@ int main(int argc, char** argv) {
     app.add_option("meshes", set.meshFiles, "mesh files instead of those of bench/meshes and the generated meshes");
     CLI11_PARSE(app, argc, argv);
 
-    if (quick) {
-        set.mode = "quick";
-        set.resolutions = {512};
-        set.knotResolutions = {512};
-        set.sphereResolutions = {1024};
-        set.points = 1000000;
-        set.classifyResolution = 1024;
-        set.bakeRuns = 1;
-        set.classifyRuns = 1;
-        set.sizes = false;
-    } else if (full) {
-        set.mode = "full";
-        set.resolutions = {512, 1024, 2048};
-        set.knotResolutions = {1024, 2048};
-        set.sphereResolutions = {1024, 2048};
-        set.points = 100000000;
-        set.bakeRuns = 3;
-        set.classifyRuns = 5;
-    }
+    applyMode(set, quick, full);
     if (!resolutions.empty()) set.resolutions = resolutions;
     if (points) set.points = points;
     if (classifyResolution) set.classifyResolution = classifyResolution;
@@ -498,6 +612,7 @@ int main(int argc, char** argv) {
         std::vector<SizeRow> sizes;
         if (set.bakeTable) bakeTable(set, gl, meshes, sizes);
         if (set.classifyTable) classifyTable(set, gl, meshes);
+        if (set.classifyTable && set.gwnPoints) gwnTable(set, gl, meshes);
         if (!sizes.empty()) {
             std::puts("\n## File size: .vds (OpenEXR deep, ZIPS) vs the paper's dense float texture\n");
             std::puts("| mesh | resolution | crossings | .vds bytes | dense bytes | dense / .vds |");

@@ -4,13 +4,17 @@
 //
 //   vds_clip MESH (--clip A.vds | --solid B.obj)... -o out.png [--with vds|slicemap|slicemap-local|solid|exact]
 //            [--combine union|intersection] [--keep] [--resolution N] [--size N] [--view iso|x|y|z] [--rule parity|winding]
+//            [--band W [--distance-resolution N]]
 //   (vds_clip --help lists the defaults)
 //
 // Fragments of MESH inside the union (or intersection) of the solids are
 // discarded (--keep: those outside); back faces seen through the cut, the
 // cut surface, are drawn in red. Solids given as meshes are baked (or
 // voxelized, --with) at --resolution; sprites (.vds) work with --with vds
-// only. The camera is orthographic, fitted to MESH's bounding box.
+// only. The camera is orthographic, fitted to MESH's bounding box. --band W
+// draws a band of width W (mesh units) in orange where a solid cuts the
+// surface, from the solids' signed distance grids through vdsDistance
+// (sprites bring theirs: `vds bake --distance N`; meshes get one baked).
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -31,7 +35,8 @@ struct Options {
     std::string mesh, output, view = "iso", with = "vds", combine = "union";
     std::vector<std::string> clips, solids;
     bool keep = false;
-    std::uint32_t size = 800, resolution = 256;
+    std::uint32_t size = 800, resolution = 256, distanceResolution = 64;
+    float band = 0.0f;
     std::string rule = vds::enumName(vds::Rule::Parity);
 };
 
@@ -43,6 +48,8 @@ int run(const Options& o) {
     scene.combineAway = scene.combineTo =
         o.combine == "union" ? vds::samples::Combine::Union : vds::samples::Combine::Intersection;
     scene.rule = vds::parseRule(o.rule);
+    scene.distanceWidth = o.band;
+    scene.distanceResolution = o.distanceResolution;
     const vds::samples::Role role = o.keep ? vds::samples::Role::ClipTo : vds::samples::Role::ClipAway;
     for (const auto& path : o.clips) {
         vds::samples::SceneSolid solid;
@@ -98,12 +105,19 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(8u, 2048u));
     app.add_option("--size", o.size, "image width and height in pixels")->check(CLI::Range(16u, 8192u));
     app.add_option("--view", o.view, "look along -x, -y, -z or diagonally")->check(CLI::IsMember({"iso", "x", "y", "z"}));
+    app.add_option("--band", o.band, "width of a band along the cut, from the solids' distance grids (0: none)")
+        ->check(CLI::Range(0.0f, 1e6f))
+        ->type_name("W");
+    app.add_option("--distance-resolution", o.distanceResolution,
+                   "cells along the longest side of a distance grid baked for --band")
+        ->check(CLI::Range(4u, 1024u));
     app.add_option("--rule", o.rule, "inside rule for the sprites")->check(CLI::IsMember({"parity", "winding"}));
     try {
         app.parse(argc, argv);
         if (clip->count() + solid->count() == 0) throw CLI::RequiredError("--clip or --solid");
         if (clip->count() > 0 && o.with != "vds")
             throw CLI::ValidationError("--clip", "sprites work with --with vds only; give the solid's mesh with --solid");
+        if (o.band > 0.0f && o.with != "vds") throw CLI::ValidationError("--band", "needs --with vds");
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e); // --help
         std::fprintf(stderr, "vds_clip: %s (try 'vds_clip --help')\n", e.what());

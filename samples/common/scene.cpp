@@ -21,6 +21,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <vds/all.h>
+#include <vds/distance.h>
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
@@ -49,6 +50,18 @@ const std::pair<const char*, Lookup> kLookupNames[] = {{"vds", Lookup::Vds},
                                                        {"slicemap-local", Lookup::SlicemapLocal},
                                                        {"solid", Lookup::Solid},
                                                        {"exact", Lookup::Exact}};
+
+/// Gives `sprite` the distance grid of `solid` for the distance effects:
+/// the sprite's own, or one baked from the solid's mesh.
+void addDistance(const Scene& scene, const SceneSolid& solid, Lookup lookup, std::optional<Sprite>& sprite) {
+    if (lookup != Lookup::Vds)
+        throw InvalidArgument("the distance band and lens edge read the sprites' distance grids: --with vds only");
+    if (!(scene.distanceWidth < 1e30f)) throw InvalidArgument("the distance width is not finite");
+    if (!sprite->distance.empty()) return;
+    if (solid.mesh.triangles.empty())
+        throw InvalidArgument("solid '" + solid.name + "' carries no distance grid (bake it with --distance N)");
+    sprite->distance = bakeDistance(solid.mesh, sprite->grid.box, scene.distanceResolution, scene.rule);
+}
 
 const char* lookupDefine(Lookup lookup) {
     switch (lookup) {
@@ -283,6 +296,7 @@ struct SceneRenderer::Impl {
     void buildPrograms();
     void uploadModel();
     void setUniforms(GLuint program);
+    void setDistanceUniforms(GLuint program, std::size_t solid, GLuint unit);
     void peelAndClassify(std::uint32_t width, std::uint32_t height);
     void prepare(std::uint32_t width, std::uint32_t height, bool alwaysPeel);
     void draw(GLuint framebuffer, std::uint32_t width, std::uint32_t height);
@@ -312,10 +326,12 @@ SceneRenderer::SceneRenderer(const GlContext& gl, const Scene& scene, Lookup loo
             options.axis = chooseViewAxis(solid.mesh, size.resolution).axis;
             sprite = bake(gl, solid.mesh, options);
         }
+        if (scene.distanceWidth > 0.0f) addDistance(scene, solid, lookup, sprite);
         switch (lookup) {
         case Lookup::Vds:
-            d.baked.push_back(*sprite);
             d.sprites.emplace_back(*sprite, GpuSpriteParts::TextureOnly);
+            d.baked.push_back(*sprite);
+            d.baked.back().distance = {}; // on the GPU; place() copies the rest
             d.bytes += sprite->denseBytes();
             d.resolutions.push_back(std::max(sprite->width(), sprite->height()));
             break;
@@ -379,12 +395,25 @@ void SceneRenderer::Impl::uploadModel() {
 
 void SceneRenderer::Impl::buildPrograms() {
     registerShaders(kSceneShaders, kSceneShadersCount);
-    const std::string defines = "#define VDS_STYLE_SPRITES " + std::to_string(scene.solids.size()) + "\n";
+    std::string defines = "#define VDS_STYLE_SPRITES " + std::to_string(scene.solids.size()) + "\n";
+    if (scene.distanceWidth > 0.0f) defines += "#define SCENE_DISTANCE\n";
     shading = buildProgram({{GL_VERTEX_SHADER, "samples/scene.vert", ""}, {GL_FRAGMENT_SHADER, "samples/scene.frag", ""}},
                            defines + "#define " + lookupDefine(lookup) + "\n");
     if (lookup == Lookup::Exact)
         peel = buildProgram({{GL_VERTEX_SHADER, "samples/scene.vert", ""}, {GL_FRAGMENT_SHADER, "samples/scene.frag", ""}},
                             defines + "#define SCENE_PEEL\n");
+}
+
+void SceneRenderer::replaceSprite(std::size_t index, const Sprite& sprite) {
+    Impl& d = *impl_;
+    if (index >= d.scene.solids.size()) throw InvalidArgument("no solid " + std::to_string(index));
+    if (d.lookup != Lookup::Vds) throw InvalidArgument("replaceSprite: the scene's inside test is not the VDS");
+    if (d.scene.distanceWidth > 0.0f && sprite.distance.empty())
+        throw InvalidArgument("replaceSprite: the scene draws distances and the sprite carries no distance grid");
+    d.sprites[index] = GpuSprite(sprite, GpuSpriteParts::TextureOnly);
+    d.baked[index] = sprite;
+    d.baked[index].distance = {}; // on the GPU; place() copies the rest
+    place(index, d.scene.solids[index].placement);
 }
 
 void SceneRenderer::place(std::size_t index, const glm::mat4& placement) {
@@ -425,7 +454,10 @@ void SceneRenderer::Impl::setUniforms(GLuint p) {
         const glm::mat4 toMesh = glm::inverse(solid.placement);
         glUniformMatrix4fv(location(p, "u_toMesh" + k), 1, GL_FALSE, glm::value_ptr(toMesh));
         switch (lookup) {
-        case Lookup::Vds: sprites[i].setUniforms(p, "u_vdsLdi" + k, "u_vdsPlacement" + k, unit++); break;
+        case Lookup::Vds:
+            sprites[i].setUniforms(p, "u_vdsLdi" + k, "u_vdsPlacement" + k, unit++);
+            if (scene.distanceWidth > 0.0f) setDistanceUniforms(p, i, unit++);
+            break;
         case Lookup::Solid: bitGrids[i].setUniforms(p, "u_voxels" + k, "u_voxelGrid" + k, unit++); break;
         case Lookup::Slicemap:
         case Lookup::SlicemapLocal:
@@ -441,6 +473,19 @@ void SceneRenderer::Impl::setUniforms(GLuint p) {
         glUniform1i(location(p, "u_layerMask"), GLint(unit++));
         glUniform1i(location(p, "u_layerCount"), layerCount);
     }
+}
+
+// Solid i's distance grid on `unit`, read at the inverse of its placement,
+// scaled back to world units (exact for a uniform scale).
+void SceneRenderer::Impl::setDistanceUniforms(GLuint p, std::size_t i, GLuint unit) {
+    const std::string k = "[" + std::to_string(i) + "]";
+    const glm::mat4& placement = scene.solids[i].placement;
+    sprites[i].setDistanceUniforms(p, "u_distance" + k, "u_distanceLo" + k, "u_distanceHi" + k, unit);
+    const glm::mat4 toMesh = glm::inverse(placement);
+    glUniformMatrix4fv(location(p, "u_distanceToMesh" + k), 1, GL_FALSE, glm::value_ptr(toMesh));
+    glUniform1f(location(p, "u_distanceScale" + k), std::cbrt(std::abs(glm::determinant(glm::mat3(placement)))));
+    glUniform1f(location(p, "u_distanceWidth"), scene.distanceWidth);
+    glUniform3fv(location(p, "u_bandColour"), 1, glm::value_ptr(scene.bandColour));
 }
 
 // Peels every depth layer of the model (world position and depth per

@@ -59,6 +59,16 @@ struct Scene {
     Rule rule = Rule::Parity; ///< inside rule of the VDS and exact lookups (voxels have their own)
     glm::vec3 viewDirection{0.8f, 0.55f, 1.0f}; ///< from the model's centre towards the camera
     glm::vec3 up{0.0f, 1.0f, 0.0f};
+    /// World units; > 0 turns on the distance effects of scene.frag, read
+    /// through `vdsDistance` from each solid's distance grid (Lookup::Vds
+    /// only): a band of this width in `bandColour` where a clip solid cuts
+    /// the surface (|d| <= width), and a soft lens edge (the X-ray fades in
+    /// over this width inside the border, a glow fades out over it outside).
+    float distanceWidth = 0.0f;
+    /// Cells along the longest side of the distance grid baked for a solid
+    /// given as a mesh (`bakeDistance`); a sprite brings its own grid.
+    std::uint32_t distanceResolution = 64;
+    glm::vec3 bandColour{1.0f, 0.62f, 0.08f};
 };
 
 /// The bundled meshes and generated solids, and the gallery's scenes.
@@ -91,6 +101,12 @@ public:
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
+    /// Replaces solid `index`'s sprite by `sprite` (a re-bake of a solid
+    /// whose vertices moved: `Baker::rebake`), at the solid's placement.
+    /// Lookup::Vds only; throws InvalidArgument otherwise, and when the
+    /// scene draws its distance effects (`Scene::distanceWidth`) and
+    /// `sprite` carries no distance grid.
+    void replaceSprite(std::size_t index, const Sprite& sprite);
     /// Moves solid `index` to `placement` (mesh -> world) without re-baking.
     void place(std::size_t index, const glm::mat4& placement);
     /// Renders a `size` x `size` picture.

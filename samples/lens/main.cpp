@@ -5,6 +5,11 @@
 // the GPU sprite, no re-bake), written as DIR/lens-NN.png.
 //
 //   vds_lens -o DIR [--frames N] [--style xray|blueprint] [--with vds|slicemap|slicemap-local|solid|exact] [--size N] [--resolution N] [--data DIR]
+//            [--soft-edge W]
+//
+// --soft-edge W (--with vds): the X-ray fades in over W (mesh units of the
+// lens) inside the lens's border and a glow fades out over W outside it,
+// from the lens's signed distance grid through vdsDistance.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -21,11 +26,13 @@ namespace {
 struct Options {
     std::string output, with = "vds", style = "xray", data = VDS_SAMPLES_DATA;
     std::uint32_t frames = 4, size = 384, resolution = 256;
+    float softEdge = 0.0f;
 };
 
 int run(const Options& o) {
     vds::samples::Scene scene = vds::samples::lensScene(o.data);
     if (o.style == "blueprint") scene.solids[0].style = vds::samples::Style::Blueprint;
+    scene.distanceWidth = o.softEdge;
     std::filesystem::create_directories(o.output);
     vds::GlContext gl;
     vds::samples::SceneRenderer renderer(gl, scene, vds::samples::parseLookup(o.with), {o.resolution, false});
@@ -59,8 +66,12 @@ int main(int argc, char** argv) {
     app.add_option("--resolution", o.resolution, "texels or cells along the lens's longest side")
         ->check(CLI::Range(8u, 2048u));
     app.add_option("--data", o.data, "folder with spot.obj")->type_name("DIR");
+    app.add_option("--soft-edge", o.softEdge, "width of the lens's soft edge, from its distance grid (0: a hard edge)")
+        ->check(CLI::Range(0.0f, 1e6f))
+        ->type_name("W");
     try {
         app.parse(argc, argv);
+        if (o.softEdge > 0.0f && o.with != "vds") throw CLI::ValidationError("--soft-edge", "needs --with vds");
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e); // --help
         std::fprintf(stderr, "vds_lens: %s (try 'vds_lens --help')\n", e.what());

@@ -6,7 +6,9 @@
 //   SCENE_LOOKUP_SOLID          solid voxels (voxel/solid.glsl)
 //   SCENE_LOOKUP_EXACT          the exact classifier's answers per pixel and depth layer
 // or, with SCENE_PEEL, a depth-peeling pass that writes world positions for
-// the exact reference. VDS_STYLE_SPRITES is defined by the host.
+// the exact reference. VDS_STYLE_SPRITES is defined by the host; with
+// SCENE_DISTANCE (VDS lookup only) the solids' distance grids draw a band
+// along clip cuts and a soft lens edge through vdsDistance (vds/vpt.glsl).
 //
 // Style ids (VdsBinding.style, u_baseStyle for points in no style solid):
 #define SCENE_SHADED 1    // flat shading, cut surfaces (back faces) in the cut colour
@@ -82,6 +84,33 @@ uniform vec3 u_cutColour;
 uniform bool u_cutBackFaces; // back faces are cut surfaces (the scene clips); else shaded as front faces
 uniform float u_gridSpacing; // blueprint grid lines, world units
 
+#ifdef SCENE_DISTANCE
+// Solid i's distance grid: world -> the mesh coordinates of its bake, the
+// grid's box there, and world units per mesh unit (a uniform placement's scale).
+uniform sampler3D u_distance[VDS_STYLE_SPRITES];
+uniform mat4 u_distanceToMesh[VDS_STYLE_SPRITES];
+uniform vec3 u_distanceLo[VDS_STYLE_SPRITES];
+uniform vec3 u_distanceHi[VDS_STYLE_SPRITES];
+uniform float u_distanceScale[VDS_STYLE_SPRITES];
+uniform float u_distanceWidth; // world units
+uniform vec3 u_bandColour;
+
+// The signed distances of `world` to the nearest clip solid's surface (x)
+// and to the lens's (y), world units; 1e30 where no such solid is on.
+vec2 sceneDistances(vec3 world) {
+    vec2 d = vec2(1e30);
+    for (int i = 0; i < VDS_STYLE_SPRITES; ++i) {
+        int role = u_vdsBinding[i].role;
+        if (role == VDS_ROLE_OFF || role == VDS_ROLE_STYLE) continue;
+        vec3 p = (u_distanceToMesh[i] * vec4(world, 1.0)).xyz;
+        float di = u_distanceScale[i] * vdsDistance(u_distance[i], u_distanceLo[i], u_distanceHi[i], p);
+        if (role == VDS_ROLE_LENS) d.y = abs(di) < abs(d.y) ? di : d.y;
+        else d.x = min(d.x, abs(di));
+    }
+    return d;
+}
+#endif
+
 layout(location = 0) out vec4 o_colour;
 
 void main() {
@@ -99,9 +128,16 @@ void main() {
     if ((u_pass == 1) != xray) discard;
 
     float facing = abs(dot(normalize(v_normal), u_viewDirection));
+#ifdef SCENE_DISTANCE
+    vec2 distances = sceneDistances(v_world);
+    // Lens: 0 at the border, 1 a width or more inside it (negative d) or outside it.
+    float soft = clamp(abs(distances.y) / u_distanceWidth, 0.0, 1.0);
+#else
+    float soft = 1.0;
+#endif
     if (xray) {
         float rim = 1.0 - facing;
-        o_colour = vec4(mix(vec3(1.0), vec3(0.20, 0.45, 0.80), 0.2 + 0.7 * rim * rim), 1.0);
+        o_colour = vec4(mix(vec3(1.0), vec3(0.20, 0.45, 0.80), soft * (0.2 + 0.7 * rim * rim)), 1.0);
         return;
     }
     float light = 0.25 + 0.75 * abs(dot(flatNormal, u_lightDirection));
@@ -117,6 +153,10 @@ void main() {
         float edge = smoothstep(0.55, 0.8, 1.0 - facing);
         colour = mix(vec3(0.10, 0.22, 0.50), vec3(0.92, 0.96, 1.0), max(0.7 * line, edge));
     }
+#ifdef SCENE_DISTANCE
+    if (distances.x <= u_distanceWidth) colour = u_bandColour * light; // the band along a clip cut
+    if (distances.y > 0.0) colour = mix(colour, vec3(0.45, 0.75, 1.0), 0.6 * (1.0 - soft)); // the lens's glow
+#endif
     o_colour = vec4(colour, 1.0);
 }
 

@@ -2,19 +2,42 @@
 // Doellner 2008, section 3.2) over a buffer of points, answers identical to
 // vds::classify on the CPU (the same arithmetic, vpt.glsl).
 //
-// Each invocation takes four consecutive points (48 bytes, three aligned
-// vec4 loads) and writes their four labels as one 32-bit word, byte k for
-// point k: one byte a point, as the host's uint8 arrays hold them, written
-// in whole words. The four points go through each step together, so that
-// their memory reads overlap. A grid-stride loop covers any count.
+// One program per rule and form, chosen at compile time (GpuClassifier
+// defines them): no code is kept alive by a uniform.
+//   VDS_RULE_ID   0 parity, 1 winding, 2 generalized winding (vpt.glsl's
+//                 VDS_RULE_*); the host defines VDS_BOUNDARY_TERM with 2,
+//                 which alone carries the boundary term's code.
+//   VDS_COLUMNS   reads the sprite's compact columns (offsets + crossings,
+//                 contiguous per column: one or two cache lines a point);
+//                 otherwise the paper's 3D texture with texelFetch, a
+//                 column's layers one texel apart.
 //
-// VDS_COLUMNS reads the sprite's compact columns (offsets + crossings,
-// contiguous per column: one or two cache lines a point); otherwise the
-// paper's 3D texture with texelFetch, a column's layers one texel apart.
-layout(local_size_x = 256) in; // before the include: it reads gl_WorkGroupSize
-#define VDS_BOUNDARY_BINDING 5 // the boundary edges, for Rule::GeneralizedWinding
+// Each invocation takes VDS_POINTS_PER_INVOCATION consecutive points (48
+// bytes, three aligned vec4 loads) and writes their labels as one 32-bit
+// word, byte k for point k: one byte a point, as the host's uint8 arrays hold
+// them, written in whole words. The points go through each step together, so
+// that their memory reads overlap.
+//
+// Parity and winding: a grid-stride loop per invocation covers any count.
+// Generalized winding: the loop runs per workgroup (every invocation takes
+// each step, live or not), because the boundary term is summed by the whole
+// workgroup together (boundary_tiles.glsl: edges staged through shared
+// memory, far nodes taken by a vote of the workgroup).
+#define VDS_LOCAL_SIZE 256
+layout(local_size_x = VDS_LOCAL_SIZE) in; // before the include: it reads gl_WorkGroupSize
+#ifdef VDS_BOUNDARY_TERM
+#define VDS_BOUNDARY_BINDING 5 // the boundary edges
+#endif
 #include "vds/compute.glsl"
 #include "vds/vpt.glsl"
+
+// Four labels of one byte fill the 32-bit word an invocation writes, and
+// three vec4 loads hold the four points exactly: the unit of work.
+#define VDS_POINTS_PER_INVOCATION 4
+#ifdef VDS_BOUNDARY_TERM
+#define VDS_TERM_POINTS VDS_POINTS_PER_INVOCATION
+#include "vds/boundary_tiles.glsl"
+#endif
 
 // The same points twice: as vec4 for whole groups of four, as floats for the tail.
 layout(std430, binding = 0) readonly buffer Points4 { vec4 points4[]; };
@@ -24,94 +47,123 @@ layout(std430, binding = 2) writeonly restrict buffer Labels { uint labels[]; };
 layout(std430, binding = 3) readonly restrict buffer Offsets { uint offsets[]; };
 layout(std430, binding = 4) readonly restrict buffer Crossings { float crossings[]; };
 uniform ivec2 u_size; // the sprite's width and height in texels
-#else
-uniform sampler3D u_ldi;
-#endif
-#ifdef VDS_COLUMNS
 #define VDS_SIZE u_size
 #else
+uniform sampler3D u_ldi;
 #define VDS_SIZE textureSize(u_ldi, 0).xy
 #endif
 uniform VdsPlacement u_placement;
-uniform VdsBoundary u_boundary; // read by VDS_RULE_GENERALIZED_WINDING only
-uniform int u_rule;
+#ifdef VDS_BOUNDARY_TERM
+uniform VdsBoundary u_boundary;
+#endif
 uniform uint u_count;
 
-bool vdsAnswer(int winding, int parity, ivec2 column, float r) {
-    if (u_rule == VDS_RULE_GENERALIZED_WINDING) return vdsContainsGeneralizedAt(u_boundary, winding, column, r);
-    return u_rule == VDS_RULE_WINDING ? winding != 0 : parity != 0;
+#define VDS_N VDS_POINTS_PER_INVOCATION
+
+// The column's signed count and parity in front of texture depth r.
+int vdsCount(ivec2 column, bool inBox, float r, out int parity) {
+    parity = 0;
+    if (!inBox) return 0;
+#ifdef VDS_COLUMNS
+    uint c = uint(column.y) * uint(u_size.x) + uint(column.x);
+    uint begin = offsets[c], end = offsets[c + 1u];
+    int winding = 0;
+    for (uint i = begin; i < end; ++i) {
+        float e = crossings[i];
+        if (!(abs(e) < r)) break; // sorted: nothing further is in front
+        parity ^= 1;
+        winding += floatBitsToInt(e) < 0 ? -1 : 1;
+    }
+    return winding;
+#else
+    return vdsColumnWinding(u_ldi, column, r, parity);
+#endif
 }
 
-// The labels of four points, as one word (0 or 1 in byte k for point k);
-// `valid` points past the count are left 0.
-uint vdsClassify4(vec3 p[4], uint valid) {
-    vec3 T[4];
-    bool inBox[4];   // a column to count along: in the box (the generalized winding rule: in front or behind too)
-    bool beside[4];  // the generalized winding rule, beside the box: the boundary term alone
-    ivec2 column[4];
-    bool everywhere = u_rule == VDS_RULE_GENERALIZED_WINDING;
-    for (uint k = 0u; k < 4u; ++k) {
+// The labels of the points, as one word (0 or 1 in byte k for point k);
+// points past `valid` are left 0. For the generalized winding rule every
+// invocation of the workgroup must call it (it sums the boundary term
+// together), `valid` 0 for those with no points.
+uint vdsClassifyPoints(vec3 p[VDS_N], uint valid) {
+    vec3 T[VDS_N];
+    bool inBox[VDS_N]; // a column to count along
+    ivec2 column[VDS_N];
+    int winding[VDS_N], parity[VDS_N];
+#ifdef VDS_BOUNDARY_TERM
+    bool live[VDS_N]; // finite points: in front, behind or beside the box, the term counts
+#endif
+    for (uint k = 0u; k < uint(VDS_N); ++k) {
         T[k] = vdsToTexture(u_placement, p[k]);
         column[k] = ivec2(0);
-        bool finite = k < valid && vdsFinite(T[k]);
-        inBox[k] = k < valid && (everywhere ? finite && vdsColumnAcross(T[k], VDS_SIZE, column[k])
-                                            : vdsColumnOf(T[k], VDS_SIZE, column[k]));
-        beside[k] = everywhere && finite && !inBox[k];
-    }
-    uint word = 0u;
-#ifdef VDS_COLUMNS
-    uint begin[4], end[4];
-    for (uint k = 0u; k < 4u; ++k) {
-        uint c = uint(column[k].y) * uint(u_size.x) + uint(column[k].x);
-        begin[k] = inBox[k] ? offsets[c] : 0u;
-        end[k] = inBox[k] ? offsets[c + 1u] : 0u;
-    }
-    for (uint k = 0u; k < 4u; ++k) {
-        int parity = 0, winding = 0;
-        for (uint i = begin[k]; i < end[k]; ++i) {
-            float e = crossings[i];
-            if (!(abs(e) < T[k].z)) break; // sorted: nothing further is in front
-            parity ^= 1;
-            winding += floatBitsToInt(e) < 0 ? -1 : 1;
-        }
-        if (inBox[k] ? vdsAnswer(winding, parity, column[k], T[k].z)
-                     : beside[k] && vdsContainsGeneralizedBeside(u_boundary, VDS_SIZE, T[k]))
-            word |= 1u << (8u * k);
-    }
+#ifdef VDS_BOUNDARY_TERM
+        live[k] = k < valid && vdsFinite(T[k]);
+        inBox[k] = live[k] && vdsColumnAcross(T[k], VDS_SIZE, column[k]);
 #else
-    for (uint k = 0u; k < 4u; ++k) {
-        bool inside = false;
-        if (inBox[k]) {
-            int parity;
-            int winding = vdsColumnWinding(u_ldi, column[k], T[k].z, parity);
-            inside = vdsAnswer(winding, parity, column[k], T[k].z);
-        } else if (beside[k]) {
-            inside = vdsContainsGeneralizedBeside(u_boundary, VDS_SIZE, T[k]);
-        }
-        if (inside) word |= 1u << (8u * k);
+        inBox[k] = k < valid && vdsColumnOf(T[k], VDS_SIZE, column[k]);
+#endif
+    }
+    for (uint k = 0u; k < uint(VDS_N); ++k) winding[k] = vdsCount(column[k], inBox[k], T[k].z, parity[k]);
+    uint word = 0u;
+#ifdef VDS_BOUNDARY_TERM
+    vec3 q[VDS_N]; // where the CPU evaluates the term: the texel-centre point, or the point itself beside the box
+    for (uint k = 0u; k < uint(VDS_N); ++k)
+        q[k] = inBox[k] ? vdsColumnPoint(u_boundary, column[k], T[k].z) : vdsBesidePoint(u_boundary, VDS_SIZE, T[k]);
+    float term[VDS_N];
+    vdsBoundaryTerms(u_boundary, q, live, term);
+    for (uint k = 0u; k < uint(VDS_N); ++k)
+        if (live[k] && float(winding[k]) + term[k] > 0.5) word |= 1u << (8u * k);
+#else
+    for (uint k = 0u; k < uint(VDS_N); ++k) {
+#if VDS_RULE_ID == VDS_RULE_WINDING
+        bool inside = winding[k] != 0;
+#else
+        bool inside = parity[k] != 0;
+#endif
+        if (inBox[k] && inside) word |= 1u << (8u * k);
     }
 #endif
     return word;
 }
 
+// Group q's points (q < quads) and how many of them are real.
+uint vdsLoadPoints(uint q, out vec3 p[VDS_N]) {
+    uint first = 4u * q;
+    uint valid = min(u_count - first, 4u);
+    if (valid == 4u) {
+        vec4 a = points4[3u * q], b = points4[3u * q + 1u], c = points4[3u * q + 2u];
+        p[0] = a.xyz;
+        p[1] = vec3(a.w, b.xy);
+        p[2] = vec3(b.zw, c.x);
+        p[3] = c.yzw;
+    } else {
+        for (uint k = 0u; k < 4u; ++k) {
+            uint i = 3u * (first + min(k, valid - 1u));
+            p[k] = vec3(points[i], points[i + 1u], points[i + 2u]);
+        }
+    }
+    return valid;
+}
+
 void main() {
     uint quads = u_count / 4u + (u_count % 4u != 0u ? 1u : 0u);
-    for (uint q = gl_GlobalInvocationID.x; q < quads; q = vdsNextIndex(q, quads)) {
-        vec3 p[4];
-        uint first = 4u * q;
-        uint valid = min(u_count - first, 4u);
-        if (valid == 4u) {
-            vec4 a = points4[3u * q], b = points4[3u * q + 1u], c = points4[3u * q + 2u];
-            p[0] = a.xyz;
-            p[1] = vec3(a.w, b.xy);
-            p[2] = vec3(b.zw, c.x);
-            p[3] = c.yzw;
-        } else {
-            for (uint k = 0u; k < 4u; ++k) {
-                uint i = 3u * (first + min(k, valid - 1u));
-                p[k] = vec3(points[i], points[i + 1u], points[i + 2u]);
-            }
-        }
-        labels[q] = vdsClassify4(p, valid);
+#ifdef VDS_BOUNDARY_TERM
+    // Workgroup by workgroup: `first` is the same in every invocation.
+    uint step = vdsInvocationCount();
+    for (uint first = gl_WorkGroupID.x * gl_WorkGroupSize.x; first < quads;
+         first = quads - first > step ? first + step : quads) {
+        uint q = first + gl_LocalInvocationID.x;
+        vec3 p[VDS_N];
+        for (uint k = 0u; k < uint(VDS_N); ++k) p[k] = vec3(0.0);
+        uint valid = 0u;
+        if (q < quads) valid = vdsLoadPoints(q, p);
+        uint word = vdsClassifyPoints(p, valid);
+        if (q < quads) labels[q] = word;
     }
+#else
+    for (uint q = gl_GlobalInvocationID.x; q < quads; q = vdsNextIndex(q, quads)) {
+        vec3 p[VDS_N];
+        uint valid = vdsLoadPoints(q, p);
+        labels[q] = vdsClassifyPoints(p, valid);
+    }
+#endif
 }

@@ -11,14 +11,26 @@
 // bytes each (low byte first) that the host cleared to 0: each invocation
 // ORs in the words its inside cells touch, once per word.
 //
-// Rule::GeneralizedWinding (u_rule 2) adds, per cell, the boundary term at
-// the cell's texel-centre point (vpt.glsl's vdsContainsGeneralizedAt, the
-// point the CPU takes): the one rule whose labels are not only compared
-// floats, and O(boundary edges) a cell.
-layout(local_size_x = 64) in; // before the include: it reads gl_WorkGroupSize
-#define VDS_BOUNDARY_BINDING 5 // the boundary edges, for Rule::GeneralizedWinding
+// One program per rule (VDS_RULE_ID, vpt.glsl's VDS_RULE_*), chosen at
+// compile time. Rule::GeneralizedWinding on a sprite with boundary edges
+// (VDS_BOUNDARY_TERM) adds, per cell, the boundary term at the cell's
+// texel-centre point (the point the CPU takes): the one rule whose labels
+// are not only compared floats, and O(boundary edges) a cell. There the
+// workgroup's columns step through the slices together, so that the term is
+// summed by the whole workgroup (boundary_tiles.glsl): the edges staged
+// through shared memory, a far chain or loop taken whole when every cell of
+// the workgroup's slice may take it.
+#define VDS_LOCAL_SIZE 64
+layout(local_size_x = VDS_LOCAL_SIZE) in; // before the include: it reads gl_WorkGroupSize
+#ifdef VDS_BOUNDARY_TERM
+#define VDS_BOUNDARY_BINDING 5 // the boundary edges
+#endif
 #include "vds/compute.glsl"
 #include "vds/vpt.glsl"
+#ifdef VDS_BOUNDARY_TERM
+#define VDS_TERM_POINTS 1 // one cell a column at a time
+#include "vds/boundary_tiles.glsl"
+#endif
 
 layout(std430, binding = 0) readonly restrict buffer Offsets { uint offsets[]; };
 layout(std430, binding = 1) readonly restrict buffer Crossings { float crossings[]; };
@@ -33,35 +45,60 @@ uniform uint u_strideV;
 uniform uint u_step;
 uniform uint u_firstSlice; // slices [first, end) lie in the sprite's depth range
 uniform uint u_endSlice;
-uniform int u_rule;        // 0 parity, 1 winding, 2 generalized winding
 uniform uint u_width;      // the sprite's width in texels: texel = t * width + s
-uniform VdsBoundary u_boundary; // read by u_rule 2 only
+#ifdef VDS_BOUNDARY_TERM
+uniform VdsBoundary u_boundary;
+uniform ivec2 u_size; // the sprite's width and height in texels
+// Per grid column: its texture (s, t), for the cells of a column beside the
+// texture, whose term is taken at the cell itself (texels[] is then -1).
+layout(std430, binding = 6) readonly restrict buffer ColumnPoints { vec2 columnPoints[]; };
+#endif
 
 void vdsFlush(uint word, uint bits) {
     if (bits != 0u) atomicOr(cells[word], bits);
 }
 
-void main() {
-    for (uint column = vdsWorkGroupIndex() * gl_WorkGroupSize.x + gl_LocalInvocationID.x; column < u_columns;
-         column = vdsNextIndex(column, u_columns)) {
-        int texel = texels[column];
-        if (texel < 0) continue;
-        uint base = (column / u_dimV) * u_strideU + (column % u_dimV) * u_strideV;
-        uint e = offsets[texel], last = offsets[texel + 1];
-        ivec2 st = ivec2(int(uint(texel) % u_width), int(uint(texel) / u_width));
-        int parity = 0, winding = 0;
-        uint word = 0u, bits = 0u;
-        for (uint k = u_firstSlice; k < u_endSlice; ++k) {
-            float depth = depths[k];
-            // Each crossing counts for the cells whose depth lies strictly behind it.
-            for (; e < last && abs(crossings[e]) < depth; ++e) {
-                parity ^= 1;
-                winding += floatBitsToInt(crossings[e]) < 0 ? -1 : 1;
-            }
-            bool inside = u_rule == 2   ? vdsContainsGeneralizedAt(u_boundary, winding, st, depth)
-                          : u_rule == 1 ? winding != 0
-                                        : parity != 0;
-            if (!inside) continue;
+// Walks grid column `column`'s cells (none where `live` is false, which
+// still takes every step for the workgroup's votes and tiles). With the
+// boundary term every slice of the grid is walked (u_firstSlice 0), in
+// front of and behind the box (none or all of the column's crossings in
+// front), and columns beside the texture too (no crossing, the term at the
+// cell itself), as the CPU classifies those cells.
+void vdsSweepColumn(uint column, bool live) {
+    int texel = live ? texels[column] : -1;
+#ifdef VDS_BOUNDARY_TERM
+    bool valid = live; // a column of the grid: beside the texture too
+    vec2 beside = live ? columnPoints[column] : vec2(0.0);
+#endif
+    live = texel >= 0;
+#ifndef VDS_BOUNDARY_TERM
+    if (!live) return;
+#endif
+    uint base = (column / u_dimV) * u_strideU + (column % u_dimV) * u_strideV;
+    uint e = live ? offsets[texel] : 0u, last = live ? offsets[texel + 1] : 0u;
+    ivec2 st = ivec2(int(uint(max(texel, 0)) % u_width), int(uint(max(texel, 0)) / u_width));
+    int parity = 0, winding = 0;
+    uint word = 0u, bits = 0u;
+    for (uint k = u_firstSlice; k < u_endSlice; ++k) {
+        float depth = depths[k];
+        // Each crossing counts for the cells whose depth lies strictly behind it.
+        for (; e < last && abs(crossings[e]) < depth; ++e) {
+            parity ^= 1;
+            winding += floatBitsToInt(crossings[e]) < 0 ? -1 : 1;
+        }
+#ifdef VDS_BOUNDARY_TERM
+        vec3 q[1] = vec3[1](live ? vdsColumnPoint(u_boundary, st, depth)
+                                 : vdsBesidePoint(u_boundary, u_size, vec3(beside, depth)));
+        bool alive[1] = bool[1](valid);
+        float term[1];
+        vdsBoundaryTerms(u_boundary, q, alive, term);
+        bool inside = valid && float(winding) + term[0] > 0.5;
+#elif VDS_RULE_ID == VDS_RULE_WINDING
+        bool inside = winding != 0;
+#else
+        bool inside = parity != 0;
+#endif
+        if (inside) { // (no `continue`: the loop stays uniform for the workgroup's barriers)
             uint index = base + k * u_step;
             if (index >> 2u != word) {
                 vdsFlush(word, bits);
@@ -70,6 +107,22 @@ void main() {
             }
             bits |= 1u << (8u * (index & 3u));
         }
-        vdsFlush(word, bits);
     }
+    vdsFlush(word, bits);
+}
+
+void main() {
+#ifdef VDS_BOUNDARY_TERM
+    // Workgroup by workgroup: `first` is the same in every invocation.
+    uint step = vdsInvocationCount();
+    for (uint first = vdsWorkGroupIndex() * gl_WorkGroupSize.x; first < u_columns;
+         first = u_columns - first > step ? first + step : u_columns) {
+        uint column = first + gl_LocalInvocationID.x;
+        vdsSweepColumn(column, column < u_columns);
+    }
+#else
+    for (uint column = vdsWorkGroupIndex() * gl_WorkGroupSize.x + gl_LocalInvocationID.x; column < u_columns;
+         column = vdsNextIndex(column, u_columns))
+        vdsSweepColumn(column, true);
+#endif
 }

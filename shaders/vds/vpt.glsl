@@ -239,6 +239,21 @@ float vdsNodeExpansion(int at, vec3 y) {
     return (first + second) / (d2 * sqrt(d2));
 }
 
+// Whether the node whose ball is `ball` (centre, radius) and whose bound's
+// scale is `errorScale` may be taken whole at q by its chord and expansion:
+// q's ray towards -r misses the ball (the fan's crossing count is 0), q lies
+// outside it and the expansion's remainder bound is at most
+// VDS_NODE_TOLERANCE.
+bool vdsNodeTaken(vec4 ball, float errorScale, vec3 q) {
+    vec3 y = ball.xyz - q;
+    float r2 = ball.w * ball.w;
+    float d2 = dot(y, y);
+    float d = sqrt(d2);
+    float e = d - ball.w;
+    return (y.x * y.x + y.y * y.y > r2 || q.z < ball.z - ball.w) && e > 0.0 &&
+           errorScale * ball.w * (d + 3.0 * e) <= VDS_NODE_TOLERANCE * 3.0 * d2 * d2 * e * e;
+}
+
 // The boundary term at q (the bake's frame, (s, t, r) order): the sum over
 // the edges of their solid angles, over 4 pi. With the chain tree
 // (GpuSprite::setBoundaryUniforms sets nodeCount; C++ caps_tree.h,
@@ -273,15 +288,7 @@ float vdsBoundaryTerm(VdsBoundary boundary, vec3 q) {
             vec4 links = vdsBoundaryEdges[at + 1]; // errorScale, skip, first edge, count << 2 | flags
             int skip = floatBitsToInt(links.y);
             int flags = floatBitsToInt(links.w);
-            vec3 y = ball.xyz - q;
-            float r2 = ball.w * ball.w;
-            float d2 = dot(y, y);
-            float d = sqrt(d2);
-            float e = d - ball.w;
-            // q's ray towards -r misses the ball (the fan's crossing count
-            // is 0), q lies outside it and the bound allows
-            if ((y.x * y.x + y.y * y.y > r2 || q.z < ball.z - ball.w) && e > 0.0 &&
-                links.x * ball.w * (d + 3.0 * e) <= VDS_NODE_TOLERANCE * 3.0 * d2 * d2 * e * e) {
+            if (vdsNodeTaken(ball, links.x, q)) {
                 taken[takenCount] = at;
                 takenCount += 1;
                 if ((flags & 2) != 0) {
@@ -408,12 +415,19 @@ bool vdsParityTestPaper(sampler3D ldi, vec3 T, int depth, bool initParity) {
 // average the corners' offsets: sqrt(sum_a t_a (1 - t_a) h_a^2) <= |h| / 2),
 // plus the filter's weight rounding (8 bits on many GPUs: 1/256 of a cell's
 // change, below |h| sqrt(3) / 256). Exact at the cell centres to float
-// rounding. Between the outermost cell centres and the box, and outside it,
-// the edge cells' values are repeated: the bound grows by the distance to
-// the cell-centre box. Where the sign changes within a cell (on the surface)
-// the sign of the lookup can differ from the classifier's.
+// rounding. Beyond the outermost cell centres (the cell-centre box), the
+// lookup is that at the box's nearest point c, its magnitude grown by
+// |world - c|: the far end of what 1-Lipschitz allows, so values keep growing
+// away from the grid (a band or a fade does not smear along the clamped
+// edge) and the bound grows by 2 |world - c|. Where the sign changes within
+// a cell (on the surface) the sign of the lookup can differ from the
+// classifier's.
 float vdsDistance(sampler3D field, vec3 lo, vec3 hi, vec3 world) {
-    return texture(field, (world - lo) / (hi - lo)).r;
+    vec3 halfCell = 0.5 * (hi - lo) / vec3(textureSize(field, 0));
+    vec3 nearest = clamp(world, lo + halfCell, hi - halfCell);
+    float d = texture(field, (nearest - lo) / (hi - lo)).r;
+    float away = length(world - nearest);
+    return d < 0.0 ? d - away : d + away;
 }
 
 #endif

@@ -88,7 +88,7 @@ TEST(Occupancy, SpriteSweepEqualsContainsOnEveryCell) {
             for (Rule rule : {Rule::Parity, Rule::Winding}) {
                 std::vector<std::uint8_t> swept(grid.cellCount(), 7);
                 occupancy(sprite, grid, swept.data(), {rule, 2});
-                const auto expected = cellByCell(grid, [&](const glm::vec3& p) { return sprite.contains(p, rule); });
+                const auto expected = cellByCell(grid, [&](const glm::vec3& at) { return sprite.contains(at, rule); });
                 EXPECT_EQ(differing(swept, expected), 0u) << toString(axis) << " moved " << moved;
             }
         }

@@ -4,10 +4,13 @@
 #include <random>
 #include <utility>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <vds/bake.h>
+#include <vds/distance.h>
 #include <vds/error.h>
 #include <vds/exact.h>
 #include "solids.h"
@@ -274,5 +277,72 @@ TEST(ChooseViewAxis, CountsExactlyWhatTheBakerMakesAtThatResolution) {
         }
 }
 
+// The count's two paths (a row through a vertex or along an edge: the claim
+// test at both ends; a row through the interior: the edges' slopes and a
+// margin) give the baker's counts where rows run through vertices and along
+// edges: every vertex of a sphere snapped onto texel centres (s and t),
+// inside two corner boxes that fix the bounds, and a thin tilted slab.
+TEST(ChooseViewAxis, CountsExactlyWithVerticesOnTexelCentres) {
+    constexpr std::uint32_t kResolution = 40;
+    const TriangleMesh anchors = solids::merge(solids::box({-2.0f, -2.0f, -2.0f}, {-1.9f, -1.9f, -1.9f}).mesh,
+                                               solids::box({1.9f, 1.9f, 1.9f}, {2.0f, 2.0f, 2.0f}).mesh);
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+        TriangleMesh sphere = solids::sphere({0.1f, -0.05f, 0.0f}, 1.3f, 16).mesh;
+        const SpriteGrid grid = makeGrid(validateMesh(anchors).bounds, axis, kResolution);
+        const glm::ivec3 perm = axisPermutation(axis);
+        const glm::vec3 first = grid.texelCentre(0, 0, 0.0f), next = grid.texelCentre(1, 1, 0.0f);
+        for (glm::vec3& p : sphere.positions)
+            for (int c : {perm.x, perm.y}) { // the nearest centre: i or j from the even spacing
+                const float k = std::round((p[c] - first[c]) / (next[c] - first[c]));
+                const glm::vec3 centre = grid.texelCentre(std::uint32_t(k), std::uint32_t(k), 0.0f);
+                p[c] = centre[c];
+            }
+        TriangleMesh slab = solids::box({-1.5f, -0.01f, -1.2f}, {1.5f, 0.01f, 1.2f}).mesh;
+        for (glm::vec3& p : slab.positions) p = glm::vec3(p.x + 0.2f * p.z, p.y + 0.3f * p.x, p.z);
+        for (const TriangleMesh& mesh : {solids::merge(sphere, anchors), solids::merge(slab, anchors)}) {
+            ASSERT_EQ(validateMesh(mesh).bounds.lo, validateMesh(anchors).bounds.lo);
+            const AxisChoice choice = chooseViewAxis(mesh, kResolution);
+            BakeOptions o;
+            o.resolution = kResolution;
+            o.axis = axis;
+            const Sprite sprite = bakeCpu(mesh, o);
+            EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis);
+            EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis);
+        }
+    }
+}
+
 } // namespace
 } // namespace vds
+
+namespace {
+
+// The distance grid a sprite carries: cubic cells, `resolution` along the
+// longest side, two cells past the baked box on every side, and every cell
+// the analytic signed distance of a box at its centre (inside negative).
+TEST(SpriteDistanceTest, BakedGridIsTheExactDistanceOverThePaddedBox) {
+    const glm::vec3 lo(-1.0f, -0.5f, -0.25f), hi(1.0f, 0.5f, 0.25f);
+    const vds::TriangleMesh mesh = vds::solids::box(lo, hi).mesh;
+    const vds::SpriteDistance d = vds::bakeDistance(mesh, {lo, hi}, 24, vds::Rule::Winding, 2);
+    EXPECT_EQ(d.grid.dims.x, 24u);
+    ASSERT_EQ(d.cells.size(), d.grid.cellCount());
+    const float cell = (d.grid.box.hi.x - d.grid.box.lo.x) / 24.0f;
+    EXPECT_NEAR(d.grid.box.lo.x, lo.x - 2.0f * cell, 1e-5f);
+    EXPECT_LE(d.grid.box.lo.z, lo.z - 2.0f * cell + 1e-5f);
+    EXPECT_GE(d.grid.box.hi.y, hi.y + 2.0f * cell - 1e-5f);
+    for (std::uint32_t i = 0; i < d.grid.dims.x; ++i)
+        for (std::uint32_t j = 0; j < d.grid.dims.y; ++j)
+            for (std::uint32_t k = 0; k < d.grid.dims.z; ++k) {
+                const glm::vec3 p = d.grid.cellCentre(i, j, k);
+                const glm::vec3 q = glm::max(glm::abs(p) - hi, glm::vec3(0.0f)); // outside part, per axis
+                const glm::vec3 in = glm::abs(p) - hi;
+                const double analytic = glm::length(glm::dvec3(q)) +
+                                        std::min(0.0, double(std::max(in.x, std::max(in.y, in.z))));
+                EXPECT_NEAR(d.cells[d.grid.index(i, j, k)], analytic, 1e-6) << i << " " << j << " " << k;
+            }
+    EXPECT_THROW(vds::bakeDistance(mesh, {lo, hi}, 3, vds::Rule::Winding), vds::InvalidArgument);
+    EXPECT_THROW(vds::bakeDistance(mesh, {lo, hi}, vds::kMaxDistanceResolution + 1, vds::Rule::Winding),
+                 vds::InvalidArgument);
+}
+
+} // namespace

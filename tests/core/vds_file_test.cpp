@@ -429,8 +429,12 @@ TEST_F(VdsFileTest, EditedAttributesAreDetected) {
     EXPECT_NE(readDamaged(bytes).find("checksum"), std::string::npos);
 
     bytes = whole;
+    bytes[attributeValue(bytes, "vds.formatVersion", "int")] = 4;
+    EXPECT_NE(readDamaged(bytes).find("format version 4"), std::string::npos);
+
+    bytes = whole; // read as version 3, which hashes a distance grid too
     bytes[attributeValue(bytes, "vds.formatVersion", "int")] = 3;
-    EXPECT_NE(readDamaged(bytes).find("format version 3"), std::string::npos);
+    EXPECT_NE(readDamaged(bytes).find("checksum"), std::string::npos);
 
     bytes = whole;
     bytes[attributeValue(bytes, "vds.depthComplexity", "int")] = 41;
@@ -505,6 +509,83 @@ TEST_F(VdsFileTest, HeaderAttributesAreCheckedBeforeOpenExrReadsThem) {
         EXPECT_EQ(std::string(e.what()).rfind("in-memory.vds: header at byte", 0), 0u) << e.what();
     }
     expectSameSprite(vds::decodeSprite(whole.data(), whole.size(), "in-memory.vds"), vds::readSprite(path("whole.vds")));
+}
+
+// ---------------------------------------------------------------- the distance grid (version 3)
+
+/// `s` with a small distance grid of every kind of value: negative,
+/// positive, -0.0, 0, and values that differ in the last bit only.
+vds::Sprite withDistance(vds::Sprite s) {
+    s.distance.grid.box = {{-1.25f, -2.5f, -0.75f}, {3.5f, 1.25f, 1.75f}};
+    s.distance.grid.dims = {3, 4, 5};
+    for (std::size_t c = 0; c < s.distance.grid.cellCount(); ++c)
+        s.distance.cells.push_back(c == 0 ? -0.0f : c == 1 ? 0.0f : std::nextafter(0.1f * float(c) - 2.0f, 9.0f));
+    return s;
+}
+
+int storedVersion(const std::string& bytes) {
+    return int(std::uint8_t(bytes[attributeValue(bytes, "vds.formatVersion", "int")]));
+}
+
+TEST_F(VdsFileTest, DistanceGridRoundTripsAsVersion3) {
+    const vds::Sprite s = withDistance(specialSprite());
+    vds::writeSprite(s, path("d.vds"));
+    EXPECT_EQ(storedVersion(readBytes(path("d.vds"))), 3);
+    const vds::Sprite r = vds::readSprite(path("d.vds"));
+    expectSameSprite(s, r);
+    EXPECT_EQ(r.distance.grid.dims, s.distance.grid.dims);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_TRUE(sameBits(r.distance.grid.box.lo[k], s.distance.grid.box.lo[k])) << k;
+        EXPECT_TRUE(sameBits(r.distance.grid.box.hi[k], s.distance.grid.box.hi[k])) << k;
+    }
+    ASSERT_EQ(r.distance.cells.size(), s.distance.cells.size());
+    for (std::size_t c = 0; c < s.distance.cells.size(); ++c)
+        EXPECT_TRUE(sameBits(r.distance.cells[c], s.distance.cells[c])) << c;
+    // Without a grid the file stays version 2, which older readers read.
+    vds::writeSprite(specialSprite(), path("plain.vds"));
+    EXPECT_EQ(storedVersion(readBytes(path("plain.vds"))), 2);
+    EXPECT_TRUE(vds::readSprite(path("plain.vds")).distance.empty());
+}
+
+TEST_F(VdsFileTest, MalformedDistanceGridIsNotWritten) {
+    vds::Sprite s = withDistance(specialSprite());
+    s.distance.cells.pop_back();
+    EXPECT_THROW(vds::writeSprite(s, path("bad.vds")), vds::FormatError);
+    s = withDistance(specialSprite());
+    s.distance.cells[7] = std::nanf("");
+    EXPECT_THROW(vds::writeSprite(s, path("bad.vds")), vds::FormatError);
+    s = withDistance(specialSprite());
+    s.distance.grid.box.hi.y = s.distance.grid.box.lo.y;
+    EXPECT_THROW(vds::writeSprite(s, path("bad.vds")), vds::FormatError);
+    EXPECT_TRUE(entries(dir_).empty());
+}
+
+TEST_F(VdsFileTest, CorruptedDistanceGridIsRefusedWithOneLine) {
+    vds::writeSprite(withDistance(specialSprite()), path("whole.vds"));
+    const std::string whole = readBytes(path("whole.vds"));
+
+    std::string bytes = whole; // a distance flipped in its last bit: only the checksum can tell
+    bytes[attributeValue(bytes, "vds.distance", "floatvector") + 4 * 9] ^= 1;
+    EXPECT_NE(readDamaged(bytes).find("checksum mismatch"), std::string::npos) << readDamaged(bytes);
+
+    bytes = whole; // more cells claimed than the attribute holds
+    bytes[attributeValue(bytes, "vds.distanceDims", "v3i")] = 4;
+    EXPECT_NE(readDamaged(bytes).find("attribute vds.distance holds 60 floats, not the 80 cells of vds.distanceDims"),
+              std::string::npos)
+        << readDamaged(bytes);
+
+    bytes = whole;
+    bytes[attributeValue(bytes, "vds.distanceDims", "v3i") + 4] = 0;
+    EXPECT_NE(readDamaged(bytes).find("attribute vds.distanceDims holds 0, expected 1 to 1024"), std::string::npos)
+        << readDamaged(bytes);
+
+    bytes = whole; // renamed: one of the three is missing
+    bytes[find(bytes, "vds.distanceBox") + 4] = 'D';
+    EXPECT_NE(readDamaged(bytes).find("the distance grid needs all of"), std::string::npos) << readDamaged(bytes);
+
+    bytes = whole; // a box of five floats
+    bytes[attributeValue(bytes, "vds.distanceBox", "floatvector") - 4] = 20;
+    EXPECT_NE(readDamaged(bytes), "");
 }
 
 } // namespace

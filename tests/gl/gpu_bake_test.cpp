@@ -1,5 +1,6 @@
 // vds::bakeToGpu: the sprite baked straight into GL equals, texel for texel
 // and offset for offset, the host bake uploaded with GpuSprite.
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -135,6 +136,32 @@ TEST_F(GpuBakeTest, TimesTheTextureFillAndNoReadBack) {
 TEST_F(GpuBakeTest, InvalidMeshesThrowAsBakeDoes) {
     TriangleMesh empty;
     EXPECT_THROW(bakeToGpu(gl(), empty, {}), InvalidMesh);
+}
+
+// The auto axis counted in the GL bakers' own raster (chooseViewAxisOnGl,
+// what bakeOnGl counts on a GPU): its layers and crossings per axis are
+// those of the fragment-list sprites, and the axis the fewest layers'.
+TEST_F(GpuBakeTest, AxisCountedInTheRasterEqualsTheListsBakes) {
+    const std::vector<TriangleMesh> meshes = {
+        solids::torusKnot({0, 0, 0}, 1.0f, 2, 3, 0.25f, 96, 12).mesh,
+        solids::merge(solids::sphere({0, 0, 0}, 1.0f, 24).mesh, solids::box({1.5f, -0.2f, -2.0f}, {1.6f, 0.2f, 2.0f}).mesh)};
+    for (const TriangleMesh& mesh : meshes)
+        for (std::uint32_t resolution : {31u, 96u}) {
+            const AxisChoice choice = chooseViewAxisOnGl(gl(), mesh, resolution);
+            EXPECT_EQ(choice.resolution, resolution);
+            std::uint32_t fewest = ~0u;
+            for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+                BakeOptions o;
+                o.resolution = resolution;
+                o.axis = axis;
+                o.method = BakeMethod::Lists;
+                const Sprite sprite = bakeOnGl(gl(), mesh, o);
+                EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis) << " " << resolution;
+                EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis);
+                fewest = std::min(fewest, sprite.depthComplexity);
+            }
+            EXPECT_EQ(choice.layers[std::size_t(choice.axis)], fewest);
+        }
 }
 
 } // namespace

@@ -11,7 +11,12 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <vds/distance.h>
 #include <vds/gl/shader.h>
+#include <vds/sprite.h>
 
 #include "gl_fixture.h"
 #include "image_compare.h"
@@ -124,6 +129,53 @@ TEST_F(Styles, ClipRolesAndCombineModesCutWhereTheyShould) {
             EXPECT_GT(checked, 5000u);
             EXPECT_EQ(wrong, 0u) << vs::toString(lookup) << " role " << int(c.role) << " combine " << int(c.combine);
         }
+}
+
+// The clip sample's band (Scene::distanceWidth, shaders/samples/scene.frag)
+// on the plate cut by a sphere, drawn through the scene's shader and
+// vdsDistance from the sphere's distance grid, against the band of the exact
+// distance (SignedDistance) of each pixel's plate point: orange exactly
+// where 0 < d <= width, except where the exact distance lies within the
+// lookup's bound (half a cell's diagonal, under one cell) of the band's outer
+// edge (grown beyond the grid's cell centres as vpt.glsl states) or within a
+// texel of the cut itself (the sprite's clip decides there).
+TEST_F(Styles, ClipBandMatchesTheExactDistanceOfEachPixel) {
+    const vds::TriangleMesh sphere = vs::uvSphere({0.1f, -0.1f, 0.0f}, 0.5f, 32);
+    vs::Scene scene = plateScene();
+    scene.solids.push_back({"sphere", sphere, {}, glm::mat4(1.0f), vs::Role::ClipAway, vs::Style::Shaded});
+    scene.distanceWidth = 0.12f;
+    scene.distanceResolution = 32;
+    vs::SceneRenderer renderer(gl(), scene, vs::Lookup::Vds, {128, false});
+    const vds::eval::Image image = renderer.render(kSize);
+    const vds::SignedDistance exact(sphere, scene.rule);
+    const vds::SpriteDistance field = vds::bakeDistance(sphere, vds::meshBounds(sphere), 32, scene.rule, 0);
+    const glm::vec3 cell = (field.grid.box.hi - field.grid.box.lo) / glm::vec3(field.grid.dims);
+    const double bound = 0.5 * glm::length(glm::dvec3(cell)) * (1.0 + 2.0 * std::sqrt(3.0) / 256.0);
+    const double texel = 1.0 / 128.0 * 1.5; // the sprite's texel, and a half
+    std::size_t band = 0, wrong = 0, checked = 0;
+    for (std::uint32_t y = 0; y < kSize; ++y)
+        for (std::uint32_t x = 0; x < kSize; ++x) {
+            const glm::vec2 p = platePoint(x, y);
+            if (std::fabs(p.x) > 0.97f || std::fabs(p.y) > 0.97f) continue;
+            const glm::vec3 point(p, 0.02f);
+            const double d = exact.distance(point);
+            // Beyond the grid's cell centres the lookup is an upper bound, grown by at
+            // most twice the way there (vpt.glsl): it can only miss band pixels there.
+            const glm::vec3 centres = glm::clamp(point, field.grid.box.lo + 0.5f * cell, field.grid.box.hi - 0.5f * cell);
+            const double beyond = 2.0 * glm::length(glm::dvec3(point - centres));
+            const double edge = d - double(scene.distanceWidth);
+            if (std::abs(d) <= texel || (edge >= -(bound + beyond) && edge <= bound)) continue;
+            const std::uint8_t* rgba = image.at(x, y);
+            const bool orange = rgba[0] > 30 && rgba[2] * 10 < rgba[0] * 3 && rgba[1] * 20 > rgba[0] * 9;
+            const bool expected = d > 0.0 && d <= double(scene.distanceWidth);
+            ++checked;
+            band += expected;
+            wrong += orange != expected;
+        }
+    EXPECT_GT(checked, 5000u);
+    EXPECT_GT(band, 300u);
+    EXPECT_EQ(wrong, 0u);
+    std::printf("clip band on the plate: %zu pixels checked, %zu in the exact band, %zu differ\n", checked, band, wrong);
 }
 
 // Eight solids in one pass (the include's default), through every lookup:

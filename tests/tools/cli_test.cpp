@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 #include "../support/run_program.h"
 
+#include <vds/distance.h>
 #include <vds/eval/image.h>
 #include <vds/exact.h>
 #include <vds/mesh_io.h>
@@ -94,6 +95,33 @@ TEST_F(Cli, BakeInfoClassifyRoundTrip) {
             p("with.txt") + " --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(readFile(dir / "with.txt"), "1\n1\n0\n0\n0\n1\n");
+}
+
+// --distance stores the exact signed distance grid (format version 3), which
+// info reports; every cell is the exact distance of its centre.
+TEST_F(Cli, BakeStoresTheExactDistanceGrid) {
+    Result r = vds("bake " + p("box.obj") + " -o " + p("d.vds") + " --resolution 32 --distance 12 --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = vds("info " + p("d.vds"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("format version:    3"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("distance grid:     10 x 8 x 12 cells"), std::string::npos) << r.output;
+    const vds::Sprite sprite = vds::readSprite(p("d.vds"));
+    const vds::SignedDistance exact(vds::loadMesh(p("box.obj")), vds::Rule::GeneralizedWinding);
+    const vds::Grid& g = sprite.distance.grid;
+    ASSERT_EQ(sprite.distance.cells.size(), g.cellCount());
+    std::size_t same = 0;
+    for (std::uint32_t i = 0; i < g.dims.x; ++i)
+        for (std::uint32_t j = 0; j < g.dims.y; ++j)
+            for (std::uint32_t k = 0; k < g.dims.z; ++k)
+                same += sprite.distance.cells[g.index(i, j, k)] == float(exact.distance(g.cellCentre(i, j, k)));
+    EXPECT_EQ(same, g.cellCount());
+    for (const char* bad : {" --distance 3", " --distance 1025", " --distance-rule odd"}) {
+        r = vds("bake " + p("box.obj") + " -o " + p("x.vds") + bad);
+        EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << bad << ": " << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "x.vds"));
 }
 
 TEST_F(Cli, AllBakeMethodsWriteTheSameSprite) {
@@ -592,7 +620,7 @@ namespace {
 TEST_F(Cli, BakeVerbosePrintsEveryPhase) {
     Result r = vds("bake " + p("box.obj") + " -o " + p("v.vds") + " --resolution 32 --method lists --verbose --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
-    for (const char* phase : {"validation", "upload", "raster", "scan", "sort", "read-back", "total"})
+    for (const char* phase : {"validation", "upload", "raster", "scan", "sort", "read-back", "total", "before the bake: read "})
         EXPECT_NE(r.output.find(phase), std::string::npos) << phase << " missing in:\n" << r.output;
     // The defaults, axis and method auto, say what they measured and chose
     // (a box has two layers along every axis: the tie goes to fewer crossings).

@@ -81,6 +81,26 @@ TEST_F(Samples, LensFramesMoveAndMatchTheExactReference) {
     EXPECT_GT(vds::test::compareImages(frames[1], frames[2]).pixels, 200u);
 }
 
+// A solid re-baked every frame (vds::Baker) cuts the mesh as the exact
+// classifier of the moved solid does, and the cut moves.
+TEST_F(Samples, AnimatedSolidFramesMatchTheExactReference) {
+    const std::string base = std::string(VDS_ANIMATE) + " --frames 3 --size 96 --resolution 128";
+    ASSERT_EQ(run(base + " -o " + p("vds")).code, 0);
+    const Result r = run(base + " -o " + p("exact") + " --with exact");
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::vector<vds::eval::Image> frames;
+    for (int f = 0; f < 3; ++f) {
+        const std::string name = "00" + std::to_string(f) + ".png";
+        frames.push_back(vds::eval::readPng(p("vds") + name));
+        const vds::test::ImageDelta d = vds::test::compareImages(frames.back(), vds::eval::readPng(p("exact") + name));
+        EXPECT_LT(d.pixels, 40u) << name; // the blob's silhouette on the cow
+    }
+    EXPECT_GT(vds::test::compareImages(frames[0], frames[1]).pixels, 100u);
+    EXPECT_GT(vds::test::compareImages(frames[1], frames[2]).pixels, 100u);
+    const Result bad = run(std::string(VDS_ANIMATE) + " -o x --frames 0");
+    EXPECT_EQ(bad.code, 2) << bad.output;
+}
+
 // The gallery's table: one row per lookup and budget, each with its images,
 // shares between 0 and 1, and the equal-memory voxel grids within the VDS's bytes.
 TEST_F(Samples, GalleryWritesPicturesAndTable) {
@@ -123,6 +143,51 @@ TEST_F(Samples, ClipWithSolidMeshesRendersThroughEachLookup) {
     // --keep keeps what the solid holds: the complement of the clip, so most pixels change.
     ASSERT_EQ(run(base + " -o " + p("keep.png") + " --with exact --keep").code, 0);
     EXPECT_GT(vds::test::compareImages(vds::eval::readPng(p("keep.png")), exact).pixels, 1000u);
+}
+
+/// The clip band's orange (scene.bandColour times the light), told from the
+/// front colour (grey-beige) and the cut colour (red) by its hue.
+bool orange(const std::uint8_t* rgba) {
+    const int r = rgba[0], g = rgba[1], b = rgba[2];
+    return r > 30 && b * 10 < r * 3 && g * 20 > r * 9 && g * 5 < r * 4;
+}
+
+// --band draws the band along the cut from the solid's distance grid: every
+// pixel it changes turns orange, and there are many of them; the soft lens
+// edge changes the lens frames. Without --with vds both are refused.
+TEST_F(Samples, ClipBandAndSoftLensEdgeComeFromTheDistanceGrid) {
+    const std::string base = std::string(VDS_CLIP) + " " VDS_SAMPLES_DATA "/spot.obj --solid " VDS_SAMPLES_DATA
+                             "/lens.obj --size 128 --resolution 96";
+    ASSERT_EQ(run(base + " -o " + p("plain.png")).code, 0);
+    const Result r = run(base + " -o " + p("band.png") + " --band 0.05 --distance-resolution 48");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const vds::eval::Image plain = vds::eval::readPng(p("plain.png")), band = vds::eval::readPng(p("band.png"));
+    std::size_t changed = 0, orangeChanged = 0, orangeBefore = 0;
+    for (std::uint32_t y = 0; y < band.height; ++y)
+        for (std::uint32_t x = 0; x < band.width; ++x) {
+            orangeBefore += orange(plain.at(x, y));
+            if (std::equal(plain.at(x, y), plain.at(x, y) + 4, band.at(x, y))) continue;
+            ++changed;
+            orangeChanged += orange(band.at(x, y));
+        }
+    EXPECT_EQ(orangeBefore, 0u);
+    EXPECT_GT(changed, 100u);
+    EXPECT_EQ(orangeChanged, changed);
+
+    const std::string lens = std::string(VDS_LENS) + " --frames 1 --size 96 --resolution 64";
+    ASSERT_EQ(run(lens + " -o " + p("hard")).code, 0);
+    const Result soft = run(lens + " -o " + p("soft") + " --soft-edge 0.08");
+    ASSERT_EQ(soft.code, 0) << soft.output;
+    EXPECT_GT(vds::test::compareImages(vds::eval::readPng(p("hard/lens-00.png")), vds::eval::readPng(p("soft/lens-00.png")))
+                  .pixels,
+              100u);
+
+    for (const std::string& command : {base + " -o x.png --band 0.03 --with solid",
+                                       lens + " -o d --soft-edge 0.05 --with exact", base + " -o x.png --band -1"}) {
+        const Result bad = run(command);
+        EXPECT_EQ(bad.code, 2) << command << ": " << bad.output;
+        EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << command << ": " << bad.output;
+    }
 }
 
 } // namespace

@@ -1,7 +1,11 @@
 #include <chrono>
 #include <cstdio>
+#include <future>
+#include <memory>
+#include <optional>
 
 #include <vds/all.h>
+#include <vds/distance.h>
 #include <vds/bake.h>
 #include <vds/mesh_io.h>
 #include <vds/vds_file.h>
@@ -12,23 +16,51 @@ namespace cli {
 
 namespace {
 
+// A GL bake's context, made on another thread while this one reads the mesh,
+// validates it and counts the axis (EGL's start is tens of milliseconds, as
+// long as that work), then released there for this thread to take.
+std::future<std::unique_ptr<vds::GlContext>> contextInBackground() {
+    return std::async(std::launch::async, [] {
+        const vds::CurrentContext none; // none is current on a new thread: its end releases the context
+        return std::make_unique<vds::GlContext>();
+    });
+}
+
 struct BakeArgs {
     std::string mesh, output, axis = "auto";
     vds::BakeOptions options;
     bool quiet = false, verbose = false;
+    std::uint32_t distance = 0; ///< cells of the distance grid along its longest side, 0: none
+    vds::Rule distanceRule = vds::Rule::GeneralizedWinding;
 };
+
+// Milliseconds since `from`, and `from` moved to now.
+double lap(std::chrono::steady_clock::time_point& from) {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - from).count();
+    from = now;
+    return ms;
+}
 
 void bake(BakeArgs& a) {
     const auto progress = progressPrinter(a.quiet);
     const auto start = std::chrono::steady_clock::now();
+    auto at = start;
+    double before[4] = {}; // read, validate, axis count, waiting for the GL context (ms)
+    const bool onGl = a.options.method == vds::BakeMethod::Lists || a.options.method == vds::BakeMethod::Peel;
+    std::optional<std::future<std::unique_ptr<vds::GlContext>>> context;
+    if (onGl) context = contextInBackground();
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
     a.options.sourceName = mesh.name;
+    before[0] = lap(at);
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, a.mesh);
     vds::requireVolume(report, a.mesh);
+    before[1] = lap(at);
     if (a.axis == "auto") {
-        const vds::AxisChoice choice = vds::chooseViewAxis(mesh, a.options.resolution);
+        const vds::AxisChoice choice = vds::chooseViewAxis(mesh, report, a.options.resolution);
         a.options.axis = choice.axis;
+        before[2] = lap(at);
         if (a.verbose) std::fprintf(stderr, "%s: the fewest layers\n", choice.summary().c_str());
     } else {
         a.options.axis = vds::parseAxis(a.axis);
@@ -47,12 +79,27 @@ void bake(BakeArgs& a) {
     progress("baking " + a.mesh + " (" + std::to_string(mesh.triangles.size()) + " triangles) at " +
              std::to_string(a.options.resolution) + " along " + vds::toString(*a.options.axis) + " with " +
              vds::toString(a.options.method));
-    const vds::Sprite sprite = vds::bake(mesh, a.options);
+    std::unique_ptr<vds::GlContext> gl;
+    if (context) {
+        gl = context->get(); // rethrows GL's refusal, as the bake would have
+        gl->makeCurrent();
+        before[3] = lap(at);
+    }
+    if (a.verbose)
+        std::fprintf(stderr, "before the bake: read %.2f ms, validation %.2f ms, axis count %.2f ms, GL context wait %.2f ms\n",
+                     before[0], before[1], before[2], before[3]);
+    vds::Sprite sprite = gl ? vds::bake(*gl, mesh, a.options) : vds::bake(mesh, a.options);
+    if (a.distance > 0) {
+        progress("distance grid of " + std::to_string(a.distance) + " cells along the longest side, " +
+                 vds::toString(a.distanceRule) + " rule");
+        sprite.distance = vds::bakeDistance(mesh, sprite.grid.box, a.distance, a.distanceRule);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (a.verbose) std::fputs(timings.report().c_str(), stderr);
     vds::writeSprite(sprite, a.output);
-    std::printf("wrote %s: %ux%u texels, depth complexity %u, %zu crossings, baked in %.2f s\n", a.output.c_str(),
-                sprite.width(), sprite.height(), sprite.depthComplexity, sprite.crossings.size(), seconds);
+    std::printf("wrote %s: %ux%u texels, depth complexity %u, %zu crossings%s, baked in %.3f s\n", a.output.c_str(),
+                sprite.width(), sprite.height(), sprite.depthComplexity, sprite.crossings.size(),
+                sprite.distance.empty() ? "" : ", a signed distance grid", seconds);
 }
 
 } // namespace
@@ -75,6 +122,13 @@ void addBake(CLI::App& app) {
     addEnum(*c, "--method", a->options.method,
             "auto: GL fragment lists on a GPU, the CPU baker on a software renderer or without GL; or lists, "
             "peel (depth peeling), cpu (exact ray casting)");
+    c->add_option("--distance", a->distance,
+                  "also store a signed distance grid of N cells along the longest side (exact distances, for "
+                  "vdsDistance in GLSL; format version 3)")
+        ->check(CLI::Range(4u, vds::kMaxDistanceResolution))
+        ->type_name("N");
+    addEnum(*c, "--distance-rule", a->distanceRule,
+            "the sign of the distance grid: parity, winding, or generalized-winding (open meshes too)");
     c->add_flag("--verbose", a->verbose,
                 "say which axis and bake method auto chose and why, and the time of each phase (validation, "
                 "upload, raster, scan, sort, read-back...)");

@@ -21,7 +21,8 @@ void info(InfoArgs& a) {
     const vds::Sprite s = vds::readSprite(path);
     const auto& g = s.grid;
     std::printf("file:              %s (%ju bytes)\n", path.c_str(), std::uintmax_t(std::filesystem::file_size(path)));
-    std::printf("format version:    %d\n", vds::Sprite::kFormatVersion);
+    std::printf("format version:    %d (as this library writes it: 3 with a distance grid)\n",
+                s.distance.empty() ? 2 : vds::Sprite::kFormatVersion);
     std::printf("source mesh:       %s, %ju triangles\n", s.sourceName.empty() ? "(unnamed)" : s.sourceName.c_str(),
                 std::uintmax_t(s.sourceTriangles));
     std::printf("validation:        %s%s\n", s.validation.c_str(),
@@ -37,6 +38,12 @@ void info(InfoArgs& a) {
     std::printf("M_S:               [%g %g %g; %g %g %g; %g %g %g]\n", double(m[0][0]), double(m[1][0]),
                 double(m[2][0]), double(m[0][1]), double(m[1][1]), double(m[2][1]), double(m[0][2]), double(m[1][2]),
                 double(m[2][2]));
+    if (!s.distance.empty()) {
+        const vds::Grid& d = s.distance.grid;
+        std::printf("distance grid:     %u x %u x %u cells over (%g, %g, %g) - (%g, %g, %g)\n", d.dims.x, d.dims.y,
+                    d.dims.z, double(d.box.lo.x), double(d.box.lo.y), double(d.box.lo.z), double(d.box.hi.x),
+                    double(d.box.hi.y), double(d.box.hi.z));
+    }
     std::printf("memory:            %zu bytes in memory, %zu bytes as the paper's dense texture\n", s.memoryBytes(),
                 s.denseBytes());
 }

@@ -45,6 +45,8 @@ void voxelize(VoxelizeArgs& a) {
         bounds = sprite.grid.box;
     } else {
         mesh = vds::loadMesh(a.input);
+        phase("read", secondsSince(start));
+        start = std::chrono::steady_clock::now();
         const vds::MeshReport report = vds::validateMesh(mesh);
         vds::requireUsable(report, a.input);
         vds::requireVolume(report, a.input);
@@ -52,7 +54,7 @@ void voxelize(VoxelizeArgs& a) {
         const std::string open = vds::openMeshMessage(report, a.input, a.options.rule);
         if (!open.empty()) std::fprintf(stderr, "vds voxelize: warning: %s\n", open.c_str());
     }
-    phase("load", secondsSince(start));
+    phase(fromSprite ? "read" : "validate", secondsSince(start));
     vds::Grid grid;
     grid.box = bounds;
     if (!a.box.empty()) grid.box = vds::Box{{a.box[0], a.box[1], a.box[2]}, {a.box[3], a.box[4], a.box[5]}};
@@ -66,7 +68,11 @@ void voxelize(VoxelizeArgs& a) {
              std::to_string(grid.dims.z) + " cells " + (fromSprite ? "from the sprite" : "exactly from the mesh"));
     // The mesh's exact classifier is built once (every slab sweeps through it).
     std::optional<vds::ExactClassifier> exact;
-    if (!fromSprite) exact.emplace(mesh, vds::Axis::Z);
+    if (!fromSprite) {
+        start = std::chrono::steady_clock::now();
+        exact.emplace(mesh, vds::Axis::Z);
+        phase("index", secondsSince(start));
+    }
     const auto label = [&](const vds::Grid& g, std::uint8_t* out) {
         if (fromSprite) vds::occupancy(sprite, g, out, a.options);
         else exact->occupancy(g, out, a.options);

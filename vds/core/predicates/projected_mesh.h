@@ -66,6 +66,12 @@ struct Box2 {
     float lo[2], hi[2];
 };
 
+Box2 boxOf(const Triangle& t);
+/// Triangle k of `mesh` in view space ((s,t,r) = the coordinates `perm`
+/// picks), counter-clockwise unless parallel, with its facing and top-left
+/// flags: the one projection of the exact classifier, the CPU baker and the
+/// layer count.
+Triangle projectTriangle(MeshView mesh, std::size_t k, const glm::ivec3& perm);
 /// Whether the projection of `tri` claims the point q (its (s,t) in q[0],
 /// q[1]) under the top-left rule. `tri` must not be parallel. A first pass
 /// evaluates the three edges as orient2d's filter does (q as the pivot) and

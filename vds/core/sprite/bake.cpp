@@ -3,25 +3,32 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <optional>
 
 #include <vds/error.h>
 
 #include <vds/detail/bake_common.h>
 #include "winding/antipodal.h"
-#include "predicates/projected_mesh.h"
+#include "sprite/layer_count.h"
 #include <vds/detail/parallel.h>
 
 namespace vds {
 
 namespace detail {
 
-BakeSetup prepareBake(MeshView mesh, const BakeOptions& options) {
+BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count) {
     const HostPhase phase(options.timings, BakePhase::Validation);
     BakeSetup setup;
     setup.report = validateMesh(mesh);
     requireUsable(setup.report, options.sourceName);
     requireVolume(setup.report, options.sourceName);
-    const Axis axis = options.axis ? *options.axis : chooseViewAxis(mesh, options.resolution).axis;
+    Axis axis = Axis::Z;
+    if (options.axis) {
+        axis = *options.axis;
+    } else {
+        const std::optional<AxisChoice> counted = count ? count(setup.report) : std::nullopt;
+        axis = counted ? counted->axis : chooseViewAxis(mesh, setup.report, options.resolution).axis;
+    }
     setup.grid = makeGrid(setup.report.bounds, axis, options.resolution);
     return setup;
 }
@@ -90,55 +97,23 @@ AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution, unsigned thre
     const MeshReport report = validateMesh(mesh);
     requireUsable(report, "mesh");
     requireVolume(report, "mesh");
+    return chooseViewAxis(mesh, report, resolution, threads);
+}
+
+AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads) {
     AxisChoice choice;
     choice.resolution = resolution;
+    detail::LayerCounter counter;
     for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
-        const SpriteGrid grid = makeGrid(report.bounds, axis, resolution);
-        const detail::ProjectedMesh projected(mesh, axis);
-        // Texel centres along s and t (a baking grid is axis-aligned: s
-        // follows i alone, t follows j alone), to bound each triangle's texels.
-        std::vector<float> sAt(grid.width), tAt(grid.height);
-        float q[3];
-        for (std::uint32_t i = 0; i < grid.width; ++i) {
-            projected.toViewSpace(grid.texelCentre(i, 0, 0.0f), q);
-            sAt[i] = q[0];
-        }
-        for (std::uint32_t j = 0; j < grid.height; ++j) {
-            projected.toViewSpace(grid.texelCentre(0, j, 0.0f), q);
-            tAt[j] = q[1];
-        }
-        std::vector<std::atomic<std::uint32_t>> count(std::size_t(grid.width) * grid.height);
-        parallelFor(threads, projected.crossable, 256, [&](std::size_t begin, std::size_t end) {
-            float c[3] = {0.0f, 0.0f, 0.0f};
-            for (std::size_t k = begin; k < end; ++k) {
-                const detail::Triangle& t = projected.tris[k];
-                const float slo = std::min({t.v[0][0], t.v[1][0], t.v[2][0]}), shi = std::max({t.v[0][0], t.v[1][0], t.v[2][0]});
-                const float tlo = std::min({t.v[0][1], t.v[1][1], t.v[2][1]}), thi = std::max({t.v[0][1], t.v[1][1], t.v[2][1]});
-                // Every texel whose centre lies in the triangle's closed box (no
-                // other can be claimed); the centre (sAt[i], tAt[j]) is the
-                // baker's `texelCentre(i, j)` exactly: s follows i alone, t j alone.
-                const std::size_t i0 = std::size_t(std::lower_bound(sAt.begin(), sAt.end(), slo) - sAt.begin());
-                const std::size_t i1 = std::size_t(std::upper_bound(sAt.begin(), sAt.end(), shi) - sAt.begin());
-                const std::size_t j0 = std::size_t(std::lower_bound(tAt.begin(), tAt.end(), tlo) - tAt.begin());
-                const std::size_t j1 = std::size_t(std::upper_bound(tAt.begin(), tAt.end(), thi) - tAt.begin());
-                for (std::size_t j = j0; j < j1; ++j)
-                    for (std::size_t i = i0; i < i1; ++i) {
-                        c[0] = sAt[i];
-                        c[1] = tAt[j];
-                        if (detail::claims(t, c)) count[j * grid.width + i].fetch_add(1, std::memory_order_relaxed);
-                    }
-            }
-        });
-        std::uint32_t most = 0;
-        std::uint64_t total = 0;
-        for (const auto& n : count) {
-            const std::uint32_t v = n.load(std::memory_order_relaxed);
-            most = std::max(most, v);
-            total += v;
-        }
-        choice.layers[std::size_t(axis)] = most;
-        choice.crossings[std::size_t(axis)] = total;
+        const detail::LayerCount count = counter.count(mesh, makeGrid(report.bounds, axis, resolution), threads);
+        choice.layers[std::size_t(axis)] = count.most;
+        choice.crossings[std::size_t(axis)] = count.total;
     }
+    detail::pickFewestLayers(choice);
+    return choice;
+}
+
+void detail::pickFewestLayers(AxisChoice& choice) {
     std::uint64_t bestKey = ~std::uint64_t(0);
     for (Axis axis : {Axis::Z, Axis::X, Axis::Y}) {
         const std::uint64_t key = (std::uint64_t(choice.layers[std::size_t(axis)]) << 40) | choice.crossings[std::size_t(axis)];
@@ -147,7 +122,6 @@ AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution, unsigned thre
             choice.axis = axis;
         }
     }
-    return choice;
 }
 
 BakeMethod parseBakeMethod(const std::string& s) { return parseEnum<BakeMethod>(s); }

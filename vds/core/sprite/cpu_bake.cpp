@@ -141,7 +141,10 @@ void detail::recastBoundaryColumns(MeshView mesh, const SpriteGrid& grid, const 
 
 Sprite bakeCpu(MeshView mesh, const BakeOptions& options) {
     const detail::BakeClock clock(options.timings);
-    const detail::BakeSetup setup = detail::prepareBake(mesh, options);
+    return detail::bakeCpu(detail::prepareBake(mesh, options), mesh, options);
+}
+
+Sprite detail::bakeCpu(const BakeSetup& setup, MeshView mesh, const BakeOptions& options) {
     const SpriteGrid& grid = setup.grid;
     const auto report = [&](const std::string& message) {
         if (options.progress) options.progress(message);

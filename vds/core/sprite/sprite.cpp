@@ -55,6 +55,26 @@ std::size_t Sprite::denseBytes() const {
     return std::size_t(grid.width) * grid.height * std::max<std::uint32_t>(1, depthComplexity) * sizeof(float);
 }
 
+namespace {
+void checkDistance(const SpriteDistance& distance) {
+    if (distance.empty()) return;
+    const Grid& g = distance.grid;
+    for (int a = 0; a < 3; ++a)
+        if (g.dims[a] == 0 || g.dims[a] > kMaxDistanceResolution)
+            throw FormatError("sprite distance grid size " + std::to_string(g.dims[a]) + " is out of range");
+    if (g.first != glm::uvec3(0u) || (g.whole != glm::uvec3(0u) && g.whole != g.dims))
+        throw FormatError("sprite distance grid is a slab");
+    for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(g.box.lo[a]) || !std::isfinite(g.box.hi[a]) || !(g.box.lo[a] < g.box.hi[a]))
+            throw FormatError("sprite distance grid box is empty or not finite");
+    if (distance.cells.size() != g.cellCount())
+        throw FormatError("sprite distance grid holds " + std::to_string(distance.cells.size()) + " cells, not " +
+                          std::to_string(g.cellCount()));
+    for (float d : distance.cells)
+        if (!std::isfinite(d)) throw FormatError("sprite distance grid holds a value that is not finite");
+}
+} // namespace
+
 void Sprite::checkConsistent() const {
     const std::size_t columns = std::size_t(grid.width) * grid.height;
     if (grid.width == 0 || grid.height == 0 || grid.width > kMaxResolution || grid.height > kMaxResolution)
@@ -82,6 +102,7 @@ void Sprite::checkConsistent() const {
         if (!std::isfinite(grid.matrix[k / 3][k % 3])) throw FormatError("sprite matrix is not finite");
     if (!std::isfinite(grid.position.x + grid.position.y + grid.position.z))
         throw FormatError("sprite position is not finite");
+    checkDistance(distance);
 }
 
 namespace detail {

@@ -11,6 +11,7 @@
 #include <vds/detail/atomic_file.h>
 
 #include "io/file_bytes.h"
+#include "sprite/vds_checksum.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -54,6 +55,7 @@ namespace {
 
 using detail::errnoText;
 using detail::readWholeFile;
+using detail::spriteChecksum;
 
 // Attribute names (docs/format.md lists types and meaning).
 constexpr const char* kFormatVersionAttr = "vds.formatVersion";
@@ -70,6 +72,13 @@ constexpr const char* kStatusAttr = "vds.status";
 constexpr const char* kValidationAttr = "vds.validation";
 constexpr const char* kChecksumAttr = "vds.checksum";
 constexpr const char* kBoundaryEdgesAttr = "vds.boundaryEdges"; // version 2
+// Version 3, all three or none: the sprite's distance grid (SpriteDistance).
+constexpr const char* kDistanceDimsAttr = "vds.distanceDims";
+constexpr const char* kDistanceBoxAttr = "vds.distanceBox"; // six floats: lo, then hi
+constexpr const char* kDistanceAttr = "vds.distance";
+// The version a sprite without a distance grid is written as, so that
+// readers of version 2 still read it.
+constexpr int kPlainFormatVersion = 2;
 // The oldest format version read (1: no boundary edges).
 constexpr int kOldestFormatVersion = 1;
 
@@ -106,62 +115,8 @@ std::string oneLine(const std::string& text) {
 
 // ---------------------------------------------------------------- checksum
 
-/// 64-bit FNV-1a over a little-endian serialisation, independent of the host.
-class Fnv1a64 {
-public:
-    void byte(std::uint8_t b) {
-        hash_ ^= b;
-        hash_ *= 0x100000001b3ull;
-    }
-    void u32(std::uint32_t v) {
-        for (int k = 0; k < 4; ++k) byte(std::uint8_t(v >> (8 * k)));
-    }
-    void u64(std::uint64_t v) {
-        for (int k = 0; k < 8; ++k) byte(std::uint8_t(v >> (8 * k)));
-    }
-    void f32(float f) {
-        std::uint32_t bits;
-        std::memcpy(&bits, &f, sizeof bits);
-        u32(bits);
-    }
-    void str(const std::string& s) {
-        u64(s.size());
-        for (char c : s) byte(std::uint8_t(c));
-    }
-    std::uint64_t value() const { return hash_; }
-
-private:
-    std::uint64_t hash_ = 0xcbf29ce484222325ull;
-};
-
-/// The checksum of docs/format.md: every field of the sprite, in this order,
-/// as the file's format `version` lays them out.
-std::uint64_t spriteChecksum(const Sprite& s, int version = Sprite::kFormatVersion) {
-    Fnv1a64 h;
-    h.u32(std::uint32_t(version));
-    h.u32(s.grid.width);
-    h.u32(s.grid.height);
-    h.u32(std::uint32_t(s.grid.axis));
-    h.f32(s.grid.texelSize);
-    for (int k = 0; k < 3; ++k) h.f32(s.grid.position[k]);
-    for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) h.f32(s.grid.matrix[c][r]);
-    for (int k = 0; k < 3; ++k) h.f32(s.grid.box.lo[k]);
-    for (int k = 0; k < 3; ++k) h.f32(s.grid.box.hi[k]);
-    h.u32(s.depthComplexity);
-    h.u64(s.sourceTriangles);
-    h.u32(std::uint32_t(s.status));
-    h.str(s.sourceName);
-    h.str(s.validation);
-    for (std::uint32_t o : s.offsets) h.u32(o);
-    for (float c : s.crossings) h.f32(c);
-    if (version >= 2) {
-        h.u64(s.boundaryEdges.size() / 2);
-        for (const glm::vec3& p : s.boundaryEdges)
-            for (int k = 0; k < 3; ++k) h.f32(p[k]);
-    }
-    return h.value();
-}
+/// The format version `s` is written as: 3 with a distance grid, else 2.
+int writtenVersion(const Sprite& s) { return s.distance.empty() ? kPlainFormatVersion : Sprite::kFormatVersion; }
 
 std::string toHex(std::uint64_t v) {
     static const char digits[] = "0123456789abcdef";
@@ -339,6 +294,8 @@ void checkWritable(const Sprite& sprite, const std::string& path) {
         if (!std::isfinite(p.x + p.y + p.z)) formatFail(path, "not written: a boundary edge is not finite");
     if (!sprite.boundaryKnown)
         formatFail(path, "not written: the sprite's boundary is unknown (read from a version-1 file of an open mesh)");
+    if (sprite.distance.cells.size() > std::size_t(std::numeric_limits<int>::max() / 4))
+        formatFail(path, "not written: the distance grid is too large for one attribute");
 }
 
 Imf::Header makeHeader(const Sprite& sprite) {
@@ -350,7 +307,7 @@ Imf::Header makeHeader(const Sprite& sprite) {
     header.channels().insert(kEnteringChannel, Imf::Channel(Imf::UINT));
 
     const SpriteGrid& g = sprite.grid;
-    header.insert(kFormatVersionAttr, Imf::IntAttribute(Sprite::kFormatVersion));
+    header.insert(kFormatVersionAttr, Imf::IntAttribute(writtenVersion(sprite)));
     header.insert(kAxisAttr, Imf::IntAttribute(int(g.axis)));
     header.insert(kPositionAttr, Imf::V3fAttribute(toImath(g.position)));
     header.insert(kMatrixAttr, Imf::M33fAttribute(toImath(g.matrix)));
@@ -366,7 +323,15 @@ Imf::Header makeHeader(const Sprite& sprite) {
     for (std::size_t k = 0; k < sprite.boundaryEdges.size(); ++k)
         for (int a = 0; a < 3; ++a) ends[3 * k + std::size_t(a)] = sprite.boundaryEdges[k][a];
     header.insert(kBoundaryEdgesAttr, Imf::FloatVectorAttribute(ends));
-    header.insert(kChecksumAttr, Imf::StringAttribute(toHex(spriteChecksum(sprite))));
+    if (!sprite.distance.empty()) {
+        const Grid& field = sprite.distance.grid;
+        const Imath::V3i dims(int(field.dims.x), int(field.dims.y), int(field.dims.z));
+        header.insert(kDistanceDimsAttr, Imf::V3iAttribute(dims));
+        const glm::vec3 &lo = field.box.lo, &hi = field.box.hi;
+        header.insert(kDistanceBoxAttr, Imf::FloatVectorAttribute({lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}));
+        header.insert(kDistanceAttr, Imf::FloatVectorAttribute(sprite.distance.cells));
+    }
+    header.insert(kChecksumAttr, Imf::StringAttribute(toHex(spriteChecksum(sprite, writtenVersion(sprite)))));
     return header;
 }
 
@@ -597,6 +562,36 @@ void checkImage(Imf::Header& header, std::uint64_t fileSize, const std::string& 
     imageHeight = std::uint32_t(height);
 }
 
+/// The optional distance grid of a version-3 file: its three attributes or
+/// none; their sizes are checked against each other here, the values by
+/// `Sprite::checkConsistent`.
+void readDistance(const Imf::Header& header, const std::string& path, SpriteDistance& distance) {
+    const int present = int(header.find(kDistanceDimsAttr) != header.end()) +
+                        int(header.find(kDistanceBoxAttr) != header.end()) +
+                        int(header.find(kDistanceAttr) != header.end());
+    if (present == 0) return;
+    if (present != 3)
+        formatFail(path, std::string("the distance grid needs all of ") + kDistanceDimsAttr + ", " + kDistanceBoxAttr +
+                             " and " + kDistanceAttr);
+    const Imath::V3i dims = value<Imath::V3i>(header, kDistanceDimsAttr, path);
+    for (int a = 0; a < 3; ++a)
+        if (dims[a] < 1 || std::uint32_t(dims[a]) > kMaxDistanceResolution)
+            formatFail(path, std::string("attribute ") + kDistanceDimsAttr + " holds " + std::to_string(dims[a]) +
+                                 ", expected 1 to " + std::to_string(kMaxDistanceResolution));
+    const std::vector<float>& box = value<std::vector<float>>(header, kDistanceBoxAttr, path);
+    if (box.size() != 6)
+        formatFail(path, std::string("attribute ") + kDistanceBoxAttr + " holds " + std::to_string(box.size()) +
+                             " floats, not six");
+    distance.grid.dims = glm::uvec3(std::uint32_t(dims.x), std::uint32_t(dims.y), std::uint32_t(dims.z));
+    distance.grid.box = {glm::vec3(box[0], box[1], box[2]), glm::vec3(box[3], box[4], box[5])};
+    const std::vector<float>& cells = value<std::vector<float>>(header, kDistanceAttr, path);
+    if (cells.size() != distance.grid.cellCount())
+        formatFail(path, std::string("attribute ") + kDistanceAttr + " holds " + std::to_string(cells.size()) +
+                             " floats, not the " + std::to_string(distance.grid.cellCount()) + " cells of " +
+                             kDistanceDimsAttr);
+    distance.cells = cells;
+}
+
 /// The sprite's attributes: its grid, counts, source, status and (from
 /// format version 2) boundary edges.
 void readAttributes(const Imf::Header& header, const std::string& path, int formatVersion, Sprite& sprite) {
@@ -636,7 +631,7 @@ void readAttributes(const Imf::Header& header, const std::string& path, int form
     } else {
         sprite.boundaryKnown = sprite.status == SolidStatus::Closed;
     }
-
+    if (formatVersion >= 3) readDistance(header, path, sprite.distance);
 }
 
 std::uint64_t readHeader(MemoryIStream& stream, std::string_view bytes, const std::string& path,

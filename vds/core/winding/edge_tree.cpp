@@ -15,6 +15,20 @@
 
 namespace vds::detail {
 
+namespace {
+/// Distance from p to the segment a b, and its squared length.
+double segmentDistance(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& p, double& length2) {
+    const glm::dvec3 ab = b - a;
+    length2 = glm::dot(ab, ab);
+    const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+    return glm::length(a + t * ab - p);
+}
+} // namespace
+
+double EdgeTree::edgeDistance(std::uint32_t k, const glm::dvec3& p, double& length2) const {
+    return segmentDistance(glm::dvec3(treeEdges_[2 * k]), glm::dvec3(treeEdges_[2 * k + 1]), p, length2);
+}
+
 using namespace caps;
 
 std::uint32_t EdgeTree::buildEdges(std::uint32_t first, std::uint32_t last) {
@@ -149,11 +163,8 @@ Reach EdgeTree::reach(const glm::vec3& q, double steepest) const {
             return true;
         }
         for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
-            const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
-            const glm::dvec3 ab = b - a;
-            const double length2 = glm::dot(ab, ab);
-            const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
-            const double distance = glm::length(a + t * ab - p);
+            double length2;
+            const double distance = edgeDistance(k, p, length2);
             if (!(distance > 0.0)) return false; // on the curve: no move is certain
             r.gap = std::min(r.gap, distance);
             sum += std::sqrt(length2) / (distance * distance);
@@ -170,11 +181,8 @@ Reach EdgeTree::reach(const glm::vec3& q, double steepest) const {
 bool EdgeTree::addEdgeDrifts(const EdgeNode& leaf, const glm::dvec3& p, double length, double& sumMoved,
                                  double& sumAt, double& nearest) const {
     for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
-        const glm::dvec3 a(treeEdges_[2 * k]), b(treeEdges_[2 * k + 1]);
-        const glm::dvec3 ab = b - a;
-        const double length2 = glm::dot(ab, ab);
-        const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
-        const double distance = glm::length(a + t * ab - p);
+        double length2;
+        const double distance = edgeDistance(k, p, length2);
         if (!(distance > length)) return false;
         const double edge = std::sqrt(length2);
         sumMoved += edge / ((distance - length) * (distance - length));

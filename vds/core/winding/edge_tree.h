@@ -95,6 +95,9 @@ private:
     /// where a move by `length` may reach one.
     bool addEdgeDrifts(const EdgeNode& leaf, const glm::dvec3& p, double length, double& sumMoved, double& sumAt,
                        double& nearest) const;
+    /// Distance from p to tree edge k (at its nearest), and the edge's
+    /// squared length into `length2`.
+    double edgeDistance(std::uint32_t k, const glm::dvec3& p, double& length2) const;
     std::uint32_t buildLoops(std::vector<std::uint32_t>& nodes, std::uint32_t first, std::uint32_t last);
     std::uint32_t buildEdges(std::uint32_t first, std::uint32_t last);
     std::vector<glm::vec3> treeEdges_; ///< the edges in the tree's order

@@ -61,15 +61,21 @@ void GlPhaseClock::collect() {
     checkGl("reading the bake's timer queries");
 }
 
-ValidatedMesh validateForBake(MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
+// The one validation of every baker (detail::prepareBake), timed on the GL
+// bake's clock.
+ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
     const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
-    ValidatedMesh v;
-    v.report = validateMesh(mesh);
-    requireUsable(v.report, options.sourceName);
-    requireVolume(v.report, options.sourceName);
-    const Axis axis = options.axis ? *options.axis : chooseViewAxis(mesh, options.resolution).axis;
-    v.grid = makeGrid(v.report.bounds, axis, options.resolution);
-    return v;
+    BakeOptions untimed = options;
+    untimed.timings = nullptr;
+    BakeSetup setup = prepareBake(mesh, untimed, axisCounter(gl, mesh, options));
+    return {std::move(setup.report), setup.grid};
+}
+
+Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what) {
+    Buffer b = Buffer::create();
+    glNamedBufferStorage(b.id(), GLsizeiptr(std::max<std::size_t>(bytes, 4)), bytes ? data : nullptr, 0);
+    checkGl(what);
+    return b;
 }
 
 void dispatchGroups(std::uint64_t groups) {
@@ -134,10 +140,7 @@ namespace vds {
 
 BakeMethod chooseBakeMethod(const GlContext& gl, std::string* why) {
     const std::string& renderer = gl.info().renderer;
-    const bool software = gl.info().platform.find("software") != std::string::npos ||
-                          renderer.find("llvmpipe") != std::string::npos ||
-                          renderer.find("softpipe") != std::string::npos ||
-                          renderer.find("SwiftShader") != std::string::npos;
+    const bool software = detail::softwareRenderer(gl);
     if (why)
         *why = software ? "bake method auto: cpu, because GL here is the software renderer " + renderer +
                               " (the CPU baker is faster for a one-shot bake there)"
@@ -153,7 +156,11 @@ Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options) 
     }
     if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
     const detail::BakeClock clock(options.timings);
-    const detail::BakeSetup setup = detail::prepareBake(mesh, options);
+    return detail::bakeOnGl(gl, detail::prepareBake(mesh, options, detail::axisCounter(gl, mesh, options)), mesh, options);
+}
+
+Sprite detail::bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options) {
+    if (options.method == BakeMethod::Cpu) return bakeCpu(setup, mesh, options);
     std::vector<std::uint32_t> offsets;
     std::vector<float> crossings;
     {

@@ -3,13 +3,16 @@
 #pragma once
 
 #include <chrono>
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <GL/gl.h>
 
 #include <vds/bake.h>
+#include <vds/detail/bake_common.h>
 #include <vds/gl/context.h>
 #include <vds/gl/objects.h>
 
@@ -69,7 +72,31 @@ struct ValidatedMesh {
     MeshReport report;
     SpriteGrid grid;
 };
-ValidatedMesh validateForBake(MeshView mesh, const BakeOptions& options, GlPhaseClock& clock);
+ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock);
+
+/// An immutable buffer holding `bytes` of `data` (at least 4 bytes: GL
+/// refuses empty storage; `data` may be null for contents left undefined).
+/// Throws `GlError` naming `what`.
+Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what);
+
+/// The layers and crossings of the GL bake of `mesh` along each axis at
+/// `resolution` in `bounds`, counted in the bake's own raster on `gl` (made
+/// current), and the axis of the fewest (`pickFewestLayers`); nullopt where
+/// one axis's counts exceed a storage block. These are the GL bake's
+/// counts, which differ from the CPU baker's only where the rasterizer's
+/// snapping moves an edge across a texel centre.
+std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, const Box& bounds,
+                                          std::uint32_t resolution);
+/// True on llvmpipe, softpipe, SwiftShader and software platforms.
+bool softwareRenderer(const GlContext& gl);
+/// The GL bakers' axis count for `prepareBake`: `countLayersOnGl` on a GPU;
+/// none (the CPU's) on a software renderer, where the CPU's count is faster.
+/// Holds `gl` and `mesh` by reference.
+AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options);
+
+/// `bakeOnGl` on a mesh validated before (`setup`), with a method chosen
+/// (not Auto). Phases timed on `options.timings`; the caller holds the clock.
+Sprite bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options);
 
 /// `groups` workgroups as a glDispatchCompute grid: x up to 65535, then rows
 /// of y. Shaders number a group `gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x`

@@ -119,6 +119,70 @@ void ListsBake::run(MeshView mesh, const std::function<void(GpuBand&)>& take) {
     if (options_.timings) options_.timings->bands = bands_;
 }
 
+// The band's rasterizing pass: counts, first pairs and pooled nodes.
+GLuint ListsBake::raster(const GpuMesh& mesh, std::uint32_t y0, std::uint32_t y1, GLuint counts, GLuint firsts,
+                         std::uint64_t scanned) {
+    GLuint pooled = 0;
+    const GlPhaseClock::Scope phase(clock_, BakePhase::Raster);
+    clearToZero(counts, scanned * 4);
+    clearToZero(counter_, 4);
+    const BakeRasterState state(gl_, grid_, fill_->id());
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, GLint(y0), GLsizei(grid_.width), GLsizei(y1 - y0));
+    glUniform1ui(uniform(*fill_, "u_capacity"), GLuint(capacity_));
+    glUniform1i(uniform(*fill_, "u_rowBegin"), GLint(y0));
+    glUniform1ui(uniform(*fill_, "u_width"), grid_.width);
+    glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, counter_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, nodes_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counts);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, firsts);
+    mesh.draw();
+    glMemoryBarrier(GL_ATOMIC_COUNTER_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(counter_, 0, sizeof pooled, &pooled);
+    glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, 0);
+    checkGl("fragment list pass");
+    return pooled;
+}
+
+// The band's sort: pooled nodes scattered to pairs, each column's crossings
+// sorted into `out.crossings`.
+void ListsBake::sortBand(GpuBand& out, GLuint firsts, GLuint pooled, std::uint64_t columns) {
+    const GLuint counts = out.offsets;
+    const std::uint64_t total = out.count;
+    const GlPhaseClock::Scope phase(clock_, BakePhase::Sort);
+    if (keepBands_) {
+        out.ownCrossings = makeBuffer(total * 4, "allocating the sorted crossings");
+        out.crossings = out.ownCrossings.id();
+    } else {
+        out.crossings = scratch("vds.lists.crossings", total * 4).id();
+    }
+    const GLuint pairs = scratch("vds.lists.pairs", total * kPairBytes).id();
+    if (pooled) {
+        glUseProgram(scatter_->id());
+        glUniform1ui(uniform(*scatter_, "u_nodes"), pooled);
+        glUniform1ui(uniform(*scatter_, "u_base"), GLuint(done_));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, nodes_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counts);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, pairs);
+        glDispatchCompute(strideGroups(pooled), 1, 1);
+        glMemoryBarrier(kComputeToCompute);
+    }
+    glUseProgram(sort_->id());
+    glUniform1ui(uniform(*sort_, "u_columns"), GLuint(columns));
+    glUniform1ui(uniform(*sort_, "u_base"), GLuint(done_));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, counts);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, firsts);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, pairs);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, out.crossings);
+    glDispatchCompute(strideGroups(columns), 1, 1);
+    glMemoryBarrier(kComputeToHost);
+    for (GLuint binding = 0; binding < 4; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
+    glUseProgram(0);
+    checkGl("sorting fragment lists");
+}
+
 // Bakes rows [y0, y1); splits them when the node pool cannot hold their crossings.
 void ListsBake::band(const GpuMesh& mesh, std::uint32_t y0, std::uint32_t y1,
                      const std::function<void(GpuBand&)>& take) {
@@ -128,29 +192,8 @@ void ListsBake::band(const GpuMesh& mesh, std::uint32_t y0, std::uint32_t y1,
     if (keepBands_) ownCounts = makeBuffer(scanned * 4, "allocating the column offsets");
     const GLuint counts = keepBands_ ? ownCounts.id() : scratch("vds.lists.counts", countsBytes_).id();
     const GLuint firsts = scratch("vds.lists.firsts", columns * 2 * kPairBytes).id();
-    GLuint pooled = 0; // crossings past the first two of their column
-    {
-        const GlPhaseClock::Scope phase(clock_, BakePhase::Raster);
-        clearToZero(counts, scanned * 4);
-        clearToZero(counter_, 4);
-        const BakeRasterState state(gl_, grid_, fill_->id());
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
-        glDisable(GL_DEPTH_TEST);
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(0, GLint(y0), GLsizei(grid_.width), GLsizei(y1 - y0));
-        glUniform1ui(uniform(*fill_, "u_capacity"), GLuint(capacity_));
-        glUniform1i(uniform(*fill_, "u_rowBegin"), GLint(y0));
-        glUniform1ui(uniform(*fill_, "u_width"), grid_.width);
-        glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, counter_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, nodes_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counts);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, firsts);
-        mesh.draw();
-        glMemoryBarrier(GL_ATOMIC_COUNTER_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        glGetNamedBufferSubData(counter_, 0, sizeof pooled, &pooled);
-        glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, 0);
-        checkGl("fragment list pass");
-    }
+    // The crossings past the first two of their column.
+    const GLuint pooled = raster(mesh, y0, y1, counts, firsts, scanned);
     if (pooled > capacity_) {
         if (pooled <= maxNodes(columns)) {
             capacity_ = pooled;
@@ -186,38 +229,7 @@ void ListsBake::band(const GpuMesh& mesh, std::uint32_t y0, std::uint32_t y1,
     out.count = total;
     out.offsets = counts;
     out.ownOffsets = std::move(ownCounts);
-    {
-        const GlPhaseClock::Scope phase(clock_, BakePhase::Sort);
-        if (keepBands_) {
-            out.ownCrossings = makeBuffer(total * 4, "allocating the sorted crossings");
-            out.crossings = out.ownCrossings.id();
-        } else {
-            out.crossings = scratch("vds.lists.crossings", total * 4).id();
-        }
-        const GLuint pairs = scratch("vds.lists.pairs", total * kPairBytes).id();
-        if (pooled) {
-            glUseProgram(scatter_->id());
-            glUniform1ui(uniform(*scatter_, "u_nodes"), pooled);
-            glUniform1ui(uniform(*scatter_, "u_base"), GLuint(done_));
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, nodes_);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counts);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, pairs);
-            glDispatchCompute(strideGroups(pooled), 1, 1);
-            glMemoryBarrier(kComputeToCompute);
-        }
-        glUseProgram(sort_->id());
-        glUniform1ui(uniform(*sort_, "u_columns"), GLuint(columns));
-        glUniform1ui(uniform(*sort_, "u_base"), GLuint(done_));
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, counts);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, firsts);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, pairs);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, out.crossings);
-        glDispatchCompute(strideGroups(columns), 1, 1);
-        glMemoryBarrier(kComputeToHost);
-        for (GLuint binding = 0; binding < 4; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
-        glUseProgram(0);
-        checkGl("sorting fragment lists");
-    }
+    sortBand(out, firsts, pooled, columns);
     done_ = end;
     ++bands_;
     take(out);

@@ -13,6 +13,46 @@
 
 namespace vds::detail {
 
+namespace {
+
+/// The two ping-pong targets of the peel: each pass writes one pair of
+/// colour images (depth, key) and reads the other pair, the previous layer.
+struct PeelTargets {
+    explicit PeelTargets(const SpriteGrid& grid)
+        : depth{makeTexture2D(GL_R32F, grid), makeTexture2D(GL_R32F, grid)},
+          key{makeTexture2D(GL_R32UI, grid), makeTexture2D(GL_R32UI, grid)},
+          depthBuffer(makeTexture2D(GL_DEPTH_COMPONENT32F, grid)), fbo{Framebuffer::create(), Framebuffer::create()} {
+        const GLenum drawBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        for (int i = 0; i < 2; ++i) {
+            glNamedFramebufferTexture(fbo[i].id(), GL_COLOR_ATTACHMENT0, depth[i].id(), 0);
+            glNamedFramebufferTexture(fbo[i].id(), GL_COLOR_ATTACHMENT1, key[i].id(), 0);
+            glNamedFramebufferTexture(fbo[i].id(), GL_DEPTH_ATTACHMENT, depthBuffer.id(), 0);
+            glNamedFramebufferDrawBuffers(fbo[i].id(), 2, drawBuffers);
+            if (glCheckNamedFramebufferStatus(fbo[i].id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+                throw GlError("depth peeling framebuffer is incomplete");
+        }
+    }
+    Texture depth[2], key[2];
+    Texture depthBuffer;
+    Framebuffer fbo[2];
+};
+
+/// Peeled layers (one image each, 2.0 where empty) into columns.
+void layersToColumns(const std::vector<std::vector<float>>& layers, std::size_t pixels,
+                     std::vector<std::uint32_t>& offsets, std::vector<float>& crossings) {
+    offsets.assign(pixels + 1, 0);
+    for (std::size_t p = 0; p < pixels; ++p) {
+        std::uint32_t n = 0;
+        while (n < layers.size() && layers[n][p] != 2.0f) ++n;
+        offsets[p + 1] = offsets[p] + n;
+    }
+    crossings.resize(offsets.back());
+    for (std::size_t p = 0; p < pixels; ++p)
+        for (std::uint32_t k = 0; k < offsets[p + 1] - offsets[p]; ++k) crossings[offsets[p] + k] = layers[k][p];
+}
+
+} // namespace
+
 void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const BakeOptions& options,
               GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings) {
     clock.begin(BakePhase::Compile, false);
@@ -23,19 +63,10 @@ void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const 
     clock.begin(BakePhase::Upload);
     const GpuMesh draw(mesh);
     const std::size_t pixels = std::size_t(grid.width) * grid.height;
-    Texture depth[2] = {makeTexture2D(GL_R32F, grid), makeTexture2D(GL_R32F, grid)};
-    Texture key[2] = {makeTexture2D(GL_R32UI, grid), makeTexture2D(GL_R32UI, grid)};
-    Texture depthBuffer = makeTexture2D(GL_DEPTH_COMPONENT32F, grid);
-    Framebuffer fbo[2] = {Framebuffer::create(), Framebuffer::create()};
-    const GLenum drawBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    for (int i = 0; i < 2; ++i) {
-        glNamedFramebufferTexture(fbo[i].id(), GL_COLOR_ATTACHMENT0, depth[i].id(), 0);
-        glNamedFramebufferTexture(fbo[i].id(), GL_COLOR_ATTACHMENT1, key[i].id(), 0);
-        glNamedFramebufferTexture(fbo[i].id(), GL_DEPTH_ATTACHMENT, depthBuffer.id(), 0);
-        glNamedFramebufferDrawBuffers(fbo[i].id(), 2, drawBuffers);
-        if (glCheckNamedFramebufferStatus(fbo[i].id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw GlError("depth peeling framebuffer is incomplete");
-    }
+    const PeelTargets targets(grid);
+    const Texture* depth = targets.depth;
+    const Texture* key = targets.key;
+    const Framebuffer* fbo = targets.fbo;
     Query query = Query::create(GL_ANY_SAMPLES_PASSED);
 
     const BakeRasterState state(gl, grid, program.id());
@@ -83,15 +114,7 @@ void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const 
     glBindTextureUnit(1, 0);
 
     clock.begin(BakePhase::Scan, false); // the layers into columns, on the host
-    offsets.assign(pixels + 1, 0);
-    for (std::size_t p = 0; p < pixels; ++p) {
-        std::uint32_t n = 0;
-        while (n < layers.size() && layers[n][p] != 2.0f) ++n;
-        offsets[p + 1] = offsets[p] + n;
-    }
-    crossings.resize(offsets.back());
-    for (std::size_t p = 0; p < pixels; ++p)
-        for (std::uint32_t k = 0; k < offsets[p + 1] - offsets[p]; ++k) crossings[offsets[p] + k] = layers[k][p];
+    layersToColumns(layers, pixels, offsets, crossings);
     clock.end();
 }
 

@@ -77,7 +77,7 @@ void joinBands(const SpriteGrid& grid, std::vector<GpuBand>& bands, std::uint64_
 
 GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlContext& gl, GpuSpriteParts parts) {
     GlPhaseClock clock(options.timings);
-    const detail::ValidatedMesh v = detail::validateForBake(mesh, options, clock);
+    const detail::ValidatedMesh v = detail::validateForBake(gl, mesh, options, clock);
     detail::ListsBake lists(gl, v.grid, options, clock, true);
     std::vector<GpuBand> bands;
     lists.run(mesh, [&](GpuBand& band) { bands.push_back(std::move(band)); });

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 #include <vds/error.h>
 #include <vds/detail/sweep_plan.h>
 #include <vds/gl/shader.h>
@@ -24,20 +26,69 @@ namespace {
 
 constexpr std::uint32_t kLocalSize = 64;    // occupancy.comp's local_size_x
 constexpr GLuint kBoundaryBinding = 5;     // occupancy.comp's VDS_BOUNDARY_BINDING
+constexpr GLuint kColumnPointsBinding = 6; // occupancy.comp's ColumnPoints
 
-Buffer upload(const void* data, std::size_t bytes, const char* what) {
-    Buffer b = Buffer::create();
-    glNamedBufferStorage(b.id(), GLsizeiptr(std::max<std::size_t>(bytes, 4)), bytes ? data : nullptr, 0);
-    checkGl(what);
-    return b;
+
+// The generalized winding number everywhere (as the CPU's Sprite::classify
+// answers it): each grid column's texel by the sprite's "across" rule (in
+// front of and behind the box too; -1 beside the texture) and its texture
+// (s, t), where a column beside the texture takes the boundary term at the
+// cell itself. The texture point of a column's first cell: the sprite
+// follows the grid's axes, so s and t are the same in every slice.
+struct AcrossColumns {
+    std::vector<std::int32_t> texels;
+    std::vector<glm::vec2> st;
+};
+
+AcrossColumns acrossColumns(const SpriteGrid& sg, const Grid& grid, const detail::SweepPlan& plan) {
+    AcrossColumns out;
+    out.texels.resize(plan.columns);
+    out.st.resize(plan.columns);
+    const float w = float(sg.width), h = float(sg.height);
+    for (std::size_t column = 0; column < plan.columns; ++column) {
+        const glm::uvec3 c = plan.firstCell(column, grid);
+        const glm::vec3 t = sg.toTexture(grid.cellCentre(c.x, c.y, c.z));
+        const float xs = t.x * w, ys = t.y * h;
+        const bool in = xs >= 0.0f && xs < w && ys >= 0.0f && ys < h;
+        out.texels[column] = in ? std::int32_t(std::uint32_t(ys) * sg.width + std::uint32_t(xs)) : -1;
+        out.st[column] = glm::vec2(t.x, t.y);
+    }
+    return out;
+}
+
+// The sweep's uniforms: where each column's cells lie in the labels, and
+// which slices it walks (every one where the boundary term counts).
+void setSweepUniforms(GLuint id, const Grid& grid, const detail::SweepPlan& plan, const SpriteGrid& sg,
+                      bool boundaryTerm) {
+    const glm::uvec3 stride(grid.dims.y * grid.dims.z, grid.dims.z, 1u);
+    glUniform1ui(glGetUniformLocation(id, "u_columns"), GLuint(plan.columns));
+    glUniform1ui(glGetUniformLocation(id, "u_dimV"), grid.dims[plan.v]);
+    glUniform1ui(glGetUniformLocation(id, "u_strideU"), stride[plan.u]);
+    glUniform1ui(glGetUniformLocation(id, "u_strideV"), stride[plan.v]);
+    glUniform1ui(glGetUniformLocation(id, "u_step"), stride[plan.a]);
+    glUniform1ui(glGetUniformLocation(id, "u_firstSlice"), boundaryTerm ? 0u : plan.firstSlice);
+    glUniform1ui(glGetUniformLocation(id, "u_endSlice"), boundaryTerm ? plan.n : plan.endSlice);
+    glUniform1ui(glGetUniformLocation(id, "u_width"), sg.width);
+    glUniform2i(glGetUniformLocation(id, "u_size"), GLint(sg.width), GLint(sg.height));
 }
 
 } // namespace
 
+// The sweep of one rule (occupancy.comp): the generalized winding number's
+// boundary term is compiled into its own program only.
+const Program& GpuOccupancy::program(Rule rule) const {
+    const int id = rule == Rule::Parity ? 0 : rule == Rule::Winding ? 1 : 2;
+    return gl_->program(std::string("vds.occupancy.") + toString(rule), [id] {
+        std::string defines = "#define VDS_RULE_ID " + std::to_string(id) + "\n";
+        if (id == 2) defines += "#define VDS_BOUNDARY_TERM\n";
+        return buildProgram({{GL_COMPUTE_SHADER, "vds/occupancy.comp", ""}}, defines);
+    });
+}
+
 GpuOccupancy::GpuOccupancy(const GlContext& gl) : gl_(&gl) {
     const CurrentContext current(gl);
     stamp_ = detail::ContextStamp::current("GpuOccupancy");
-    program_ = &gl.program("vds.occupancy", [] { return buildProgram({{GL_COMPUTE_SHADER, "vds/occupancy.comp", ""}}); });
+    program(Rule::Parity); // a shader error shows at construction, not at the first call
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     maxBlock_ = std::uint64_t(maxBlock);
@@ -73,19 +124,20 @@ void GpuOccupancy::sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells
     const detail::SweepPlan plan = detail::planSweep(sg, grid, options.threads);
     if (!plan.aligned)
         throw InvalidArgument("GpuOccupancy: the sprite is rotated against the grid (use vds::occupancy on the CPU)");
-    const std::size_t columns = plan.columns;
-    const std::vector<std::int32_t>& texels = plan.texels;
-    const std::vector<float>& depth = plan.depth;
-    const std::uint32_t firstSlice = plan.firstSlice, endSlice = plan.endSlice;
-    const int a = plan.a, u = plan.u, v = plan.v;
-    const Buffer texelBuffer = upload(texels.data(), texels.size() * 4, "uploading the occupancy columns");
-    const Buffer depthBuffer = upload(depth.data(), depth.size() * 4, "uploading the occupancy depths");
-    const glm::uvec3 stride(grid.dims.y * grid.dims.z, grid.dims.z, 1u);
+    // With no boundary edges (a mesh that bounds a solid) the generalized
+    // winding number is the winding number: the plain sweep, over the
+    // sprite's columns and depth range; with them every cell counts.
+    const bool boundaryTerm = rule == Rule::GeneralizedWinding && sprite.boundaryEdgeCount() > 0;
+    const AcrossColumns across = boundaryTerm ? acrossColumns(sg, grid, plan) : AcrossColumns{};
+    const std::vector<std::int32_t>& texels = boundaryTerm ? across.texels : plan.texels;
+    const Buffer texelBuffer = detail::uploadBuffer(texels.data(), texels.size() * 4, "uploading the occupancy columns");
+    const Buffer depthBuffer = detail::uploadBuffer(plan.depth.data(), plan.depth.size() * 4, "uploading the occupancy depths");
+    const Buffer stBuffer = detail::uploadBuffer(across.st.data(), across.st.size() * 8, "uploading the occupancy columns");
 
     const GLuint zero = 0;
     glClearNamedBufferSubData(cells, GL_R32UI, 0, GLsizeiptr(labelBytes(grid)), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    const GLuint id = program_->id();
+    const GLuint id = program(boundaryTerm || rule == Rule::Parity ? rule : Rule::Winding).id();
     glUseProgram(id);
     const std::uint64_t offsetBytes = (std::uint64_t(sg.width) * sg.height + 1) * 4;
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sprite.offsets().id(), 0, GLsizeiptr(offsetBytes));
@@ -94,21 +146,13 @@ void GpuOccupancy::sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, texelBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, depthBuffer.id());
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 4, cells, 0, GLsizeiptr(labelBytes(grid)));
-    glUniform1ui(glGetUniformLocation(id, "u_columns"), GLuint(columns));
-    glUniform1ui(glGetUniformLocation(id, "u_dimV"), grid.dims[v]);
-    glUniform1ui(glGetUniformLocation(id, "u_strideU"), stride[u]);
-    glUniform1ui(glGetUniformLocation(id, "u_strideV"), stride[v]);
-    glUniform1ui(glGetUniformLocation(id, "u_step"), stride[a]);
-    glUniform1ui(glGetUniformLocation(id, "u_firstSlice"), firstSlice);
-    glUniform1ui(glGetUniformLocation(id, "u_endSlice"), endSlice);
-    glUniform1ui(glGetUniformLocation(id, "u_width"), sg.width);
-    // With no boundary edges (a mesh that bounds a solid) the generalized
-    // winding number is the winding number: the plain sweep.
-    const bool boundaryTerm = rule == Rule::GeneralizedWinding && sprite.boundaryEdgeCount() > 0;
-    if (boundaryTerm) sprite.setBoundaryUniforms(id, "u_boundary", kBoundaryBinding);
-    glUniform1i(glGetUniformLocation(id, "u_rule"), boundaryTerm ? 2 : rule == Rule::Parity ? 0 : 1);
-    glDispatchCompute(detail::strideGroups(columns, kLocalSize), 1, 1);
-    for (GLuint binding = 0; binding <= kBoundaryBinding; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
+    setSweepUniforms(id, grid, plan, sg, boundaryTerm);
+    if (boundaryTerm) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kColumnPointsBinding, stBuffer.id());
+        sprite.setBoundaryUniforms(id, "u_boundary", kBoundaryBinding);
+    }
+    glDispatchCompute(detail::strideGroups(plan.columns, kLocalSize), 1, 1);
+    for (GLuint binding = 0; binding <= kColumnPointsBinding; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
     glUseProgram(0);
     checkGl("running the occupancy sweep");
     // The small buffers may go: GL keeps them alive until the dispatch is done.

@@ -1,4 +1,5 @@
 #include <vds/gl/sprite.h>
+#include <vds/gl/distance.h>
 
 #include "boundary_loops.h"
 
@@ -62,17 +63,6 @@ GpuSprite GpuSpriteAccess::make(Texture texture, Buffer offsets, Buffer crossing
 
 } // namespace detail
 
-namespace {
-
-Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what) {
-    Buffer b = Buffer::create();
-    glNamedBufferStorage(b.id(), GLsizeiptr(std::max<std::size_t>(bytes, 4)), bytes ? data : nullptr, 0);
-    checkGl(what);
-    return b;
-}
-
-} // namespace
-
 GpuSprite::GpuSprite(const GlContext& gl, const Sprite& sprite, GpuSpriteParts parts) {
     const CurrentContext current(gl);
     upload(sprite, parts);
@@ -100,6 +90,8 @@ GpuSprite& GpuSprite::operator=(GpuSprite&& o) noexcept {
         boundaryKnown_ = o.boundaryKnown_;
         boundaryLo_ = o.boundaryLo_;
         boundaryStep_ = o.boundaryStep_;
+        distance_ = std::move(o.distance_);
+        distanceBox_ = o.distanceBox_;
     }
     return *this;
 }
@@ -112,6 +104,7 @@ void GpuSprite::releaseIfForeign() noexcept {
     offsets_.release();
     crossings_.release();
     boundaryEdges_.release();
+    distance_.release();
 }
 
 void GpuSprite::requireContext(const char* what) const { context_.check(what); }
@@ -139,9 +132,13 @@ void GpuSprite::upload(const Sprite& sprite, GpuSpriteParts parts) {
                             dense.data());
         checkGl("uploading the sprite texture");
     }
+    if (!sprite.distance.empty()) {
+        distance_ = uploadDistanceTexture(sprite.distance.grid, sprite.distance.cells.data());
+        distanceBox_ = sprite.distance.grid.box;
+    }
     if (parts != GpuSpriteParts::TextureOnly) {
-        offsets_ = uploadBuffer(sprite.offsets.data(), sprite.offsets.size() * 4, "uploading the sprite's columns");
-        crossings_ = uploadBuffer(sprite.crossings.data(), sprite.crossings.size() * 4, "uploading the sprite's columns");
+        offsets_ = detail::uploadBuffer(sprite.offsets.data(), sprite.offsets.size() * 4, "uploading the sprite's columns");
+        crossings_ = detail::uploadBuffer(sprite.crossings.data(), sprite.crossings.size() * 4, "uploading the sprite's columns");
     }
     setPlacement(sprite.grid);
     setBoundary(sprite.grid, sprite.boundaryEdges, sprite.boundaryKnown || sprite.status != SolidStatus::Open);
@@ -153,7 +150,7 @@ void GpuSprite::setBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>
     // that the shader takes far chains by their chords and expansions.
     detail::PackedBoundary packed = detail::packBoundary(edges, grid.axis);
     if (packed.data.empty()) packed.data.emplace_back(0.0f);
-    boundaryEdges_ = uploadBuffer(packed.data.data(), packed.data.size() * sizeof(glm::vec4), "uploading the boundary edges");
+    boundaryEdges_ = detail::uploadBuffer(packed.data.data(), packed.data.size() * sizeof(glm::vec4), "uploading the boundary edges");
     boundaryEdgeCount_ = packed.edgeCount;
     boundaryNodeCount_ = packed.nodeCount;
     boundaryKnown_ = known;
@@ -197,12 +194,26 @@ void GpuSprite::setUniforms(GLuint program, const std::string& sampler, const st
     checkGl("GpuSprite::setUniforms");
 }
 
+void GpuSprite::setDistanceUniforms(GLuint program, const std::string& sampler, const std::string& lo,
+                                    const std::string& hi, GLuint unit) const {
+    if (!distance_) throw InvalidArgument("the sprite carries no distance grid (bake it with --distance)");
+    glBindTextureUnit(unit, distance_.id());
+    glProgramUniform1i(program, glGetUniformLocation(program, sampler.c_str()), GLint(unit));
+    glProgramUniform3fv(program, glGetUniformLocation(program, lo.c_str()), 1, &distanceBox_.lo[0]);
+    glProgramUniform3fv(program, glGetUniformLocation(program, hi.c_str()), 1, &distanceBox_.hi[0]);
+    checkGl("GpuSprite::setDistanceUniforms");
+}
+
 // --- GpuClassifier ---------------------------------------------------------
 
 namespace {
 
 constexpr std::size_t kPointBytes = 12;
 constexpr GLuint kBoundaryBinding = 5; // classify.comp's VDS_BOUNDARY_BINDING
+// classify.comp's VDS_POINTS_PER_INVOCATION (the labels of one 32-bit word)
+// and VDS_LOCAL_SIZE.
+constexpr std::size_t kPointsPerInvocation = 4;
+constexpr std::uint32_t kLocalSize = 256;
 
 std::size_t labelBytes(std::size_t points) { return (points + 3) / 4 * 4; }
 
@@ -220,9 +231,16 @@ void copyParallel(void* dst, const void* src, std::size_t bytes) {
     });
 }
 
-const Program& classifierProgram(const GlContext& gl, bool columns) {
-    return gl.program(columns ? "vds.classify.columns" : "vds.classify.texture", [columns] {
-        return buildProgram({{GL_COMPUTE_SHADER, "vds/classify.comp", ""}}, columns ? "#define VDS_COLUMNS\n" : "");
+// The program of one form and rule (classify.comp): the generalized winding
+// number's boundary term is compiled into its own program only.
+const Program& classifierProgram(const GlContext& gl, bool columns, Rule rule) {
+    const int id = rule == Rule::Parity ? 0 : rule == Rule::Winding ? 1 : 2;
+    const std::string key = std::string("vds.classify.") + (columns ? "columns." : "texture.") + toString(rule);
+    return gl.program(key, [columns, id] {
+        std::string defines = "#define VDS_RULE_ID " + std::to_string(id) + "\n";
+        if (columns) defines += "#define VDS_COLUMNS\n";
+        if (id == 2) defines += "#define VDS_BOUNDARY_TERM\n";
+        return buildProgram({{GL_COMPUTE_SHADER, "vds/classify.comp", ""}}, defines);
     });
 }
 
@@ -231,8 +249,7 @@ const Program& classifierProgram(const GlContext& gl, bool columns) {
 GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints) : gl_(&gl), batch_(batchPoints) {
     const CurrentContext current(gl);
     stamp_ = detail::ContextStamp::current("GpuClassifier");
-    columns_ = &classifierProgram(gl, true);
-    texture_ = &classifierProgram(gl, false);
+    classifierProgram(gl, true, Rule::Parity); // a shader error shows at construction, not at the first call
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     maxBlock_ = std::uint64_t(maxBlock);
@@ -257,16 +274,13 @@ GpuClassifier::~GpuClassifier() {
 }
 
 GpuClassifier::GpuClassifier(GpuClassifier&& o) noexcept
-    : gl_(std::exchange(o.gl_, nullptr)), stamp_(o.stamp_), batch_(o.batch_), columns_(o.columns_),
-      texture_(o.texture_), maxBlock_(o.maxBlock_), maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)),
+    : gl_(std::exchange(o.gl_, nullptr)), stamp_(o.stamp_), batch_(o.batch_), maxBlock_(o.maxBlock_), maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)),
       capacity_(std::exchange(o.capacity_, 0)) {}
 
 GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
     if (this != &o) {
         gl_ = std::exchange(o.gl_, nullptr);
         stamp_ = o.stamp_;
-        columns_ = o.columns_;
-        texture_ = o.texture_;
         maxBlock_ = o.maxBlock_;
         maxDispatch_ = o.maxDispatch_;
         slots_ = std::move(o.slots_);
@@ -285,7 +299,10 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
     if (rule == Rule::GeneralizedWinding && !sprite.boundaryKnown())
         throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
                               "store the boundary edges the generalized winding number needs: bake it again");
-    const Program& program = columns ? *columns_ : *texture_;
+    // With no boundary edges (a mesh that bounds a solid) the generalized
+    // winding number is the winding number: the plain program.
+    const bool boundaryTerm = rule == Rule::GeneralizedWinding && sprite.boundaryEdgeCount() > 0;
+    const Program& program = classifierProgram(*gl_, columns, boundaryTerm || rule == Rule::Parity ? rule : Rule::Winding);
     glUseProgram(program.id());
     if (columns) {
         // The ranges the shader reads: a baked sprite's buffers may be padded.
@@ -297,13 +314,7 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
     } else {
         sprite.setUniforms(program.id(), "u_ldi", "u_placement", 0);
     }
-    if (rule == Rule::GeneralizedWinding) {
-        // With no boundary edges the shader reads the rule as Winding.
-        sprite.setBoundaryUniforms(program.id(), "u_boundary", kBoundaryBinding);
-    }
-    glUniform1i(glGetUniformLocation(program.id(), "u_rule"), int(rule == Rule::Parity                 ? 0
-                                                                  : rule == Rule::Winding            ? 1
-                                                                                                     : 2));
+    if (boundaryTerm) sprite.setBoundaryUniforms(program.id(), "u_boundary", kBoundaryBinding);
     const GLint countLoc = glGetUniformLocation(program.id(), "u_count");
     for (std::size_t first = 0; first < count; first += maxDispatch_) {
         const std::size_t n = std::min(maxDispatch_, count - first);
@@ -312,7 +323,7 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, points, p, GLsizeiptr(n * kPointBytes));
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, labels, l, GLsizeiptr(labelBytes(n)));
         glUniform1ui(countLoc, GLuint(n));
-        glDispatchCompute(detail::strideGroups((n + 3) / 4), 1, 1);
+        glDispatchCompute(detail::strideGroups((n + kPointsPerInvocation - 1) / kPointsPerInvocation, kLocalSize), 1, 1);
     }
     for (GLuint binding = 0; binding <= kBoundaryBinding; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
     if (!columns) glBindTextureUnit(0, 0);

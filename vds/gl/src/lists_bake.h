@@ -56,6 +56,9 @@ public:
 
 private:
     void band(const GpuMesh& mesh, std::uint32_t y0, std::uint32_t y1, const std::function<void(GpuBand&)>& take);
+    GLuint raster(const GpuMesh& mesh, std::uint32_t y0, std::uint32_t y1, GLuint counts, GLuint firsts,
+                  std::uint64_t scanned);
+    void sortBand(GpuBand& out, GLuint firsts, GLuint pooled, std::uint64_t columns);
     void allocateNodes();
     /// The most pooled crossings a band of `columns` may have (buffer limits, options).
     std::uint64_t maxNodes(std::uint64_t columns) const;

@@ -150,6 +150,11 @@
 //     the GL methods (Lists: fragment lists; Peel: depth peeling) on the
 //     caller's context; the same layers as the CPU baker up to the
 //     rasterizer's sub-texel snapping.
+//   chooseViewAxisOnGl(gl, mesh, resolution)  the auto axis counted in the
+//                        GL bakers' own raster on a GPU.  <vds/gl/bake.h>
+//   Baker(mesh, options)  a deforming mesh: validated once, then
+//                        `updateVertices` and `rebake`, each re-bake equal
+//                        to a fresh bake bit for bit.     <vds/gl/baker.h>
 //   Sprite bake([gl,] mesh, options)                       <vds/all.h>
 //     any BakeMethod; without a context the GL methods use a private one.
 //   BakeOptions::timings -> BakeTimings: wall and GPU time of each BakePhase
@@ -218,6 +223,9 @@
 //     maxDistance} and DistanceGridOptions{threads, band, far} (FarCells::
 //     Exact, or Propagated: a closest-feature transform within a bound).
 //     `closestPointOnTriangle(p, a, b, c)`: the one closest-point kernel.
+//   SpriteDistance bakeDistance(mesh, box, n, rule)         <vds/distance.h>
+//     the distance grid a sprite carries (`Sprite::distance`, file format 3,
+//     `vds bake --distance N`), for `vdsDistance` in GLSL (`GpuSprite::distance`).
 //
 // ---- 8. On the GPU (vds::gl) --------------------------------------------------
 //

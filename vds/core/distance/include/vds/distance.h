@@ -41,6 +41,7 @@
 #include <vds/grid.h>
 #include <vds/mesh.h>
 #include <vds/rule.h>
+#include <vds/sprite.h>
 
 namespace vds {
 
@@ -176,5 +177,14 @@ private:
 /// The one copy the hierarchy and `SignedDistance` use.
 ClosestPoint closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
                                     const glm::dvec3& c);
+
+/// The distance grid of `mesh` for a sprite: cubic cells, `resolution`
+/// along the longest side of `box` (the baked box) grown by two cells on
+/// every side, so that the band of a clip or a lens reaches past the
+/// surface there; signed by `rule` (`SignedDistance` above), on `threads` threads
+/// (0: all). Throws `InvalidArgument` for a resolution below 4 or above
+/// `kMaxDistanceResolution`, and as `SignedDistance` above does for the mesh.
+SpriteDistance bakeDistance(const TriangleMesh& mesh, const Box& box, std::uint32_t resolution, Rule rule,
+                            unsigned threads = 0);
 
 } // namespace vds

@@ -139,12 +139,17 @@ struct AxisChoice {
 /// The view axis with the fewest layers (the least depth complexity d_S; ties
 /// go to fewer crossings in all) at `resolution`: the d_S and crossing counts
 /// of the sprites the bakers would make along x, y and z, counted exactly
-/// (the CPU baker's texel centres and claim rule, triangle by triangle,
-/// without sorting or storing crossings: a fraction of one CPU bake). Trapp &
+/// (the CPU baker's texel centres and claim rule, triangle by triangle and
+/// row by row: each triangle claims one run of texels on a row, counted by
+/// its two ends, without sorting or storing crossings: a few percent of one
+/// CPU bake). Trapp &
 /// Doellner 2008, section 6, name this "optimal view direction" as future
 /// work: fewer layers mean a smaller texture and fewer lookups per test.
 /// Throws like `bakeCpu` (an unusable mesh, a resolution out of range).
 AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution = 1024, unsigned threads = 0);
+/// The same for a mesh that `validateMesh` gave `report` for and that passed
+/// `requireUsable` and `requireVolume` (no second validation).
+AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads = 0);
 
 /// The CPU baker: the sprite the GL bakers make, by exact ray casting at
 /// texel centres (what every entry point runs for `BakeMethod::Cpu`). A column holds

@@ -25,6 +25,7 @@
 #include <vds/axis.h>
 #include <vds/classify.h>
 #include <vds/enum_names.h>
+#include <vds/grid.h>
 #include <vds/mesh.h>
 #include <vds/rule.h>
 
@@ -78,6 +79,20 @@ enum class SolidStatus : std::uint8_t {
     Closed = 0, ///< `MeshReport::oriented()`: parity and winding both answer for a solid (non-manifold edges allowed)
     Open = 1,   ///< baked with a warning: boundary edges, or orientation conflicts
 };
+
+/// A signed distance grid a sprite can carry, for `vdsDistance` in GLSL
+/// (shaders/vds/vpt.glsl, within half a cell's diagonal of the exact signed
+/// distance): `SignedDistance::grid` of the baked mesh by the bake's rule,
+/// over `grid`, in the mesh coordinates of the bake (those of
+/// `SpriteGrid::box`; the placement is not applied). Empty `cells`: none.
+struct SpriteDistance {
+    Grid grid;
+    std::vector<float> cells; ///< grid.cellCount() floats in `Grid::index` order, or none
+    bool empty() const { return cells.empty(); }
+};
+
+/// Largest cells along any side of a sprite's distance grid.
+constexpr std::uint32_t kMaxDistanceResolution = 1024;
 
 struct Sprite;
 
@@ -158,9 +173,11 @@ private:
 /// form the paper uses (width x height x depthComplexity, padded with 1.0) is
 /// built only for upload to GL.
 struct Sprite {
-    /// 2: the boundary edges are stored (`boundaryEdges`). Version 1 files
-    /// still read, with no boundary edges.
-    static constexpr int kFormatVersion = 2;
+    /// 3: an optional distance grid (`distance`); a sprite without one is
+    /// written as version 2, which older readers read. 2: the boundary edges
+    /// are stored (`boundaryEdges`). Version 1 files still read, with no
+    /// boundary edges.
+    static constexpr int kFormatVersion = 3;
 
     SpriteGrid grid;
     std::uint32_t depthComplexity = 0;      ///< d_S: the most crossings in any column
@@ -182,6 +199,9 @@ struct Sprite {
     /// False only for a sprite of an open mesh read from a version-1 file:
     /// its boundary was never stored, and Rule::GeneralizedWinding refuses it.
     bool boundaryKnown = true;
+    /// An optional signed distance grid of the baked mesh (`bakeDistance`,
+    /// `vds bake --distance N`), stored by format version 3; empty otherwise.
+    SpriteDistance distance;
 
     std::uint32_t width() const { return grid.width; }
     std::uint32_t height() const { return grid.height; }
@@ -229,7 +249,9 @@ struct Sprite {
     std::size_t denseBytes() const;
 
     /// Throws `FormatError` if the arrays disagree with each other or the grid
-    /// (sizes, sorting, depth range, d_S). Used by the reader; cheap, O(n).
+    /// (sizes, sorting, depth range, d_S), or a distance grid is malformed
+    /// (its cell count, a box that is not finite or empty, a value that is
+    /// not finite). Used by the reader; cheap, O(n).
     void checkConsistent() const;
 };
 

@@ -23,6 +23,18 @@ namespace vds {
 /// CPU bake is faster. `why`, if given, gets one line saying which and why.
 BakeMethod chooseBakeMethod(const GlContext& gl, std::string* why = nullptr);
 
+/// `chooseViewAxis` counted in the GL bakers' own raster on `gl` (made
+/// current for the call): the mesh drawn along each axis, each fragment
+/// counted in its column, the counts reduced on the GPU. Its layers and
+/// crossings are those of the GL bakers' sprites, which differ from the CPU
+/// baker's only where the rasterizer's snapping moves an edge across a
+/// texel centre. `bakeOnGl` and `bakeToGpu` with no axis set count so on a
+/// GPU (a few milliseconds), and on the CPU (`chooseViewAxis`) on a software
+/// renderer, where that is faster. Validates the mesh and throws like
+/// `chooseViewAxis`; falls back to it where one axis's counts exceed GL's
+/// largest storage block.
+AxisChoice chooseViewAxisOnGl(const GlContext& gl, MeshView mesh, std::uint32_t resolution = 1024);
+
 /// Bakes `mesh` with `options.method` on `gl` (Auto: `chooseBakeMethod(gl)`), which is made current for the
 /// call (the caller's current context is current again on return); the
 /// Cpu method runs `bakeCpu`. Validates the mesh and throws like `bakeCpu`;

@@ -24,7 +24,10 @@ namespace vds {
 ///
 /// Rule::GeneralizedWinding on a sprite with boundary edges adds, per cell,
 /// the boundary term at the cell's texel-centre point (the point the CPU
-/// takes) to the column's signed count, in float (vpt.glsl): a label may
+/// takes) to the column's signed count, in float (vpt.glsl), for every cell
+/// of the grid: in front of and behind the sprite's box (none or all of the
+/// column's crossings), and beside it (no crossing, the term at the cell
+/// itself), where an open mesh's winding number can exceed 1/2. A label may
 /// then differ from the CPU's (double) only where |w - 1/2| is within float
 /// error (vpt.glsl gives its size, and the near-tie of a boundary edge along
 /// the view axis), and the sweep costs O(boundary edges) a cell. With no
@@ -63,7 +66,7 @@ private:
     void sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells, const ClassifyOptions& options);
     const GlContext* gl_ = nullptr;
     detail::ContextStamp stamp_;
-    const Program* program_ = nullptr;
+    const Program& program(Rule rule) const;
     std::uint64_t maxBlock_ = 0;
 };
 

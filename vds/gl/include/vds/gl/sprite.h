@@ -119,6 +119,22 @@ public:
     /// Unknown names are ignored, as GL does; leaves no GL error behind.
     void setUniforms(GLuint program, const std::string& sampler, const std::string& placement, GLuint unit) const;
 
+    /// The sprite's distance grid (`Sprite::distance`) as `uploadDistanceTexture`
+    /// makes it, uploaded with the sprite whatever its parts; empty when the
+    /// sprite carries none.
+    bool hasDistance() const { return bool(distance_); }
+    const Texture& distance() const { return distance_; }
+    /// The distance grid's box, in the mesh coordinates of the bake: the
+    /// `lo`, `hi` of `vdsDistance(field, lo, hi, world)` once a world point is
+    /// taken back there (the inverse of the solid's placement).
+    const Box& distanceBox() const { return distanceBox_; }
+    /// Binds the distance texture to `unit` and sets the program's sampler
+    /// `sampler` and the vec3 uniforms `lo` and `hi` to its box (unknown
+    /// names are ignored, as GL does). Throws `InvalidArgument` when the
+    /// sprite carries no distance grid.
+    void setDistanceUniforms(GLuint program, const std::string& sampler, const std::string& lo, const std::string& hi,
+                             GLuint unit) const;
+
 private:
     friend struct detail::GpuSpriteAccess;
     void upload(const Sprite& sprite, GpuSpriteParts parts);
@@ -136,6 +152,8 @@ private:
     std::uint32_t boundaryEdgeCount_ = 0;
     std::uint32_t boundaryNodeCount_ = 0; ///< tree node records after the edges (vpt.glsl)
     bool boundaryKnown_ = true;
+    Texture distance_;
+    Box distanceBox_;
     glm::vec3 boundaryLo_{0.0f};   ///< the baked box's low corner, (s, t, r) order
     glm::vec3 boundaryStep_{0.0f}; ///< (texel, texel, extent along r)
     void setBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>& edges, bool known);
@@ -217,8 +235,6 @@ private:
     const GlContext* gl_ = nullptr;
     detail::ContextStamp stamp_;
     std::size_t batch_ = std::size_t(1) << 22;
-    const Program* columns_ = nullptr;
-    const Program* texture_ = nullptr;
     std::uint64_t maxBlock_ = 0;
     std::size_t maxDispatch_ = 0;
     std::array<Slot, 2> slots_;

@@ -3,6 +3,8 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include <vds/bake.h>
@@ -52,9 +54,24 @@ private:
     std::chrono::steady_clock::time_point start_;
 };
 
-/// Validates the mesh (throws `InvalidMesh` if unusable) and builds the grid;
-/// timed as `BakePhase::Validation`.
-BakeSetup prepareBake(MeshView mesh, const BakeOptions& options);
+/// Counts the layers along each axis another way than the CPU's
+/// `chooseViewAxis` (the GL bakers: in their own raster on a GPU), given
+/// the validated mesh's report; nullopt: not here, count on the CPU.
+using AxisCounter = std::function<std::optional<AxisChoice>(const MeshReport&)>;
+
+/// Validates the mesh (throws `InvalidMesh` if unusable) and builds the grid
+/// along `options.axis`, or the axis of the fewest layers (`count`, or the
+/// CPU's `chooseViewAxis`); timed as `BakePhase::Validation`.
+BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count = {});
+
+/// Sets `choice.axis` to the axis of the fewest layers, ties to fewer
+/// crossings, then z, x, y (the rule of `chooseViewAxis`).
+void pickFewestLayers(AxisChoice& choice);
+
+/// The CPU baker (`bakeCpu`) on a mesh validated before: `setup` holds its
+/// report and grid. Its phases are timed on `options.timings`; the caller
+/// holds the `BakeClock`.
+Sprite bakeCpu(const BakeSetup& setup, MeshView mesh, const BakeOptions& options);
 
 /// Assembles a sprite from per-column crossings in CSR form (already sorted);
 /// fills d_S and the metadata, then checks consistency; timed as

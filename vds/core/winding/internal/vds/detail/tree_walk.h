@@ -4,6 +4,7 @@
 // GPU's packing of the chain tree.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,26 +18,31 @@ namespace vds::detail {
 /// heap instead of running past the end.
 class TreeStack {
 public:
+    TreeStack() = default;
+    TreeStack(const TreeStack&) = delete;
+    TreeStack& operator=(const TreeStack&) = delete;
     void push(std::uint32_t node) {
-        if (top_ < kInline) local_[top_++] = node;
-        else spill_.push_back(node);
+        if (top_ == capacity_) grow();
+        data_[top_++] = node;
     }
     bool empty() const { return top_ == 0; }
     /// The last node pushed; the stack must not be empty.
-    std::uint32_t pop() {
-        if (!spill_.empty()) {
-            const std::uint32_t node = spill_.back();
-            spill_.pop_back();
-            return node;
-        }
-        return local_[--top_];
-    }
+    std::uint32_t pop() { return data_[--top_]; }
 
 private:
-    static constexpr int kInline = 64;
+    static constexpr std::size_t kInline = 64;
+    /// Past kInline entries (never, for a tree built by halving): the
+    /// entries move to the heap, twice as many places each time.
+    void grow() {
+        if (data_ == local_) spill_.assign(local_, local_ + top_);
+        spill_.resize(2 * capacity_);
+        data_ = spill_.data();
+        capacity_ = spill_.size();
+    }
     std::uint32_t local_[kInline];
-    int top_ = 0;
-    std::vector<std::uint32_t> spill_; ///< past kInline entries (never, for a tree built by halving)
+    std::uint32_t* data_ = local_;
+    std::size_t top_ = 0, capacity_ = kInline;
+    std::vector<std::uint32_t> spill_;
 };
 
 /// Walks the tree from `root` depth first: `visit(node, stack)` handles one

@@ -1,0 +1,130 @@
+// vds: the auto axis counted in the GL bakers' own raster (bake_gl.h's
+// countLayersOnGl): the mesh drawn along each axis with the bake's vertex
+// stage and raster state, each fragment counted in its column, the counts
+// reduced on the GPU to d_S and the crossings; two words read back per axis.
+// On a GPU that is a few milliseconds where the CPU's count takes a share
+// of a core for every triangle and row.
+#include "bake_gl.h"
+
+#include <algorithm>
+#include <cstdint>
+
+#include <GL/glext.h>
+
+#include <vds/error.h>
+#include <vds/gl/bake.h>
+#include <vds/gl/mesh.h>
+#include <vds/gl/shader.h>
+
+namespace vds::detail {
+
+namespace {
+
+constexpr std::uint32_t kReduceLocal = 256; // count_layers.comp's local_size_x
+
+struct CountPrograms {
+    const Program* raster;
+    const Program* reduce;
+};
+
+CountPrograms countPrograms(const GlContext& gl) {
+    const std::string defines = bakeDefines(gl);
+    return {&gl.program("vds.count.raster",
+                        [&] {
+                            return buildProgram({{GL_VERTEX_SHADER, "vds/bake.vert", ""},
+                                                 {GL_FRAGMENT_SHADER, "vds/count_layers.frag", ""}},
+                                                defines);
+                        }),
+            &gl.program("vds.count.reduce",
+                        [] { return buildProgram({{GL_COMPUTE_SHADER, "vds/count_layers.comp", ""}}); })};
+}
+
+// d_S and the crossings of the GL bake along `grid.axis`.
+void countAxis(const GlContext& gl, const CountPrograms& programs, const GpuMesh& mesh, const SpriteGrid& grid,
+               GLuint counts, GLuint result, std::uint32_t out[2]) {
+    const std::uint64_t columns = std::uint64_t(grid.width) * grid.height;
+    const GLuint zero = 0;
+    glClearNamedBufferSubData(counts, GL_R32UI, 0, GLsizeiptr(columns * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferSubData(result, GL_R32UI, 0, 8, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    Framebuffer fbo = Framebuffer::create();
+    glNamedFramebufferParameteri(fbo.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, GLint(grid.width));
+    glNamedFramebufferParameteri(fbo.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, GLint(grid.height));
+    {
+        const BakeRasterState state(gl, grid, programs.raster->id());
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        glDisable(GL_DEPTH_TEST);
+        glUniform1ui(glGetUniformLocation(programs.raster->id(), "u_width"), grid.width);
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, counts, 0, GLsizeiptr(columns * 4));
+        mesh.draw();
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(programs.reduce->id());
+    glUniform1ui(glGetUniformLocation(programs.reduce->id(), "u_columns"), GLuint(columns));
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, result, 0, 8);
+    glDispatchCompute(strideGroups(columns, kReduceLocal), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(result, 0, 8, out);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+    glUseProgram(0);
+    checkGl("counting the layers on the GPU");
+}
+
+} // namespace
+
+std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, const Box& bounds,
+                                          std::uint32_t resolution) {
+    const CurrentContext current(gl);
+    std::array<SpriteGrid, 3> grids;
+    std::uint64_t most = 0;
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+        grids[std::size_t(axis)] = makeGrid(bounds, axis, resolution);
+        most = std::max(most, std::uint64_t(grids[std::size_t(axis)].width) * grids[std::size_t(axis)].height);
+    }
+    GLint64 maxBlock = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+    // The counts of one axis in one storage block; each fewer than 2^32 (as a sprite's crossings are).
+    if (most * 4 > std::uint64_t(maxBlock) || mesh.triangleCount >= (std::uint64_t(1) << 32)) return std::nullopt;
+    const CountPrograms programs = countPrograms(gl);
+    const GpuMesh drawn(mesh);
+    const GLuint counts = gl.scratchBuffer("vds.count.columns", std::size_t(most) * 4).id();
+    const GLuint result = gl.scratchBuffer("vds.count.result", 8).id();
+    AxisChoice choice;
+    choice.resolution = resolution;
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+        std::uint32_t out[2] = {0, 0};
+        countAxis(gl, programs, drawn, grids[std::size_t(axis)], counts, result, out);
+        choice.layers[std::size_t(axis)] = out[0];
+        choice.crossings[std::size_t(axis)] = out[1];
+    }
+    pickFewestLayers(choice);
+    return choice;
+}
+
+bool softwareRenderer(const GlContext& gl) {
+    const std::string& renderer = gl.info().renderer;
+    return gl.info().platform.find("software") != std::string::npos || renderer.find("llvmpipe") != std::string::npos ||
+           renderer.find("softpipe") != std::string::npos || renderer.find("SwiftShader") != std::string::npos;
+}
+
+AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options) {
+    if (softwareRenderer(gl)) return {}; // there the CPU's count is the faster
+    return [&gl, mesh, resolution = options.resolution](const MeshReport& report) {
+        return countLayersOnGl(gl, mesh, report.bounds, resolution);
+    };
+}
+
+} // namespace vds::detail
+
+namespace vds {
+
+AxisChoice chooseViewAxisOnGl(const GlContext& gl, MeshView mesh, std::uint32_t resolution) {
+    const MeshReport report = validateMesh(mesh);
+    requireUsable(report, "mesh");
+    requireVolume(report, "mesh");
+    const std::optional<AxisChoice> counted = detail::countLayersOnGl(gl, mesh, report.bounds, resolution);
+    return counted ? *counted : chooseViewAxis(mesh, report, resolution);
+}
+
+} // namespace vds
