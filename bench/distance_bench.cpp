@@ -121,6 +121,9 @@ void agreement(const vds::TriangleMesh& mesh, const vds::SignedDistance& vds, co
     }
 }
 
+/// The SDF grids at n cells on the longest side, 2 threads: the band, the
+/// full propagated one and (with --full-grid) the full exact one, whose
+/// cells the propagated ones are then compared with.
 void grids(const vds::SignedDistance& vds, const vds::TriangleMesh& mesh, std::uint32_t n, double bandCells,
            bool fullGrid) {
     vds::Box box = vds::meshBounds(mesh);
@@ -128,18 +131,39 @@ void grids(const vds::SignedDistance& vds, const vds::TriangleMesh& mesh, std::u
     box.lo -= pad;
     box.hi += pad;
     const vds::Grid grid = vds::cubicGrid(box, n);
-    std::vector<float> cells(grid.cellCount());
+    std::vector<float> exact(grid.cellCount()), propagated(grid.cellCount()), band(grid.cellCount());
     const double cell = double(box.hi.x - box.lo.x) / grid.dims.x;
-    for (double band : {0.0, bandCells * cell}) {
-        if (band == 0.0 && !fullGrid) continue;
+    struct Variant {
+        const char* name;
+        double band;
+        vds::FarCells far;
+        std::vector<float>* cells;
+    };
+    for (const Variant& v : {Variant{"full, exact", 0.0, vds::FarCells::Exact, &exact},
+                             Variant{"full, propagated", 0.0, vds::FarCells::Propagated, &propagated},
+                             Variant{"band", bandCells * cell, vds::FarCells::Exact, &band}}) {
+        if (v.cells == &exact && !fullGrid) continue;
         vds::DistanceGridOptions options;
         options.threads = 2;
-        options.band = band;
+        options.band = v.band;
+        options.far = v.far;
         const auto start = Clock::now();
-        vds.grid(grid, cells.data(), options);
-        std::printf("  sdf %u x %u x %u, %s, 2 threads: %.2f s\n", grid.dims.x, grid.dims.y, grid.dims.z,
-                    band > 0.0 ? ("band " + std::to_string(bandCells) + " cells").c_str() : "full", seconds(start));
+        vds.grid(grid, v.cells->data(), options);
+        std::printf("  sdf %u x %u x %u, %s, 2 threads: %.2f s\n", grid.dims.x, grid.dims.y, grid.dims.z, v.name,
+                    seconds(start));
     }
+    if (!fullGrid) return;
+    std::vector<double> error(exact.size());
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < exact.size(); ++k) {
+        error[k] = std::abs(double(propagated[k]) - double(exact[k])) / cell;
+        differ += propagated[k] != exact[k];
+    }
+    double mean = 0.0;
+    for (const double e : error) mean += e / double(error.size());
+    std::sort(error.begin(), error.end());
+    std::printf("  propagated - exact, in cells: %zu of %zu cells differ; mean %.1e, 99.9th percentile %.1e, max %.2f\n",
+                differ, exact.size(), mean, error[error.size() * 999 / 1000], error.back());
 }
 
 void run(const std::string& name, const vds::TriangleMesh& mesh, const Settings& settings) {
@@ -174,7 +198,7 @@ int main(int argc, char** argv) {
     app.add_option("--rounds", settings.rounds, "alternated rounds, the best kept");
     app.add_option("--sdf", settings.sdf, "cells of the SDF grids on the longest side (0: none), meshes of 50k triangles up");
     app.add_option("--band", settings.band, "the band grid's half-width in cells");
-    app.add_flag("--full-grid", settings.fullGrid, "the full SDF grid too (minutes: every cell exact)");
+    app.add_flag("--full-grid", settings.fullGrid, "the full exact SDF grid too (minutes), and the propagated one checked against it");
     app.add_option("meshes", meshes, "mesh files (default: generated solids)");
     CLI11_PARSE(app, argc, argv);
     try {

@@ -81,9 +81,12 @@ public:
         return py::make_tuple(xyz, d, triangles);
     }
 
-    py::array_t<float> grid(const Grid& grid, double band, const py::object& threads) const {
+    py::array_t<float> grid(const Grid& grid, double band, bool propagated, const py::object& threads) const {
+        if (propagated && band != 0.0)
+            throw InvalidArgument("propagated is a way to fill the full grid: leave band at 0");
         DistanceGridOptions options;
         options.band = band;
+        options.far = propagated ? FarCells::Propagated : FarCells::Exact;
         options.threads = threadCount(threads);
         checkGrid(grid);
         py::array_t<float> cells({py::ssize_t(grid.dims.x), py::ssize_t(grid.dims.y), py::ssize_t(grid.dims.z)});
@@ -126,9 +129,12 @@ winding: crossings are counted as for a surface).)doc")
         .def("closest_points", &PySignedDistance::closest, py::arg("points"), py::arg("threads") = 0,
              "(points (N, 3) float64, distances (N,) float64, triangles (N,) uint32): each point's nearest "
              "point of the surface, its unsigned distance, and the index into F of the triangle it lies on.")
-        .def("sdf", &PySignedDistance::grid, py::arg("grid"), py::arg("band") = 0.0, py::arg("threads") = 0,
+        .def("sdf", &PySignedDistance::grid, py::arg("grid"), py::arg("band") = 0.0, py::arg("propagated") = false,
+             py::arg("threads") = 0,
              "float32 array of grid.shape: the signed distance of every cell centre (grid.cell_centres()); "
-             "band > 0: cells farther than band from the surface hold -band or +band.")
+             "band > 0: cells farther than band from the surface hold -band or +band; propagated: the full grid "
+             "as a closest-feature transform, exact within a cell diagonal of the surface, beyond it never "
+             "below the distance and within 4 cell diagonals above it.")
         .def_property_readonly("rule", &PySignedDistance::rule)
         .def("__repr__", [](const PySignedDistance& s) { return "<vds.SignedDistance: " + s.summary() + ">"; });
 
@@ -145,13 +151,14 @@ winding: crossings are counted as for a surface).)doc")
           "(points (N, 3) float64, distances (N,) float64, triangles (N,) uint32): the nearest point of the "
           "surface (V, F) to each point, its distance and its triangle. Any usable mesh that is not flat.");
     m.def("sdf", [](const py::object& v, const py::object& f, const Grid& grid, const std::string& rule,
-                    double band, const py::object& threads) {
-              return PySignedDistance(v, f, rule).grid(grid, band, threads);
+                    double band, bool propagated, const py::object& threads) {
+              return PySignedDistance(v, f, rule).grid(grid, band, propagated, threads);
           }, py::arg("V"), py::arg("F"), py::arg("grid"), py::arg("rule") = "parity", py::arg("band") = 0.0,
-          py::arg("threads") = 0,
+          py::arg("propagated") = false, py::arg("threads") = 0,
           "A signed distance grid: float32 of grid.shape, [i, j, k] the signed distance of that cell's centre, "
           "negative where vds.occupancy(V, F, grid, rule) is True; band > 0 clamps cells farther than band to "
-          "-band / +band.");
+          "-band / +band; propagated=True fills the full grid as a closest-feature transform (exact near the "
+          "surface, within 4 cell diagonals beyond).");
 }
 
 } // namespace vds::python

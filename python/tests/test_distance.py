@@ -96,6 +96,22 @@ def test_sdf_equals_the_distances_of_the_cell_centres():
     np.testing.assert_array_equal(band[far], np.where(np.signbit(expected[far]), -0.1, 0.1).astype(np.float32))
 
 
+def test_propagated_sdf_is_exact_near_the_surface_and_within_its_bound_beyond():
+    V, F = sphere_mesh(segments=32, rings=16)
+    grid = vds.Grid((-1.3, -1.2, -1.1), (1.2, 1.3, 1.4), (17, 19, 21))
+    exact = vds.sdf(V, F, grid).astype(np.float64)
+    propagated = vds.sdf(V, F, grid, propagated=True).astype(np.float64)
+    diagonal = np.linalg.norm((np.array([1.2, 1.3, 1.4]) - np.array([-1.3, -1.2, -1.1])) / np.array(grid.shape))
+    np.testing.assert_array_equal(np.signbit(propagated), np.signbit(exact))
+    near = np.abs(exact) < diagonal
+    assert near.any() and (~near).any()
+    np.testing.assert_array_equal(propagated[near], exact[near])
+    error = np.abs(propagated) - np.abs(exact)
+    assert error.min() >= -1e-6 and error.max() <= 4 * diagonal + 1e-6
+    with pytest.raises(vds.InvalidArgument, match="full grid"):
+        vds.sdf(V, F, grid, band=0.1, propagated=True)
+
+
 def test_bad_input_raises_one_clear_error():
     V, F = sphere_mesh(segments=16, rings=8)
     P = np.array([[0, 0, 0], [np.nan, 0, 0]], np.float32)

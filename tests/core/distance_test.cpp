@@ -128,6 +128,39 @@ TEST(Distance, IsWithinTheHeadersBoundOfTheReference) {
     }
 }
 
+TEST(Distance, SlabBoundsHoldJustOffATiltedPatchFarFromTheOrigin) {
+    // A finely cut tilted square at 1000 units, its nodes' slabs about as
+    // thin as float allows, and points a few float steps off it: the float
+    // product n . p is off by about their distance, so a slab bound without
+    // its rounding slack and outward rounding rules out the triangle nearest
+    // the point and answers a farther one. One far triangle gives the mesh a
+    // volume.
+    TriangleMesh mesh;
+    const std::uint32_t n = 40;
+    const glm::vec3 origin(1000.0f, 1100.0f, 900.0f), u(0.8f, 0.36f, -0.48f), v(-0.6f, 0.48f, -0.64f);
+    for (std::uint32_t i = 0; i <= n; ++i)
+        for (std::uint32_t j = 0; j <= n; ++j) mesh.positions.push_back(origin + u * (float(i) / n) + v * (float(j) / n));
+    for (std::uint32_t i = 0; i < n; ++i)
+        for (std::uint32_t j = 0; j < n; ++j) {
+            const std::uint32_t a = i * (n + 1) + j;
+            mesh.triangles.emplace_back(a, a + n + 1, a + 1);
+            mesh.triangles.emplace_back(a + 1, a + n + 1, a + n + 2);
+        }
+    const std::uint32_t far = std::uint32_t(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), {origin - glm::vec3(50.0f), origin - glm::vec3(50.0f, 49.0f, 50.0f),
+                                                 origin - glm::vec3(50.0f, 50.0f, 49.0f)});
+    mesh.triangles.emplace_back(far, far + 1, far + 2);
+    const SignedDistance distance(mesh, Rule::GeneralizedWinding);
+    const glm::vec3 normal = glm::normalize(glm::cross(u, v));
+    std::vector<glm::vec3> points;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> inSquare(0.02f, 0.98f), off(-4e-4f, 4e-4f);
+    for (int k = 0; k < 4000; ++k) points.push_back(origin + u * inSquare(rng) + v * inSquare(rng) + normal * off(rng));
+    std::vector<double> d(points.size());
+    distance.unsignedDistance(points, d.data(), DistanceOptions{2});
+    for (std::size_t k = 0; k < points.size(); ++k) ASSERT_NEAR(d[k], bruteForce(mesh, points[k]), 1e-9) << "point " << k;
+}
+
 TEST(Distance, ClosestPointsLieOnTheirTriangleAtTheDistance) {
     const TriangleMesh mesh = solids::sphereWithHoles();
     const SignedDistance distance(mesh, Rule::GeneralizedWinding);
@@ -250,6 +283,43 @@ TEST(Distance, GridCellsFarInsideARoundSolidSearchTheWholeHierarchy) {
                 ASSERT_EQ(cells[grid.index(i, j, k)], float(distance.distance(p)));
                 ASSERT_NEAR(cells[grid.index(i, j, k)], -bruteForce(mesh, p), 1e-6);
             }
+}
+
+TEST(Distance, PropagatedGridIsExactNearTheSurfaceAndWithinItsBoundBeyond) {
+    // FarCells::Propagated against the exact grid (itself held to the point
+    // distances above) on closed and open meshes, every cell: the same sign,
+    // never below the exact distance, exact within a cell diagonal of
+    // the surface and within 4 diagonals beyond (the header's bound).
+    for (const Case& c : {cases()[0], cases()[2], cases()[5], cases()[6], cases()[9]}) {
+        SCOPED_TRACE(c.name);
+        const SignedDistance distance(c.mesh, c.rule);
+        Grid grid;
+        grid.box = meshBounds(c.mesh);
+        grid.box.lo -= glm::vec3(0.3f);
+        grid.box.hi += glm::vec3(0.2f);
+        grid.dims = glm::uvec3(30, 27, 33);
+        std::vector<float> exact(grid.cellCount()), propagated(grid.cellCount());
+        distance.grid(grid, exact.data(), DistanceGridOptions{2, 0.0});
+        DistanceGridOptions options{2, 0.0};
+        options.far = FarCells::Propagated;
+        distance.grid(grid, propagated.data(), options);
+        const double diagonal = glm::length(glm::dvec3(grid.box.hi - grid.box.lo) / glm::dvec3(grid.dims));
+        std::size_t near = 0, differ = 0;
+        for (std::size_t n = 0; n < exact.size(); ++n) {
+            ASSERT_EQ(std::signbit(propagated[n]), std::signbit(exact[n])) << "cell " << n;
+            const double d = std::abs(double(exact[n])), e = std::abs(double(propagated[n])) - d;
+            if (d < diagonal) {
+                ASSERT_EQ(propagated[n], exact[n]) << "cell " << n;
+                ++near;
+            }
+            ASSERT_GE(e, -1e-6 * d) << "cell " << n;
+            ASSERT_LE(e, 4.0 * diagonal + 1e-6 * d) << "cell " << n;
+            differ += e != 0.0;
+        }
+        EXPECT_GT(near, 0u); // both sides of the band were exercised
+        EXPECT_LT(near, exact.size());
+        RecordProperty(c.name + " cells differing", std::to_string(differ));
+    }
 }
 
 TEST(Distance, BadInputGetsOneClearError) {

@@ -88,6 +88,9 @@ TEST_F(DistanceCli, SdfEqualsTheLibraryOnTheSameCells) {
     r = vds("sdf " + p("cup.obj") + " --dims-xyz 11 9 7 --pad 0.1 --band 0.2 --rule generalized-winding -o " +
             p("band.npy") + " --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
+    r = vds("sdf " + p("cup.obj") + " --dims-xyz 11 9 7 --pad 0.1 --propagated --rule generalized-winding -o " +
+            p("propagated.npy") + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
     const vds::TriangleMesh mesh = vds::loadMesh(p("cup.obj"));
     vds::Grid grid;
     grid.box = vds::meshBounds(mesh);
@@ -96,12 +99,14 @@ TEST_F(DistanceCli, SdfEqualsTheLibraryOnTheSameCells) {
     grid.box.hi += margin;
     grid.dims = glm::uvec3(11, 9, 7);
     const vds::SignedDistance query(mesh, vds::Rule::GeneralizedWinding);
-    std::vector<float> full(grid.cellCount()), band(grid.cellCount());
+    std::vector<float> full(grid.cellCount()), band(grid.cellCount()), propagated(grid.cellCount());
     query.grid(grid, full.data());
     query.grid(grid, band.data(), vds::DistanceGridOptions{0, 0.2});
+    query.grid(grid, propagated.data(), vds::DistanceGridOptions{0, 0.0, vds::FarCells::Propagated});
     EXPECT_EQ(vds::readNpy(p("full.npy")).shape, (std::vector<std::uint64_t>{11, 9, 7}));
     EXPECT_EQ(npyValues<float>(p("full.npy"), "<f4"), full);
     EXPECT_EQ(npyValues<float>(p("band.npy"), "<f4"), band);
+    EXPECT_EQ(npyValues<float>(p("propagated.npy"), "<f4"), propagated);
     EXPECT_NE(std::count(band.begin(), band.end(), 0.2f), 0);
 }
 
@@ -125,6 +130,7 @@ TEST_F(DistanceCli, BadInputGetsOneLineAndWritesNothing) {
         {"sdf " + torus + " --dims 8 --band -1" + out, 2},
         {"sdf " + torus + " --dims 8 --band 0" + out, 2},
         {"sdf " + torus + " --dims 8 --band nan" + out, 2},
+        {"sdf " + torus + " --dims 8 --band 0.1 --propagated" + out, 2},
         {"sdf " + torus + " --dims 0" + out, 2},
         {"sdf " + torus + out, 2},
         {"sdf " + p("flat.obj") + " --dims 8 --rule generalized-winding" + out, 1},

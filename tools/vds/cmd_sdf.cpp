@@ -27,7 +27,7 @@ struct SdfArgs {
     const CLI::Option* bandGiven = nullptr;
     vds::Rule rule = vds::Rule::Parity;
     vds::DistanceGridOptions options;
-    bool allowOpen = false, quiet = false;
+    bool allowOpen = false, quiet = false, propagated = false;
 };
 
 void sdf(SdfArgs& a) {
@@ -35,6 +35,8 @@ void sdf(SdfArgs& a) {
     if (a.bandGiven->count() && !(std::isfinite(a.band) && a.band > 0.0))
         throw CLI::ValidationError("--band: the band's half-width must be a finite distance above 0 (leave it out "
                                    "for the full grid), not " + std::to_string(a.band));
+    if (a.propagated && a.bandGiven->count())
+        throw CLI::ValidationError("--propagated is a way to fill the full grid: leave out --band");
     if (!(std::isfinite(a.pad) && a.pad >= 0.0 && a.pad <= 10.0))
         throw CLI::ValidationError("--pad: a fraction of the box's size from 0 to 10, not " + std::to_string(a.pad));
     const auto progress = progressPrinter(a.quiet);
@@ -51,6 +53,7 @@ void sdf(SdfArgs& a) {
     grid.dims = a.dims ? glm::uvec3(a.dims) : glm::uvec3(a.dimsXyz[0], a.dimsXyz[1], a.dimsXyz[2]);
     vds::checkGrid(grid);
     a.options.band = a.band;
+    a.options.far = a.propagated ? vds::FarCells::Propagated : vds::FarCells::Exact;
     std::vector<float> cells(grid.cellCount());
     const auto start = std::chrono::steady_clock::now();
     query.grid(grid, cells.data(), a.options);
@@ -60,7 +63,9 @@ void sdf(SdfArgs& a) {
     for (float v : cells) inside += std::signbit(v);
     std::printf("wrote %s: %ux%ux%u cells, %zu inside, %s, %s rule, in %.3f s\n", a.output.c_str(), grid.dims.x,
                 grid.dims.y, grid.dims.z, inside,
-                a.band > 0.0 ? ("band " + std::to_string(a.band)).c_str() : "full grid", vds::toString(a.rule), seconds);
+                a.band > 0.0 ? ("band " + std::to_string(a.band)).c_str()
+                             : (a.propagated ? "full grid, propagated" : "full grid"),
+                vds::toString(a.rule), seconds);
 }
 
 } // namespace
@@ -73,7 +78,9 @@ void addSdf(CLI::App& app) {
         "cell (i, j, k), lo + (i + 1/2, j + 1/2, k + 1/2) * (hi - lo) / (NX, NY, NZ), as 'vds voxelize'\n"
         "places them: box [lo, hi] the mesh's bounds (or --box) grown by --pad times its size on every\n"
         "side. Negative exactly where 'vds voxelize' with the same rule says inside. With --band W\n"
-        "(mesh units), cells farther than W from the surface hold -W or +W.",
+        "(mesh units), cells farther than W from the surface hold -W or +W. With --propagated, the full\n"
+        "grid as a closest-feature transform: exact within a cell diagonal of the surface, beyond it\n"
+        "never below the distance and within 4 cell diagonals above it (many times faster).",
         sdf);
     addMesh(*c, a->mesh);
     c->add_option("-o,--output", a->output, "output .npy (written whole or not at all)")->required()->type_name("FILE");
@@ -86,6 +93,8 @@ void addSdf(CLI::App& app) {
     c->add_option("--pad", a->pad, "grow the box by this fraction of its size on every side")->type_name("F");
     a->bandGiven = c->add_option("--band", a->band, "narrow band half-width W, mesh units: farther cells hold +-W")
                        ->type_name("W");
+    c->add_flag("--propagated", a->propagated,
+                "full grid: exact near the surface, within 4 cell diagonals beyond (a closest-feature transform)");
     addEnum(*c, "--rule", a->rule, "what is inside (negative): parity, winding, or generalized-winding (open meshes)");
     c->add_flag("--allow-open", a->allowOpen, "sign an open mesh by crossing count anyway");
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");

@@ -63,6 +63,7 @@ struct BuildNode {
     Aabb box;
     std::uint32_t left = 0, right = 0; ///< children (inner)
     std::uint32_t first = 0, count = 0; ///< prims (leaf: count > 0)
+    std::uint32_t begin = 0, end = 0; ///< the prims below it, leaf or inner
     bool leaf() const { return count > 0; }
 };
 
@@ -81,6 +82,8 @@ public:
             centroids.grow(prims_[k].centroid);
         }
         nodes[self].box = box;
+        nodes[self].begin = first;
+        nodes[self].end = first + count;
         if (count <= kLeafTriangles) {
             nodes[self].first = first;
             nodes[self].count = count;
@@ -198,6 +201,9 @@ public:
                 nodes_[self].lo[a][k] = box.lo[a];
                 nodes_[self].hi[a][k] = box.hi[a];
             }
+            for (int a = 0; a < 3; ++a) nodes_[self].axis[a][k] = 0.0f;
+            nodes_[self].slabLo[k] = nodes_[self].slabHi[k] = 0.0f;
+            if (used) slabs.push_back({self, std::uint32_t(k), binary_[kids[k]].begin, binary_[kids[k]].end});
             std::int32_t reference = kEmptyChild;
             if (used && binary_[kids[k]].leaf()) reference = leafReference(binary_[kids[k]].first, binary_[kids[k]].count);
             else if (used) reference = std::int32_t(emit(kids[k]));
@@ -206,33 +212,42 @@ public:
         return self;
     }
 
+    std::vector<SlabJob> slabs;
+
 private:
     const std::vector<BuildNode>& binary_;
     std::vector<BvhNode>& nodes_;
 };
 
-/// Squared distances from p to the four child boxes of `node` (infinity
-/// for an empty slot).
-inline void boxDistances(const BvhNode& node, const glm::vec3& p, float d2[4]) {
+/// Lower bounds of the squared distances from p to the four children of
+/// `node`: the larger of the box's and the slab's, the slab's less `slack`
+/// (its float rounding); infinity for an empty slot.
+inline void boxDistances(const BvhNode& node, const glm::vec3& p, float slack, float d2[4]) {
 #if defined(__SSE2__)
     const __m128 zero = _mm_setzero_ps();
-    __m128 sum = zero;
+    __m128 sum = zero, along = zero;
     for (int a = 0; a < 3; ++a) {
         const __m128 q = _mm_set1_ps(p[a]);
         const __m128 below = _mm_sub_ps(_mm_load_ps(node.lo[a]), q);
         const __m128 above = _mm_sub_ps(q, _mm_load_ps(node.hi[a]));
         const __m128 d = _mm_max_ps(_mm_max_ps(below, above), zero);
         sum = _mm_add_ps(sum, _mm_mul_ps(d, d));
+        along = _mm_add_ps(along, _mm_mul_ps(_mm_load_ps(node.axis[a]), q));
     }
-    _mm_storeu_ps(d2, sum);
+    const __m128 off = _mm_max_ps(_mm_sub_ps(_mm_load_ps(node.slabLo), along),
+                                  _mm_sub_ps(along, _mm_load_ps(node.slabHi)));
+    const __m128 s = _mm_max_ps(_mm_sub_ps(off, _mm_set1_ps(slack)), zero);
+    _mm_storeu_ps(d2, _mm_max_ps(sum, _mm_mul_ps(s, s)));
 #else
     for (int k = 0; k < 4; ++k) {
-        float s = 0.0f;
+        float sum = 0.0f, along = 0.0f;
         for (int a = 0; a < 3; ++a) {
             const float d = std::max(std::max(node.lo[a][k] - p[a], p[a] - node.hi[a][k]), 0.0f);
-            s += d * d;
+            sum += d * d;
+            along += node.axis[a][k] * p[a];
         }
-        d2[k] = s;
+        const float s = std::max(std::max(node.slabLo[k] - along, along - node.slabHi[k]) - slack, 0.0f);
+        d2[k] = std::max(sum, s * s);
     }
 #endif
 }
@@ -255,7 +270,8 @@ Bvh::Bvh(MeshView mesh) {
     BinaryBuilder builder(prims);
     builder.build(0, std::uint32_t(prims.size()), 0);
     nodes_.reserve(builder.nodes.size() / 2 + 1);
-    Collapser(builder.nodes, nodes_).emit(0);
+    Collapser collapser(builder.nodes, nodes_);
+    collapser.emit(0);
     triangles_.resize(prims.size());
     planes_.resize(prims.size());
     for (std::size_t s = 0; s < prims.size(); ++s) {
@@ -270,6 +286,43 @@ Bvh::Bvh(MeshView mesh) {
         for (const glm::vec3& corner : {t.a, t.b, t.c})
             verticesL1_ = std::max(verticesL1_, std::abs(corner.x) + std::abs(corner.y) + std::abs(corner.z));
     }
+    fillSlabs(collapser.slabs);
+}
+
+/// Each child's slab: its triangles' area-weighted mean normal, shrunk so
+/// that its float length stays below 1 (a longer one would overstate the
+/// bound), and the range of n . x over their corners in double, rounded
+/// outward to float. A child whose normals cancel keeps the zero slab,
+/// which bounds nothing.
+void Bvh::fillSlabs(const std::vector<SlabJob>& jobs) {
+    for (const SlabJob& job : jobs) {
+        glm::dvec3 sum(0.0);
+        for (std::uint32_t s = job.begin; s < job.end; ++s) {
+            const BvhTriangle& t = triangles_[s];
+            sum += glm::cross(glm::dvec3(t.b) - glm::dvec3(t.a), glm::dvec3(t.c) - glm::dvec3(t.a));
+        }
+        const double length = glm::length(sum);
+        if (!(length > 0.0)) continue;
+        const glm::vec3 n(sum * ((1.0 - 1e-6) / length));
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (std::uint32_t s = job.begin; s < job.end; ++s)
+            for (const glm::vec3& corner : {triangles_[s].a, triangles_[s].b, triangles_[s].c}) {
+                const double w = glm::dot(glm::dvec3(n), glm::dvec3(corner));
+                lo = std::min(lo, w);
+                hi = std::max(hi, w);
+            }
+        BvhNode& node = nodes_[job.node];
+        for (int a = 0; a < 3; ++a) node.axis[a][job.slot] = n[a];
+        // One more float step each way covers the double sum's rounding.
+        node.slabLo[job.slot] = std::nextafter(float(lo), -kInf);
+        node.slabHi[job.slot] = std::nextafter(float(hi), kInf);
+        node.slabLo[job.slot] = std::nextafter(node.slabLo[job.slot], -kInf);
+        node.slabHi[job.slot] = std::nextafter(node.slabHi[job.slot], kInf);
+    }
+}
+
+float Bvh::slack(const glm::vec3& p) const {
+    return kPlaneError * (std::abs(p.x) + std::abs(p.y) + std::abs(p.z) + 2.0f * verticesL1_);
 }
 
 double Bvh::distance2(const glm::vec3& p, std::uint32_t slot) const {
@@ -296,12 +349,13 @@ void Bvh::nearest(const glm::vec3& p, NearestState& state) const {
     int top = 0;
     stack[top++] = {0.0f, 0};
     float bound = pruneBound(state.distance2);
+    const float margin = slack(p);
     while (top > 0) {
         const Entry e = stack[--top];
         if (e.distance2 > bound) continue;
         const BvhNode& node = nodes_[std::size_t(e.node)];
         float d2[4];
-        boxDistances(node, p, d2);
+        boxDistances(node, p, margin, d2);
         int order[4], n = 0;
         for (int k = 0; k < 4; ++k) {
             if (node.child[k] == kEmptyChild || d2[k] > bound) continue;
@@ -328,10 +382,10 @@ void Bvh::nearest(const glm::vec3& p, NearestState& state) const {
 void Bvh::searchLeaf(const glm::vec3& p, std::int32_t leaf, NearestState& state, float& bound) const {
     const std::uint32_t code = std::uint32_t(~leaf);
     const std::uint32_t first = code >> 2, end = first + (code & 3u) + 1;
-    const float slack = kPlaneError * (std::abs(p.x) + std::abs(p.y) + std::abs(p.z) + 2.0f * verticesL1_);
+    const float margin = slack(p);
     for (std::uint32_t s = first; s < end; ++s) {
         const glm::vec4& plane = planes_[s];
-        const float below = std::abs(plane.x * p.x + plane.y * p.y + plane.z * p.z - plane.w) - slack;
+        const float below = std::abs(plane.x * p.x + plane.y * p.y + plane.z * p.z - plane.w) - margin;
         if (below > 0.0f && below * below > bound) continue;
         const double t2 = distance2(p, s);
         if (t2 < state.distance2) {
@@ -354,7 +408,10 @@ bool Bvh::leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, st
                 for (int s = 0; s < 4; ++s) {
                     fresh.lo[a][s] = kInf;
                     fresh.hi[a][s] = -kInf;
+                    fresh.axis[a][s] = 0.0f;
                 }
+            std::fill(fresh.slabLo, fresh.slabLo + 4, 0.0f);
+            std::fill(fresh.slabHi, fresh.slabHi + 4, 0.0f);
             std::fill(fresh.child, fresh.child + 4, kEmptyChild);
             slot = 0;
         }
@@ -362,7 +419,10 @@ bool Bvh::leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, st
         for (int a = 0; a < 3; ++a) {
             into.lo[a][slot] = node.lo[a][k];
             into.hi[a][slot] = node.hi[a][k];
+            into.axis[a][slot] = node.axis[a][k];
         }
+        into.slabLo[slot] = node.slabLo[k];
+        into.slabHi[slot] = node.slabHi[k];
         into.child[slot++] = node.child[k];
     };
     std::int32_t stack[kStackEntries];
@@ -388,9 +448,10 @@ bool Bvh::leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, st
 
 void Bvh::nearestAmong(const glm::vec3& p, const std::vector<BvhNode>& leaves, NearestState& state) const {
     float bound = pruneBound(state.distance2);
+    const float margin = slack(p);
     for (const BvhNode& group : leaves) {
         float d2[4];
-        boxDistances(group, p, d2);
+        boxDistances(group, p, margin, d2);
         for (int k = 0; k < 4; ++k)
             if (d2[k] <= bound && group.child[k] != kEmptyChild) searchLeaf(p, group.child[k], state, bound);
     }

@@ -21,10 +21,19 @@
 
 namespace vds::detail {
 
-/// One node: children's boxes by axis, then their references.
+/// One node: children's boxes by axis, their slabs, then their references.
+/// A child's slab is a direction n (|n| < 1, the mean normal of its
+/// triangles) and the range [slabLo, slabHi] of n . x over its corners:
+/// max(slabLo - n . p, n . p - slabHi) bounds the distance from p to the
+/// child below. On a curved surface a box is loose by about its size, a
+/// slab only by its sagitta (size^2 / 8 radius), which is what lets a cell
+/// near the medial axis rule out the nearly equidistant rest of the mesh.
 struct alignas(64) BvhNode {
     float lo[3][4];
     float hi[3][4];
+    float axis[3][4];
+    float slabLo[4];
+    float slabHi[4];
     /// >= 0: an inner node's index; kEmptyChild: no child; otherwise a leaf,
     /// ~(first << 2 | (count - 1)), triangles [first, first + count) of
     /// `Bvh::triangles`.
@@ -44,6 +53,12 @@ struct BvhTriangle {
 struct NearestState {
     double distance2;
     std::uint32_t slot = kNoTriangle; ///< into `Bvh::triangles`
+};
+
+/// A child slot whose slab is filled once the triangles are in leaf order:
+/// node, slot, and its triangles [begin, end).
+struct SlabJob {
+    std::uint32_t node, slot, begin, end;
 };
 
 class Bvh {
@@ -77,6 +92,8 @@ public:
 
 private:
     void searchLeaf(const glm::vec3& p, std::int32_t leaf, NearestState& state, float& bound) const;
+    void fillSlabs(const std::vector<SlabJob>& jobs);
+    float slack(const glm::vec3& p) const;
 
     std::vector<BvhNode> nodes_;
     std::vector<BvhTriangle> triangles_;

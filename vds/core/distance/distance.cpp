@@ -7,6 +7,8 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <vds/detail/parallel.h>
@@ -34,8 +36,25 @@ constexpr std::uint32_t kFullGridBrick = 4;
 /// hierarchy a few nodes a level (docs/benchmarks.md, exact distances).
 constexpr std::size_t kMaxBrickGroups = 1024;
 
+/// Cells between the exact cells of a propagated grid (FarCells::Propagated),
+/// on each axis: its bound is 2 (kLatticeStep / 2) cell diagonals.
+constexpr std::uint32_t kLatticeStep = 4;
+/// Cell diagonals from the surface within which a propagated grid is exact.
+constexpr double kExactDiagonals = 1.0;
+
 struct Brick {
     glm::uvec3 lo, hi; ///< cells [lo, hi)
+};
+
+/// The exact cells of a propagated grid: every kLatticeStep-th index on
+/// each axis and the last.
+struct Lattice {
+    explicit Lattice(const glm::uvec3& dims) : count((dims - 1u + kLatticeStep - 1u) / kLatticeStep + 1u), last(dims - 1u) {}
+    /// The cell index of lattice index m on axis a.
+    std::uint32_t cell(std::uint32_t m, int a) const { return std::min(m * kLatticeStep, last[a]); }
+    std::size_t index(const glm::uvec3& m) const { return (std::size_t(m.x) * count.y + m.y) * count.z + m.z; }
+    std::size_t size() const { return std::size_t(count.x) * count.y * count.z; }
+    glm::uvec3 count, last;
 };
 
 /// The first point that is not finite after rounding to float, or count.
@@ -83,6 +102,10 @@ struct SignedDistance::Impl {
     }
     void fillBrick(const Grid& grid, const Brick& brick, double band, const std::uint8_t* inside, float* cells,
                    std::vector<detail::BvhNode>& leaves) const;
+    std::vector<detail::NearestState> latticeTriangles(const Grid& grid, const Lattice& lattice, unsigned threads) const;
+    void propagateBrick(const Grid& grid, const Lattice& lattice, const glm::uvec3& m,
+                        const detail::NearestState* nearestOf, const std::uint8_t* inside, float* cells) const;
+    void propagatedGrid(const Grid& grid, const std::uint8_t* inside, float* cells, unsigned threads) const;
     ClosestPoint closestAt(const glm::vec3& p, double maxDistance) const {
         const detail::NearestState s = nearest(p, maxDistance);
         if (s.slot != kNoTriangle) return bvh.closest(p, s.slot);
@@ -199,6 +222,120 @@ void SignedDistance::Impl::fillBrick(const Grid& grid, const Brick& brick, doubl
         }
 }
 
+/// The nearest triangle of every lattice cell, exact, each column of the
+/// lattice starting from the triangle of the cell before.
+std::vector<detail::NearestState> SignedDistance::Impl::latticeTriangles(const Grid& grid, const Lattice& lattice,
+                                                                         unsigned threads) const {
+    std::vector<detail::NearestState> nearestOf(lattice.size());
+    parallelFor(threads, std::size_t(lattice.count.x) * lattice.count.y, 8, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t column = begin; column < end; ++column) {
+            const std::uint32_t mx = std::uint32_t(column / lattice.count.y), my = std::uint32_t(column % lattice.count.y);
+            std::uint32_t seed = kNoTriangle;
+            for (std::uint32_t mz = 0; mz < lattice.count.z; ++mz) {
+                const glm::vec3 p = grid.cellCentre(lattice.cell(mx, 0), lattice.cell(my, 1), lattice.cell(mz, 2));
+                const detail::NearestState s = nearest(p, std::numeric_limits<double>::infinity(), seed);
+                nearestOf[lattice.index({mx, my, mz})] = s;
+                seed = s.slot;
+            }
+        }
+    });
+    return nearestOf;
+}
+
+/// The eight lattice cells around a propagated brick: their cell indices
+/// (bit a of a corner's number: the high end on axis a), distances and
+/// nearest triangles.
+struct BrickCorners {
+    glm::uvec3 lo, hi; ///< the low and high corners' cells
+    glm::dvec3 corner[8];
+    double cornerDistance[8];
+    std::uint32_t slot[8];
+    std::uint32_t central = kNoTriangle; ///< of those, the nearest to the brick's centre
+    /// No cell of the brick is nearer the surface than this (1-Lipschitz
+    /// from the farthest corner).
+    double nearestCell = 0.0;
+};
+
+BrickCorners brickCorners(const Grid& grid, const Lattice& lattice, const glm::uvec3& m,
+                          const detail::NearestState* nearestOf, const detail::Bvh& bvh) {
+    BrickCorners b;
+    const glm::uvec3 top = glm::min(m + 1u, lattice.count - 1u);
+    b.lo = {lattice.cell(m.x, 0), lattice.cell(m.y, 1), lattice.cell(m.z, 2)};
+    b.hi = {lattice.cell(top.x, 0), lattice.cell(top.y, 1), lattice.cell(top.z, 2)};
+    double farthest = 0.0;
+    for (int c = 0; c < 8; ++c) {
+        const glm::uvec3 at(c & 1 ? top.x : m.x, c & 2 ? top.y : m.y, c & 4 ? top.z : m.z);
+        b.corner[c] = grid.cellCentre(lattice.cell(at.x, 0), lattice.cell(at.y, 1), lattice.cell(at.z, 2));
+        const detail::NearestState& q = nearestOf[lattice.index(at)];
+        b.cornerDistance[c] = std::sqrt(q.distance2);
+        b.slot[c] = q.slot;
+        farthest = std::max(farthest, b.cornerDistance[c]);
+    }
+    b.nearestCell = farthest - glm::length(b.corner[7] - b.corner[0]);
+    const glm::vec3 centre((b.corner[0] + b.corner[7]) * 0.5);
+    double best = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < 8; ++c) {
+        const double d2 = c > 0 && b.slot[c] == b.slot[c - 1] ? best : bvh.distance2(centre, b.slot[c]);
+        if (d2 < best) best = d2, b.central = b.slot[c];
+    }
+    return b;
+}
+
+/// The cells between lattice cells m and m + 1 (FarCells::Propagated states
+/// the bound). Each takes the nearest of three triangles: its nearest
+/// corner's (which makes the bound), the cell's before it in the column
+/// (which carries the nearest feature along) and the corners' nearest to the
+/// brick's centre; then an exact search where the
+/// corners' distances less their distance to the cell (1-Lipschitz) leave
+/// it possibly within kExactDiagonals of the surface.
+void SignedDistance::Impl::propagateBrick(const Grid& grid, const Lattice& lattice, const glm::uvec3& m,
+                                          const detail::NearestState* nearestOf, const std::uint8_t* inside,
+                                          float* cells) const {
+    const BrickCorners b = brickCorners(grid, lattice, m, nearestOf, bvh);
+    const glm::dvec3 step = glm::dvec3(grid.box.hi - grid.box.lo) / glm::dvec3(grid.dims);
+    const double exactWithin = kExactDiagonals * glm::length(step);
+    glm::uvec3 hi;
+    for (int a = 0; a < 3; ++a) hi[a] = m[a] + 1 < lattice.count[a] ? b.hi[a] : grid.dims[a];
+    for (std::uint32_t i = b.lo.x; i < hi.x; ++i)
+        for (std::uint32_t j = b.lo.y; j < hi.y; ++j) {
+            std::uint32_t previous = kNoTriangle;
+            for (std::uint32_t k = b.lo.z; k < hi.z; ++k) {
+                const glm::vec3 p = grid.cellCentre(i, j, k);
+                const int c = (i - b.lo.x > b.hi.x - i ? 1 : 0) | (j - b.lo.y > b.hi.y - j ? 2 : 0) |
+                              (k - b.lo.z > b.hi.z - k ? 4 : 0);
+                detail::NearestState s{bvh.distance2(p, b.slot[c]), b.slot[c]};
+                for (const std::uint32_t other : {previous, b.central})
+                    if (other != kNoTriangle && other != s.slot) {
+                        const double d2 = bvh.distance2(p, other);
+                        if (d2 < s.distance2) s = {d2, other};
+                    }
+                double below = b.nearestCell; // a lower bound of the cell's distance
+                for (int q = 0; q < 8 && below < exactWithin; ++q)
+                    below = std::max(below, b.cornerDistance[q] - glm::length(glm::dvec3(p) - b.corner[q]));
+                if (below < exactWithin) bvh.nearest(p, s);
+                previous = s.slot;
+                const double d = std::sqrt(s.distance2);
+                const std::size_t at = grid.index(i, j, k);
+                cells[at] = inside[at] ? -float(d) : float(d);
+            }
+        }
+}
+
+void SignedDistance::Impl::propagatedGrid(const Grid& grid, const std::uint8_t* inside, float* cells,
+                                          unsigned threads) const {
+    const Lattice lattice(grid.dims);
+    const std::vector<detail::NearestState> nearestOf = latticeTriangles(grid, lattice, threads);
+    // One brick from each lattice cell to the next (the last: itself alone).
+    const glm::uvec3 bricks = lattice.count;
+    parallelFor(threads, lattice.size(), 16, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b) {
+            const glm::uvec3 m(std::uint32_t(b / (std::size_t(bricks.y) * bricks.z)), std::uint32_t(b / bricks.z % bricks.y),
+                               std::uint32_t(b % bricks.z));
+            propagateBrick(grid, lattice, m, nearestOf.data(), inside, cells);
+        }
+    });
+}
+
 void SignedDistance::grid(const Grid& grid, float* cells, const DistanceGridOptions& options) const {
     checkGrid(grid);
     if (!std::isfinite(options.band) || options.band < 0.0)
@@ -209,6 +346,10 @@ void SignedDistance::grid(const Grid& grid, float* cells, const DistanceGridOpti
     classify.rule = impl_->rule;
     classify.threads = options.threads;
     impl_->exact.occupancy(grid, inside.data(), classify);
+    if (options.band == 0.0 && options.far == FarCells::Propagated) {
+        impl_->propagatedGrid(grid, inside.data(), cells, options.threads);
+        return;
+    }
     const std::uint32_t side = options.band > 0.0 ? kBrick : kFullGridBrick;
     const glm::uvec3 bricks = (grid.dims + glm::uvec3(side - 1)) / side;
     const std::size_t count = std::size_t(bricks.x) * bricks.y * bricks.z;

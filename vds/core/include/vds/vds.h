@@ -229,7 +229,8 @@
 //     `closestPoints` (a ClosestPoint each: point, distance, triangle, its
 //     Feature and index), `grid` (a signed distance grid over a Grid, full
 //     or a band clamped to +-band), with DistanceOptions{threads,
-//     maxDistance} and DistanceGridOptions{threads, band}.
+//     maxDistance} and DistanceGridOptions{threads, band, far} (FarCells::
+//     Exact, or Propagated: a closest-feature transform within a bound).
 //     `closestPointOnTriangle(p, a, b, c)`: the one closest-point kernel.
 //   SpriteDistance bakeDistance(mesh, box, n, rule)         <vds/distance.h>
 //     the distance grid a sprite carries (`Sprite::distance`, file format 3,

@@ -79,13 +79,36 @@ struct DistanceOptions {
     double maxDistance = std::numeric_limits<double>::infinity();
 };
 
+/// How a full distance grid (band 0) answers its cells far from the surface.
+enum class FarCells : std::uint8_t {
+    /// Every cell exact (the nearest float to `distance` of its centre).
+    Exact,
+    /// A closest-feature transform: the grid's cells at every 4th index on
+    /// each axis (and its last) are exact; every other cell c takes d', the
+    /// distance to the nearest of three triangles: the nearest triangle of
+    /// the nearest such corner q, the previous cell's in its column, and of
+    /// the 8 corners' the one nearest the brick's centre. d' is a distance to
+    /// a triangle of the mesh, so d' >= d, and d' <= d(q) + |c - q| <=
+    /// d + 2 |c - q| (distance is 1-Lipschitz), |c - q| at most two cell
+    /// diagonals. Where max over the 8 of d(q) - |c - q| (a lower bound
+    /// of d) is below one cell diagonal the cell is searched exactly,
+    /// so every cell nearer the surface than that is exact, as in `Exact`;
+    /// farther ones are within 4 cell diagonals of exact (plus the float
+    /// rounding of the cell; in practice within a cell), the sign exact
+    /// everywhere. Many times faster than `Exact` on round solids
+    /// (docs/benchmarks.md, exact distances).
+    Propagated,
+};
+
 /// Options of a signed distance grid.
 struct DistanceGridOptions {
     unsigned threads = 0; ///< CPU threads, 0: one per hardware thread
     /// Narrow band half-width in mesh units: cells farther than this from
     /// the surface get exactly -band (inside) or +band (outside). 0: the
-    /// full grid, every cell exact. Must be finite and >= 0.
+    /// full grid, its far cells as `far` says. Must be finite and >= 0.
     double band = 0.0;
+    /// The full grid's far cells (band 0 only; a band is always exact).
+    FarCells far = FarCells::Exact;
 };
 
 /// Exact distances to one mesh, signed by one rule. Read-only once built:
@@ -139,8 +162,9 @@ public:
     /// full grid): the leaves that can hold a brick's nearest triangles are
     /// gathered once, and each cell starts from the nearest triangle of the
     /// cell before it; in band mode a brick no leaf comes near is filled
-    /// without a search. Throws like `checkGrid` and `InvalidArgument` for
-    /// a bad band.
+    /// without a search. A full grid with `FarCells::Propagated` is a
+    /// closest-feature transform instead, within the bound that enum states.
+    /// Throws like `checkGrid` and `InvalidArgument` for a bad band.
     void grid(const Grid& grid, float* cells, const DistanceGridOptions& options = {}) const;
 
 private:
