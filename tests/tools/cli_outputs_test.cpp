@@ -13,7 +13,7 @@
 #include <thread>
 
 #include <gtest/gtest.h>
-#include "../support/run_program.h"
+#include "cli_fixture.h"
 
 #include <vds/mesh.h>
 #include <vds/mesh_io.h>
@@ -25,38 +25,21 @@ namespace {
 
 namespace fs = std::filesystem;
 using vds::test::Result;
+using vds::test::readFile;
 using vds::test::run;
-
-void writeObj(const fs::path& path, const vds::TriangleMesh& mesh) {
-    std::ofstream out(path);
-    for (const auto& v : mesh.positions) out << "v " << v.x << ' ' << v.y << ' ' << v.z << '\n';
-    for (const auto& t : mesh.triangles) out << "f " << t.x + 1 << ' ' << t.y + 1 << ' ' << t.z + 1 << '\n';
-}
-
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using vds::test::writeObj;
 
 std::size_t lines(const std::string& text) { return std::size_t(std::count(text.begin(), text.end(), '\n')); }
 
-class CliOutputs : public ::testing::Test {
+class CliOutputs : public vds::test::ToolDirectory {
 protected:
+    CliOutputs() : ToolDirectory("vds_cli_outputs_") {}
     void SetUp() override {
-        dir = fs::temp_directory_path() / ("vds_cli_outputs_" + std::to_string(::getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
+        ToolDirectory::SetUp();
         writeObj(dir / "box.obj", vds::solids::box({-1, -1, -1}, {1, 0.5f, 2}).mesh);
         std::ofstream pts(dir / "points.txt");
         pts << "0 0 0\n0.9 0.4 1.9\n1.1 0 0\n0 0.6 0\n";
     }
-    void TearDown() override { fs::remove_all(dir); }
-    std::string p(const std::string& name) const { return (dir / name).string(); }
-    Result vds(const std::string& args) const { return run(std::string(VDS_TOOL) + " " + args); }
-    fs::path dir;
 };
 
 // -o through a symlink writes the file it names and keeps the link; the same

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include "../support/run_program.h"
+#include "cli_fixture.h"
 
 #include <vds/distance.h>
 #include <vds/eval/image.h>
@@ -35,7 +35,9 @@ namespace {
 namespace fs = std::filesystem;
 
 using vds::test::Result;
+using vds::test::readFile;
 using vds::test::run;
+using vds::test::writeObj;
 
 std::string lastLine(const std::string& text) {
     std::string t = text;
@@ -44,34 +46,15 @@ std::string lastLine(const std::string& text) {
     return n == std::string::npos ? t : t.substr(n + 1);
 }
 
-void writeObj(const fs::path& path, const vds::TriangleMesh& mesh) {
-    std::ofstream out(path);
-    for (const auto& v : mesh.positions) out << "v " << v.x << ' ' << v.y << ' ' << v.z << '\n';
-    for (const auto& t : mesh.triangles) out << "f " << t.x + 1 << ' ' << t.y + 1 << ' ' << t.z + 1 << '\n';
-}
-
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-class Cli : public ::testing::Test {
+class Cli : public vds::test::ToolDirectory {
 protected:
+    Cli() : ToolDirectory("vds_cli_test_") {}
     void SetUp() override {
-        dir = fs::temp_directory_path() / ("vds_cli_test_" + std::to_string(::getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
+        ToolDirectory::SetUp();
         writeObj(dir / "box.obj", vds::solids::box({-1, -1, -1}, {1, 0.5f, 2}).mesh);
         std::ofstream pts(dir / "points.txt");
         pts << "0 0 0\n0.9 0.4 1.9\n1.1 0 0\n0 0.6 0\n-0.5 -0.5 -1.5\n# a comment\n0.5 0 1\n";
     }
-    void TearDown() override { fs::remove_all(dir); }
-    std::string p(const std::string& name) const { return (dir / name).string(); }
-    Result vds(const std::string& args) const { return run(std::string(VDS_TOOL) + " " + args); }
-    fs::path dir;
 };
 
 TEST_F(Cli, BakeInfoClassifyRoundTrip) {

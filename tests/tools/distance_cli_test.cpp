@@ -17,21 +17,16 @@
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 
-#include "../support/run_program.h"
+#include "cli_fixture.h"
 #include "solids.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using vds::test::Result;
+using vds::test::readFile;
 using vds::test::run;
-
-void writeObj(const fs::path& path, const vds::TriangleMesh& mesh) {
-    std::ofstream out(path);
-    out.precision(9);
-    for (const auto& v : mesh.positions) out << "v " << v.x << ' ' << v.y << ' ' << v.z << '\n';
-    for (const auto& t : mesh.triangles) out << "f " << t.x + 1 << ' ' << t.y + 1 << ' ' << t.z + 1 << '\n';
-}
+using vds::test::writeObj;
 
 template <class T> std::vector<T> npyValues(const std::string& path, const std::string& descr) {
     const vds::NpyArray a = vds::readNpy(path);
@@ -41,22 +36,16 @@ template <class T> std::vector<T> npyValues(const std::string& path, const std::
     return values;
 }
 
-class DistanceCli : public ::testing::Test {
+class DistanceCli : public vds::test::ToolDirectory {
 protected:
+    DistanceCli() : ToolDirectory("vds_distance_cli_") {}
     void SetUp() override {
-        dir = fs::temp_directory_path() / ("vds_distance_cli_" + std::to_string(::getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
+        ToolDirectory::SetUp();
         writeObj(dir / "torus.obj", vds::solids::torus(glm::vec3(0.1f, 0.0f, -0.2f), 1.0f, 0.35f, 24).mesh);
         writeObj(dir / "cup.obj", vds::solids::sphereCup());
         std::ofstream pts(dir / "points.txt");
         pts << "0 0 0\n1.1 0 -0.2\n0.3 0.2 0.1\n-1.2 0.4 0\n2 2 2\n0.9 -0.3 0.25\n";
     }
-    void TearDown() override { fs::remove_all(dir); }
-    std::string p(const std::string& name) const { return (dir / name).string(); }
-    Result vds(const std::string& args) const { return run(std::string(VDS_TOOL) + " " + args); }
-    fs::path dir;
 };
 
 TEST_F(DistanceCli, DistanceEqualsTheLibraryOnTheSamePoints) {
