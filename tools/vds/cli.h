@@ -18,6 +18,7 @@
 
 #include <vds/enum_names.h>
 #include <vds/error.h>
+#include <vds/grid.h>
 #include <vds/sprite.h>
 
 namespace cli {
@@ -43,6 +44,22 @@ template <class Args> std::pair<CLI::App*, Args*> addCommand(CLI::App& app, cons
 
 /// The MESH positional: a closed triangle mesh file.
 CLI::Option* addMesh(CLI::App& command, std::string& path);
+
+/// A grid's cells as the grid commands take them: --dims N or --dims-xyz NX
+/// NY NZ, and --box instead of the input's bounds.
+struct GridArgs {
+    std::uint32_t dims = 0;
+    std::vector<std::uint32_t> dimsXyz;
+    std::vector<float> box;
+};
+/// Adds --dims, --dims-xyz and --box (`boxHelp` says what it replaces).
+void addGridOptions(CLI::App& command, GridArgs& grid, const std::string& boxHelp);
+/// Refuses neither or both of --dims and --dims-xyz (before any work).
+void requireGridSize(const GridArgs& args);
+/// The grid asked for over `bounds` (or --box), grown by `pad` of its size on
+/// every side; refuses neither or both of --dims and --dims-xyz, and a grid
+/// `vds::checkGrid` refuses.
+vds::Grid gridOf(const GridArgs& args, const vds::Box& bounds, float pad = 0.0f);
 
 /// "a|b|c": the choices, for the help.
 std::string joinChoices(const std::vector<std::string>& names);

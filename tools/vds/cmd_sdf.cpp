@@ -19,9 +19,7 @@ namespace {
 
 struct SdfArgs {
     std::string mesh, output;
-    std::uint32_t dims = 0;
-    std::vector<std::uint32_t> dimsXyz;
-    std::vector<float> box;
+    GridArgs grid;
     double pad = 0.0;
     double band = 0.0;
     const CLI::Option* bandGiven = nullptr;
@@ -31,7 +29,7 @@ struct SdfArgs {
 };
 
 void sdf(SdfArgs& a) {
-    if ((a.dims == 0) == a.dimsXyz.empty()) throw CLI::ValidationError("give --dims N or --dims-xyz NX NY NZ");
+    requireGridSize(a.grid);
     if (a.bandGiven->count() && !(std::isfinite(a.band) && a.band > 0.0))
         throw CLI::ValidationError("--band: the band's half-width must be a finite distance above 0 (leave it out "
                                    "for the full grid), not " + std::to_string(a.band));
@@ -44,14 +42,7 @@ void sdf(SdfArgs& a) {
     checkSignedMesh(mesh, a.mesh, a.rule, a.allowOpen, "sdf");
     const vds::SignedDistance query(mesh, a.rule, a.mesh);
     progress("built " + query.summary());
-    vds::Grid grid;
-    grid.box = vds::meshBounds(mesh);
-    if (!a.box.empty()) grid.box = vds::Box{{a.box[0], a.box[1], a.box[2]}, {a.box[3], a.box[4], a.box[5]}};
-    const glm::vec3 margin = float(a.pad) * (grid.box.hi - grid.box.lo);
-    grid.box.lo -= margin;
-    grid.box.hi += margin;
-    grid.dims = a.dims ? glm::uvec3(a.dims) : glm::uvec3(a.dimsXyz[0], a.dimsXyz[1], a.dimsXyz[2]);
-    vds::checkGrid(grid);
+    const vds::Grid grid = gridOf(a.grid, vds::meshBounds(mesh), float(a.pad));
     a.options.band = a.band;
     a.options.far = a.propagated ? vds::FarCells::Propagated : vds::FarCells::Exact;
     std::vector<float> cells(grid.cellCount());
@@ -84,12 +75,7 @@ void addSdf(CLI::App& app) {
         sdf);
     addMesh(*c, a->mesh);
     c->add_option("-o,--output", a->output, "output .npy (written whole or not at all)")->required()->type_name("FILE");
-    c->add_option("--dims", a->dims, "cells along each axis")->transform(wholeNumber(1, vds::kMaxResolution))->type_name("N");
-    c->add_option("--dims-xyz", a->dimsXyz, "cells along x, y and z")
-        ->expected(3)
-        ->transform(wholeNumber(1, vds::kMaxResolution))
-        ->type_name("NX NY NZ");
-    c->add_option("--box", a->box, "the grid's box instead of the mesh's bounds")->expected(6)->type_name("X0 Y0 Z0 X1 Y1 Z1");
+    addGridOptions(*c, a->grid, "the grid's box instead of the mesh's bounds");
     c->add_option("--pad", a->pad, "grow the box by this fraction of its size on every side")->type_name("F");
     a->bandGiven = c->add_option("--band", a->band, "narrow band half-width W, mesh units: farther cells hold +-W")
                        ->type_name("W");

@@ -18,9 +18,7 @@ namespace {
 
 struct VoxelizeArgs {
     std::string input, output;
-    std::uint32_t dims = 0;
-    std::vector<std::uint32_t> dimsXyz;
-    std::vector<float> box;
+    GridArgs grid;
     vds::ClassifyOptions options;
     bool packed = false, verbose = false, quiet = false;
 };
@@ -60,16 +58,6 @@ vds::Box checkedBounds(const VoxelizeArgs& a, const vds::TriangleMesh& mesh) {
     return report.bounds;
 }
 
-/// The grid asked for: the input's bounds (or --box), --dims or --dims-xyz cells.
-vds::Grid gridOf(const VoxelizeArgs& a, const vds::Box& bounds) {
-    vds::Grid grid;
-    grid.box = bounds;
-    if (!a.box.empty()) grid.box = vds::Box{{a.box[0], a.box[1], a.box[2]}, {a.box[3], a.box[4], a.box[5]}};
-    grid.dims = a.dims ? glm::uvec3(a.dims) : glm::uvec3(a.dimsXyz[0], a.dimsXyz[1], a.dimsXyz[2]);
-    vds::checkGrid(grid);
-    return grid;
-}
-
 /// The x layers labelled a call. --packed labels the grid a slab at a time
 /// (at most 2^26 cells), packing each slab's rows as it goes: the unpacked
 /// grid is never held whole. Unpacked, the grid goes in kProgressSlabs
@@ -84,7 +72,7 @@ std::uint32_t slabLayers(bool packed, const vds::Grid& grid) {
 }
 
 void voxelize(VoxelizeArgs& a) {
-    if ((a.dims == 0) == a.dimsXyz.empty()) throw CLI::ValidationError("give --dims N or --dims-xyz NX NY NZ");
+    requireGridSize(a.grid);
     const auto progress = progressPrinter(a.quiet);
     const auto phase = [&](const char* what, double seconds) {
         if (a.verbose) std::fprintf(stderr, "vds voxelize: %-8s %8.3f s\n", what, seconds);
@@ -103,7 +91,7 @@ void voxelize(VoxelizeArgs& a) {
         bounds = checkedBounds(a, mesh);
     }
     phase(fromSprite ? "read" : "validate", secondsSince(start));
-    const vds::Grid grid = gridOf(a, bounds);
+    const vds::Grid grid = gridOf(a.grid, bounds);
     progress("labelling " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) + "x" +
              std::to_string(grid.dims.z) + " cells " + (fromSprite ? "from the sprite" : "exactly from the mesh"));
     // The mesh's exact classifier is built once (every slab sweeps through it).
@@ -172,16 +160,7 @@ void addVoxelize(CLI::App& app) {
         voxelize);
     c->add_option("INPUT", a->input, "a mesh (OBJ, PLY, STL, OFF) or a sprite (.vds)")->required()->type_name("");
     c->add_option("-o,--output", a->output, "output .npy (written whole or not at all)")->required()->type_name("FILE");
-    c->add_option("--dims", a->dims, "cells along each axis")
-        ->transform(wholeNumber(1, vds::kMaxResolution))
-        ->type_name("N");
-    c->add_option("--dims-xyz", a->dimsXyz, "cells along x, y and z")
-        ->expected(3)
-        ->transform(wholeNumber(1, vds::kMaxResolution))
-        ->type_name("NX NY NZ");
-    c->add_option("--box", a->box, "the grid's box instead of the input's bounds")
-        ->expected(6)
-        ->type_name("X0 Y0 Z0 X1 Y1 Z1");
+    addGridOptions(*c, a->grid, "the grid's box instead of the input's bounds");
     addEnum(*c, "--rule", a->options.rule,
             "parity, non-zero winding, or the generalized winding number (open meshes and soups too)");
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");

@@ -31,6 +31,34 @@ CLI::Validator wholeNumber(std::uint64_t lo, std::uint64_t hi) {
         "");
 }
 
+void addGridOptions(CLI::App& command, GridArgs& grid, const std::string& boxHelp) {
+    command.add_option("--dims", grid.dims, "cells along each axis")
+        ->transform(wholeNumber(1, vds::kMaxResolution))
+        ->type_name("N");
+    command.add_option("--dims-xyz", grid.dimsXyz, "cells along x, y and z")
+        ->expected(3)
+        ->transform(wholeNumber(1, vds::kMaxResolution))
+        ->type_name("NX NY NZ");
+    command.add_option("--box", grid.box, boxHelp)->expected(6)->type_name("X0 Y0 Z0 X1 Y1 Z1");
+}
+
+void requireGridSize(const GridArgs& args) {
+    if ((args.dims == 0) == args.dimsXyz.empty()) throw CLI::ValidationError("give --dims N or --dims-xyz NX NY NZ");
+}
+
+vds::Grid gridOf(const GridArgs& args, const vds::Box& bounds, float pad) {
+    requireGridSize(args);
+    const std::vector<float>& b = args.box;
+    vds::Grid grid;
+    grid.box = b.empty() ? bounds : vds::Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
+    const glm::vec3 margin = pad * (grid.box.hi - grid.box.lo);
+    grid.box.lo -= margin;
+    grid.box.hi += margin;
+    grid.dims = args.dims ? glm::uvec3(args.dims) : glm::uvec3(args.dimsXyz[0], args.dimsXyz[1], args.dimsXyz[2]);
+    vds::checkGrid(grid);
+    return grid;
+}
+
 CLI::Option* addMesh(CLI::App& command, std::string& path) {
     return command.add_option("MESH", path, "closed triangle mesh (OBJ, PLY, STL, OFF)")->required()->type_name("");
 }
