@@ -12,17 +12,21 @@
 //                 otherwise the paper's 3D texture with texelFetch, a
 //                 column's layers one texel apart.
 //
-// Each invocation takes VDS_POINTS_PER_INVOCATION consecutive points (48
-// bytes, three aligned vec4 loads) and writes their labels as one 32-bit
-// word, byte k for point k: one byte a point, as the host's uint8 arrays hold
-// them, written in whole words. The points go through each step together, so
-// that their memory reads overlap.
-//
-// Parity and winding: a grid-stride loop per invocation covers any count.
-// Generalized winding: the loop runs per workgroup (every invocation takes
-// each step, live or not), because the boundary term is summed by the whole
-// workgroup together (boundary_tiles.glsl: edges staged through shared
-// memory, far nodes taken by a vote of the workgroup).
+// Labels are one byte a point, as the host's uint8 arrays hold them, written
+// in whole 32-bit words (byte k for point 4w + k). The host defines
+// VDS_POINTS_PER_INVOCATION, the points an invocation classifies:
+//   1 (parity, winding): a column walk is a chain of dependent loads (the
+//     column's offsets, then its crossings), so the most walks in flight,
+//     one a thread, is what keeps the memory busy where the points are
+//     random; the workgroup gathers its labels into words through shared
+//     memory.
+//   4 (generalized winding): four consecutive points (48 bytes, three
+//     aligned vec4 loads) and one label word; each edge staged in shared
+//     memory then serves four points.
+// Both loops run per workgroup (every invocation takes each step, live or
+// not): the labels' gathering and the boundary term (summed by the whole
+// workgroup together, boundary_tiles.glsl: edges staged through shared
+// memory, far nodes taken by a vote of the workgroup) need the barriers.
 #define VDS_LOCAL_SIZE 256
 layout(local_size_x = VDS_LOCAL_SIZE) in; // before the include: it reads gl_WorkGroupSize
 #ifdef VDS_BOUNDARY_TERM
@@ -31,9 +35,9 @@ layout(local_size_x = VDS_LOCAL_SIZE) in; // before the include: it reads gl_Wor
 #include "vds/compute.glsl"
 #include "vds/vpt.glsl"
 
-// Four labels of one byte fill the 32-bit word an invocation writes, and
-// three vec4 loads hold the four points exactly: the unit of work.
-#define VDS_POINTS_PER_INVOCATION 4
+#ifndef VDS_POINTS_PER_INVOCATION
+#error "the host defines VDS_POINTS_PER_INVOCATION (1 or 4)"
+#endif
 #ifdef VDS_BOUNDARY_TERM
 #define VDS_TERM_POINTS VDS_POINTS_PER_INVOCATION
 #include "vds/boundary_tiles.glsl"
@@ -125,6 +129,30 @@ uint vdsClassifyPoints(vec3 p[VDS_N], uint valid) {
     return word;
 }
 
+#if VDS_POINTS_PER_INVOCATION == 1
+shared uint vdsLabelOf[VDS_LOCAL_SIZE];
+
+// Point `first + local` of each workgroup step; the step's labels gathered
+// into VDS_LOCAL_SIZE / 4 words.
+void main() {
+    uint local = gl_LocalInvocationID.x;
+    uint step = vdsInvocationCount();
+    for (uint first = gl_WorkGroupID.x * gl_WorkGroupSize.x; first < u_count;
+         first = u_count - first > step ? first + step : u_count) {
+        uint i = first + local;
+        vec3 p[1];
+        p[0] = i < u_count ? vec3(points[3u * i], points[3u * i + 1u], points[3u * i + 2u]) : vec3(0.0);
+        vdsLabelOf[local] = vdsClassifyPoints(p, i < u_count ? 1u : 0u);
+        memoryBarrierShared();
+        barrier();
+        uint word = first / 4u + local; // `first` is a multiple of the local size
+        if (local < gl_WorkGroupSize.x / 4u && 4u * word < u_count)
+            labels[word] = vdsLabelOf[4u * local] | (vdsLabelOf[4u * local + 1u] << 8u) |
+                           (vdsLabelOf[4u * local + 2u] << 16u) | (vdsLabelOf[4u * local + 3u] << 24u);
+        barrier(); // the slots are read before the next step writes them
+    }
+}
+#else
 // Group q's points (q < quads) and how many of them are real.
 uint vdsLoadPoints(uint q, out vec3 p[VDS_N]) {
     uint first = 4u * q;
@@ -146,7 +174,6 @@ uint vdsLoadPoints(uint q, out vec3 p[VDS_N]) {
 
 void main() {
     uint quads = u_count / 4u + (u_count % 4u != 0u ? 1u : 0u);
-#ifdef VDS_BOUNDARY_TERM
     // Workgroup by workgroup: `first` is the same in every invocation.
     uint step = vdsInvocationCount();
     for (uint first = gl_WorkGroupID.x * gl_WorkGroupSize.x; first < quads;
@@ -159,11 +186,5 @@ void main() {
         uint word = vdsClassifyPoints(p, valid);
         if (q < quads) labels[q] = word;
     }
-#else
-    for (uint q = gl_GlobalInvocationID.x; q < quads; q = vdsNextIndex(q, quads)) {
-        vec3 p[VDS_N];
-        uint valid = vdsLoadPoints(q, p);
-        labels[q] = vdsClassifyPoints(p, valid);
-    }
-#endif
 }
+#endif

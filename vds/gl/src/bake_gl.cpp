@@ -62,13 +62,22 @@ void GlPhaseClock::collect() {
 }
 
 // The one validation of every baker (detail::prepareBake), timed on the GL
-// bake's clock.
+// bake's clock: the axis count on the GPU's timer where it runs there.
 ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
-    const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
     BakeOptions untimed = options;
     untimed.timings = nullptr;
-    BakeSetup setup = prepareBake(mesh, untimed, axisCounter(gl, mesh, options));
-    return {std::move(setup.report), setup.grid};
+    ValidatedMesh out;
+    {
+        const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
+        out.report = validateForBake(mesh, untimed);
+    }
+    Axis axis = options.axis.value_or(Axis::Z);
+    if (!options.axis) {
+        const GlPhaseClock::Scope phase(clock, BakePhase::Axis, !softwareRenderer(gl));
+        axis = bakeAxis(mesh, out.report, untimed, axisCounter(gl, mesh, options));
+    }
+    out.grid = makeGrid(out.report.bounds, axis, options.resolution);
+    return out;
 }
 
 Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what) {

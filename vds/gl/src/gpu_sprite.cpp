@@ -210,10 +210,16 @@ namespace {
 
 constexpr std::size_t kPointBytes = 12;
 constexpr GLuint kBoundaryBinding = 5; // classify.comp's VDS_BOUNDARY_BINDING
-// classify.comp's VDS_POINTS_PER_INVOCATION (the labels of one 32-bit word)
-// and VDS_LOCAL_SIZE.
-constexpr std::size_t kPointsPerInvocation = 4;
+// classify.comp's VDS_LOCAL_SIZE.
 constexpr std::uint32_t kLocalSize = 256;
+
+// The points an invocation of classify.comp takes (its
+// VDS_POINTS_PER_INVOCATION, defined here): one for parity and winding, whose
+// cost is the latency of a column's dependent loads, so the most threads in
+// flight; four for the generalized winding number, whose cost is the
+// boundary term, so that each edge staged in shared memory serves four
+// points. Measured on an H200 (docs/benchmarks.md).
+std::size_t pointsPerInvocation(bool boundaryTerm) { return boundaryTerm ? 4 : 1; }
 
 std::size_t labelBytes(std::size_t points) { return (points + 3) / 4 * 4; }
 
@@ -240,14 +246,17 @@ const Program& classifierProgram(const GlContext& gl, bool columns, Rule rule) {
         std::string defines = "#define VDS_RULE_ID " + std::to_string(id) + "\n";
         if (columns) defines += "#define VDS_COLUMNS\n";
         if (id == 2) defines += "#define VDS_BOUNDARY_TERM\n";
+        defines += "#define VDS_POINTS_PER_INVOCATION " + std::to_string(pointsPerInvocation(id == 2)) + "\n";
         return buildProgram({{GL_COMPUTE_SHADER, "vds/classify.comp", ""}}, defines);
     });
 }
 
 } // namespace
 
-GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints) : gl_(&gl), batch_(batchPoints) {
+GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints, HostTransfer transfer)
+    : gl_(&gl), batch_(batchPoints) {
     const CurrentContext current(gl);
+    copied_ = transfer == HostTransfer::Copied || (transfer == HostTransfer::Auto && !detail::softwareRenderer(gl));
     stamp_ = detail::ContextStamp::current("GpuClassifier");
     classifierProgram(gl, true, Rule::Parity); // a shader error shows at construction, not at the first call
     GLint64 maxBlock = 0;
@@ -268,6 +277,8 @@ GpuClassifier::~GpuClassifier() {
         for (Slot& slot : slots_) { // cannot reach the context (another thread): leave the names to it
             slot.points.release();
             slot.labels.release();
+            slot.gpuPoints.release();
+            slot.gpuLabels.release();
             slot.done = Fence();
         }
     }
@@ -275,7 +286,7 @@ GpuClassifier::~GpuClassifier() {
 
 GpuClassifier::GpuClassifier(GpuClassifier&& o) noexcept
     : gl_(std::exchange(o.gl_, nullptr)), stamp_(o.stamp_), batch_(o.batch_), maxBlock_(o.maxBlock_), maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)),
-      capacity_(std::exchange(o.capacity_, 0)) {}
+      capacity_(std::exchange(o.capacity_, 0)), copied_(o.copied_) {}
 
 GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
     if (this != &o) {
@@ -286,6 +297,7 @@ GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
         slots_ = std::move(o.slots_);
         capacity_ = std::exchange(o.capacity_, 0);
         batch_ = o.batch_;
+        copied_ = o.copied_;
     }
     return *this;
 }
@@ -323,7 +335,8 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, points, p, GLsizeiptr(n * kPointBytes));
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, labels, l, GLsizeiptr(labelBytes(n)));
         glUniform1ui(countLoc, GLuint(n));
-        glDispatchCompute(detail::strideGroups((n + kPointsPerInvocation - 1) / kPointsPerInvocation, kLocalSize), 1, 1);
+        const std::size_t perInvocation = pointsPerInvocation(boundaryTerm);
+        glDispatchCompute(detail::strideGroups((n + perInvocation - 1) / perInvocation, kLocalSize), 1, 1);
     }
     for (GLuint binding = 0; binding <= kBoundaryBinding; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
     if (!columns) glBindTextureUnit(0, 0);
@@ -364,6 +377,13 @@ void GpuClassifier::reserve(std::size_t points) {
         slot.pointsMap = glMapNamedBufferRange(slot.points.id(), 0, GLsizeiptr(points * kPointBytes), write);
         slot.labelsMap = glMapNamedBufferRange(slot.labels.id(), 0, GLsizeiptr(labelBytes(points)), read);
         if (!slot.pointsMap || !slot.labelsMap) throw GlError("cannot map the classifier's staging buffers");
+        if (copied_) {
+            slot.gpuPoints = Buffer::create();
+            slot.gpuLabels = Buffer::create();
+            glNamedBufferStorage(slot.gpuPoints.id(), GLsizeiptr(points * kPointBytes), nullptr, 0);
+            glNamedBufferStorage(slot.gpuLabels.id(), GLsizeiptr(labelBytes(points)), nullptr, 0);
+            checkGl("allocating the classifier's GPU buffers");
+        }
     }
     capacity_ = points;
 }
@@ -374,6 +394,21 @@ void GpuClassifier::finish(Slot& slot, std::uint8_t* labels) {
     copyParallel(labels + slot.first, slot.labelsMap, slot.count);
     slot.done.reset();
     slot.count = 0;
+}
+
+// The staged batch classified, its labels back in the slot's staging
+// buffer when `slot.done` signals.
+void GpuClassifier::send(Slot& slot, const GpuSprite& sprite, Rule rule) {
+    if (copied_) {
+        glCopyNamedBufferSubData(slot.points.id(), slot.gpuPoints.id(), 0, 0, GLsizeiptr(slot.count * kPointBytes));
+        dispatch(sprite, slot.gpuPoints.id(), 0, slot.gpuLabels.id(), 0, slot.count, rule);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glCopyNamedBufferSubData(slot.gpuLabels.id(), slot.labels.id(), 0, 0, GLsizeiptr(labelBytes(slot.count)));
+    } else {
+        dispatch(sprite, slot.points.id(), 0, slot.labels.id(), 0, slot.count, rule);
+    }
+    glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+    slot.done = Fence::insert();
 }
 
 void GpuClassifier::classify(const GpuSprite& sprite, const PointsView& points, std::uint8_t* labels,
@@ -403,9 +438,7 @@ void GpuClassifier::classify(const GpuSprite& sprite, const PointsView& points, 
                 auto* to = static_cast<glm::vec3*>(slot.pointsMap);
                 for (std::size_t k = 0; k < slot.count; ++k) to[k] = points[first + k];
             }
-            dispatch(sprite, slot.points.id(), 0, slot.labels.id(), 0, slot.count, rule);
-            glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
-            slot.done = Fence::insert();
+            send(slot, sprite, rule);
         }
         finish(slots_[next % 2], labels);
         finish(slots_[(next + 1) % 2], labels);

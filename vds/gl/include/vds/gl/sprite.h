@@ -170,12 +170,24 @@ private:
 /// construction, which it makes current for every call (restoring the
 /// caller's) and at destruction. Refuses other threads and sprites of
 /// other contexts with a one-line `GlError`. Not thread safe.
+/// How `GpuClassifier`'s host arrays reach the GPU. Both stage the points
+/// in persistently mapped host buffers; then
+///  - `Mapped`: the shader reads them there and writes the labels there
+///    (no copy: right where the GPU shares the host's memory, as llvmpipe);
+///  - `Copied`: GL copies them to GPU memory, the shader runs there, and
+///    the labels are copied back (the bus crossed by the copy engine, in
+///    large transfers, rather than by the shader's scattered reads: right
+///    for discrete GPUs);
+///  - `Auto`: `Copied` on a hardware renderer, `Mapped` on a software one.
+enum class HostTransfer : std::uint8_t { Auto, Mapped, Copied };
+
 class GpuClassifier {
 public:
     /// Takes the compute programs from `gl`'s cache (built there on first
     /// use); `gl` must outlive the classifier. Host batches go to the GPU `batchPoints` at a time (rounded down to a
-    /// multiple of 4, at least 1024). Throws `GlError`.
-    explicit GpuClassifier(const GlContext& gl, std::size_t batchPoints = std::size_t(1) << 22);
+    /// multiple of 4, at least 1024), by `transfer`. Throws `GlError`.
+    explicit GpuClassifier(const GlContext& gl, std::size_t batchPoints = std::size_t(1) << 22,
+                           HostTransfer transfer = HostTransfer::Auto);
     ~GpuClassifier();
     GpuClassifier(GpuClassifier&&) noexcept;
     GpuClassifier& operator=(GpuClassifier&&) noexcept;
@@ -220,7 +232,8 @@ public:
 
 private:
     struct Slot {
-        Buffer points, labels;
+        Buffer points, labels;             // staging, mapped
+        Buffer gpuPoints, gpuLabels;       // HostTransfer::Copied: in GPU memory
         void* pointsMap = nullptr;
         const void* labelsMap = nullptr;
         Fence done;
@@ -230,6 +243,7 @@ private:
                   GLintptr labelsOffset, std::size_t count, Rule rule);
     void reserve(std::size_t points);
     void finish(Slot& slot, std::uint8_t* labels);
+    void send(Slot& slot, const GpuSprite& sprite, Rule rule);
     void enter(const char* what) const;
 
     const GlContext* gl_ = nullptr;
@@ -239,6 +253,7 @@ private:
     std::size_t maxDispatch_ = 0;
     std::array<Slot, 2> slots_;
     std::size_t capacity_ = 0;
+    bool copied_ = false; // HostTransfer::Copied, Auto resolved
 };
 
 } // namespace vds
