@@ -12,21 +12,21 @@
 //                 otherwise the paper's 3D texture with texelFetch, a
 //                 column's layers one texel apart.
 //
-// Labels are one byte a point, as the host's uint8 arrays hold them, written
-// in whole 32-bit words (byte k for point 4w + k). The host defines
-// VDS_POINTS_PER_INVOCATION, the points an invocation classifies:
-//   1 (parity, winding): a column walk is a chain of dependent loads (the
-//     column's offsets, then its crossings), so the most walks in flight,
-//     one a thread, is what keeps the memory busy where the points are
-//     random; the workgroup gathers its labels into words through shared
-//     memory.
-//   4 (generalized winding): four consecutive points (48 bytes, three
-//     aligned vec4 loads) and one label word; each edge staged in shared
-//     memory then serves four points.
-// Both loops run per workgroup (every invocation takes each step, live or
-// not): the labels' gathering and the boundary term (summed by the whole
-// workgroup together, boundary_tiles.glsl: edges staged through shared
-// memory, far nodes taken by a vote of the workgroup) need the barriers.
+// Each invocation takes VDS_POINTS_PER_INVOCATION consecutive points (48
+// bytes, three aligned vec4 loads) and writes their labels as one 32-bit
+// word, byte k for point k: one byte a point, as the host's uint8 arrays hold
+// them, written in whole words. The points go through each step together, so
+// that their memory reads overlap: the four columns' offsets are loaded
+// together, then their crossings a step of each at a time (a column walk is
+// a chain of dependent loads, and random points' columns are far apart; one
+// point a thread, tried on an H200, ran no faster on random points and 17%
+// slower on coherent ones).
+//
+// Parity and winding: a grid-stride loop per invocation covers any count.
+// Generalized winding: the loop runs per workgroup (every invocation takes
+// each step, live or not), because the boundary term is summed by the whole
+// workgroup together (boundary_tiles.glsl: edges staged through shared
+// memory, far nodes taken by a vote of the workgroup).
 #define VDS_LOCAL_SIZE 256
 layout(local_size_x = VDS_LOCAL_SIZE) in; // before the include: it reads gl_WorkGroupSize
 #ifdef VDS_BOUNDARY_TERM
@@ -35,9 +35,9 @@ layout(local_size_x = VDS_LOCAL_SIZE) in; // before the include: it reads gl_Wor
 #include "vds/compute.glsl"
 #include "vds/vpt.glsl"
 
-#ifndef VDS_POINTS_PER_INVOCATION
-#error "the host defines VDS_POINTS_PER_INVOCATION (1 or 4)"
-#endif
+// Four labels of one byte fill the 32-bit word an invocation writes, and
+// three vec4 loads hold the four points exactly: the unit of work.
+#define VDS_POINTS_PER_INVOCATION 4
 #ifdef VDS_BOUNDARY_TERM
 #define VDS_TERM_POINTS VDS_POINTS_PER_INVOCATION
 #include "vds/boundary_tiles.glsl"
@@ -64,25 +64,46 @@ uniform uint u_count;
 
 #define VDS_N VDS_POINTS_PER_INVOCATION
 
+#ifdef VDS_COLUMNS
+// Each point's signed count and parity of the crossings in front of its
+// texture depth, the points' columns walked in lockstep: every step loads
+// the next crossing of each column still in walk, independent loads that
+// are in flight together.
+void vdsCountColumns(ivec2 column[VDS_N], bool inBox[VDS_N], vec3 T[VDS_N], out int winding[VDS_N],
+                     out int parity[VDS_N]) {
+    uint next[VDS_N], end[VDS_N];
+    for (uint k = 0u; k < uint(VDS_N); ++k) {
+        uint c = uint(column[k].y) * uint(u_size.x) + uint(column[k].x);
+        next[k] = inBox[k] ? offsets[c] : 0u;
+        end[k] = inBox[k] ? offsets[c + 1u] : 0u;
+        winding[k] = 0;
+        parity[k] = 0;
+    }
+    bool walking = true;
+    while (walking) {
+        walking = false;
+        for (uint k = 0u; k < uint(VDS_N); ++k) {
+            if (next[k] >= end[k]) continue;
+            float e = crossings[next[k]];
+            if (!(abs(e) < T[k].z)) { // sorted: nothing further is in front
+                end[k] = next[k];
+                continue;
+            }
+            parity[k] ^= 1;
+            winding[k] += floatBitsToInt(e) < 0 ? -1 : 1;
+            ++next[k];
+            walking = walking || next[k] < end[k];
+        }
+    }
+}
+#else
 // The column's signed count and parity in front of texture depth r.
 int vdsCount(ivec2 column, bool inBox, float r, out int parity) {
     parity = 0;
     if (!inBox) return 0;
-#ifdef VDS_COLUMNS
-    uint c = uint(column.y) * uint(u_size.x) + uint(column.x);
-    uint begin = offsets[c], end = offsets[c + 1u];
-    int winding = 0;
-    for (uint i = begin; i < end; ++i) {
-        float e = crossings[i];
-        if (!(abs(e) < r)) break; // sorted: nothing further is in front
-        parity ^= 1;
-        winding += floatBitsToInt(e) < 0 ? -1 : 1;
-    }
-    return winding;
-#else
     return vdsColumnWinding(u_ldi, column, r, parity);
-#endif
 }
+#endif
 
 // The labels of the points, as one word (0 or 1 in byte k for point k);
 // points past `valid` are left 0. For the generalized winding rule every
@@ -106,7 +127,11 @@ uint vdsClassifyPoints(vec3 p[VDS_N], uint valid) {
         inBox[k] = k < valid && vdsColumnOf(T[k], VDS_SIZE, column[k]);
 #endif
     }
+#ifdef VDS_COLUMNS
+    vdsCountColumns(column, inBox, T, winding, parity);
+#else
     for (uint k = 0u; k < uint(VDS_N); ++k) winding[k] = vdsCount(column[k], inBox[k], T[k].z, parity[k]);
+#endif
     uint word = 0u;
 #ifdef VDS_BOUNDARY_TERM
     vec3 q[VDS_N]; // where the CPU evaluates the term: the texel-centre point, or the point itself beside the box
@@ -129,30 +154,6 @@ uint vdsClassifyPoints(vec3 p[VDS_N], uint valid) {
     return word;
 }
 
-#if VDS_POINTS_PER_INVOCATION == 1
-shared uint vdsLabelOf[VDS_LOCAL_SIZE];
-
-// Point `first + local` of each workgroup step; the step's labels gathered
-// into VDS_LOCAL_SIZE / 4 words.
-void main() {
-    uint local = gl_LocalInvocationID.x;
-    uint step = vdsInvocationCount();
-    for (uint first = gl_WorkGroupID.x * gl_WorkGroupSize.x; first < u_count;
-         first = u_count - first > step ? first + step : u_count) {
-        uint i = first + local;
-        vec3 p[1];
-        p[0] = i < u_count ? vec3(points[3u * i], points[3u * i + 1u], points[3u * i + 2u]) : vec3(0.0);
-        vdsLabelOf[local] = vdsClassifyPoints(p, i < u_count ? 1u : 0u);
-        memoryBarrierShared();
-        barrier();
-        uint word = first / 4u + local; // `first` is a multiple of the local size
-        if (local < gl_WorkGroupSize.x / 4u && 4u * word < u_count)
-            labels[word] = vdsLabelOf[4u * local] | (vdsLabelOf[4u * local + 1u] << 8u) |
-                           (vdsLabelOf[4u * local + 2u] << 16u) | (vdsLabelOf[4u * local + 3u] << 24u);
-        barrier(); // the slots are read before the next step writes them
-    }
-}
-#else
 // Group q's points (q < quads) and how many of them are real.
 uint vdsLoadPoints(uint q, out vec3 p[VDS_N]) {
     uint first = 4u * q;
@@ -174,6 +175,7 @@ uint vdsLoadPoints(uint q, out vec3 p[VDS_N]) {
 
 void main() {
     uint quads = u_count / 4u + (u_count % 4u != 0u ? 1u : 0u);
+#ifdef VDS_BOUNDARY_TERM
     // Workgroup by workgroup: `first` is the same in every invocation.
     uint step = vdsInvocationCount();
     for (uint first = gl_WorkGroupID.x * gl_WorkGroupSize.x; first < quads;
@@ -186,5 +188,11 @@ void main() {
         uint word = vdsClassifyPoints(p, valid);
         if (q < quads) labels[q] = word;
     }
-}
+#else
+    for (uint q = gl_GlobalInvocationID.x; q < quads; q = vdsNextIndex(q, quads)) {
+        vec3 p[VDS_N];
+        uint valid = vdsLoadPoints(q, p);
+        labels[q] = vdsClassifyPoints(p, valid);
+    }
 #endif
+}

@@ -210,16 +210,10 @@ namespace {
 
 constexpr std::size_t kPointBytes = 12;
 constexpr GLuint kBoundaryBinding = 5; // classify.comp's VDS_BOUNDARY_BINDING
-// classify.comp's VDS_LOCAL_SIZE.
+// classify.comp's VDS_POINTS_PER_INVOCATION (the labels of one 32-bit word)
+// and VDS_LOCAL_SIZE.
+constexpr std::size_t kPointsPerInvocation = 4;
 constexpr std::uint32_t kLocalSize = 256;
-
-// The points an invocation of classify.comp takes (its
-// VDS_POINTS_PER_INVOCATION, defined here): one for parity and winding, whose
-// cost is the latency of a column's dependent loads, so the most threads in
-// flight; four for the generalized winding number, whose cost is the
-// boundary term, so that each edge staged in shared memory serves four
-// points. Measured on an H200 (docs/benchmarks.md).
-std::size_t pointsPerInvocation(bool boundaryTerm) { return boundaryTerm ? 4 : 1; }
 
 std::size_t labelBytes(std::size_t points) { return (points + 3) / 4 * 4; }
 
@@ -246,7 +240,6 @@ const Program& classifierProgram(const GlContext& gl, bool columns, Rule rule) {
         std::string defines = "#define VDS_RULE_ID " + std::to_string(id) + "\n";
         if (columns) defines += "#define VDS_COLUMNS\n";
         if (id == 2) defines += "#define VDS_BOUNDARY_TERM\n";
-        defines += "#define VDS_POINTS_PER_INVOCATION " + std::to_string(pointsPerInvocation(id == 2)) + "\n";
         return buildProgram({{GL_COMPUTE_SHADER, "vds/classify.comp", ""}}, defines);
     });
 }
@@ -335,8 +328,7 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, points, p, GLsizeiptr(n * kPointBytes));
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, labels, l, GLsizeiptr(labelBytes(n)));
         glUniform1ui(countLoc, GLuint(n));
-        const std::size_t perInvocation = pointsPerInvocation(boundaryTerm);
-        glDispatchCompute(detail::strideGroups((n + perInvocation - 1) / perInvocation, kLocalSize), 1, 1);
+        glDispatchCompute(detail::strideGroups((n + kPointsPerInvocation - 1) / kPointsPerInvocation, kLocalSize), 1, 1);
     }
     for (GLuint binding = 0; binding <= kBoundaryBinding; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
     if (!columns) glBindTextureUnit(0, 0);
