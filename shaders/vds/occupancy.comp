@@ -30,6 +30,7 @@ layout(local_size_x = VDS_LOCAL_SIZE) in; // before the include: it reads gl_Wor
 #ifdef VDS_BOUNDARY_TERM
 #define VDS_TERM_POINTS 1 // one cell a column at a time
 #include "vds/boundary_tiles.glsl"
+#include "vds/tile_bound.glsl"
 #endif
 
 layout(std430, binding = 0) readonly restrict buffer Offsets { uint offsets[]; };
@@ -89,6 +90,11 @@ void vdsSweepColumn(uint column, bool live) {
     ivec2 st = ivec2(int(uint(max(texel, 0)) % u_width), int(uint(max(texel, 0)) / u_width));
     int parity = 0, winding = 0;
     uint word = 0u, bits = 0u;
+#ifdef VDS_BOUNDARY_TERM
+    // The column's cells' (s, t) in the bake's frame: the same at every depth.
+    vec2 at = live ? vdsColumnPoint(u_boundary, st, 0.0).xy : vdsBesidePoint(u_boundary, u_size, vec3(beside, 0.0)).xy;
+    VdsTileBound tile = vdsTileSetup(u_boundary, at, valid);
+#endif
     for (uint k = u_firstSlice; k < u_endSlice; ++k) {
         float depth = depths[k];
         // Each crossing counts for the cells whose depth lies strictly behind it.
@@ -99,10 +105,15 @@ void vdsSweepColumn(uint column, bool live) {
 #ifdef VDS_BOUNDARY_TERM
         vec3 q[1] = vec3[1](live ? vdsColumnPoint(u_boundary, st, depth)
                                  : vdsBesidePoint(u_boundary, u_size, vec3(beside, depth)));
-        bool alive[1] = bool[1](valid);
-        float term[1];
-        vdsBoundaryTerms(u_boundary, q, alive, term);
-        bool inside = valid && float(winding) + term[0] > 0.5;
+        bool inside, any;
+        bool decided = vdsTileDecides(u_boundary, tile, q[0].z, int(k), valid, winding, inside, any);
+        if (any) { // some cell of the workgroup is not decided by the tile's bound: the exact term
+            bool alive[1] = bool[1](valid);
+            float term[1];
+            vdsBoundaryTerms(u_boundary, q, alive, term);
+            if (!decided) inside = float(winding) + term[0] > 0.5;
+        }
+        inside = valid && inside;
 #elif VDS_RULE_ID == VDS_RULE_WINDING
         bool inside = winding != 0;
 #else
