@@ -203,10 +203,10 @@ public:
     /// Host arrays to host arrays, the contract of <vds/classify.h>:
     /// `labels` holds `points.count` bytes (caller-owned), 1 inside, 0
     /// outside; `options.rule` is answered, `threads` ignored. Points go in
-    /// batches (see the constructor): while the GPU classifies one batch,
-    /// the next is copied (converted from strided or double points) into the
-    /// other staging buffer and the previous one's labels out. Returns when
-    /// every label is written.
+    /// batches (see the constructor), three in flight: while the GPU takes
+    /// one batch across and classifies it, the next is copied (converted
+    /// from strided or double points) into another staging buffer and an
+    /// earlier one's labels out. Returns when every label is written.
     void classify(const GpuSprite& sprite, const PointsView& points, std::uint8_t* labels,
                   const ClassifyOptions& options = {});
 
@@ -251,7 +251,9 @@ private:
     std::size_t batch_ = std::size_t(1) << 22;
     std::uint64_t maxBlock_ = 0;
     std::size_t maxDispatch_ = 0;
-    std::array<Slot, 2> slots_;
+    // Three batches in flight: one being staged by the host, one crossing
+    // or classified on the GPU, one's labels being copied out.
+    std::array<Slot, 3> slots_;
     std::size_t capacity_ = 0;
     bool copied_ = false; // HostTransfer::Copied, Auto resolved
 };
