@@ -76,6 +76,12 @@ void countAxis(const GlContext& gl, const CountPrograms& programs, const GpuMesh
 std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, const Box& bounds,
                                           std::uint32_t resolution) {
     const CurrentContext current(gl);
+    return countLayersOnGl(gl, GpuMesh(mesh), bounds, resolution);
+}
+
+std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, const GpuMesh& drawn, const Box& bounds,
+                                          std::uint32_t resolution) {
+    const CurrentContext current(gl);
     std::array<SpriteGrid, 3> grids;
     std::uint64_t most = 0;
     for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
@@ -85,9 +91,8 @@ std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, co
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     // The counts of one axis in one storage block; each fewer than 2^32 (as a sprite's crossings are).
-    if (most * 4 > std::uint64_t(maxBlock) || mesh.triangleCount >= (std::uint64_t(1) << 32)) return std::nullopt;
+    if (most * 4 > std::uint64_t(maxBlock) || drawn.triangleCount() >= (std::uint64_t(1) << 32)) return std::nullopt;
     const CountPrograms programs = countPrograms(gl);
-    const GpuMesh drawn(mesh);
     const GLuint counts = gl.scratchBuffer("vds.count.columns", std::size_t(most) * 4).id();
     const GLuint result = gl.scratchBuffer("vds.count.result", 24).id();
     const GLuint zero = 0;
@@ -112,10 +117,14 @@ bool softwareRenderer(const GlContext& gl) {
            renderer.find("softpipe") != std::string::npos || renderer.find("SwiftShader") != std::string::npos;
 }
 
-AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options) {
+AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options, std::optional<GpuMesh>* keep) {
     if (softwareRenderer(gl)) return {}; // there the CPU's count is the faster
-    return [&gl, mesh, resolution = options.resolution](const MeshReport& report) {
-        return countLayersOnGl(gl, mesh, report.bounds, resolution);
+    return [&gl, mesh, resolution = options.resolution, keep](const MeshReport& report) {
+        const CurrentContext current(gl);
+        std::optional<GpuMesh> local;
+        std::optional<GpuMesh>& drawn = keep ? *keep : local;
+        drawn.emplace(mesh);
+        return countLayersOnGl(gl, *drawn, report.bounds, resolution);
     };
 }
 
