@@ -9,7 +9,8 @@
 // peers' distances against vds's. Then signed distance grids (full and a
 // band) on two threads.
 //
-// usage: vds_distance_bench [--points N] [--brute N] [--rounds N] [--sdf N] [--band CELLS] [--full-grid] [mesh ...]
+// usage: vds_distance_bench [--points N] [--brute N] [--rounds N] [--sdf N] [--band CELLS] [--full-grid]
+//                           [--generated sphere|trefoil|soup|holes ...] [mesh ...]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -199,14 +200,19 @@ int main(int argc, char** argv) {
     app.add_option("--sdf", settings.sdf, "cells of the SDF grids on the longest side (0: none), meshes of 50k triangles up");
     app.add_option("--band", settings.band, "the band grid's half-width in cells");
     app.add_flag("--full-grid", settings.fullGrid, "the full exact SDF grid too (minutes), and the propagated one checked against it");
-    app.add_option("meshes", meshes, "mesh files (default: generated solids)");
+    std::vector<std::string> generated;
+    app.add_option("--generated", generated, "generated meshes to run (default without mesh files: all four)")
+        ->check(CLI::IsMember({"sphere", "trefoil", "soup", "holes"}));
+    app.add_option("meshes", meshes, "mesh files (default: the generated meshes)");
     CLI11_PARSE(app, argc, argv);
     try {
-        if (meshes.empty()) {
-            run("sphere", vds::solids::sphere(glm::vec3(0.0f), 1.0f, 316).mesh, settings);
-            run("trefoil", vds::solids::torusKnot(glm::vec3(0.0f), 1.0f, 2, 3, 0.25f, 800, 64).mesh, settings);
-            run("soup (open)", vds::solids::looseTriangles(20000, 0.05f, 9), settings);
-            run("sphere with holes (open)", vds::solids::sphereWithHoles(), settings);
+        if (meshes.empty() && generated.empty()) generated = {"sphere", "trefoil", "soup", "holes"};
+        for (const std::string& g : generated) {
+            if (g == "sphere") run("sphere", vds::solids::sphere(glm::vec3(0.0f), 1.0f, 316).mesh, settings);
+            else if (g == "trefoil")
+                run("trefoil", vds::solids::torusKnot(glm::vec3(0.0f), 1.0f, 2, 3, 0.25f, 800, 64).mesh, settings);
+            else if (g == "soup") run("soup (open)", vds::solids::looseTriangles(20000, 0.05f, 9), settings);
+            else run("sphere with holes (open)", vds::solids::sphereWithHoles(), settings);
         }
         for (const std::string& path : meshes) run(path, vds::loadMesh(path), settings);
     } catch (const vds::Error& e) {
