@@ -31,11 +31,17 @@ constexpr int kStackEntries = 3 * (kSahDepth + 32) + 4;
 /// distance by this relative margin: above the few float roundings of a box
 /// distance (4 * 2^-24) and of the bound itself (2^-24).
 constexpr double kPruneMargin = 1.0 + 1.0 / (1 << 20);
-/// A float plane distance |n . p - w| is within kPlaneError (|p|_1 + 2
-/// max |v|_1) of the exact distance to the plane: the normal's rounding to
+/// A float plane distance n . p - w (a face's or an edge's plane of a
+/// triangle, TriangleBound) is within kPlaneError (|p|_1 + 2 max |v|_1) of
+/// the exact signed distance to the plane: the unit normal's rounding to
 /// float (sqrt(3) 2^-24 relative), the offset's (2^-24) and four float
 /// roundings of the dot product (4 2^-24), with a factor of 2 to spare.
 constexpr float kPlaneError = 1e-6f;
+/// A triangle gets planes only where |ab x ac| >= kMinSine |ab| |ac|: then
+/// the double cross product of its float corners' differences (off by
+/// about 2^-52 |ab| |ac| at worst) gives its normal, and so its edges'
+/// normals, to 2^-32 relative, far inside kPlaneError's spare.
+constexpr double kMinSine = 1.0 / (1 << 20);
 
 struct Aabb {
     glm::vec3 lo{kInf}, hi{-kInf};
@@ -254,6 +260,57 @@ inline void boxDistances(const BvhNode& node, const glm::vec3& p, float slack, f
 
 float pruneBound(double distance2) { return float(distance2 * kPruneMargin); }
 
+/// The planes of triangle abc (TriangleBound), zero where it is too thin.
+TriangleBound triangleBound(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    TriangleBound out{};
+    const glm::dvec3 v[3] = {glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)};
+    const glm::dvec3 ab = v[1] - v[0], ac = v[2] - v[0];
+    const glm::dvec3 n = glm::cross(ab, ac);
+    const double length = glm::length(n);
+    if (!(length >= kMinSine * glm::length(ab) * glm::length(ac)) || !(length > 0.0)) return out;
+    const auto set = [&out](int lane, const glm::dvec3& unit, const glm::dvec3& on) {
+        const glm::vec3 rounded(unit);
+        out.x[lane] = rounded.x;
+        out.y[lane] = rounded.y;
+        out.z[lane] = rounded.z;
+        out.w[lane] = float(glm::dot(glm::dvec3(rounded), on));
+    };
+    const glm::dvec3 unit = n / length;
+    set(0, unit, v[0]);
+    for (int e = 0; e < 3; ++e) { // outward: (b - a) x n points away from c
+        const glm::dvec3 outward = glm::cross(v[(e + 1) % 3] - v[e], unit);
+        set(1 + e, outward / glm::length(outward), v[e]);
+    }
+    return out;
+}
+
+/// A lower bound of the squared distance from p to the triangle of `t`:
+/// max(h - slack, 0)^2 + max(e - slack, 0)^2 with h, e its float plane
+/// distances (TriangleBound), each within `slack` of the exact one.
+inline float lowerBound2(const TriangleBound& t, const glm::vec3& p, float slack) {
+#if defined(__SSE2__)
+    const __m128 s = _mm_sub_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(t.x), _mm_set1_ps(p.x)),
+                                                      _mm_mul_ps(_mm_load_ps(t.y), _mm_set1_ps(p.y))),
+                                           _mm_mul_ps(_mm_load_ps(t.z), _mm_set1_ps(p.z))),
+                                _mm_load_ps(t.w));
+    const __m128 absFace = _mm_castsi128_ps(_mm_setr_epi32(0x7fffffff, -1, -1, -1));
+    const __m128 u = _mm_max_ps(_mm_sub_ps(_mm_and_ps(s, absFace), _mm_set1_ps(slack)), _mm_setzero_ps());
+    // Lane 0: the face's h; lane 1: the largest of the three edges' e.
+    const __m128 m = _mm_max_ps(u, _mm_max_ps(_mm_shuffle_ps(u, u, _MM_SHUFFLE(0, 0, 2, 0)),
+                                              _mm_shuffle_ps(u, u, _MM_SHUFFLE(0, 0, 3, 0))));
+    const __m128 m2 = _mm_mul_ps(m, m);
+    return _mm_cvtss_f32(_mm_add_ss(m2, _mm_shuffle_ps(m2, m2, _MM_SHUFFLE(0, 0, 0, 1))));
+#else
+    float u[4];
+    for (int k = 0; k < 4; ++k) {
+        const float s = t.x[k] * p.x + t.y[k] * p.y + t.z[k] * p.z - t.w[k];
+        u[k] = std::max((k == 0 ? std::abs(s) : s) - slack, 0.0f);
+    }
+    const float e = std::max(std::max(u[1], u[2]), u[3]);
+    return u[0] * u[0] + e * e;
+#endif
+}
+
 } // namespace
 
 Bvh::Bvh(MeshView mesh) {
@@ -273,16 +330,12 @@ Bvh::Bvh(MeshView mesh) {
     Collapser collapser(builder.nodes, nodes_);
     collapser.emit(0);
     triangles_.resize(prims.size());
-    planes_.resize(prims.size());
+    bounds_.resize(prims.size());
     for (std::size_t s = 0; s < prims.size(); ++s) {
         const glm::uvec3 v = mesh.triangles[prims[s].index];
         const BvhTriangle t{mesh.positions[v.x], mesh.positions[v.y], mesh.positions[v.z], prims[s].index};
         triangles_[s] = t;
-        const glm::dvec3 n = glm::cross(glm::dvec3(t.b) - glm::dvec3(t.a), glm::dvec3(t.c) - glm::dvec3(t.a));
-        const double length = glm::length(n);
-        // A degenerate triangle's plane bounds nothing: the zero plane gives |0 - 0| = 0.
-        const glm::vec3 unit = length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.0f);
-        planes_[s] = glm::vec4(unit, float(glm::dot(glm::dvec3(unit), glm::dvec3(t.a))));
+        bounds_[s] = triangleBound(t.a, t.b, t.c);
         for (const glm::vec3& corner : {t.a, t.b, t.c})
             verticesL1_ = std::max(verticesL1_, std::abs(corner.x) + std::abs(corner.y) + std::abs(corner.z));
     }
@@ -340,6 +393,17 @@ ClosestPoint Bvh::closest(const glm::vec3& p, std::uint32_t slot) const {
     return {hit.point, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z), t.index, hit.feature, hit.index};
 }
 
+/// Asks for a pushed node's lines, which arrive while the nodes popped
+/// before it are searched.
+void Bvh::prefetch(std::int32_t node) const {
+#if defined(__SSE2__)
+    const char* at = reinterpret_cast<const char*>(&nodes_[std::size_t(node)]);
+    for (std::size_t line = 0; line < sizeof(BvhNode); line += 64) _mm_prefetch(at + line, _MM_HINT_T0);
+#else
+    (void)node;
+#endif
+}
+
 void Bvh::nearest(const glm::vec3& p, NearestState& state) const {
     struct Entry {
         float distance2;
@@ -370,27 +434,37 @@ void Bvh::nearest(const glm::vec3& p, NearestState& state) const {
         // children are pushed (farthest first: the nearest is popped next).
         for (int i = 0; i < n; ++i) {
             const std::int32_t ref = node.child[order[i]];
-            if (ref < 0 && d2[order[i]] <= bound) searchLeaf(p, ref, state, bound);
+            if (ref < 0 && d2[order[i]] <= bound) searchLeaf(p, margin, ref, state, bound);
         }
         for (int i = n - 1; i >= 0; --i) {
             const std::int32_t ref = node.child[order[i]];
-            if (ref >= 0 && d2[order[i]] <= bound) stack[top++] = {d2[order[i]], ref};
+            if (ref >= 0 && d2[order[i]] <= bound) {
+                stack[top++] = {d2[order[i]], ref};
+                prefetch(ref);
+            }
         }
     }
 }
 
-void Bvh::searchLeaf(const glm::vec3& p, std::int32_t leaf, NearestState& state, float& bound) const {
+/// The leaf's triangles' lower bounds first, then the exact test of each
+/// whose bound is still within `bound`, the lowest bound first: the bound is
+/// the distance itself (less the slack) where the closest point is on a face
+/// or an edge, so few triangles of a leaf get the exact test.
+void Bvh::searchLeaf(const glm::vec3& p, float margin, std::int32_t leaf, NearestState& state, float& bound) const {
     const std::uint32_t code = std::uint32_t(~leaf);
-    const std::uint32_t first = code >> 2, end = first + (code & 3u) + 1;
-    const float margin = slack(p);
-    for (std::uint32_t s = first; s < end; ++s) {
-        const glm::vec4& plane = planes_[s];
-        const float below = std::abs(plane.x * p.x + plane.y * p.y + plane.z * p.z - plane.w) - margin;
-        if (below > 0.0f && below * below > bound) continue;
-        const double t2 = distance2(p, s);
+    const std::uint32_t first = code >> 2, count = (code & 3u) + 1;
+    float below[kLeafTriangles];
+    for (std::uint32_t i = 0; i < count; ++i) below[i] = lowerBound2(bounds_[first + i], p, margin);
+    for (std::uint32_t tested = 0; tested < count; ++tested) {
+        std::uint32_t next = 0;
+        for (std::uint32_t i = 1; i < count; ++i)
+            if (below[i] < below[next]) next = i;
+        if (below[next] > bound) return;
+        below[next] = kInf;
+        const double t2 = distance2(p, first + next);
         if (t2 < state.distance2) {
             state.distance2 = t2;
-            state.slot = s;
+            state.slot = first + next;
             bound = pruneBound(t2);
         }
     }
@@ -453,7 +527,7 @@ void Bvh::nearestAmong(const glm::vec3& p, const std::vector<BvhNode>& leaves, N
         float d2[4];
         boxDistances(group, p, margin, d2);
         for (int k = 0; k < 4; ++k)
-            if (d2[k] <= bound && group.child[k] != kEmptyChild) searchLeaf(p, group.child[k], state, bound);
+            if (d2[k] <= bound && group.child[k] != kEmptyChild) searchLeaf(p, margin, group.child[k], state, bound);
     }
 }
 

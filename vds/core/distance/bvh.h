@@ -49,6 +49,19 @@ struct BvhTriangle {
     std::uint32_t index;
 };
 
+/// Four planes of one triangle, by component (lanes: its face, then the
+/// outward in-plane normals of edges ab, bc, ca), so that one SIMD step
+/// gives the four signed distances s = n . p - w. With h = |s_face| and e =
+/// the largest edge distance, h^2 + max(e, 0)^2 is a lower bound of the
+/// squared distance to the triangle, equal to it when the closest point is
+/// on the face or an edge (the plane distance, then the in-plane distance
+/// to a convex polygon bounded by its edge lines). A degenerate or sliver
+/// triangle, whose normal double cannot give to float precision, has all
+/// four planes zero: its bound is 0, so it is always tested exactly.
+struct alignas(64) TriangleBound {
+    float x[4], y[4], z[4], w[4];
+};
+
 /// The best found so far by a search: squared distance and triangle slot.
 struct NearestState {
     double distance2;
@@ -87,22 +100,23 @@ public:
     std::size_t nodeCount() const { return nodes_.size(); }
     std::size_t triangleCount() const { return triangles_.size(); }
     std::size_t memoryBytes() const {
-        return nodes_.size() * sizeof(BvhNode) + triangles_.size() * (sizeof(BvhTriangle) + sizeof(glm::vec4));
+        return nodes_.size() * sizeof(BvhNode) + triangles_.size() * (sizeof(BvhTriangle) + sizeof(TriangleBound));
     }
 
 private:
-    void searchLeaf(const glm::vec3& p, std::int32_t leaf, NearestState& state, float& bound) const;
+    void prefetch(std::int32_t node) const;
+    void searchLeaf(const glm::vec3& p, float margin, std::int32_t leaf, NearestState& state, float& bound) const;
     void fillSlabs(const std::vector<SlabJob>& jobs);
     float slack(const glm::vec3& p) const;
 
     std::vector<BvhNode> nodes_;
     std::vector<BvhTriangle> triangles_;
-    /// Each triangle's plane in float, unit normal and offset (n . x = w):
-    /// |n . p - w| less `planeSlack_` is a lower bound of its distance,
-    /// which turns most triangles of a leaf away before the double test.
-    std::vector<glm::vec4> planes_;
-    /// The float plane distance's error bound: kPlaneError times (|p|_1 +
-    /// 2 max |v|_1 over the vertices).
+    /// Each triangle's planes (leaf order): a lower bound of its distance in
+    /// float, less `slack`, turns most triangles of a leaf away before the
+    /// exact double test.
+    std::vector<TriangleBound> bounds_;
+    /// The float plane distances' error bound: kPlaneError times (|p|_1 + 2
+    /// max |v|_1 over the vertices).
     float verticesL1_ = 0.0f;
 };
 
