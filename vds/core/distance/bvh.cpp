@@ -519,6 +519,14 @@ void Bvh::searchLeaf(const glm::vec3& p, float margin, std::int32_t leaf, Neares
     const std::uint32_t code = std::uint32_t(~leaf);
     const std::uint32_t block = code >> kLeafBits, first = 4 * block, count = (code & (kLeafTriangles - 1)) + 1;
     float below[(kLeafTriangles + 3) / 4 * 4];
+#if defined(__SSE2__)
+    // The extents and corners, read after the planes if at all, asked for
+    // now: their latency overlaps the planes'.
+    for (std::uint32_t b = 0; 4 * b < count; ++b) {
+        const char* at = reinterpret_cast<const char*>(&extents_[block + b]);
+        for (std::size_t line = 0; line < sizeof(ExtentBlock); line += 64) _mm_prefetch(at + line, _MM_HINT_T0);
+    }
+#endif
     for (std::uint32_t b = 0; 4 * b < count; ++b) lowerBounds(blocks_[block + b], extents_[block + b], p, margin, bound, below + 4 * b);
     for (std::uint32_t tested = 0; tested < count; ++tested) {
         std::uint32_t next = 0;
