@@ -1,7 +1,7 @@
 // Benchmark of exact distances (<vds/distance.h>): vds's unsigned and signed
 // distance on one thread against a brute-force loop over every triangle,
-// CGAL's AABB tree and Embree's point query (where they were found at
-// configure time), the same random points in and around each mesh's box,
+// CGAL's AABB tree, Embree's point query and libigl's AABB tree (where they
+// were found at configure time), the same random points in and around each mesh's box,
 // the rounds alternated (A B C, A B C, ...) and the best of each kept.
 // Agreement: vds against brute force on a sample (the same closest-point
 // kernel over every triangle: this checks the hierarchy's search), the sign
@@ -33,7 +33,7 @@
 #include "points.h"
 #include "solids.h"
 
-#if defined(VDS_DISTANCE_CGAL) || defined(VDS_DISTANCE_EMBREE)
+#if defined(VDS_DISTANCE_CGAL) || defined(VDS_DISTANCE_EMBREE) || defined(VDS_DISTANCE_LIBIGL)
 #include "peers/distance_peer.h"
 #endif
 
@@ -79,8 +79,8 @@ std::vector<Contender> contenders(const vds::SignedDistance& vds, const vds::Tri
     one.threads = 1;
     all.push_back({"vds unsigned", [&vds, one](const auto& p, double* o) { vds.unsignedDistance(p, o, one); }, {}});
     all.push_back({"vds signed", [&vds, one](const auto& p, double* o) { vds.distance(p, o, one); }, {}});
-#if defined(VDS_DISTANCE_CGAL)
     auto start = Clock::now();
+#if defined(VDS_DISTANCE_CGAL)
     std::shared_ptr<vds::peers::DistancePeer> cgal = vds::peers::makeCgalDistance(mesh);
     std::printf("  build %-34s %8.1f ms\n", cgal->name().c_str(), 1e3 * seconds(start));
     all.push_back({cgal->name(), [cgal](const auto& p, double* o) { cgal->distances(p, o); }, {}});
@@ -91,7 +91,14 @@ std::vector<Contender> contenders(const vds::SignedDistance& vds, const vds::Tri
     std::printf("  build %-34s %8.1f ms\n", embree->name().c_str(), 1e3 * seconds(start));
     all.push_back({embree->name(), [embree](const auto& p, double* o) { embree->distances(p, o); }, {}});
 #endif
+#if defined(VDS_DISTANCE_LIBIGL)
+    start = Clock::now();
+    std::shared_ptr<vds::peers::DistancePeer> libigl = vds::peers::makeLibiglDistance(mesh);
+    std::printf("  build %-34s %8.1f ms\n", libigl->name().c_str(), 1e3 * seconds(start));
+    all.push_back({libigl->name(), [libigl](const auto& p, double* o) { libigl->distances(p, o); }, {}});
+#endif
     (void)mesh;
+    (void)start;
     return all;
 }
 
@@ -191,7 +198,7 @@ void run(const std::string& name, const vds::TriangleMesh& mesh, const Settings&
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app("vds_distance_bench: exact distances against brute force, CGAL and Embree");
+    CLI::App app("vds_distance_bench: exact distances against brute force, CGAL, Embree and libigl");
     Settings settings;
     std::vector<std::string> meshes;
     app.add_option("--points", settings.points, "random points in and around each mesh's box");
