@@ -527,7 +527,8 @@ void Bvh::searchLeaf(const glm::vec3& p, float margin, std::int32_t leaf, Neares
         for (std::size_t line = 0; line < sizeof(ExtentBlock); line += 64) _mm_prefetch(at + line, _MM_HINT_T0);
     }
 #endif
-    for (std::uint32_t b = 0; 4 * b < count; ++b) lowerBounds(blocks_[block + b], extents_[block + b], p, margin, bound, below + 4 * b);
+    for (std::uint32_t b = 0; 4 * b < count; ++b)
+        lowerBounds(blocks_[block + b], extents_[block + b], p, margin, bound, below + 4 * b);
     for (std::uint32_t tested = 0; tested < count; ++tested) {
         std::uint32_t next = 0;
         for (std::uint32_t i = 1; i < count; ++i)
