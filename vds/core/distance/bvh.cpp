@@ -31,8 +31,8 @@ constexpr int kStackEntries = 3 * (kSahDepth + 32) + 4;
 /// distance by this relative margin: above the few float roundings of a box
 /// distance (4 * 2^-24) and of the bound itself (2^-24).
 constexpr double kPruneMargin = 1.0 + 1.0 / (1 << 20);
-/// A float plane distance n . p - w (a face's or an edge's plane of a
-/// triangle, TriangleBound) is within kPlaneError (|p|_1 + 2 max |v|_1) of
+/// A float plane distance n . p - w (a triangle's face, edge or edge
+/// direction plane, TriangleBlock) is within kPlaneError (|p|_1 + 2 max |v|_1) of
 /// the exact signed distance to the plane: the unit normal's rounding to
 /// float (sqrt(3) 2^-24 relative), the offset's (2^-24) and four float
 /// roundings of the dot product (4 2^-24), with a factor of 2 to spare.
@@ -271,9 +271,9 @@ void setPlane(Plane4& plane, int lane, const glm::dvec3& unit, const glm::dvec3&
     plane.w[lane] = float(glm::dot(glm::dvec3(rounded), on));
 }
 
-/// Lane `lane` of `block`: the planes of triangle abc (TriangleBlock), zero
-/// where it is too thin.
-void setLane(TriangleBlock& block, ExtentBlock& edges, int lane, const glm::vec3& a, const glm::vec3& b,
+/// Lane `lane` of `block` and `extents`: the planes of triangle abc and its
+/// edges' extents (TriangleBlock), zero where it is too thin.
+void setLane(TriangleBlock& block, ExtentBlock& extents, int lane, const glm::vec3& a, const glm::vec3& b,
              const glm::vec3& c) {
     const glm::dvec3 v[3] = {glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)};
     const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
@@ -285,11 +285,11 @@ void setLane(TriangleBlock& block, ExtentBlock& edges, int lane, const glm::vec3
         const glm::dvec3 edge = v[(e + 1) % 3] - v[e];
         const glm::dvec3 outward = glm::cross(edge, unit);
         setPlane(block.edge[e], lane, outward / glm::length(outward), v[e]);
-        setPlane(edges.along[e], lane, edge / glm::length(edge), v[e]);
+        setPlane(extents.along[e], lane, edge / glm::length(edge), v[e]);
         // The far corner's position along the rounded direction, rounded up:
         // a longer edge only lowers the bound.
-        const glm::dvec3 u(edges.along[e].x[lane], edges.along[e].y[lane], edges.along[e].z[lane]);
-        edges.length[e][lane] = std::nextafter(float(glm::dot(u, edge)), kInf);
+        const glm::dvec3 u(extents.along[e].x[lane], extents.along[e].y[lane], extents.along[e].z[lane]);
+        extents.length[e][lane] = std::nextafter(float(glm::dot(u, edge)), kInf);
     }
 }
 
@@ -313,8 +313,8 @@ inline __m128 planeDistance(const Plane4& q, __m128 x, __m128 y, __m128 z) {
 /// `slack` of the exact one, so each term is taken less `slack`, and an
 /// edge counts wherever its e may be > 0 (e > -slack), the triangle is
 /// certainly outside only where some e > slack.
-inline void lowerBounds(const TriangleBlock& block, const ExtentBlock& edges, const glm::vec3& p, float slack, float bound,
-                        float* out) {
+inline void lowerBounds(const TriangleBlock& block, const ExtentBlock& extents, const glm::vec3& p, float slack,
+                        float bound, float* out) {
 #if defined(__SSE2__)
     const __m128 x = _mm_set1_ps(p.x), y = _mm_set1_ps(p.y), z = _mm_set1_ps(p.z), s = _mm_set1_ps(slack);
     const __m128 zero = _mm_setzero_ps(), sign = _mm_set1_ps(-0.0f), inf = _mm_set1_ps(kInf);
@@ -324,8 +324,8 @@ inline void lowerBounds(const TriangleBlock& block, const ExtentBlock& edges, co
         e[i] = planeDistance(block.edge[i], x, y, z);
         farthest = _mm_max_ps(farthest, _mm_sub_ps(e[i], s));
     }
-    // The planes alone first (h^2 + the largest e^2): most blocks end here,
-    // and the edges' directions, half the block, are not read.
+    // The planes alone first (h^2 + the largest e^2): where they leave no
+    // lane within `bound`, the block ends here.
     const __m128 h2 = _mm_mul_ps(h, h);
     const __m128 planes = _mm_add_ps(h2, _mm_mul_ps(farthest, farthest));
     if (_mm_movemask_ps(_mm_cmple_ps(planes, _mm_set1_ps(bound))) == 0) {
@@ -334,8 +334,8 @@ inline void lowerBounds(const TriangleBlock& block, const ExtentBlock& edges, co
     }
     __m128 inPlane = inf, outside = zero;
     for (int i = 0; i < 3; ++i) {
-        const __m128 t = planeDistance(edges.along[i], x, y, z);
-        const __m128 g = _mm_max_ps(_mm_xor_ps(t, sign), _mm_sub_ps(t, _mm_load_ps(edges.length[i])));
+        const __m128 t = planeDistance(extents.along[i], x, y, z);
+        const __m128 g = _mm_max_ps(_mm_xor_ps(t, sign), _mm_sub_ps(t, _mm_load_ps(extents.length[i])));
         const __m128 es = _mm_max_ps(_mm_sub_ps(e[i], s), zero), gs = _mm_max_ps(_mm_sub_ps(g, s), zero);
         const __m128 term = _mm_add_ps(_mm_mul_ps(es, es), _mm_mul_ps(gs, gs));
         const __m128 counts = _mm_cmpgt_ps(e[i], _mm_xor_ps(s, sign));
@@ -351,9 +351,9 @@ inline void lowerBounds(const TriangleBlock& block, const ExtentBlock& edges, co
         float inPlane = kInf;
         bool outside = false;
         for (int i = 0; i < 3; ++i) {
-            const float e = distance(block.edge[i]), t = distance(edges.along[i]);
+            const float e = distance(block.edge[i]), t = distance(extents.along[i]);
             const float es = std::max(e - slack, 0.0f);
-            const float gs = std::max(std::max(-t, t - edges.length[i][k]) - slack, 0.0f);
+            const float gs = std::max(std::max(-t, t - extents.length[i][k]) - slack, 0.0f);
             if (e > -slack) inPlane = std::min(inPlane, es * es + gs * gs);
             outside = outside || e > slack;
         }

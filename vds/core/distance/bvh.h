@@ -70,10 +70,11 @@ struct alignas(64) TriangleBlock {
     Plane4 face;
     Plane4 edge[3];
 };
-/// The rest of a TriangleBlock's triangles, apart: the edges' directions
-/// and lengths, which the bound reads only where the planes alone leave a
-/// lane within reach, and the corners (corner, axis, lane), which the exact
-/// test reads just after them.
+/// The rest of a TriangleBlock's triangles, apart from the planes: the
+/// edges' directions and lengths, which the bound needs only where the
+/// planes alone leave a lane within reach, and the corners (corner, axis,
+/// lane), which the exact test reads just after them. A leaf asks for them
+/// as it starts, so their cache misses overlap the planes'.
 struct alignas(64) ExtentBlock {
     Plane4 along[3];
     float length[3][4];
