@@ -3,6 +3,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -281,6 +282,55 @@ TEST(ValidateMesh, MinusZeroIsTheSameVertexAsZeroForEveryCount) {
     m.triangles.pop_back();
     EXPECT_EQ(validateMesh(m).boundaryEdges, 3u);
     EXPECT_EQ(meshBoundaryEdges(m).size(), 2u * 3u);
+}
+
+/// meshBoundaryEdges the slow, obvious way: positions welded in a std::map
+/// keyed by value, ids in the order of first occurrence, the net use of each
+/// (low, high) edge in a std::map, edges listed in that map's order.
+std::vector<glm::vec3> referenceBoundaryEdges(const TriangleMesh& m) {
+    std::map<std::tuple<float, float, float>, std::uint32_t> ids;
+    std::vector<std::uint32_t> id;
+    std::vector<glm::vec3> where;
+    for (const glm::vec3& p : m.positions) {
+        const auto [it, added] = ids.emplace(std::make_tuple(p.x, p.y, p.z), std::uint32_t(where.size()));
+        if (added) where.push_back(p);
+        id.push_back(it->second);
+    }
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> net;
+    for (const glm::uvec3& t : m.triangles)
+        for (int e = 0; e < 3; ++e) {
+            const std::uint32_t a = id[t[e]], b = id[t[(e + 1) % 3]];
+            if (a < b) ++net[{a, b}];
+            else if (b < a) --net[{b, a}];
+        }
+    std::vector<glm::vec3> edges;
+    for (const auto& [key, uses] : net)
+        for (int k = 0; k < std::abs(uses); ++k) {
+            edges.push_back(where[uses > 0 ? key.first : key.second]);
+            edges.push_back(where[uses > 0 ? key.second : key.first]);
+        }
+    return edges;
+}
+
+TEST(MeshBoundaryEdges, EqualTheReferenceOnMessySoups) {
+    // Positions on a coarse lattice (many written twice, -0 beside +0),
+    // random triangles (repeated and degenerate edges, edges used many times
+    // one way): every edge, its multiplicity, orientation and place in the list.
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<int> lattice(0, 12);
+    for (int round = 0; round < 4; ++round) {
+        TriangleMesh m;
+        for (int k = 0; k < 2000; ++k) {
+            const float x = float(lattice(rng) - 6) * 0.25f;
+            m.positions.push_back({x == 0.0f && k % 2 ? -0.0f : x, float(lattice(rng)) * 0.5f, float(lattice(rng) % 3)});
+        }
+        for (int k = 0; k < 3000 + 1000 * round; ++k)
+            m.triangles.push_back({std::uint32_t(rng() % 2000), std::uint32_t(rng() % 2000), std::uint32_t(rng() % 2000)});
+        const std::vector<glm::vec3> expected = referenceBoundaryEdges(m), edges = meshBoundaryEdges(m);
+        ASSERT_EQ(edges.size(), expected.size());
+        EXPECT_GT(edges.size(), 1000u);
+        for (std::size_t k = 0; k < edges.size(); ++k) ASSERT_EQ(edges[k], expected[k]) << "endpoint " << k;
+    }
 }
 
 TEST(ValidateMesh, SkippedFacesAreNamedInTheSummary) {

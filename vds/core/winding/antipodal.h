@@ -31,7 +31,7 @@ namespace vds::detail {
 
 /// The mesh's boundary edges as endpoint pairs: edge k runs from `[2k]` to
 /// `[2k+1]`. Edges whose uses do not cancel after welding vertices with
-/// bitwise-equal positions; an edge used n times more one way than the
+/// equal positions (by value: -0 and +0 alike); an edge used n times more one way than the
 /// other appears |n| times, oriented as the majority of its uses run (so
 /// non-manifold edges count by their unbalanced orientation).
 std::vector<glm::vec3> boundaryEdges(MeshView mesh);

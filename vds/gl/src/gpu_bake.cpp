@@ -96,10 +96,14 @@ GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlContex
     Buffer offsets, crossings;
     if (parts != GpuSpriteParts::TextureOnly) joinBands(v.grid, bands, out.crossings, offsets, crossings);
     const glm::uvec3 size{v.grid.width, v.grid.height, std::max<std::uint32_t>(1, out.depthComplexity)};
-    out.sprite = detail::GpuSpriteAccess::make(std::move(texture), std::move(offsets), std::move(crossings),
-                                               out.crossings, size, v.grid, out.status,
-                                               v.report.oriented() ? std::vector<glm::vec3>{}
-                                                                   : meshBoundaryEdges(mesh)); // as bakeCpu keeps them
+    {
+        // The GpuSprite: an open mesh's boundary edges found and packed with their chain tree.
+        const GlPhaseClock::Scope phase(clock, BakePhase::Assembly, false);
+        out.sprite = detail::GpuSpriteAccess::make(std::move(texture), std::move(offsets), std::move(crossings),
+                                                   out.crossings, size, v.grid, out.status,
+                                                   v.report.oriented() ? std::vector<glm::vec3>{}
+                                                                       : meshBoundaryEdges(mesh)); // as bakeCpu keeps them
+    }
     clock.collect();
     if (options.timings) options.timings->crossings = out.crossings;
     return out;

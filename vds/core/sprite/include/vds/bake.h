@@ -65,7 +65,8 @@ enum class BakePhase : std::uint8_t {
     Sort,        ///< scattering the crossings into their columns and sorting each column
     TextureFill, ///< filling the 3D texture from the columns (`bakeToGpu`)
     ReadBack,    ///< copying the columns (lists) or the layers (peel) from GL to the host
-    Assembly,    ///< the host sprite: d_S, metadata and its consistency check
+    Assembly,    ///< the host sprite: d_S, metadata and its consistency check (`bakeToGpu`: the GpuSprite, an
+                 ///< open mesh's boundary edges and their chain tree)
 };
 constexpr std::size_t kBakePhaseCount = 10;
 
