@@ -277,6 +277,48 @@ TEST(ChooseViewAxis, CountsExactlyWhatTheBakerMakesAtThatResolution) {
         }
 }
 
+// The count cuts each axis's rows into bands of about 2^16 texels (65 rows
+// at 1000 texels) and lists each triangle in every band it spans: a long box
+// spans them all, a knot's triangles a few; and any number of threads counts
+// alike.
+TEST(ChooseViewAxis, CountsExactlyAcrossBandsAndThreads) {
+    const TriangleMesh mesh = solids::merge(solids::torusKnot({0, 0, 0}, 1.0f, 2, 3, 0.25f, 64, 8).mesh,
+                                            solids::box({-1.6f, -0.1f, -1.5f}, {1.4f, 0.15f, 1.6f}).mesh);
+    constexpr std::uint32_t kResolution = 1000;
+    const AxisChoice choice = chooseViewAxis(mesh, kResolution, 1);
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+        BakeOptions o;
+        o.resolution = kResolution;
+        o.axis = axis;
+        const Sprite sprite = bakeCpu(mesh, o);
+        EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis);
+        EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis);
+    }
+    for (unsigned threads : {2u, 3u}) {
+        const AxisChoice again = chooseViewAxis(mesh, kResolution, threads);
+        EXPECT_EQ(again.layers, choice.layers) << threads;
+        EXPECT_EQ(again.crossings, choice.crossings) << threads;
+    }
+}
+
+// Texel centres rounded to floats far from the origin are unevenly spaced,
+// some equal: the count then searches the centres instead of trusting the
+// even spacing, and still counts what the baker makes.
+TEST(ChooseViewAxis, CountsExactlyWhereCentresAreUnevenlySpaced) {
+    const TriangleMesh mesh = solids::torusKnot({1000.0f, -2000.0f, 500.0f}, 0.01f, 2, 3, 0.0025f, 48, 8).mesh;
+    for (std::uint32_t resolution : {300u, 900u}) {
+        const AxisChoice choice = chooseViewAxis(mesh, resolution);
+        for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+            BakeOptions o;
+            o.resolution = resolution;
+            o.axis = axis;
+            const Sprite sprite = bakeCpu(mesh, o);
+            EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis) << " " << resolution;
+            EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis) << " " << resolution;
+        }
+    }
+}
+
 // The count's two paths (a row through a vertex or along an edge: the claim
 // test at both ends; a row through the interior: the edges' slopes and a
 // margin) give the baker's counts where rows run through vertices and along

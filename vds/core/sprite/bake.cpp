@@ -103,11 +103,13 @@ AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution, unsigned thre
 AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads) {
     AxisChoice choice;
     choice.resolution = resolution;
-    detail::LayerCounter counter;
+    const std::array<SpriteGrid, 3> grids = {makeGrid(report.bounds, Axis::X, resolution),
+                                             makeGrid(report.bounds, Axis::Y, resolution),
+                                             makeGrid(report.bounds, Axis::Z, resolution)};
+    const std::array<detail::LayerCount, 3> counts = detail::countLayers(mesh, grids, threads);
     for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
-        const detail::LayerCount count = counter.count(mesh, makeGrid(report.bounds, axis, resolution), threads);
-        choice.layers[std::size_t(axis)] = count.most;
-        choice.crossings[std::size_t(axis)] = count.total;
+        choice.layers[std::size_t(axis)] = counts[std::size_t(axis)].most;
+        choice.crossings[std::size_t(axis)] = counts[std::size_t(axis)].total;
     }
     detail::pickFewestLayers(choice);
     return choice;
