@@ -328,90 +328,162 @@ std::vector<std::uint32_t> connectedParts(MeshView mesh, const std::vector<std::
     return parent;
 }
 
+/// Each triangle's part, numbered densely: that of its first corner's
+/// welded vertex (valid indices only).
+struct TriangleParts {
+    MeshView mesh;
+    const std::vector<std::uint32_t>& weld;
+    const std::vector<std::uint32_t>& part;
+    std::vector<std::uint32_t> dense; ///< per part's root vertex, its number
+    std::size_t count = 0;            ///< parts
+
+    TriangleParts(MeshView m, const std::vector<std::uint32_t>& w, const std::vector<std::uint32_t>& p)
+        : mesh(m), weld(w), part(p), dense(p.size(), 0) {
+        for (std::size_t v = 0; v < part.size(); ++v)
+            if (part[v] == v) dense[v] = std::uint32_t(count++);
+    }
+    std::uint32_t operator[](std::size_t t) const { return dense[part[weld[mesh.triangles[t].x]]]; }
+};
+
+/// What one pass over the triangles finds for `countInsideOutParts` and
+/// `allInOnePlane`, chunk by chunk of triangles in parallel.
+struct TriangleSums {
+    /// Per part (numbered densely), the signed volume about the box's centre
+    /// and the sum of its magnitudes; only the closed parts' are summed.
+    std::vector<double> volume, magnitude;
+    /// The largest area of a valid triangle (finite), and the first
+    /// triangle of that area.
+    double largest = 0.0;
+    std::size_t largestTriangle = 0;
+};
+
+/// Triangles a chunk of `sumTriangles`; parts at most for which each chunk
+/// keeps its own sums (otherwise the triangles are one chunk). The chunks
+/// are fixed, not one per thread, and their sums added in order: the same
+/// rounding for any number of threads.
+constexpr std::size_t kSumChunk = std::size_t(1) << 16;
+constexpr std::size_t kChunkedParts = 256;
+
+/// The triangle's corners in double; false if an index is out of range.
+bool cornersOf(MeshView mesh, std::size_t t, glm::dvec3 (&c)[3]) {
+    const glm::uvec3 tri = mesh.triangles[t];
+    const std::size_t n = mesh.positionCount;
+    if (tri.x >= n || tri.y >= n || tri.z >= n) return false;
+    for (int k = 0; k < 3; ++k) c[k] = glm::dvec3(mesh.positions[tri[k]]);
+    return true;
+}
+
+bool finiteCorners(const glm::dvec3 (&c)[3]) {
+    return std::isfinite(c[0].x + c[0].y + c[0].z + c[1].x + c[1].y + c[1].z + c[2].x + c[2].y + c[2].z);
+}
+
+/// The sums of `TriangleSums`, the volume counted only where `closed[part]`.
+TriangleSums sumTriangles(MeshView mesh, const TriangleParts& partOf, const std::vector<std::uint8_t>& closed,
+                          const Box& bounds, unsigned threads) {
+    const std::size_t parts = partOf.count;
+    const glm::dvec3 centre = (glm::dvec3(bounds.lo) + glm::dvec3(bounds.hi)) * 0.5;
+    const std::size_t nt = mesh.triangleCount;
+    const std::size_t chunk = parts <= kChunkedParts ? kSumChunk : std::max<std::size_t>(1, nt);
+    const std::size_t chunks = std::max<std::size_t>(1, (nt + chunk - 1) / chunk);
+    std::vector<TriangleSums> found(chunks);
+    parallelFor(threads, nt, chunk, [&](std::size_t begin, std::size_t end) {
+        TriangleSums& f = found[begin / chunk];
+        f.volume.assign(parts, 0.0);
+        f.magnitude.assign(parts, 0.0);
+        glm::dvec3 c[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+        for (std::size_t t = begin; t < end; ++t) {
+            if (!cornersOf(mesh, t, c)) continue;
+            const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+            // sqrt is monotone: only a triangle whose squared area reaches
+            // the largest's, less rounding, can be larger.
+            const double squared = glm::dot(n, n);
+            if (squared >= f.largest * f.largest * (1.0 - 1e-9)) {
+                const double area = glm::length(n);
+                if (std::isfinite(area) && area > f.largest) f.largest = area, f.largestTriangle = t;
+            }
+            const std::uint32_t p = partOf[t];
+            if (!finiteCorners(c) || !closed[p]) continue;
+            const double v = glm::dot(c[0] - centre, glm::cross(c[1] - centre, c[2] - centre));
+            f.volume[p] += v;
+            f.magnitude[p] += std::abs(v);
+        }
+    });
+    TriangleSums all = std::move(found[0]);
+    all.volume.resize(parts, 0.0);
+    all.magnitude.resize(parts, 0.0);
+    for (std::size_t k = 1; k < chunks; ++k) {
+        const TriangleSums& f = found[k];
+        for (std::size_t p = 0; p < parts; ++p) {
+            all.volume[p] += f.volume[p];
+            all.magnitude[p] += f.magnitude[p];
+        }
+        if (f.largest > all.largest) all.largest = f.largest, all.largestTriangle = f.largestTriangle;
+    }
+    return all;
+}
+
 /// Whether every vertex the (valid) triangles use lies within 1e-6 of the
 /// box's diagonal of the plane of the largest triangle (`MeshReport::coplanar`).
-bool allInOnePlane(MeshView mesh, const Box& bounds) {
+bool allInOnePlane(MeshView mesh, const Box& bounds, const TriangleSums& sums) {
     constexpr double kPlaneTolerance = 1e-6;
-    const auto valid = [&](const glm::uvec3& t) {
-        return t.x < mesh.positionCount && t.y < mesh.positionCount && t.z < mesh.positionCount;
-    };
-    glm::dvec3 normal(0.0), origin(0.0);
-    double largest = 0.0;
-    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        const glm::uvec3 tri = mesh.triangles[t];
-        if (!valid(tri)) continue;
-        const glm::dvec3 a(mesh.positions[tri.x]), b(mesh.positions[tri.y]), c(mesh.positions[tri.z]);
-        const glm::dvec3 n = glm::cross(b - a, c - a);
-        const double area = glm::length(n);
-        if (std::isfinite(area) && area > largest) largest = area, normal = n / area, origin = a;
-    }
-    if (largest == 0.0) return true; // every triangle degenerate: no plane, no volume
+    if (sums.largest == 0.0) return true; // every triangle degenerate: no plane, no volume
+    glm::dvec3 c[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+    cornersOf(mesh, sums.largestTriangle, c);
+    const glm::dvec3 normal = glm::cross(c[1] - c[0], c[2] - c[0]) / sums.largest, origin = c[0];
     const double reach = kPlaneTolerance * glm::length(glm::dvec3(bounds.hi) - glm::dvec3(bounds.lo));
     for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        const glm::uvec3 tri = mesh.triangles[t];
-        if (!valid(tri)) continue;
+        if (!cornersOf(mesh, t, c)) continue;
         for (int k = 0; k < 3; ++k) {
-            const double off = glm::dot(glm::dvec3(mesh.positions[tri[k]]) - origin, normal);
+            const double off = glm::dot(c[k] - origin, normal);
             if (!(std::abs(off) <= reach)) return false;
         }
     }
     return true;
 }
 
-/// Closed parts (no edge at fault: `openPart` unset) turned inside out. A
-/// part whose signed volume is negative beyond rounding (below -1e-6 of the
-/// sum of its triangles' magnitudes, about the box's centre: a flat part is
-/// not) encloses a region on its triangles' front side; it is inside out
-/// where the winding number of the closed parts there is negative, and a
-/// cavity (a reversed sphere inside an outward one: winding 0) where it is
-/// not. The point asked lies off the centroid of the part's largest
-/// triangle, a thousandth of its size along its normal; its winding number
-/// is the closed parts' solid angles summed (an integer, rounded), the
-/// candidates of the largest volume first while the work stays within
+/// Closed parts (no edge at fault) turned inside out, from the parts' sums.
+/// A part whose signed volume is negative beyond rounding (below -1e-6 of
+/// the sum of its triangles' magnitudes, about the box's centre: a flat
+/// part is not) encloses a region on its triangles' front side; it is
+/// inside out where the winding number of the closed parts there is
+/// negative, and a cavity (a reversed sphere inside an outward one: winding
+/// 0) where it is not. The point asked lies off the centroid of the part's
+/// largest triangle, a thousandth of its size along its normal; its winding
+/// number is the closed parts' solid angles summed (an integer, rounded),
+/// the candidates of the largest volume first while the work stays within
 /// kProbeBudget triangle-point pairs (a part left unasked is not counted).
-std::size_t countInsideOutParts(MeshView mesh, const std::vector<std::uint32_t>& weld,
-                                const std::vector<std::uint32_t>& part, const std::atomic<std::uint8_t>* openPart,
-                                const Box& bounds) {
+std::size_t countInsideOutParts(MeshView mesh, const TriangleParts& partOf,
+                                const std::vector<std::uint8_t>& closed, const TriangleSums& sums) {
     constexpr double kRounding = 1e-6, kOffset = 1e-3, kFourPi = 4.0 * 3.14159265358979323846;
     constexpr std::size_t kProbeBudget = std::size_t(1) << 27;
-    const glm::dvec3 centre = (glm::dvec3(bounds.lo) + glm::dvec3(bounds.hi)) * 0.5;
-    const std::size_t n = mesh.positionCount;
-    std::vector<double> volume(n, 0.0), magnitude(n, 0.0), largest(n, 0.0);
-    std::vector<std::size_t> largestTriangle(n, 0);
-    const auto corners = [&](std::size_t t, glm::dvec3 (&c)[3]) {
-        const glm::uvec3 tri = mesh.triangles[t];
-        if (tri.x >= n || tri.y >= n || tri.z >= n) return false;
-        for (int k = 0; k < 3; ++k) c[k] = glm::dvec3(mesh.positions[tri[k]]);
-        return std::isfinite(c[0].x + c[0].y + c[0].z + c[1].x + c[1].y + c[1].z + c[2].x + c[2].y + c[2].z);
-    };
-    glm::dvec3 c[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
-    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        if (!corners(t, c)) continue;
-        const double v = glm::dot(c[0] - centre, glm::cross(c[1] - centre, c[2] - centre));
-        const double area = glm::length(glm::cross(c[1] - c[0], c[2] - c[0]));
-        const std::uint32_t p = part[weld[mesh.triangles[t].x]];
-        volume[p] += v;
-        magnitude[p] += std::abs(v);
-        if (area > largest[p]) largest[p] = area, largestTriangle[p] = t;
-    }
     std::vector<std::uint32_t> candidates;
-    for (std::size_t p = 0; p < n; ++p)
-        if (part[p] == p && magnitude[p] > 0.0 && !openPart[p].load(std::memory_order_relaxed) &&
-            volume[p] < -kRounding * magnitude[p])
+    for (std::size_t p = 0; p < sums.volume.size(); ++p)
+        if (sums.magnitude[p] > 0.0 && closed[p] && sums.volume[p] < -kRounding * sums.magnitude[p])
             candidates.push_back(std::uint32_t(p));
     if (candidates.empty()) return 0;
-    std::sort(candidates.begin(), candidates.end(), [&](std::uint32_t a, std::uint32_t b) { return volume[a] < volume[b]; });
+    std::sort(candidates.begin(), candidates.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return sums.volume[a] < sums.volume[b]; });
     candidates.resize(std::min(candidates.size(), std::max<std::size_t>(1, kProbeBudget / std::max<std::size_t>(1, mesh.triangleCount))));
+    // Each candidate's largest triangle: the first of the largest area.
+    std::vector<double> largest(sums.volume.size(), 0.0);
+    std::vector<std::size_t> largestTriangle(sums.volume.size(), 0);
+    glm::dvec3 c[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
+        if (!cornersOf(mesh, t, c) || !finiteCorners(c)) continue;
+        const std::uint32_t p = partOf[t];
+        const double area = glm::length(glm::cross(c[1] - c[0], c[2] - c[0]));
+        if (area > largest[p]) largest[p] = area, largestTriangle[p] = t;
+    }
     std::vector<glm::dvec3> probes;
     for (std::uint32_t p : candidates) {
-        corners(largestTriangle[p], c);
+        cornersOf(mesh, largestTriangle[p], c);
         const glm::dvec3 normal = glm::cross(c[1] - c[0], c[2] - c[0]);
         const double size = glm::length(normal);
         probes.push_back((c[0] + c[1] + c[2]) / 3.0 + normal / size * (kOffset * std::sqrt(size)));
     }
     std::vector<double> angle(probes.size(), 0.0);
     for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        if (!corners(t, c) || openPart[part[weld[mesh.triangles[t].x]]].load(std::memory_order_relaxed)) continue;
+        if (!cornersOf(mesh, t, c) || !finiteCorners(c) || !closed[partOf[t]]) continue;
         for (std::size_t k = 0; k < probes.size(); ++k)
             angle[k] += detail::solidAngle(c[0] - probes[k], c[1] - probes[k], c[2] - probes[k]);
     }
@@ -473,8 +545,13 @@ MeshReport validateMesh(MeshView mesh, unsigned threads) {
         countByEdges<std::uint32_t>(r, mesh, weld, threads, part, openPart.get());
     else
         countByEdges<std::uint64_t>(r, mesh, weld, threads, part, openPart.get());
-    r.insideOutParts = countInsideOutParts(mesh, weld, part, openPart.get(), r.bounds);
-    r.coplanar = allInOnePlane(mesh, r.bounds);
+    const TriangleParts partOf(mesh, weld, part);
+    std::vector<std::uint8_t> closed(partOf.count, 0);
+    for (std::size_t v = 0; v < nv; ++v)
+        if (part[v] == v) closed[partOf.dense[v]] = !openPart[v].load(std::memory_order_relaxed);
+    const TriangleSums sums = sumTriangles(mesh, partOf, closed, r.bounds, threads);
+    r.insideOutParts = countInsideOutParts(mesh, partOf, closed, sums);
+    r.coplanar = allInOnePlane(mesh, r.bounds, sums);
     return r;
 }
 
