@@ -137,23 +137,33 @@ private:
 // exact in double), which the margin of `RowRuns` covers.
 struct Sides {
     double tLo, tMid, sLo, sMid, slopeLong, slopeLower, slopeUpper;
+    int lo, mid, hi; ///< the vertices (indices into Triangle::v) by t
 
-    explicit Sides(const Triangle& tri) {
-        const float* v[3] = {tri.v[0], tri.v[1], tri.v[2]};
-        if (v[1][1] < v[0][1]) std::swap(v[0], v[1]);
-        if (v[2][1] < v[1][1]) std::swap(v[1], v[2]);
-        if (v[1][1] < v[0][1]) std::swap(v[0], v[1]);
+    explicit Sides(const Triangle& tri) : lo(0), mid(1), hi(2) {
+        const auto tOf = [&](int k) { return tri.v[k][1]; };
+        if (tOf(mid) < tOf(lo)) std::swap(lo, mid);
+        if (tOf(hi) < tOf(mid)) std::swap(mid, hi);
+        if (tOf(mid) < tOf(lo)) std::swap(lo, mid);
         const auto slope = [](const float* a, const float* b) {
             return a[1] == b[1] ? 0.0 : (double(b[0]) - double(a[0])) / (double(b[1]) - double(a[1]));
         };
-        tLo = v[0][1];
-        tMid = v[1][1];
-        sLo = v[0][0];
-        sMid = v[1][0];
-        slopeLong = slope(v[0], v[2]);
-        slopeLower = slope(v[0], v[1]);
-        slopeUpper = slope(v[1], v[2]);
+        const float *v0 = tri.v[lo], *v1 = tri.v[mid], *v2 = tri.v[hi];
+        tLo = v0[1];
+        tMid = v1[1];
+        sLo = v0[0];
+        sMid = v1[0];
+        slopeLong = slope(v0, v2);
+        slopeLower = slope(v0, v1);
+        slopeUpper = slope(v1, v2);
     }
+};
+
+/// The steps a triangle's sides make on a row through none of the mesh's
+/// vertices (see the file's comment): which sides' steps are kept (the
+/// others cancel against the neighbour's), and which side is on the left.
+struct SideSteps {
+    bool longLeft;          ///< the long side is the left one (the middle vertex lies right of it)
+    bool keepLong, keepLower, keepUpper;
 };
 
 struct RowRuns {
@@ -163,10 +173,14 @@ struct RowRuns {
     /// The rows [j0, j1) of texel centres within the triangle's t range.
     std::pair<std::ptrdiff_t, std::ptrdiff_t> rows(float tLo, float tHi) const { return {t.first(tLo), t.past(tHi)}; }
 
-    // Calls emit(j, a, b) for the triangle's run [a, b) of claimed texels on
-    // each row j in [rowBegin, rowEnd) that has one.
-    template <class Emit>
-    void forEach(const Triangle& tri, std::ptrdiff_t rowBegin, std::ptrdiff_t rowEnd, const Emit& emit) const {
+    // Calls step(j, i, w) for what the triangle adds on each row j in
+    // [rowBegin, rowEnd): w to the counts of texels i and on. A row through
+    // a vertex of the mesh (`vertexRow[j]`) takes the triangle's whole run
+    // [a, b) (+1 at a, -1 at b); any other row the steps of the sides that
+    // `sides` keeps, each at the first centre at or right of the side.
+    template <class Step>
+    void forEach(const Triangle& tri, const SideSteps& kept, std::ptrdiff_t rowBegin, std::ptrdiff_t rowEnd,
+                 const std::uint8_t* vertexRow, const Step& step) const {
         const Box2 box = boxOf(tri);
         const auto [j0, j1] = rows(box.lo[1], box.hi[1]);
         rowBegin = std::max(rowBegin, j0);
@@ -176,13 +190,58 @@ struct RowRuns {
         // (a few double ulps of the coordinates, taken as 2^-40 of them).
         const double tol = 0x1p-40 * 3.0 * std::max({std::fabs(tri.v[0][0]), std::fabs(tri.v[1][0]), std::fabs(tri.v[2][0])});
         const Sides sides(tri);
+        const auto run = [&](std::ptrdiff_t j, std::ptrdiff_t a, std::ptrdiff_t b) {
+            step(j, a, 1);
+            step(j, b, -1);
+        };
         // Rows below the middle vertex meet the lower side, the others the
         // upper side: two loops, no branch a row on which.
         const std::ptrdiff_t middle = std::clamp(t.first(sides.tMid), rowBegin, rowEnd);
-        for (std::ptrdiff_t j = rowBegin; j < middle; ++j)
-            interior(tri, j, sides.sLo, sides.tLo, sides.slopeLower, sides, tol, emit);
-        for (std::ptrdiff_t j = middle; j < rowEnd; ++j)
-            interior(tri, j, sides.sMid, sides.tMid, sides.slopeUpper, sides, tol, emit);
+        for (std::ptrdiff_t j = rowBegin; j < middle; ++j) {
+            if (vertexRow[j])
+                interior(tri, j, sides.sLo, sides.tLo, sides.slopeLower, sides, tol, run);
+            else
+                sideSteps(tri, j, sides.lo, sides.mid, sides.sLo, sides.tLo, sides.slopeLower, kept.keepLower, sides, kept, tol, step);
+        }
+        for (std::ptrdiff_t j = middle; j < rowEnd; ++j) {
+            if (vertexRow[j])
+                interior(tri, j, sides.sMid, sides.tMid, sides.slopeUpper, sides, tol, run);
+            else
+                sideSteps(tri, j, sides.mid, sides.hi, sides.sMid, sides.tMid, sides.slopeUpper, kept.keepUpper, sides, kept, tol, step);
+        }
+    }
+
+    // Row j (through no vertex of the mesh) crosses the long side and the
+    // short side from vertex `p` up to `q` (s0 + (t - t0) * slope) strictly
+    // inside both: the run is [the left side's index, the right side's).
+    template <class Step>
+    void sideSteps(const Triangle& tri, std::ptrdiff_t j, int p, int q, double s0, double t0, double slope,
+                   bool keepShort, const Sides& sides, const SideSteps& kept, double tol, const Step& step) const {
+        const double row = t[j];
+        if (kept.keepLong) {
+            const double x = sides.sLo + (row - sides.tLo) * sides.slopeLong;
+            step(j, sideIndex(tri.v[sides.lo], tri.v[sides.hi], row, x, tol), kept.longLeft ? 1 : -1);
+        }
+        if (keepShort) {
+            const double x = s0 + (row - t0) * slope;
+            step(j, sideIndex(tri.v[p], tri.v[q], row, x, tol), kept.longLeft ? -1 : 1);
+        }
+    }
+
+    // The first centre of row `row` at or right of the side from p up to q
+    // (x: where it crosses the row, within tol): the centres more than tol
+    // from x are decided by x, the others by the exact orientation. A centre
+    // on the side belongs to the triangle on its right (the tie rule's
+    // displacement points right), whichever triangle asks.
+    std::ptrdiff_t sideIndex(const float* p, const float* q, double row, double x, double tol) const {
+        std::ptrdiff_t a = s.first(x - tol);
+        const std::ptrdiff_t b = s.first(x + tol);
+        float c[3] = {0.0f, float(row), 0.0f};
+        for (; a < b; ++a) {
+            c[0] = float(s[a]);
+            if (orient2d(p, q, c) <= 0) break;
+        }
+        return a;
     }
 
     // Row j's run, the short side given as s0 + (t - t0) * slope.
@@ -251,28 +310,27 @@ struct AxisRows {
     }
 };
 
-// One band of rows at a time: the rows' difference arrays (an end +1 at a
-// run's first texel, -1 past its last), small enough to stay in the core's
-// cache, and the texels each row's runs touch.
+// One band of rows at a time: the rows' difference arrays (a run +1 at its
+// first texel, -1 past its last; a side's step its weight), small enough to
+// stay in the core's cache, and the texels each row's steps touch (the
+// counts are 0 outside them: the steps of a row sum to 0).
 class Band {
 public:
     Band(std::size_t rows, std::size_t width)
         : diff_(rows * (width + 1), 0), lo_(rows, std::uint32_t(width)), hi_(rows, 0), stride_(width + 1) {}
 
-    void add(std::size_t row, std::uint32_t a, std::uint32_t b) {
-        std::int32_t* d = diff_.data() + row * stride_;
-        ++d[a];
-        --d[b];
-        lo_[row] = std::min(lo_[row], a);
-        hi_[row] = std::max(hi_[row], b);
+    /// Adds w to the counts of texels i and on of the row.
+    void step(std::size_t row, std::uint32_t i, std::int32_t w) {
+        diff_[row * stride_ + i] += w;
+        lo_[row] = std::min(lo_[row], i);
+        hi_[row] = std::max(hi_[row], i);
     }
     /// The most runs over one texel of rows [0, rows), the differences then
     /// cleared.
     std::int32_t most(std::size_t rows) {
         std::int32_t best = 0;
         for (std::size_t r = 0; r < rows; ++r) {
-            if (lo_[r] >= hi_[r]) continue;
-            best = std::max(best, rowMost(diff_.data() + r * stride_, lo_[r], hi_[r]));
+            if (lo_[r] < hi_[r]) best = std::max(best, rowMost(diff_.data() + r * stride_, lo_[r], hi_[r]));
             lo_[r] = std::uint32_t(stride_ - 1);
             hi_[r] = 0;
         }
@@ -306,12 +364,184 @@ private:
 // bands an axis is cut into (the triangle lists are per band and chunk).
 constexpr std::size_t kBandTexels = std::size_t(1) << 16;
 constexpr std::size_t kMaxBands = 256;
-// Triangles a chunk of the listing pass.
+// Triangles (vertices) a chunk of the passes over them.
 constexpr std::size_t kChunk = std::size_t(1) << 16;
 
 std::size_t rowsPerBand(std::uint32_t width, std::uint32_t height) {
     const std::size_t byCache = std::max<std::size_t>(1, kBandTexels / (std::size_t(width) + 1));
     return std::max(byCache, (std::size_t(height) + kMaxBands - 1) / kMaxBands);
+}
+
+// Edge e of triangle t runs from its corner e to corner e + 1: half-edge
+// 3t + e. Its partner is the one other triangle with an edge between the
+// same two vertex indices, with kSameWay where that edge runs the same way;
+// kNoPartner where none or several do (a boundary, a non-manifold edge,
+// an edge of a triangle with a repeated index, or one whose twin has other
+// indices: its steps are then kept, which costs time, not exactness).
+constexpr std::uint32_t kNoPartner = ~std::uint32_t(0);
+constexpr std::uint32_t kSameWay = std::uint32_t(1) << 31;
+
+// The partners, by a counting sort of the edges by their lower vertex and a
+// sort of each vertex's few edges by the higher one.
+std::vector<std::uint32_t> edgePartners(MeshView mesh, unsigned threads) {
+    const std::size_t nt = mesh.triangleCount, nv = mesh.positionCount;
+    std::vector<std::uint32_t> partner(3 * nt, kNoPartner);
+    if (nt >= kSameWay / 3) return partner; // half-edges and partners must fit their bits
+    const auto ends = [&](std::size_t h) {
+        const glm::uvec3 tri = mesh.triangles[h / 3];
+        return std::make_pair(tri[int(h % 3)], tri[int((h + 1) % 3)]);
+    };
+    std::vector<std::uint32_t> start(nv + 1, 0);
+    for (std::size_t h = 0; h < 3 * nt; ++h) {
+        const auto [u, v] = ends(h);
+        if (u != v) ++start[std::min(u, v) + 1];
+    }
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<std::uint64_t> items(start[nv]); ///< higher vertex << 32 | half-edge
+    {
+        std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+        for (std::size_t h = 0; h < 3 * nt; ++h) {
+            const auto [u, v] = ends(h);
+            if (u != v) items[next[std::min(u, v)]++] = (std::uint64_t(std::max(u, v)) << 32) | h;
+        }
+    }
+    parallelFor(threads, nv, kChunk, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t v = begin; v < end; ++v) {
+            std::uint64_t* group = items.data() + start[v];
+            const std::size_t n = start[v + 1] - start[v];
+            std::sort(group, group + n);
+            for (std::size_t i = 0, j; i < n; i = j) {
+                for (j = i + 1; j < n && (group[j] >> 32) == (group[i] >> 32);) ++j;
+                if (j - i != 2) continue;
+                const auto h1 = std::uint32_t(group[i]), h2 = std::uint32_t(group[i + 1]);
+                if (h1 / 3 == h2 / 3) continue;
+                const std::uint32_t same = ends(h1).first == ends(h2).first ? kSameWay : 0;
+                partner[h1] = h2 / 3 | same;
+                partner[h2] = h1 / 3 | same;
+            }
+        }
+    });
+    return partner;
+}
+
+// Each triangle's facing along each axis, two bits an axis (axis a at bit
+// 2a): 1 counter-clockwise in projection, 2 clockwise, 0 parallel.
+std::vector<std::uint8_t> facings(MeshView mesh, const std::vector<glm::ivec3>& perms, unsigned threads) {
+    std::vector<std::uint8_t> facing(mesh.triangleCount, 0);
+    parallelFor(threads, mesh.triangleCount, kChunk, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const glm::uvec3 tri = mesh.triangles[k];
+            const glm::vec3* p[3] = {&mesh.positions[tri.x], &mesh.positions[tri.y], &mesh.positions[tri.z]};
+            std::uint8_t bits = 0;
+            for (std::size_t a = 0; a < 3; ++a) {
+                float v[3][2];
+                for (int c = 0; c < 3; ++c) v[c][0] = (*p[c])[perms[a].x], v[c][1] = (*p[c])[perms[a].y];
+                const int o = orient2d(v[0], v[1], v[2]);
+                bits |= std::uint8_t((o > 0 ? 1 : o < 0 ? 2 : 0) << (2 * a));
+            }
+            facing[k] = bits;
+        }
+    });
+    return facing;
+}
+
+// What the listing and the bands share of one count.
+struct Mesh3 {
+    MeshView mesh;
+    std::vector<std::uint32_t> partner;
+    std::vector<std::uint8_t> facing;
+
+    int facingOf(std::size_t t, std::size_t axis) const { return (facing[t] >> (2 * axis)) & 3; }
+    /// The bits e of triangle t's edges whose steps along `axis` cancel
+    /// against the partner's on every row through no vertex: the partner
+    /// lies on the other side of the edge in projection (same facing where
+    /// the edge runs the two ways, opposite facings where it runs one way),
+    /// both crossable. Their first centre at or right of the edge is the
+    /// same, one's run ending where the other's starts.
+    unsigned cancelling(std::size_t t, std::size_t axis) const {
+        const int f = facingOf(t, axis);
+        if (f == 0) return 0;
+        unsigned bits = 0;
+        for (unsigned e = 0; e < 3; ++e) {
+            const std::uint32_t p = partner[3 * t + e];
+            if (p == kNoPartner) continue;
+            const int g = facingOf(p & ~kSameWay, axis);
+            if (g != 0 && ((p & kSameWay) ? g != f : g == f)) bits |= 1u << e;
+        }
+        return bits;
+    }
+    /// Which of the projected triangle's sides keep their steps, given its
+    /// cancelling edges (the projection may have swapped corners 1 and 2).
+    static SideSteps kept(const Triangle& tri, const Sides& sides, unsigned cancel) {
+        const auto corner = [&](int k) { return (tri.flags & kEntering) && k != 0 ? 3 - k : k; };
+        const auto keeps = [&](int a, int b) {
+            const int sum = corner(a) + corner(b); // corners 0,1: edge 0; 1,2: edge 1; 2,0: edge 2
+            return !((cancel >> (sum == 1 ? 0 : sum == 3 ? 1 : 2)) & 1u);
+        };
+        return {orient2d(tri.v[sides.lo], tri.v[sides.hi], tri.v[sides.mid]) < 0, keeps(sides.lo, sides.hi),
+                keeps(sides.lo, sides.mid), keeps(sides.mid, sides.hi)};
+    }
+};
+
+// The rows of an axis that some vertex's t equals (where sides meet and
+// their steps may not cancel), and how many precede each row.
+struct VertexRows {
+    std::vector<std::uint8_t> at;
+    std::vector<std::uint32_t> before; ///< size rows + 1
+
+    VertexRows(MeshView mesh, const Centres& t, int coordinate, unsigned threads) : at(t.size(), 0), before(t.size() + 1, 0) {
+        std::vector<std::atomic<std::uint8_t>> marks(t.size());
+        parallelFor(threads, mesh.positionCount, kChunk, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t v = begin; v < end; ++v) {
+                const float x = mesh.positions[v][coordinate];
+                for (std::ptrdiff_t j = t.first(x); j < t.n && t[j] == double(x); ++j) // equal centres: each row
+                    marks[std::size_t(j)].store(1, std::memory_order_relaxed);
+            }
+        });
+        for (std::size_t j = 0; j < at.size(); ++j) {
+            at[j] = marks[j].load(std::memory_order_relaxed);
+            before[j + 1] = before[j] + at[j];
+        }
+    }
+    bool anyIn(std::ptrdiff_t begin, std::ptrdiff_t end) const { return before[std::size_t(end)] > before[std::size_t(begin)]; }
+};
+
+struct Axes {
+    std::vector<AxisRows> rows;
+    std::vector<VertexRows> vertexRows;
+    std::size_t bandRows, bands;
+};
+
+// First pass: each chunk of triangles lists, for each axis and band, its
+// triangles with steps to make there: those with an edge that does not
+// cancel, and the others only in bands holding a row through a vertex.
+std::vector<std::vector<std::uint32_t>> listTriangles(const Mesh3& m, const Axes& axes, unsigned threads) {
+    const MeshView mesh = m.mesh;
+    const std::size_t chunks = (mesh.triangleCount + kChunk - 1) / kChunk, bands = axes.bands;
+    std::vector<std::vector<std::uint32_t>> lists(chunks * 3 * bands);
+    parallelFor(threads, mesh.triangleCount, kChunk, [&](std::size_t begin, std::size_t end) {
+        const std::size_t chunk = begin / kChunk;
+        for (std::size_t k = begin; k < end; ++k) {
+            const glm::uvec3 tri = mesh.triangles[k];
+            const glm::vec3 &p0 = mesh.positions[tri.x], &p1 = mesh.positions[tri.y], &p2 = mesh.positions[tri.z];
+            for (std::size_t a = 0; a < 3; ++a) {
+                const VertexRows& vertexRows = axes.vertexRows[a];
+                const bool silent = m.cancelling(k, a) == 7;
+                if (m.facingOf(k, a) == 0 || (silent && vertexRows.before.back() == 0)) continue;
+                const int c = axes.rows[a].perm.y;
+                const Centres& t = axes.rows[a].t;
+                const std::ptrdiff_t j0 = t.first(std::min({p0[c], p1[c], p2[c]})), j1 = t.past(std::max({p0[c], p1[c], p2[c]}));
+                if (j0 >= j1) continue; // between two rows of centres
+                const std::size_t rows = axes.bandRows;
+                for (std::size_t b = std::size_t(j0) / rows, last = std::size_t(j1 - 1) / rows; b <= last; ++b) {
+                    const std::ptrdiff_t from = std::max(j0, std::ptrdiff_t(b * rows));
+                    const std::ptrdiff_t to = std::min(j1, std::ptrdiff_t((b + 1) * rows));
+                    if (!silent || vertexRows.anyIn(from, to)) lists[(chunk * 3 + a) * bands + b].push_back(std::uint32_t(k));
+                }
+            }
+        }
+    });
+    return lists;
 }
 
 } // namespace
@@ -322,66 +552,53 @@ std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid
         width = std::max(width, g.width);
         height = std::max(height, g.height);
     }
-    const std::size_t bandRows = rowsPerBand(width, height);
-    const std::vector<AxisRows> axes = {AxisRows(grids[0], bandRows), AxisRows(grids[1], bandRows),
-                                        AxisRows(grids[2], bandRows)};
-    const std::size_t bands = (std::size_t(height) + bandRows - 1) / bandRows;
-    // First pass: each chunk of triangles lists, for each axis and band, its
-    // triangles that have a row of centres there (their vertices read once
-    // for the three axes).
-    const std::size_t chunks = (mesh.triangleCount + kChunk - 1) / kChunk;
-    const auto list = [&](std::size_t chunk, std::size_t axis, std::size_t band) {
-        return (chunk * 3 + axis) * bands + band;
-    };
-    std::vector<std::vector<std::uint32_t>> lists(chunks * 3 * bands);
-    parallelFor(threads, mesh.triangleCount, kChunk, [&](std::size_t begin, std::size_t end) {
-        const std::size_t chunk = begin / kChunk;
-        for (std::size_t k = begin; k < end; ++k) {
-            const glm::uvec3 tri = mesh.triangles[k];
-            const glm::vec3 &p0 = mesh.positions[tri.x], &p1 = mesh.positions[tri.y], &p2 = mesh.positions[tri.z];
-            for (std::size_t a = 0; a < 3; ++a) {
-                const int c = axes[a].perm.y;
-                const RowRuns runs{axes[a].s, axes[a].t};
-                const auto [j0, j1] = runs.rows(std::min({p0[c], p1[c], p2[c]}), std::max({p0[c], p1[c], p2[c]}));
-                if (j0 >= j1) continue; // between two rows of centres
-                for (std::size_t b = std::size_t(j0) / bandRows, last = std::size_t(j1 - 1) / bandRows; b <= last; ++b)
-                    lists[list(chunk, a, b)].push_back(std::uint32_t(k));
-            }
-        }
-    });
-    // Second pass: each band of each axis, its triangles' runs into the
-    // band's difference arrays, then its rows' largest counts.
-    const std::size_t tasks = 3 * bands;
-    std::vector<LayerCount> found(tasks);
+    Axes axes;
+    axes.bandRows = rowsPerBand(width, height);
+    axes.bands = (std::size_t(height) + axes.bandRows - 1) / axes.bandRows;
+    std::vector<glm::ivec3> perms;
+    for (const SpriteGrid& g : grids) {
+        axes.rows.emplace_back(g, axes.bandRows);
+        perms.push_back(axes.rows.back().perm);
+        axes.vertexRows.emplace_back(mesh, axes.rows.back().t, perms.back().y, threads);
+    }
+    const Mesh3 m{mesh, edgePartners(mesh, threads), facings(mesh, perms, threads)};
+    const std::vector<std::vector<std::uint32_t>> lists = listTriangles(m, axes, threads);
+    // Second pass: each band of each axis, its triangles' steps into the
+    // band's difference arrays, then its rows' largest counts. A step of w
+    // at texel i adds w (n - i) to the row's n texels, and a row's steps sum
+    // to 0: the crossings in all are the sum of -w i.
+    const std::size_t bands = axes.bands, tasks = 3 * bands, chunks = lists.size() / tasks;
+    std::vector<std::pair<std::int32_t, std::int64_t>> found(tasks);
     std::atomic<std::size_t> next{0};
     const unsigned workers = unsigned(std::min<std::size_t>(threads ? threads : std::max(1u, std::thread::hardware_concurrency()), tasks));
     parallelFor(workers, workers, 1, [&](std::size_t, std::size_t) {
-        Band band(bandRows, width);
+        Band band(axes.bandRows, width);
         for (std::size_t task; (task = next.fetch_add(1)) < tasks;) {
             const std::size_t a = task / bands, b = task % bands;
-            const AxisRows& axis = axes[a];
+            const AxisRows& axis = axes.rows[a];
             if (b >= axis.bands) continue;
             const RowRuns runs{axis.s, axis.t};
-            const std::ptrdiff_t first = std::ptrdiff_t(b * bandRows);
-            const std::ptrdiff_t end = std::min<std::ptrdiff_t>(first + std::ptrdiff_t(bandRows), axis.t.n);
-            std::uint64_t claimed = 0;
+            const std::ptrdiff_t first = std::ptrdiff_t(b * axes.bandRows);
+            const std::ptrdiff_t end = std::min<std::ptrdiff_t>(first + std::ptrdiff_t(axes.bandRows), axis.t.n);
+            std::int64_t claimed = 0;
             for (std::size_t chunk = 0; chunk < chunks; ++chunk)
-                for (std::uint32_t k : lists[list(chunk, a, b)]) {
+                for (std::uint32_t k : lists[(chunk * 3 + a) * bands + b]) {
                     const Triangle tri = projectTriangle(mesh, k, axis.perm);
                     if (tri.flags & kParallel) continue;
-                    runs.forEach(tri, first, end, [&](std::ptrdiff_t j, std::ptrdiff_t lo, std::ptrdiff_t hi) {
-                        band.add(std::size_t(j - first), std::uint32_t(lo), std::uint32_t(hi));
-                        claimed += std::uint64_t(hi - lo);
+                    const SideSteps kept = Mesh3::kept(tri, Sides(tri), m.cancelling(k, a));
+                    runs.forEach(tri, kept, first, end, axes.vertexRows[a].at.data(), [&](std::ptrdiff_t j, std::ptrdiff_t i, std::int32_t w) {
+                        band.step(std::size_t(j - first), std::uint32_t(i), w);
+                        claimed -= std::int64_t(w) * i;
                     });
                 }
-            found[task] = {std::uint32_t(band.most(std::size_t(end - first))), claimed};
+            found[task] = {band.most(std::size_t(end - first)), claimed};
         }
     });
     std::array<LayerCount, 3> counts{};
     for (std::size_t task = 0; task < tasks; ++task) {
         LayerCount& c = counts[task / bands];
-        c.most = std::max(c.most, found[task].most);
-        c.total += found[task].total;
+        c.most = std::max(c.most, std::uint32_t(found[task].first));
+        c.total += std::uint64_t(found[task].second);
     }
     return counts;
 }
