@@ -301,6 +301,38 @@ TEST(ChooseViewAxis, CountsExactlyAcrossBandsAndThreads) {
     }
 }
 
+// The count computes only the steps that do not cancel against a
+// neighbour's (the triangles on either side of a shared edge): boundary
+// edges, non-manifold edges, edges whose triangles run them the same way,
+// loose triangles and triangles that share positions but no indices keep
+// theirs. Each counts what the baker makes.
+TEST(ChooseViewAxis, CountsExactlyOnOpenNonManifoldAndUnsharedMeshes) {
+    TriangleMesh flipped = solids::sphere({0.1f, 0.0f, -0.2f}, 1.0f, 20).mesh;
+    for (std::size_t k = 0; k < flipped.triangles.size(); k += 7) std::swap(flipped.triangles[k].y, flipped.triangles[k].z);
+    TriangleMesh unshared; // the same sphere, every triangle with its own three vertices
+    for (const glm::uvec3& t : solids::sphere({0.1f, 0.0f, -0.2f}, 1.0f, 20).mesh.triangles) {
+        const auto& p = solids::sphere({0.1f, 0.0f, -0.2f}, 1.0f, 20).mesh.positions;
+        const auto n = std::uint32_t(unshared.positions.size());
+        unshared.positions.insert(unshared.positions.end(), {p[t.x], p[t.y], p[t.z]});
+        unshared.triangles.push_back({n, n + 1, n + 2});
+    }
+    const std::vector<TriangleMesh> meshes = {solids::sphereWithHoles(), solids::boxesSharingAnEdge({0, 0, 0}, 1.0f).mesh,
+                                              flipped, unshared, solids::looseTriangles(200, 0.3f, 7),
+                                              solids::merge(flipped, solids::overlappingShells())};
+    for (const TriangleMesh& mesh : meshes)
+        for (std::uint32_t resolution : {64u, 301u}) {
+            const AxisChoice choice = chooseViewAxis(mesh, resolution);
+            for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+                BakeOptions o;
+                o.resolution = resolution;
+                o.axis = axis;
+                const Sprite sprite = bakeCpu(mesh, o);
+                EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis) << " " << resolution;
+                EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis) << " " << resolution;
+            }
+        }
+}
+
 // Texel centres rounded to floats far from the origin are unevenly spaced,
 // some equal: the count then searches the centres instead of trusting the
 // even spacing, and still counts what the baker makes.
