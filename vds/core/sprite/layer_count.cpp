@@ -23,14 +23,29 @@
 // contiguous, the first and last claimed texels found from the ends bound
 // it exactly (whatever the centres' spacing, equal centres included).
 //
+// Most steps cancel. On a row through no vertex of the mesh, a triangle's
+// run is [i(left side), i(right side)), i(e) the first centre at or right of
+// side e: the tie rule's displacement points right, so a centre on a side
+// belongs to the triangle on its right. i(e) depends on the side alone, not
+// on the triangle asking; so where an edge's two triangles lie on either
+// side of it in projection (a surface continuing), one's -1 and the other's
+// +1 fall on the same texel and cancel, on every such row. Only the other
+// edges' steps are computed: the silhouette's, a boundary's, a non-manifold
+// edge's, or an edge whose partner is not known by its vertex indices (the
+// count is then slower, never different). A smooth closed mesh of a million
+// triangles has a few thousand silhouette edges along an axis. A row through
+// a vertex takes every triangle's whole run, as above. The crossings in all
+// follow from the steps alone: a row's steps sum to 0, so a step of w at
+// texel i adds -w i to the row's total.
+//
 // The centres are found from the even spacing's place of lo and hi, read
 // from the centres only where that place lies within the centres' measured
 // distance from the even spacing (`Centres`). Each axis's rows are cut into
 // bands whose difference arrays stay in a core's cache; a first pass lists
-// each triangle in the bands it spans (its vertices read once for the
-// three axes), a second counts each band's runs into its arrays and takes
-// the rows' largest sums, bands in parallel. The counts are sums and
-// maxima of exact integers: the same for any number of threads.
+// each triangle in the bands where it has steps to make (its vertices read
+// once for the three axes), a second counts each band's steps into its
+// arrays and takes the rows' largest sums, bands in parallel. The counts are
+// sums and maxima of exact integers: the same for any number of threads.
 #include "sprite/layer_count.h"
 
 #include <algorithm>
