@@ -396,8 +396,25 @@ std::size_t rowsPerBand(std::uint32_t width, std::uint32_t height) {
 constexpr std::uint32_t kNoPartner = ~std::uint32_t(0);
 constexpr std::uint32_t kSameWay = std::uint32_t(1) << 31;
 
+// Sorts a vertex's few edges (insertion: most vertices have about six).
+void sortFew(std::uint64_t* items, std::size_t n) {
+    if (n > 16) {
+        std::sort(items, items + n);
+        return;
+    }
+    for (std::size_t i = 1; i < n; ++i) {
+        const std::uint64_t v = items[i];
+        std::size_t j = i;
+        for (; j > 0 && v < items[j - 1]; --j) items[j] = items[j - 1];
+        items[j] = v;
+    }
+}
+
 // The partners, by a counting sort of the edges by their lower vertex and a
-// sort of each vertex's few edges by the higher one.
+// sort of each vertex's few edges by the higher one. Each thread sorts the
+// edges of its own range of lower vertices, reading every triangle: no
+// counts are shared, and the triangles stream while the counts and edges
+// are written at random.
 std::vector<std::uint32_t> edgePartners(MeshView mesh, unsigned threads) {
     const std::size_t nt = mesh.triangleCount, nv = mesh.positionCount;
     std::vector<std::uint32_t> partner(3 * nt, kNoPartner);
@@ -406,25 +423,36 @@ std::vector<std::uint32_t> edgePartners(MeshView mesh, unsigned threads) {
         const glm::uvec3 tri = mesh.triangles[h / 3];
         return std::make_pair(tri[int(h % 3)], tri[int((h + 1) % 3)]);
     };
+    const unsigned ranges = std::max(1u, std::min(threads ? threads : std::thread::hardware_concurrency(), 8u));
+    // Calls f(lower, higher, half-edge) for the edges whose lower vertex
+    // is in range r.
+    const auto forRange = [&](std::size_t r, const auto& f) {
+        const std::size_t lo = nv * r / ranges, hi = nv * (r + 1) / ranges;
+        for (std::size_t t = 0; t < nt; ++t) {
+            const glm::uvec3 tri = mesh.triangles[t];
+            for (int e = 0; e < 3; ++e) {
+                const std::uint32_t u = tri[e], v = tri[(e + 1) % 3], m = std::min(u, v);
+                if (u != v && m >= lo && m < hi) f(m, std::max(u, v), std::uint32_t(3 * t + std::size_t(e)));
+            }
+        }
+    };
     std::vector<std::uint32_t> start(nv + 1, 0);
-    for (std::size_t h = 0; h < 3 * nt; ++h) {
-        const auto [u, v] = ends(h);
-        if (u != v) ++start[std::min(u, v) + 1];
-    }
+    parallelFor(ranges, ranges, 1, [&](std::size_t r, std::size_t) {
+        forRange(r, [&](std::uint32_t m, std::uint32_t, std::uint32_t) { ++start[m + 1]; });
+    });
     for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
     std::vector<std::uint64_t> items(start[nv]); ///< higher vertex << 32 | half-edge
-    {
-        std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-        for (std::size_t h = 0; h < 3 * nt; ++h) {
-            const auto [u, v] = ends(h);
-            if (u != v) items[next[std::min(u, v)]++] = (std::uint64_t(std::max(u, v)) << 32) | h;
-        }
-    }
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    parallelFor(ranges, ranges, 1, [&](std::size_t r, std::size_t) {
+        forRange(r, [&](std::uint32_t m, std::uint32_t other, std::uint32_t h) {
+            items[next[m]++] = (std::uint64_t(other) << 32) | h;
+        });
+    });
     parallelFor(threads, nv, kChunk, [&](std::size_t begin, std::size_t end) {
         for (std::size_t v = begin; v < end; ++v) {
             std::uint64_t* group = items.data() + start[v];
             const std::size_t n = start[v + 1] - start[v];
-            std::sort(group, group + n);
+            sortFew(group, n);
             for (std::size_t i = 0, j; i < n; i = j) {
                 for (j = i + 1; j < n && (group[j] >> 32) == (group[i] >> 32);) ++j;
                 if (j - i != 2) continue;
@@ -472,16 +500,17 @@ struct Mesh3 {
     /// lies on the other side of the edge in projection (same facing where
     /// the edge runs the two ways, opposite facings where it runs one way),
     /// both crossable. Their first centre at or right of the edge is the
-    /// same, one's run ending where the other's starts.
-    unsigned cancelling(std::size_t t, std::size_t axis) const {
-        const int f = facingOf(t, axis);
-        if (f == 0) return 0;
+    /// same, one's run ending where the other's starts. Bit 3a + e: axis a.
+    unsigned cancelling(std::size_t t) const {
         unsigned bits = 0;
         for (unsigned e = 0; e < 3; ++e) {
             const std::uint32_t p = partner[3 * t + e];
             if (p == kNoPartner) continue;
-            const int g = facingOf(p & ~kSameWay, axis);
-            if (g != 0 && ((p & kSameWay) ? g != f : g == f)) bits |= 1u << e;
+            const unsigned f = facing[t], g = facing[p & ~kSameWay];
+            for (unsigned a = 0; a < 3; ++a) {
+                const unsigned fa = (f >> (2 * a)) & 3, ga = (g >> (2 * a)) & 3;
+                if (fa != 0 && ga != 0 && ((p & kSameWay) ? ga != fa : ga == fa)) bits |= 1u << (3 * a + e);
+            }
         }
         return bits;
     }
@@ -503,6 +532,7 @@ struct Mesh3 {
 struct VertexRows {
     std::vector<std::uint8_t> at;
     std::vector<std::uint32_t> before; ///< size rows + 1
+    std::vector<double> values;        ///< the rows' centres, increasing
 
     VertexRows(MeshView mesh, const Centres& t, int coordinate, unsigned threads) : at(t.size(), 0), before(t.size() + 1, 0) {
         std::vector<std::atomic<std::uint8_t>> marks(t.size());
@@ -516,7 +546,13 @@ struct VertexRows {
         for (std::size_t j = 0; j < at.size(); ++j) {
             at[j] = marks[j].load(std::memory_order_relaxed);
             before[j + 1] = before[j] + at[j];
+            if (at[j] && (values.empty() || values.back() != t[std::ptrdiff_t(j)])) values.push_back(t[std::ptrdiff_t(j)]);
         }
+    }
+    /// Whether a row through a vertex lies within [lo, hi].
+    bool anyWithin(float lo, float hi) const {
+        const auto it = std::lower_bound(values.begin(), values.end(), double(lo));
+        return it != values.end() && *it <= double(hi);
     }
     bool anyIn(std::ptrdiff_t begin, std::ptrdiff_t end) const { return before[std::size_t(end)] > before[std::size_t(begin)]; }
 };
@@ -537,15 +573,18 @@ std::vector<std::vector<std::uint32_t>> listTriangles(const Mesh3& m, const Axes
     parallelFor(threads, mesh.triangleCount, kChunk, [&](std::size_t begin, std::size_t end) {
         const std::size_t chunk = begin / kChunk;
         for (std::size_t k = begin; k < end; ++k) {
-            const glm::uvec3 tri = mesh.triangles[k];
-            const glm::vec3 &p0 = mesh.positions[tri.x], &p1 = mesh.positions[tri.y], &p2 = mesh.positions[tri.z];
+            const unsigned cancel = m.cancelling(k);
             for (std::size_t a = 0; a < 3; ++a) {
                 const VertexRows& vertexRows = axes.vertexRows[a];
-                const bool silent = m.cancelling(k, a) == 7;
-                if (m.facingOf(k, a) == 0 || (silent && vertexRows.before.back() == 0)) continue;
+                const bool silent = ((cancel >> (3 * a)) & 7u) == 7u;
+                if (m.facingOf(k, a) == 0 || (silent && vertexRows.values.empty())) continue;
+                const glm::uvec3 tri = mesh.triangles[k];
                 const int c = axes.rows[a].perm.y;
+                const float t0 = mesh.positions[tri.x][c], t1 = mesh.positions[tri.y][c], t2 = mesh.positions[tri.z][c];
+                const float tLo = std::min({t0, t1, t2}), tHi = std::max({t0, t1, t2});
+                if (silent && !vertexRows.anyWithin(tLo, tHi)) continue;
                 const Centres& t = axes.rows[a].t;
-                const std::ptrdiff_t j0 = t.first(std::min({p0[c], p1[c], p2[c]})), j1 = t.past(std::max({p0[c], p1[c], p2[c]}));
+                const std::ptrdiff_t j0 = t.first(tLo), j1 = t.past(tHi);
                 if (j0 >= j1) continue; // between two rows of centres
                 const std::size_t rows = axes.bandRows;
                 for (std::size_t b = std::size_t(j0) / rows, last = std::size_t(j1 - 1) / rows; b <= last; ++b) {
@@ -600,7 +639,7 @@ std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid
                 for (std::uint32_t k : lists[(chunk * 3 + a) * bands + b]) {
                     const Triangle tri = projectTriangle(mesh, k, axis.perm);
                     if (tri.flags & kParallel) continue;
-                    const SideSteps kept = Mesh3::kept(tri, Sides(tri), m.cancelling(k, a));
+                    const SideSteps kept = Mesh3::kept(tri, Sides(tri), (m.cancelling(k) >> (3 * a)) & 7u);
                     runs.forEach(tri, kept, first, end, axes.vertexRows[a].at.data(), [&](std::ptrdiff_t j, std::ptrdiff_t i, std::int32_t w) {
                         band.step(std::size_t(j - first), std::uint32_t(i), w);
                         claimed -= std::int64_t(w) * i;
