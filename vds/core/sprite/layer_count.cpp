@@ -432,7 +432,7 @@ std::vector<std::uint32_t> edgePartners(MeshView mesh, unsigned threads) {
             const glm::uvec3 tri = mesh.triangles[t];
             for (int e = 0; e < 3; ++e) {
                 const std::uint32_t u = tri[e], v = tri[(e + 1) % 3], m = std::min(u, v);
-                if (u != v && m >= lo && m < hi) f(m, std::max(u, v), std::uint32_t(3 * t + std::size_t(e)));
+                if (u != v && m >= lo && m < hi && std::max(u, v) < nv) f(m, std::max(u, v), std::uint32_t(3 * t + std::size_t(e)));
             }
         }
     };
