@@ -86,6 +86,26 @@ std::vector<std::uint32_t> weldByPosition(const glm::vec3* positions, std::size_
     return first;
 }
 
+/// For each welded vertex, the part it belongs to (vertices joined by
+/// triangles), named by one of its vertices: union-find, halving paths.
+std::vector<std::uint32_t> connectedParts(MeshView mesh, const std::vector<std::uint32_t>& weld) {
+    std::vector<std::uint32_t> parent(mesh.positionCount);
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto root = [&](std::uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
+        const glm::uvec3 tri = mesh.triangles[t];
+        if (tri.x >= mesh.positionCount || tri.y >= mesh.positionCount || tri.z >= mesh.positionCount) continue;
+        const std::uint32_t a = root(weld[tri.x]), b = root(weld[tri.y]), c = root(weld[tri.z]);
+        const std::uint32_t low = std::min({a, b, c});
+        parent[a] = parent[b] = parent[c] = low;
+    }
+    for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = root(std::uint32_t(v));
+    return parent;
+}
+
 /// Sorts a short run in place (most groups hold a handful of items).
 template <class Item, class Less> void sortGroup(Item* items, std::size_t n, const Less& less) {
     if (n > 24) {
@@ -255,7 +275,7 @@ void readGroup(std::size_t v, const std::vector<Index>& edgeEnd, const std::vect
 /// vertex index shifted left by one and any position in the arrays of items.
 template <class Index>
 void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>& weld, unsigned threads,
-                  const std::vector<std::uint32_t>& part, std::atomic<std::uint8_t>* openPart) {
+                  std::vector<std::uint32_t>& part, std::atomic<std::uint8_t>* openPart) {
     const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
     std::unique_ptr<std::atomic<std::uint8_t>[]> used(new std::atomic<std::uint8_t>[nv]());
     // Per thread and vertex: how many edge uses (corner sets) the thread
@@ -263,7 +283,15 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
     std::vector<std::vector<Index>> edgeAt(threads, std::vector<Index>(nv, 0));
     std::vector<std::vector<Index>> cornerAt(threads, std::vector<Index>(nv, 0));
     std::vector<Found> found(threads);
-    parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
+    // The parts (union-find, serial) are found beside the first pass: task
+    // 0, taken first, while the other threads count the shares; only the
+    // groups' reading needs them.
+    parallelFor(threads, threads + 1, 1, [&](std::size_t task, std::size_t) {
+        if (task == 0) {
+            part = connectedParts(mesh, weld);
+            return;
+        }
+        const std::size_t k = task - 1;
         countItems(mesh, weld, shareOf(nt, threads, k), used.get(), edgeAt[k].data(), cornerAt[k].data(), found[k]);
     });
     // The bounds of the used vertices' positions: those of the vertices the
@@ -306,26 +334,6 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
         r.windingBoundaryEdges += f.unpaired;
         r.duplicateTriangles += f.duplicates;
     }
-}
-
-/// For each welded vertex, the part it belongs to (vertices joined by
-/// triangles), named by one of its vertices: union-find, halving paths.
-std::vector<std::uint32_t> connectedParts(MeshView mesh, const std::vector<std::uint32_t>& weld) {
-    std::vector<std::uint32_t> parent(mesh.positionCount);
-    std::iota(parent.begin(), parent.end(), 0u);
-    const auto root = [&](std::uint32_t v) {
-        while (parent[v] != v) v = parent[v] = parent[parent[v]];
-        return v;
-    };
-    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        const glm::uvec3 tri = mesh.triangles[t];
-        if (tri.x >= mesh.positionCount || tri.y >= mesh.positionCount || tri.z >= mesh.positionCount) continue;
-        const std::uint32_t a = root(weld[tri.x]), b = root(weld[tri.y]), c = root(weld[tri.z]);
-        const std::uint32_t low = std::min({a, b, c});
-        parent[a] = parent[b] = parent[c] = low;
-    }
-    for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = root(std::uint32_t(v));
-    return parent;
 }
 
 /// Each triangle's part, numbered densely: that of its first corner's
@@ -538,7 +546,7 @@ MeshReport validateMesh(MeshView mesh, unsigned threads) {
     for (std::size_t i = 0; i < nv; ++i)
         if (!finite(mesh.positions[i])) ++r.nonFiniteVertices;
     const std::vector<std::uint32_t> weld = weldByPosition(mesh.positions, nv);
-    const std::vector<std::uint32_t> part = connectedParts(mesh, weld);
+    std::vector<std::uint32_t> part; // found by countByEdges, beside its first pass
     std::unique_ptr<std::atomic<std::uint8_t>[]> openPart(new std::atomic<std::uint8_t>[nv]());
     // 32-bit items while vertex indices fit in 31 bits and the edge uses in 32.
     if (nv < (std::size_t(1) << 31) && 3 * nt < (std::size_t(1) << 32))
