@@ -191,8 +191,8 @@ struct RowRuns {
     // Calls step(j, i, w) for what the triangle adds on each row j in
     // [rowBegin, rowEnd): w to the counts of texels i and on. A row through
     // a vertex of the mesh (`vertexRow[j]`) takes the triangle's whole run
-    // [a, b) (+1 at a, -1 at b); any other row the steps of the sides that
-    // `sides` keeps, each at the first centre at or right of the side.
+    // [a, b) (+1 at a, -1 at b); any other row the steps of the sides
+    // `kept` keeps, each at the first centre at or right of the side.
     template <class Step>
     void forEach(const Triangle& tri, const SideSteps& kept, std::ptrdiff_t rowBegin, std::ptrdiff_t rowEnd,
                  const std::uint8_t* vertexRow, const Step& step) const {
@@ -203,7 +203,8 @@ struct RowRuns {
         if (rowBegin >= rowEnd) return;
         // What the double intersection may err by, with a wide margin
         // (a few double ulps of the coordinates, taken as 2^-40 of them).
-        const double tol = 0x1p-40 * 3.0 * std::max({std::fabs(tri.v[0][0]), std::fabs(tri.v[1][0]), std::fabs(tri.v[2][0])});
+        const double tol =
+            0x1p-40 * 3.0 * std::max({std::fabs(tri.v[0][0]), std::fabs(tri.v[1][0]), std::fabs(tri.v[2][0])});
         const Sides sides(tri);
         const auto run = [&](std::ptrdiff_t j, std::ptrdiff_t a, std::ptrdiff_t b) {
             step(j, a, 1);
@@ -216,13 +217,15 @@ struct RowRuns {
             if (vertexRow[j])
                 interior(tri, j, sides.sLo, sides.tLo, sides.slopeLower, sides, tol, run);
             else
-                sideSteps(tri, j, sides.lo, sides.mid, sides.sLo, sides.tLo, sides.slopeLower, kept.keepLower, sides, kept, tol, step);
+                sideSteps(tri, j, sides.lo, sides.mid, sides.sLo, sides.tLo, sides.slopeLower, kept.keepLower, sides,
+                          kept, tol, step);
         }
         for (std::ptrdiff_t j = middle; j < rowEnd; ++j) {
             if (vertexRow[j])
                 interior(tri, j, sides.sMid, sides.tMid, sides.slopeUpper, sides, tol, run);
             else
-                sideSteps(tri, j, sides.mid, sides.hi, sides.sMid, sides.tMid, sides.slopeUpper, kept.keepUpper, sides, kept, tol, step);
+                sideSteps(tri, j, sides.mid, sides.hi, sides.sMid, sides.tMid, sides.slopeUpper, kept.keepUpper, sides,
+                          kept, tol, step);
         }
     }
 
@@ -432,7 +435,8 @@ std::vector<std::uint32_t> edgePartners(MeshView mesh, unsigned threads) {
             const glm::uvec3 tri = mesh.triangles[t];
             for (int e = 0; e < 3; ++e) {
                 const std::uint32_t u = tri[e], v = tri[(e + 1) % 3], m = std::min(u, v);
-                if (u != v && m >= lo && m < hi && std::max(u, v) < nv) f(m, std::max(u, v), std::uint32_t(3 * t + std::size_t(e)));
+                if (u != v && m >= lo && m < hi && std::max(u, v) < nv)
+                    f(m, std::max(u, v), std::uint32_t(3 * t + std::size_t(e)));
             }
         }
     };
@@ -534,7 +538,8 @@ struct VertexRows {
     std::vector<std::uint32_t> before; ///< size rows + 1
     std::vector<double> values;        ///< the rows' centres, increasing
 
-    VertexRows(MeshView mesh, const Centres& t, int coordinate, unsigned threads) : at(t.size(), 0), before(t.size() + 1, 0) {
+    VertexRows(MeshView mesh, const Centres& t, int coordinate, unsigned threads)
+        : at(t.size(), 0), before(t.size() + 1, 0) {
         std::vector<std::atomic<std::uint8_t>> marks(t.size());
         parallelFor(threads, mesh.positionCount, kChunk, [&](std::size_t begin, std::size_t end) {
             for (std::size_t v = begin; v < end; ++v) {
@@ -546,7 +551,8 @@ struct VertexRows {
         for (std::size_t j = 0; j < at.size(); ++j) {
             at[j] = marks[j].load(std::memory_order_relaxed);
             before[j + 1] = before[j] + at[j];
-            if (at[j] && (values.empty() || values.back() != t[std::ptrdiff_t(j)])) values.push_back(t[std::ptrdiff_t(j)]);
+            const double centre = t[std::ptrdiff_t(j)];
+            if (at[j] && (values.empty() || values.back() != centre)) values.push_back(centre);
         }
     }
     /// Whether a row through a vertex lies within [lo, hi].
@@ -554,7 +560,9 @@ struct VertexRows {
         const auto it = std::lower_bound(values.begin(), values.end(), double(lo));
         return it != values.end() && *it <= double(hi);
     }
-    bool anyIn(std::ptrdiff_t begin, std::ptrdiff_t end) const { return before[std::size_t(end)] > before[std::size_t(begin)]; }
+    bool anyIn(std::ptrdiff_t begin, std::ptrdiff_t end) const {
+        return before[std::size_t(end)] > before[std::size_t(begin)];
+    }
 };
 
 struct Axes {
@@ -590,7 +598,8 @@ std::vector<std::vector<std::uint32_t>> listTriangles(const Mesh3& m, const Axes
                 for (std::size_t b = std::size_t(j0) / rows, last = std::size_t(j1 - 1) / rows; b <= last; ++b) {
                     const std::ptrdiff_t from = std::max(j0, std::ptrdiff_t(b * rows));
                     const std::ptrdiff_t to = std::min(j1, std::ptrdiff_t((b + 1) * rows));
-                    if (!silent || vertexRows.anyIn(from, to)) lists[(chunk * 3 + a) * bands + b].push_back(std::uint32_t(k));
+                    if (!silent || vertexRows.anyIn(from, to))
+                        lists[(chunk * 3 + a) * bands + b].push_back(std::uint32_t(k));
                 }
             }
         }
@@ -624,7 +633,8 @@ std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid
     const std::size_t bands = axes.bands, tasks = 3 * bands, chunks = lists.size() / tasks;
     std::vector<std::pair<std::int32_t, std::int64_t>> found(tasks);
     std::atomic<std::size_t> next{0};
-    const unsigned workers = unsigned(std::min<std::size_t>(threads ? threads : std::max(1u, std::thread::hardware_concurrency()), tasks));
+    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned workers = unsigned(std::min<std::size_t>(threads ? threads : hardware, tasks));
     parallelFor(workers, workers, 1, [&](std::size_t, std::size_t) {
         Band band(axes.bandRows, width);
         for (std::size_t task; (task = next.fetch_add(1)) < tasks;) {
@@ -640,10 +650,11 @@ std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid
                     const Triangle tri = projectTriangle(mesh, k, axis.perm);
                     if (tri.flags & kParallel) continue;
                     const SideSteps kept = Mesh3::kept(tri, Sides(tri), (m.cancelling(k) >> (3 * a)) & 7u);
-                    runs.forEach(tri, kept, first, end, axes.vertexRows[a].at.data(), [&](std::ptrdiff_t j, std::ptrdiff_t i, std::int32_t w) {
+                    const auto step = [&](std::ptrdiff_t j, std::ptrdiff_t i, std::int32_t w) {
                         band.step(std::size_t(j - first), std::uint32_t(i), w);
                         claimed -= std::int64_t(w) * i;
-                    });
+                    };
+                    runs.forEach(tri, kept, first, end, axes.vertexRows[a].at.data(), step);
                 }
             found[task] = {band.most(std::size_t(end - first)), claimed};
         }
