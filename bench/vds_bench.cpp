@@ -332,19 +332,21 @@ void bakeTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchM
     std::puts("Measured runs wait for GL at the end of each phase, so the phases add up to about the total; GPU");
     std::puts("times are GL timer queries (none where the driver's timer reports nothing usable, as llvmpipe's).");
     std::puts("`host`: read back into a Sprite; `GPU`: bakeToGpu, the 3D texture filled in compute.\n");
-    std::puts("| mesh | res | to | validation | compile | upload | raster | scan | sort | texture | read-back | "
-              "assembly | total | GPU total | crossings | nodes | bands |");
-    std::puts("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    std::puts("| mesh | res | to | validation | axis | compile | upload | raster | scan | sort | texture | read-back | "
+              "assembly | total | GPU total | wall / GPU | crossings | nodes | bands |");
+    std::puts("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     using P = vds::BakePhase;
     for (const auto& r : phases)
         for (const auto* t : {&r.host, &r.gpu})
-            std::printf("| %s | %u | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %llu | %llu | %u |\n",
+            std::printf("| %s | %u | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %llu | %llu | %u |\n",
                         r.mesh.c_str(), r.res, t == &r.host ? "host" : "GPU", phaseCell(*t, P::Validation).c_str(),
-                        phaseCell(*t, P::Compile).c_str(), phaseCell(*t, P::Upload).c_str(),
+                        phaseCell(*t, P::Axis).c_str(), phaseCell(*t, P::Compile).c_str(), phaseCell(*t, P::Upload).c_str(),
                         phaseCell(*t, P::Raster).c_str(), phaseCell(*t, P::Scan).c_str(), phaseCell(*t, P::Sort).c_str(),
                         phaseCell(*t, P::TextureFill).c_str(), phaseCell(*t, P::ReadBack).c_str(),
                         phaseCell(*t, P::Assembly).c_str(), ms(t->wallSeconds).c_str(),
-                        t->gpuSeconds() > 0 ? ms(t->gpuSeconds()).c_str() : "-", (unsigned long long)t->crossings,
+                        t->gpuSeconds() > 0 ? ms(t->gpuSeconds()).c_str() : "-",
+                        t->gpuSeconds() > 0 ? ratio(t->wallSeconds, t->gpuSeconds()).c_str() : "-",
+                        (unsigned long long)t->crossings,
                         (unsigned long long)t->listNodes, t->bands);
 }
 
@@ -397,18 +399,19 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
     std::printf("\n## Classification: %zu points a mesh, sprites at %u (G points/s)\n\n", n, set.classifyResolution);
     std::puts("`random`: uniform in the mesh box grown by 10%. `coherent`: 32 points a column, columns in raster order.");
     std::printf("CPU: vds::classify on 1 and %u threads. GPU host -> host: GpuClassifier from and to host arrays, the\n"
-                "transfers included. GPU resident: points and labels in GL buffers (wall time with glFinish, and the\n"
+                "transfers included (HostTransfer::Auto; `mapped`: HostTransfer::Mapped). GPU resident: points and labels in GL buffers (wall time with glFinish, and the\n"
                 "GL timer), best of %u, each after %.1f s of warm-up. `plain`: the plainest GL kernel over the same\n"
                 "buffers in the same run (bench/plain_kernels.h; GL timer where there is one), and vds / plain.\n"
                 "`exact`: the exact classifier on the first %zu random points, %u threads;\n"
                 "`VDS vs exact`: share of those points where the sprite answers otherwise (all near the surface).\n\n",
                 threads, set.classifyRuns, set.warmUp, std::min(n, set.exactPoints), threads);
-    std::printf("| mesh | w x h x d | CPU 1 thr | CPU %u thr | GPU host -> host | GPU resident random | "
+    std::printf("| mesh | w x h x d | CPU 1 thr | CPU %u thr | GPU host -> host | (mapped) | GPU resident random | "
                 "(GPU timer) | plain random | vds / plain | GPU resident coherent | (GPU timer) | plain coherent | "
                 "vds / plain | exact | GPU == CPU | VDS vs exact |\n",
                 threads);
-    std::puts("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|");
+    std::puts("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|");
     vds::GpuClassifier classifier(gl);
+    vds::GpuClassifier mapped(gl, std::size_t(1) << 22, vds::HostTransfer::Mapped);
     const vds::bench::PlainKernels plain(gl);
     std::vector<glm::vec3> unit(n), random(n), coherent(n);
     {
@@ -416,7 +419,7 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
         std::uniform_real_distribution<float> u(-0.1f, 1.1f);
         for (auto& p : unit) p = glm::vec3(u(rng), u(rng), u(rng));
     }
-    std::vector<std::uint8_t> cpu1(n), cpuN(n), hostToHost(n), resident(n), coherentCpu(n), coherentGpu(n);
+    std::vector<std::uint8_t> cpu1(n), cpuN(n), hostToHost(n), hostMapped(n), resident(n), coherentCpu(n), coherentGpu(n);
     for (const auto& m : meshes) {
         vds::BakeOptions o;
         o.resolution = set.classifyResolution;
@@ -434,6 +437,7 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
         vds::bench::warmUp([&] { classifier.classify(gpu, vds::PointsView(random.data(), std::min<std::size_t>(n, 1 << 20)),
                                                      hostToHost.data()); }, set.warmUp);
         const double tHost = best(set.classifyRuns, [&] { classifier.classify(gpu, vds::PointsView(random.data(), n), hostToHost.data()); });
+        const double tMapped = best(set.classifyRuns, [&] { mapped.classify(gpu, vds::PointsView(random.data(), n), hostMapped.data()); });
 
         // Resident: the points uploaded once, the labels left in GL.
         Timed vdsRandom, vdsCoherent, plainRandom, plainCoherent;
@@ -449,12 +453,13 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
         const double tExact = seconds([&] { exact.classify(vds::PointsView(random.data(), ne), exactLabels.data(), all); });
         std::size_t differ = 0;
         for (std::size_t k = 0; k < ne; ++k) differ += cpuN[k] != exactLabels[k];
-        const bool equal = cpu1 == cpuN && cpuN == hostToHost && cpuN == resident && coherentCpu == coherentGpu &&
+        const bool equal = cpu1 == cpuN && cpuN == hostToHost && cpuN == hostMapped && cpuN == resident && coherentCpu == coherentGpu &&
                            plainLabels == cpuN && plainCoherentLabels == coherentCpu;
         const double points = double(n);
-        std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.4f %% |\n",
+        std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.4f %% |\n",
                     m.mesh.name.c_str(), sizeText(sprite.width(), sprite.height(), sprite.depthComplexity).c_str(),
                     rate(points, t1).c_str(), rate(points, tN).c_str(), rate(points, tHost).c_str(),
+                    rate(points, tMapped).c_str(),
                     rate(points, vdsRandom.wall).c_str(), vdsRandom.gpu < 1e300 ? rate(points, vdsRandom.gpu).c_str() : "-",
                     rate(points, plainRandom.best()).c_str(), ratio(plainRandom.best(), vdsRandom.best()).c_str(),
                     rate(points, vdsCoherent.wall).c_str(),

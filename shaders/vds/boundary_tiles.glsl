@@ -50,10 +50,28 @@ void vdsSumEdgeTiles(int first, int count, vec3 q[VDS_TERM_POINTS], inout float 
         memoryBarrierShared(); // the tile's stores visible to the workgroup (as scan.comp does)
         barrier();
         int n = min(VDS_LOCAL_SIZE, count - tile);
+        // The edges come in chains (the chain tree's leaves, in loop order):
+        // where an edge starts at the last one's end, its u and |u| are the
+        // last one's v and |v|. The test reads shared memory only, so the
+        // branch is the same in every invocation.
+        vec3 u[VDS_TERM_POINTS];
+        float lu[VDS_TERM_POINTS];
         for (int e = 0; e < n; ++e) {
             vec3 a = vdsTileFrom[e];
             vec3 b = vdsTileTo[e];
-            for (int k = 0; k < VDS_TERM_POINTS; ++k) sum[k] += vdsEdgeSolidAngle(a, b, q[k]);
+            if (e == 0 || a != vdsTileTo[e - 1]) {
+                for (int k = 0; k < VDS_TERM_POINTS; ++k) {
+                    u[k] = a - q[k];
+                    lu[k] = length(u[k]);
+                }
+            }
+            for (int k = 0; k < VDS_TERM_POINTS; ++k) {
+                vec3 v = b - q[k];
+                float lv = length(v);
+                sum[k] += vdsEdgeSolidAngleOf(u[k], v, lu[k], lv, a, b);
+                u[k] = v;
+                lu[k] = lv;
+            }
         }
     }
 }

@@ -30,6 +30,7 @@ layout(local_size_x = VDS_LOCAL_SIZE) in; // before the include: it reads gl_Wor
 #ifdef VDS_BOUNDARY_TERM
 #define VDS_TERM_POINTS 1 // one cell a column at a time
 #include "vds/boundary_tiles.glsl"
+#include "vds/tile_bound.glsl"
 #endif
 
 layout(std430, binding = 0) readonly restrict buffer Offsets { uint offsets[]; };
@@ -46,6 +47,16 @@ uniform uint u_step;
 uniform uint u_firstSlice; // slices [first, end) lie in the sprite's depth range
 uniform uint u_endSlice;
 uniform uint u_width;      // the sprite's width in texels: texel = t * width + s
+uniform uint u_dimU;       // grid columns along u
+#ifndef VDS_BOUNDARY_TERM
+// Where the sweep axis is not the labels' fastest (a cell's four bytes
+// then lie in four columns, not along one), an invocation takes a quad of
+// columns that share their words, so that one atomic writes four cells: the
+// four columns follow v (u_quadAlongV) or u, whichever the labels' fastest
+// axis is. 0: one column an invocation.
+uniform uint u_quads;      // quads along the quad axis; 0 for single columns
+uniform bool u_quadAlongV;
+#endif
 #ifdef VDS_BOUNDARY_TERM
 uniform VdsBoundary u_boundary;
 uniform ivec2 u_size; // the sprite's width and height in texels
@@ -79,6 +90,11 @@ void vdsSweepColumn(uint column, bool live) {
     ivec2 st = ivec2(int(uint(max(texel, 0)) % u_width), int(uint(max(texel, 0)) / u_width));
     int parity = 0, winding = 0;
     uint word = 0u, bits = 0u;
+#ifdef VDS_BOUNDARY_TERM
+    // The column's cells' (s, t) in the bake's frame: the same at every depth.
+    vec2 at = live ? vdsColumnPoint(u_boundary, st, 0.0).xy : vdsBesidePoint(u_boundary, u_size, vec3(beside, 0.0)).xy;
+    VdsTileBound tile = vdsTileSetup(u_boundary, at, valid);
+#endif
     for (uint k = u_firstSlice; k < u_endSlice; ++k) {
         float depth = depths[k];
         // Each crossing counts for the cells whose depth lies strictly behind it.
@@ -89,10 +105,15 @@ void vdsSweepColumn(uint column, bool live) {
 #ifdef VDS_BOUNDARY_TERM
         vec3 q[1] = vec3[1](live ? vdsColumnPoint(u_boundary, st, depth)
                                  : vdsBesidePoint(u_boundary, u_size, vec3(beside, depth)));
-        bool alive[1] = bool[1](valid);
-        float term[1];
-        vdsBoundaryTerms(u_boundary, q, alive, term);
-        bool inside = valid && float(winding) + term[0] > 0.5;
+        bool inside, any;
+        bool decided = vdsTileDecides(u_boundary, tile, q[0].z, int(k), valid, winding, inside, any);
+        if (any) { // some cell of the workgroup is not decided by the tile's bound: the exact term
+            bool alive[1] = bool[1](valid);
+            float term[1];
+            vdsBoundaryTerms(u_boundary, q, alive, term);
+            if (!decided) inside = float(winding) + term[0] > 0.5;
+        }
+        inside = valid && inside;
 #elif VDS_RULE_ID == VDS_RULE_WINDING
         bool inside = winding != 0;
 #else
@@ -111,18 +132,94 @@ void vdsSweepColumn(uint column, bool live) {
     vdsFlush(word, bits);
 }
 
+#ifndef VDS_BOUNDARY_TERM
+// The quad's column j (count 4, some past the grid's edge where its size is
+// not a multiple of 4): -1 where none.
+int vdsQuadColumn(uint quad, uint j) {
+    uint iu, iv;
+    if (u_quadAlongV) {
+        iu = quad / u_quads;
+        iv = 4u * (quad % u_quads) + j;
+    } else {
+        iv = quad % u_dimV;
+        iu = 4u * (quad / u_dimV) + j;
+    }
+    return iu < u_dimU && iv < u_dimV ? int(iu * u_dimV + iv) : -1;
+}
+
+// Four columns at once, slice by slice: their cells at a slice share a
+// word (two where the fastest axis's size is not a multiple of 4), flushed
+// once.
+void vdsSweepQuad(uint quad) {
+    uint base[4], e[4], last[4];
+    int parity[4], winding[4];
+    bool live[4]; // a column of the grid inside the sprite's texture
+    for (uint j = 0u; j < 4u; ++j) {
+        int column = vdsQuadColumn(quad, j);
+        int texel = column >= 0 ? texels[column] : -1;
+        uint c = uint(max(column, 0));
+        base[j] = (c / u_dimV) * u_strideU + (c % u_dimV) * u_strideV;
+        e[j] = texel >= 0 ? offsets[texel] : 0u;
+        last[j] = texel >= 0 ? offsets[texel + 1] : 0u;
+        parity[j] = 0;
+        winding[j] = 0;
+        live[j] = texel >= 0;
+    }
+    uint word = 0u, bits = 0u;
+    for (uint k = u_firstSlice; k < u_endSlice; ++k) {
+        float depth = depths[k];
+        for (uint j = 0u; j < 4u; ++j) {
+            for (; e[j] < last[j] && abs(crossings[e[j]]) < depth; ++e[j]) {
+                parity[j] ^= 1;
+                winding[j] += floatBitsToInt(crossings[e[j]]) < 0 ? -1 : 1;
+            }
+#if VDS_RULE_ID == VDS_RULE_WINDING
+            bool inside = live[j] && winding[j] != 0;
+#else
+            bool inside = live[j] && parity[j] != 0;
+#endif
+            if (inside) {
+                uint index = base[j] + k * u_step;
+                if (index >> 2u != word) {
+                    vdsFlush(word, bits);
+                    word = index >> 2u;
+                    bits = 0u;
+                }
+                bits |= 1u << (8u * (index & 3u));
+            }
+        }
+    }
+    vdsFlush(word, bits);
+}
+#else
+// The workgroup's columns as a square of 8 x 8 (u, v) (VDS_LOCAL_SIZE 64):
+// its cells at a slice lie within a few cells of one another, so a chain
+// or loop far from them all is taken whole by the vote more often than
+// along a line of 64 columns.
+#define VDS_TILE_SIDE 8u
+#endif
+
 void main() {
 #ifdef VDS_BOUNDARY_TERM
-    // Workgroup by workgroup: `first` is the same in every invocation.
-    uint step = vdsInvocationCount();
-    for (uint first = vdsWorkGroupIndex() * gl_WorkGroupSize.x; first < u_columns;
-         first = u_columns - first > step ? first + step : u_columns) {
-        uint column = first + gl_LocalInvocationID.x;
-        vdsSweepColumn(column, column < u_columns);
+    // Workgroup by workgroup (one tile of columns): `tile` is the same in
+    // every invocation.
+    uint tilesV = (u_dimV + VDS_TILE_SIDE - 1u) / VDS_TILE_SIDE;
+    uint tiles = tilesV * ((u_dimU + VDS_TILE_SIDE - 1u) / VDS_TILE_SIDE);
+    uint local = gl_LocalInvocationID.x;
+    for (uint tile = vdsWorkGroupIndex(); tile < tiles; tile += gl_NumWorkGroups.x * gl_NumWorkGroups.y) {
+        uint iu = (tile / tilesV) * VDS_TILE_SIDE + local / VDS_TILE_SIDE;
+        uint iv = (tile % tilesV) * VDS_TILE_SIDE + local % VDS_TILE_SIDE;
+        bool live = iu < u_dimU && iv < u_dimV;
+        vdsSweepColumn(live ? iu * u_dimV + iv : 0u, live);
     }
 #else
-    for (uint column = vdsWorkGroupIndex() * gl_WorkGroupSize.x + gl_LocalInvocationID.x; column < u_columns;
-         column = vdsNextIndex(column, u_columns))
-        vdsSweepColumn(column, true);
+    uint items = u_quads != 0u ? (u_quadAlongV ? u_dimU * u_quads : u_dimV * ((u_dimU + 3u) / 4u)) : u_columns;
+    for (uint item = vdsWorkGroupIndex() * gl_WorkGroupSize.x + gl_LocalInvocationID.x; item < items;
+         item = vdsNextIndex(item, items)) {
+        if (u_quads != 0u)
+            vdsSweepQuad(item);
+        else
+            vdsSweepColumn(item, true);
+    }
 #endif
 }

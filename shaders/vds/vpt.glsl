@@ -169,11 +169,10 @@ vec3 vdsColumnPoint(VdsBoundary boundary, ivec2 column, float r) {
 // triangle flipped), where it jumps by 4 pi, it takes the side of the point
 // moved by (eps, -eps^2) in (s, t), as the crossing count's tie rule does; an
 // edge along the axis adds 0.
-float vdsEdgeSolidAngle(vec3 a, vec3 b, vec3 q) {
-    vec3 u = a - q;
-    vec3 v = b - q;
-    float lu = length(u);
-    float lv = length(v);
+// vdsEdgeSolidAngleOf takes u = a - q, v = b - q and their lengths made
+// before: along a chain of edges one edge's v is the next one's u, so a
+// caller that sums a chain computes one length an edge, not two.
+float vdsEdgeSolidAngleOf(vec3 u, vec3 v, float lu, float lv, vec3 a, vec3 b) {
     float det = u.x * v.y - u.y * v.x;
     float den = ((lu * lv + dot(u, v)) + u.z * lv) + v.z * lu;
     if (det == 0.0) {
@@ -183,6 +182,12 @@ float vdsEdgeSolidAngle(vec3 a, vec3 b, vec3 q) {
         if (det == 0.0) return 0.0;
     }
     return 2.0 * atan(det, den);
+}
+
+float vdsEdgeSolidAngle(vec3 a, vec3 b, vec3 q) {
+    vec3 u = a - q;
+    vec3 v = b - q;
+    return vdsEdgeSolidAngleOf(u, v, length(u), length(v), a, b);
 }
 
 #ifdef VDS_BOUNDARY_BINDING

@@ -158,14 +158,17 @@ TEST_F(GpuClassifyTest, HostArraysInManyBatchesMatchCpp) {
     const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.45f, 64);
     const Sprite sprite = bakeSolid(torus.mesh, 64, Axis::X);
     const GpuSprite gpu(sprite);
-    GpuClassifier classifier(gl());
-    for (std::size_t n : {std::size_t(1), std::size_t(1023), std::size_t(5000), std::size_t(70001)})
+    for (HostTransfer transfer : {HostTransfer::Mapped, HostTransfer::Copied})
         for (std::size_t batch : {std::size_t(1024), std::size_t(4096), std::size_t(1) << 22}) {
-            const auto points = test::randomPoints(sprite.grid.box, n, 0.1f, std::uint32_t(n + batch));
-            std::vector<std::uint8_t> cpu(n), labels(n, 9);
-            classify(sprite, PointsView(points.data(), n), cpu.data());
-            classifier.classify(gpu, {points.data(), n}, labels.data(), {Rule::Parity});
-            EXPECT_EQ(cpu, labels) << n << " points in batches of " << batch;
+            GpuClassifier classifier(gl(), batch, transfer);
+            for (std::size_t n : {std::size_t(1), std::size_t(1023), std::size_t(5000), std::size_t(70001)}) {
+                const auto points = test::randomPoints(sprite.grid.box, n, 0.1f, std::uint32_t(n + batch));
+                std::vector<std::uint8_t> cpu(n), labels(n, 9);
+                classify(sprite, PointsView(points.data(), n), cpu.data());
+                classifier.classify(gpu, {points.data(), n}, labels.data(), {Rule::Parity});
+                EXPECT_EQ(cpu, labels) << n << " points in batches of " << batch << ", copied "
+                                       << (transfer == HostTransfer::Copied);
+            }
         }
 }
 

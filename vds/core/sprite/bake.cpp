@@ -16,20 +16,25 @@ namespace vds {
 
 namespace detail {
 
-BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count) {
+MeshReport validateForBake(MeshView mesh, const BakeOptions& options) {
     const HostPhase phase(options.timings, BakePhase::Validation);
+    MeshReport report = validateMesh(mesh);
+    requireUsable(report, options.sourceName);
+    requireVolume(report, options.sourceName);
+    return report;
+}
+
+Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const AxisCounter& count) {
+    if (options.axis) return *options.axis;
+    const HostPhase phase(options.timings, BakePhase::Axis);
+    const std::optional<AxisChoice> counted = count ? count(report) : std::nullopt;
+    return counted ? counted->axis : chooseViewAxis(mesh, report, options.resolution).axis;
+}
+
+BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count) {
     BakeSetup setup;
-    setup.report = validateMesh(mesh);
-    requireUsable(setup.report, options.sourceName);
-    requireVolume(setup.report, options.sourceName);
-    Axis axis = Axis::Z;
-    if (options.axis) {
-        axis = *options.axis;
-    } else {
-        const std::optional<AxisChoice> counted = count ? count(setup.report) : std::nullopt;
-        axis = counted ? counted->axis : chooseViewAxis(mesh, setup.report, options.resolution).axis;
-    }
-    setup.grid = makeGrid(setup.report.bounds, axis, options.resolution);
+    setup.report = validateForBake(mesh, options);
+    setup.grid = makeGrid(setup.report.bounds, bakeAxis(mesh, setup.report, options, count), options.resolution);
     return setup;
 }
 

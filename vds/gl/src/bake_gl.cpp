@@ -62,13 +62,22 @@ void GlPhaseClock::collect() {
 }
 
 // The one validation of every baker (detail::prepareBake), timed on the GL
-// bake's clock.
+// bake's clock: the axis count on the GPU's timer where it runs there.
 ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
-    const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
     BakeOptions untimed = options;
     untimed.timings = nullptr;
-    BakeSetup setup = prepareBake(mesh, untimed, axisCounter(gl, mesh, options));
-    return {std::move(setup.report), setup.grid};
+    ValidatedMesh out;
+    {
+        const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
+        out.report = validateForBake(mesh, untimed);
+    }
+    Axis axis = options.axis.value_or(Axis::Z);
+    if (!options.axis) {
+        const GlPhaseClock::Scope phase(clock, BakePhase::Axis, !softwareRenderer(gl));
+        axis = bakeAxis(mesh, out.report, untimed, axisCounter(gl, mesh, options, &out.drawn));
+    }
+    out.grid = makeGrid(out.report.bounds, axis, options.resolution);
+    return out;
 }
 
 Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what) {
@@ -156,10 +165,13 @@ Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options) 
     }
     if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
     const detail::BakeClock clock(options.timings);
-    return detail::bakeOnGl(gl, detail::prepareBake(mesh, options, detail::axisCounter(gl, mesh, options)), mesh, options);
+    std::optional<GpuMesh> drawn; // the axis count's upload, drawn again by the bake
+    const detail::BakeSetup setup = detail::prepareBake(mesh, options, detail::axisCounter(gl, mesh, options, &drawn));
+    return detail::bakeOnGl(gl, setup, mesh, options, drawn ? &*drawn : nullptr);
 }
 
-Sprite detail::bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options) {
+Sprite detail::bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options,
+                        const GpuMesh* uploaded) {
     if (options.method == BakeMethod::Cpu) return bakeCpu(setup, mesh, options);
     std::vector<std::uint32_t> offsets;
     std::vector<float> crossings;
@@ -168,9 +180,9 @@ Sprite detail::bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView me
         if (options.timings) options.timings->renderer = gl.info().renderer;
         detail::GlPhaseClock phases(options.timings);
         if (options.method == BakeMethod::Peel)
-            detail::bakePeel(gl, mesh, setup.grid, options, phases, offsets, crossings);
+            detail::bakePeel(gl, mesh, setup.grid, options, phases, offsets, crossings, uploaded);
         else
-            detail::bakeLists(gl, mesh, setup.grid, options, phases, offsets, crossings);
+            detail::bakeLists(gl, mesh, setup.grid, options, phases, offsets, crossings, uploaded);
         phases.collect();
     }
     return detail::assembleSprite(setup, options, mesh, std::move(offsets), std::move(crossings));

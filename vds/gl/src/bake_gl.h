@@ -14,6 +14,7 @@
 #include <vds/bake.h>
 #include <vds/detail/bake_common.h>
 #include <vds/gl/context.h>
+#include <vds/gl/mesh.h>
 #include <vds/gl/objects.h>
 
 namespace vds::detail {
@@ -67,10 +68,13 @@ private:
 };
 
 /// Runs `BakePhase::Validation`: validates the mesh (throws `InvalidMesh`)
-/// and makes the grid, as every baker does.
+/// and makes the grid, as every baker does; `BakePhase::Axis` where the
+/// options name no axis. A count on the GPU uploads the mesh, which the bake
+/// then draws (`drawn`).
 struct ValidatedMesh {
     MeshReport report;
     SpriteGrid grid;
+    std::optional<GpuMesh> drawn;
 };
 ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock);
 
@@ -87,16 +91,22 @@ Buffer uploadBuffer(const void* data, std::size_t bytes, const char* what);
 /// snapping moves an edge across a texel centre.
 std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, const Box& bounds,
                                           std::uint32_t resolution);
+/// The same with the mesh in GL already.
+std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, const GpuMesh& drawn, const Box& bounds,
+                                          std::uint32_t resolution);
 /// True on llvmpipe, softpipe, SwiftShader and software platforms.
 bool softwareRenderer(const GlContext& gl);
 /// The GL bakers' axis count for `prepareBake`: `countLayersOnGl` on a GPU;
 /// none (the CPU's) on a software renderer, where the CPU's count is faster.
-/// Holds `gl` and `mesh` by reference.
-AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options);
+/// Holds `gl` and `mesh` by reference; where `keep` is given, the mesh the
+/// count uploads stays there for the bake to draw.
+AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options,
+                        std::optional<GpuMesh>* keep = nullptr);
 
 /// `bakeOnGl` on a mesh validated before (`setup`), with a method chosen
 /// (not Auto). Phases timed on `options.timings`; the caller holds the clock.
-Sprite bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options);
+Sprite bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options,
+                const GpuMesh* uploaded = nullptr);
 
 /// `groups` workgroups as a glDispatchCompute grid: x up to 65535, then rows
 /// of y. Shaders number a group `gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x`
@@ -108,11 +118,14 @@ GLuint strideGroups(std::uint64_t items, std::uint32_t local = 256);
 
 /// The GL bakers behind bakeOnGl(): fill the CSR layers of `grid` on `gl`
 /// (current), timing their phases on `clock`.
+/// `uploaded`: the mesh already in GL (the axis count's), or null to upload it.
 void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const BakeOptions& options,
-              GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings);
+              GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings,
+              const GpuMesh* uploaded = nullptr);
 
 void bakeLists(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const BakeOptions& options,
-               GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings);
+               GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings,
+               const GpuMesh* uploaded = nullptr);
 
 constexpr std::uint32_t kEnteringBit = 0x80000000u;
 constexpr std::uint32_t kNoNode = 0xffffffffu;

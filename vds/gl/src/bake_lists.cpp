@@ -107,15 +107,16 @@ void ListsBake::allocateNodes() {
     if (options_.timings) options_.timings->listNodes = capacity_;
 }
 
-void ListsBake::run(MeshView mesh, const std::function<void(GpuBand&)>& take) {
+void ListsBake::run(MeshView mesh, const std::function<void(GpuBand&)>& take, const GpuMesh* uploaded) {
     std::optional<GpuMesh> draw;
     {
         const GlPhaseClock::Scope phase(clock_, BakePhase::Upload);
-        draw.emplace(mesh);
+        if (!uploaded) draw.emplace(mesh);
         allocateNodes();
     }
+    const GpuMesh& drawn = uploaded ? *uploaded : *draw;
     for (std::uint32_t y0 = 0; y0 < grid_.height; y0 += maxBandRows_)
-        band(*draw, y0, std::min(grid_.height, y0 + maxBandRows_), take);
+        band(drawn, y0, std::min(grid_.height, y0 + maxBandRows_), take);
     if (options_.timings) options_.timings->bands = bands_;
 }
 
@@ -286,7 +287,8 @@ std::uint32_t ListsBake::depthComplexity() const {
 }
 
 void bakeLists(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const BakeOptions& options,
-               GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings) {
+               GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings,
+               const GpuMesh* uploaded) {
     const std::size_t columns = std::size_t(grid.width) * grid.height;
     offsets.assign(columns + 1, 0);
     crossings.clear();
@@ -300,7 +302,7 @@ void bakeLists(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const
         if (band.count)
             glGetNamedBufferSubData(band.crossings, 0, GLsizeiptr(band.count * 4), crossings.data() + band.base);
         checkGl("reading the fragment lists back");
-    });
+    }, uploaded);
 }
 
 } // namespace vds::detail

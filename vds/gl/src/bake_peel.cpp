@@ -54,14 +54,17 @@ void layersToColumns(const std::vector<std::vector<float>>& layers, std::size_t 
 } // namespace
 
 void bakePeel(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const BakeOptions& options,
-              GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings) {
+              GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings,
+              const GpuMesh* uploaded) {
     clock.begin(BakePhase::Compile, false);
     const Program& program = gl.program("vds.peel", [&] {
         return buildProgram({{GL_VERTEX_SHADER, "vds/bake.vert", ""}, {GL_FRAGMENT_SHADER, "vds/peel.frag", ""}},
                             bakeDefines(gl));
     });
     clock.begin(BakePhase::Upload);
-    const GpuMesh draw(mesh);
+    std::optional<GpuMesh> own;
+    if (!uploaded) own.emplace(mesh);
+    const GpuMesh& draw = uploaded ? *uploaded : *own;
     const std::size_t pixels = std::size_t(grid.width) * grid.height;
     const PeelTargets targets(grid);
     const Texture* depth = targets.depth;

@@ -80,7 +80,7 @@ GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlContex
     const detail::ValidatedMesh v = detail::validateForBake(gl, mesh, options, clock);
     detail::ListsBake lists(gl, v.grid, options, clock, true);
     std::vector<GpuBand> bands;
-    lists.run(mesh, [&](GpuBand& band) { bands.push_back(std::move(band)); });
+    lists.run(mesh, [&](GpuBand& band) { bands.push_back(std::move(band)); }, v.drawn ? &*v.drawn : nullptr);
 
     GpuBake out;
     out.grid = v.grid;

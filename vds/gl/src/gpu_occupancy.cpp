@@ -69,6 +69,15 @@ void setSweepUniforms(GLuint id, const Grid& grid, const detail::SweepPlan& plan
     glUniform1ui(glGetUniformLocation(id, "u_firstSlice"), boundaryTerm ? 0u : plan.firstSlice);
     glUniform1ui(glGetUniformLocation(id, "u_endSlice"), boundaryTerm ? plan.n : plan.endSlice);
     glUniform1ui(glGetUniformLocation(id, "u_width"), sg.width);
+    glUniform1ui(glGetUniformLocation(id, "u_dimU"), grid.dims[plan.u]);
+    if (!boundaryTerm) {
+        // Quads of columns along the labels' fastest axis where the sweep
+        // does not follow it (occupancy.comp's vdsSweepQuad).
+        const bool alongV = stride[plan.v] == 1, alongU = stride[plan.u] == 1;
+        const GLuint quads = alongV ? (grid.dims[plan.v] + 3) / 4 : alongU ? (grid.dims[plan.u] + 3) / 4 : 0;
+        glUniform1ui(glGetUniformLocation(id, "u_quads"), quads);
+        glUniform1i(glGetUniformLocation(id, "u_quadAlongV"), alongV ? 1 : 0);
+    }
     glUniform2i(glGetUniformLocation(id, "u_size"), GLint(sg.width), GLint(sg.height));
 }
 

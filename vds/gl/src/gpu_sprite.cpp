@@ -218,14 +218,16 @@ constexpr std::uint32_t kLocalSize = 256;
 std::size_t labelBytes(std::size_t points) { return (points + 3) / 4 * 4; }
 
 // Copies big blocks on several threads: one thread's memcpy is slower than
-// the bus the points then cross.
+// the bus the points then cross (a PCIe 5 x16 link moves about 50 GB/s, a
+// core's memcpy a fraction of that). A chunk of 1 MiB bounds the threads'
+// imbalance and keeps a 4 MiB block of labels on four of them.
 void copyParallel(void* dst, const void* src, std::size_t bytes) {
-    constexpr std::size_t kChunk = std::size_t(4) << 20;
+    constexpr std::size_t kChunk = std::size_t(1) << 20;
     if (bytes <= 2 * kChunk) {
         std::memcpy(dst, src, bytes);
         return;
     }
-    const unsigned threads = std::min(8u, std::max(1u, std::thread::hardware_concurrency()));
+    const unsigned threads = std::min(16u, std::max(1u, std::thread::hardware_concurrency()));
     parallelFor(threads, bytes, kChunk, [&](std::size_t begin, std::size_t end) {
         std::memcpy(static_cast<char*>(dst) + begin, static_cast<const char*>(src) + begin, end - begin);
     });
@@ -246,8 +248,10 @@ const Program& classifierProgram(const GlContext& gl, bool columns, Rule rule) {
 
 } // namespace
 
-GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints) : gl_(&gl), batch_(batchPoints) {
+GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints, HostTransfer transfer)
+    : gl_(&gl), batch_(batchPoints) {
     const CurrentContext current(gl);
+    copied_ = transfer == HostTransfer::Copied || (transfer == HostTransfer::Auto && !detail::softwareRenderer(gl));
     stamp_ = detail::ContextStamp::current("GpuClassifier");
     classifierProgram(gl, true, Rule::Parity); // a shader error shows at construction, not at the first call
     GLint64 maxBlock = 0;
@@ -268,6 +272,8 @@ GpuClassifier::~GpuClassifier() {
         for (Slot& slot : slots_) { // cannot reach the context (another thread): leave the names to it
             slot.points.release();
             slot.labels.release();
+            slot.gpuPoints.release();
+            slot.gpuLabels.release();
             slot.done = Fence();
         }
     }
@@ -275,7 +281,7 @@ GpuClassifier::~GpuClassifier() {
 
 GpuClassifier::GpuClassifier(GpuClassifier&& o) noexcept
     : gl_(std::exchange(o.gl_, nullptr)), stamp_(o.stamp_), batch_(o.batch_), maxBlock_(o.maxBlock_), maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)),
-      capacity_(std::exchange(o.capacity_, 0)) {}
+      capacity_(std::exchange(o.capacity_, 0)), copied_(o.copied_) {}
 
 GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
     if (this != &o) {
@@ -286,6 +292,7 @@ GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
         slots_ = std::move(o.slots_);
         capacity_ = std::exchange(o.capacity_, 0);
         batch_ = o.batch_;
+        copied_ = o.copied_;
     }
     return *this;
 }
@@ -364,6 +371,13 @@ void GpuClassifier::reserve(std::size_t points) {
         slot.pointsMap = glMapNamedBufferRange(slot.points.id(), 0, GLsizeiptr(points * kPointBytes), write);
         slot.labelsMap = glMapNamedBufferRange(slot.labels.id(), 0, GLsizeiptr(labelBytes(points)), read);
         if (!slot.pointsMap || !slot.labelsMap) throw GlError("cannot map the classifier's staging buffers");
+        if (copied_) {
+            slot.gpuPoints = Buffer::create();
+            slot.gpuLabels = Buffer::create();
+            glNamedBufferStorage(slot.gpuPoints.id(), GLsizeiptr(points * kPointBytes), nullptr, 0);
+            glNamedBufferStorage(slot.gpuLabels.id(), GLsizeiptr(labelBytes(points)), nullptr, 0);
+            checkGl("allocating the classifier's GPU buffers");
+        }
     }
     capacity_ = points;
 }
@@ -374,6 +388,21 @@ void GpuClassifier::finish(Slot& slot, std::uint8_t* labels) {
     copyParallel(labels + slot.first, slot.labelsMap, slot.count);
     slot.done.reset();
     slot.count = 0;
+}
+
+// The staged batch classified, its labels back in the slot's staging
+// buffer when `slot.done` signals.
+void GpuClassifier::send(Slot& slot, const GpuSprite& sprite, Rule rule) {
+    if (copied_) {
+        glCopyNamedBufferSubData(slot.points.id(), slot.gpuPoints.id(), 0, 0, GLsizeiptr(slot.count * kPointBytes));
+        dispatch(sprite, slot.gpuPoints.id(), 0, slot.gpuLabels.id(), 0, slot.count, rule);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glCopyNamedBufferSubData(slot.gpuLabels.id(), slot.labels.id(), 0, 0, GLsizeiptr(labelBytes(slot.count)));
+    } else {
+        dispatch(sprite, slot.points.id(), 0, slot.labels.id(), 0, slot.count, rule);
+    }
+    glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+    slot.done = Fence::insert();
 }
 
 void GpuClassifier::classify(const GpuSprite& sprite, const PointsView& points, std::uint8_t* labels,
@@ -392,8 +421,8 @@ void GpuClassifier::classify(const GpuSprite& sprite, const PointsView& points, 
     std::size_t next = 0;
     try {
         for (std::size_t first = 0; first < count; first += step, ++next) {
-            Slot& slot = slots_[next % 2];
-            finish(slot, labels); // the batch before last: its buffers are free again
+            Slot& slot = slots_[next % slots_.size()];
+            finish(slot, labels); // the batch three back: its buffers are free again
             slot.first = first;
             slot.count = std::min(step, count - first);
             if (packed) {
@@ -403,12 +432,9 @@ void GpuClassifier::classify(const GpuSprite& sprite, const PointsView& points, 
                 auto* to = static_cast<glm::vec3*>(slot.pointsMap);
                 for (std::size_t k = 0; k < slot.count; ++k) to[k] = points[first + k];
             }
-            dispatch(sprite, slot.points.id(), 0, slot.labels.id(), 0, slot.count, rule);
-            glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
-            slot.done = Fence::insert();
+            send(slot, sprite, rule);
         }
-        finish(slots_[next % 2], labels);
-        finish(slots_[(next + 1) % 2], labels);
+        for (std::size_t k = 0; k < slots_.size(); ++k) finish(slots_[(next + k) % slots_.size()], labels);
     } catch (...) {
         glFinish(); // no batch may still use the staging buffers when they are next written
         for (Slot& slot : slots_) {

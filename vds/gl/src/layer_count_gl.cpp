@@ -39,13 +39,13 @@ CountPrograms countPrograms(const GlContext& gl) {
                         [] { return buildProgram({{GL_COMPUTE_SHADER, "vds/count_layers.comp", ""}}); })};
 }
 
-// d_S and the crossings of the GL bake along `grid.axis`.
+// d_S and the crossings of the GL bake along `grid.axis`, into the axis's
+// pair of words in `result` (cleared before).
 void countAxis(const GlContext& gl, const CountPrograms& programs, const GpuMesh& mesh, const SpriteGrid& grid,
-               GLuint counts, GLuint result, std::uint32_t out[2]) {
+               GLuint counts, GLuint result) {
     const std::uint64_t columns = std::uint64_t(grid.width) * grid.height;
     const GLuint zero = 0;
     glClearNamedBufferSubData(counts, GL_R32UI, 0, GLsizeiptr(columns * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glClearNamedBufferSubData(result, GL_R32UI, 0, 8, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     Framebuffer fbo = Framebuffer::create();
     glNamedFramebufferParameteri(fbo.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, GLint(grid.width));
@@ -61,10 +61,10 @@ void countAxis(const GlContext& gl, const CountPrograms& programs, const GpuMesh
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(programs.reduce->id());
     glUniform1ui(glGetUniformLocation(programs.reduce->id(), "u_columns"), GLuint(columns));
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, result, 0, 8);
+    glUniform1ui(glGetUniformLocation(programs.reduce->id(), "u_axis"), GLuint(grid.axis));
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, result, 0, 24);
     glDispatchCompute(strideGroups(columns, kReduceLocal), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(result, 0, 8, out);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
     glUseProgram(0);
@@ -76,6 +76,12 @@ void countAxis(const GlContext& gl, const CountPrograms& programs, const GpuMesh
 std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, const Box& bounds,
                                           std::uint32_t resolution) {
     const CurrentContext current(gl);
+    return countLayersOnGl(gl, GpuMesh(mesh), bounds, resolution);
+}
+
+std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, const GpuMesh& drawn, const Box& bounds,
+                                          std::uint32_t resolution) {
+    const CurrentContext current(gl);
     std::array<SpriteGrid, 3> grids;
     std::uint64_t most = 0;
     for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
@@ -85,18 +91,21 @@ std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, co
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     // The counts of one axis in one storage block; each fewer than 2^32 (as a sprite's crossings are).
-    if (most * 4 > std::uint64_t(maxBlock) || mesh.triangleCount >= (std::uint64_t(1) << 32)) return std::nullopt;
+    if (most * 4 > std::uint64_t(maxBlock) || drawn.triangleCount() >= (std::uint64_t(1) << 32)) return std::nullopt;
     const CountPrograms programs = countPrograms(gl);
-    const GpuMesh drawn(mesh);
     const GLuint counts = gl.scratchBuffer("vds.count.columns", std::size_t(most) * 4).id();
-    const GLuint result = gl.scratchBuffer("vds.count.result", 8).id();
+    const GLuint result = gl.scratchBuffer("vds.count.result", 24).id();
+    const GLuint zero = 0;
+    glClearNamedBufferSubData(result, GL_R32UI, 0, 24, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) countAxis(gl, programs, drawn, grids[std::size_t(axis)], counts, result);
+    std::uint32_t out[6] = {};
+    glGetNamedBufferSubData(result, 0, 24, out); // the one wait for the GPU
+    checkGl("reading the layer counts");
     AxisChoice choice;
     choice.resolution = resolution;
-    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
-        std::uint32_t out[2] = {0, 0};
-        countAxis(gl, programs, drawn, grids[std::size_t(axis)], counts, result, out);
-        choice.layers[std::size_t(axis)] = out[0];
-        choice.crossings[std::size_t(axis)] = out[1];
+    for (std::size_t a = 0; a < 3; ++a) {
+        choice.layers[a] = out[2 * a];
+        choice.crossings[a] = out[2 * a + 1];
     }
     pickFewestLayers(choice);
     return choice;
@@ -108,10 +117,14 @@ bool softwareRenderer(const GlContext& gl) {
            renderer.find("softpipe") != std::string::npos || renderer.find("SwiftShader") != std::string::npos;
 }
 
-AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options) {
+AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options, std::optional<GpuMesh>* keep) {
     if (softwareRenderer(gl)) return {}; // there the CPU's count is the faster
-    return [&gl, mesh, resolution = options.resolution](const MeshReport& report) {
-        return countLayersOnGl(gl, mesh, report.bounds, resolution);
+    return [&gl, mesh, resolution = options.resolution, keep](const MeshReport& report) {
+        const CurrentContext current(gl);
+        std::optional<GpuMesh> local;
+        std::optional<GpuMesh>& drawn = keep ? *keep : local;
+        drawn.emplace(mesh);
+        return countLayersOnGl(gl, *drawn, report.bounds, resolution);
     };
 }
 

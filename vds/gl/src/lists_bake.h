@@ -47,8 +47,9 @@ public:
     ListsBake& operator=(const ListsBake&) = delete;
 
     /// Bakes the (validated) mesh, handing each finished band to `take`, the
-    /// top rows first; `take` may keep the band's buffers.
-    void run(MeshView mesh, const std::function<void(GpuBand&)>& take);
+    /// top rows first; `take` may keep the band's buffers. `uploaded`: the
+    /// mesh in GL already (else it is uploaded here).
+    void run(MeshView mesh, const std::function<void(GpuBand&)>& take, const GpuMesh* uploaded = nullptr);
     /// d_S over the bands baked so far (reads one number back from GL).
     std::uint32_t depthComplexity() const;
     /// Crossings baked so far.

@@ -269,7 +269,9 @@
 //                        GpuSpriteParts picks what is uploaded. <vds/gl/sprite.h>
 //   GpuClassifier        the VPT over many points in a compute shader: host
 //                        arrays in and out, or points and labels already in
-//                        GL buffers (no host round trip).
+//                        GL buffers (no host round trip). HostTransfer says
+//                        how host arrays cross: mapped, or copied to GPU
+//                        memory (Auto: copied on a hardware renderer).
 //   GpuSpriteClassifier  the same as a Classifier (Method::SpriteGpu).
 //                                                        <vds/gl/classifier.h>
 //   GpuOccupancy         occupancy grids in a compute shader, into a GL

@@ -55,7 +55,9 @@ const char* toString(BakeMethod m);
 /// The phases of a bake, in the order they run. Not every baker has every
 /// phase; a phase that runs more than once (row bands, peeling passes) adds up.
 enum class BakePhase : std::uint8_t {
-    Validation,  ///< checking the mesh and making the grid (host)
+    Validation,  ///< checking the mesh (host)
+    Axis,        ///< choosing the view axis where the options name none: the layers counted along each axis
+                 ///< (the GL bakers on a GPU: in their own raster, GPU-timed; elsewhere the CPU's count)
     Compile,     ///< building the GL programs: the first bake on a context only
     Upload,      ///< the mesh into GL buffers; the CPU baker: projecting and indexing the triangles
     Raster,      ///< drawing the mesh (fragment lists, or every peeling pass); the CPU baker: casting the rays
@@ -65,12 +67,12 @@ enum class BakePhase : std::uint8_t {
     ReadBack,    ///< copying the columns (lists) or the layers (peel) from GL to the host
     Assembly,    ///< the host sprite: d_S, metadata and its consistency check
 };
-constexpr std::size_t kBakePhaseCount = 9;
+constexpr std::size_t kBakePhaseCount = 10;
 
 template <> struct EnumNames<BakePhase> {
     static constexpr const char* kind = "bake phase";
     static constexpr EnumName<BakePhase> table[] = {
-        {"validation", BakePhase::Validation}, {"compile", BakePhase::Compile},   {"upload", BakePhase::Upload},
+        {"validation", BakePhase::Validation}, {"axis", BakePhase::Axis}, {"compile", BakePhase::Compile},   {"upload", BakePhase::Upload},
         {"raster", BakePhase::Raster},         {"scan", BakePhase::Scan},         {"sort", BakePhase::Sort},
         {"texture", BakePhase::TextureFill},   {"read-back", BakePhase::ReadBack}, {"assembly", BakePhase::Assembly}};
 };

@@ -170,12 +170,24 @@ private:
 /// construction, which it makes current for every call (restoring the
 /// caller's) and at destruction. Refuses other threads and sprites of
 /// other contexts with a one-line `GlError`. Not thread safe.
+/// How `GpuClassifier`'s host arrays reach the GPU. Both stage the points
+/// in persistently mapped host buffers; then
+///  - `Mapped`: the shader reads them there and writes the labels there
+///    (no copy: right where the GPU shares the host's memory, as llvmpipe);
+///  - `Copied`: GL copies them to GPU memory, the shader runs there, and
+///    the labels are copied back (the bus crossed by the copy engine, in
+///    large transfers, rather than by the shader's scattered reads: right
+///    for discrete GPUs);
+///  - `Auto`: `Copied` on a hardware renderer, `Mapped` on a software one.
+enum class HostTransfer : std::uint8_t { Auto, Mapped, Copied };
+
 class GpuClassifier {
 public:
     /// Takes the compute programs from `gl`'s cache (built there on first
     /// use); `gl` must outlive the classifier. Host batches go to the GPU `batchPoints` at a time (rounded down to a
-    /// multiple of 4, at least 1024). Throws `GlError`.
-    explicit GpuClassifier(const GlContext& gl, std::size_t batchPoints = std::size_t(1) << 22);
+    /// multiple of 4, at least 1024), by `transfer`. Throws `GlError`.
+    explicit GpuClassifier(const GlContext& gl, std::size_t batchPoints = std::size_t(1) << 22,
+                           HostTransfer transfer = HostTransfer::Auto);
     ~GpuClassifier();
     GpuClassifier(GpuClassifier&&) noexcept;
     GpuClassifier& operator=(GpuClassifier&&) noexcept;
@@ -191,10 +203,10 @@ public:
     /// Host arrays to host arrays, the contract of <vds/classify.h>:
     /// `labels` holds `points.count` bytes (caller-owned), 1 inside, 0
     /// outside; `options.rule` is answered, `threads` ignored. Points go in
-    /// batches (see the constructor): while the GPU classifies one batch,
-    /// the next is copied (converted from strided or double points) into the
-    /// other staging buffer and the previous one's labels out. Returns when
-    /// every label is written.
+    /// batches (see the constructor), three in flight: while the GPU takes
+    /// one batch across and classifies it, the next is copied (converted
+    /// from strided or double points) into another staging buffer and an
+    /// earlier one's labels out. Returns when every label is written.
     void classify(const GpuSprite& sprite, const PointsView& points, std::uint8_t* labels,
                   const ClassifyOptions& options = {});
 
@@ -220,7 +232,8 @@ public:
 
 private:
     struct Slot {
-        Buffer points, labels;
+        Buffer points, labels;             // staging, mapped
+        Buffer gpuPoints, gpuLabels;       // HostTransfer::Copied: in GPU memory
         void* pointsMap = nullptr;
         const void* labelsMap = nullptr;
         Fence done;
@@ -230,6 +243,7 @@ private:
                   GLintptr labelsOffset, std::size_t count, Rule rule);
     void reserve(std::size_t points);
     void finish(Slot& slot, std::uint8_t* labels);
+    void send(Slot& slot, const GpuSprite& sprite, Rule rule);
     void enter(const char* what) const;
 
     const GlContext* gl_ = nullptr;
@@ -237,8 +251,11 @@ private:
     std::size_t batch_ = std::size_t(1) << 22;
     std::uint64_t maxBlock_ = 0;
     std::size_t maxDispatch_ = 0;
-    std::array<Slot, 2> slots_;
+    // Three batches in flight: one being staged by the host, one crossing
+    // or classified on the GPU, one's labels being copied out.
+    std::array<Slot, 3> slots_;
     std::size_t capacity_ = 0;
+    bool copied_ = false; // HostTransfer::Copied, Auto resolved
 };
 
 } // namespace vds

@@ -59,9 +59,13 @@ private:
 /// the validated mesh's report; nullopt: not here, count on the CPU.
 using AxisCounter = std::function<std::optional<AxisChoice>(const MeshReport&)>;
 
-/// Validates the mesh (throws `InvalidMesh` if unusable) and builds the grid
-/// along `options.axis`, or the axis of the fewest layers (`count`, or the
-/// CPU's `chooseViewAxis`); timed as `BakePhase::Validation`.
+/// Validates the mesh (throws `InvalidMesh` if unusable); timed as
+/// `BakePhase::Validation`.
+MeshReport validateForBake(MeshView mesh, const BakeOptions& options);
+/// `options.axis`, or the axis of the fewest layers (`count`, or the CPU's
+/// `chooseViewAxis`), timed as `BakePhase::Axis`.
+Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const AxisCounter& count = {});
+/// Both, and the grid along the axis.
 BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count = {});
 
 /// Sets `choice.axis` to the axis of the fewest layers, ties to fewer
