@@ -305,7 +305,9 @@ TEST(ChooseViewAxis, CountsExactlyAcrossBandsAndThreads) {
 // neighbour's (the triangles on either side of a shared edge): boundary
 // edges, non-manifold edges, edges whose triangles run them the same way,
 // loose triangles and triangles that share positions but no indices keep
-// theirs. Each counts what the baker makes.
+// theirs where the count pairs edges by index (`chooseViewAxis(mesh, report,
+// ...)`), not where validation pairs them by position (`chooseViewAxis(mesh,
+// resolution)`, the bakes). Each counts what the baker makes.
 TEST(ChooseViewAxis, CountsExactlyOnOpenNonManifoldAndUnsharedMeshes) {
     TriangleMesh flipped = solids::sphere({0.1f, 0.0f, -0.2f}, 1.0f, 20).mesh;
     for (std::size_t k = 0; k < flipped.triangles.size(); k += 7) std::swap(flipped.triangles[k].y, flipped.triangles[k].z);
@@ -322,6 +324,9 @@ TEST(ChooseViewAxis, CountsExactlyOnOpenNonManifoldAndUnsharedMeshes) {
     for (const TriangleMesh& mesh : meshes)
         for (std::uint32_t resolution : {64u, 301u}) {
             const AxisChoice choice = chooseViewAxis(mesh, resolution);
+            const AxisChoice byIndex = chooseViewAxis(mesh, validateMesh(mesh), resolution);
+            EXPECT_EQ(byIndex.layers, choice.layers);
+            EXPECT_EQ(byIndex.crossings, choice.crossings);
             for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
                 BakeOptions o;
                 o.resolution = resolution;

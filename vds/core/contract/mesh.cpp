@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <vds/detail/edge_partners.h>
 #include <vds/detail/parallel.h>
 #include <vds/detail/solid_angle.h>
 #include <vds/error.h>
@@ -215,7 +216,7 @@ std::pair<Index, Index> groupStarts(std::vector<std::vector<Index>>& edgeAt, std
 /// set into its group, at the thread's next place there.
 template <class Index>
 void placeItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair<std::size_t, std::size_t> share,
-                Index* edgeNext, Index* cornerNext, Index* edges, std::uint64_t* others) {
+                Index* edgeNext, Index* cornerNext, Index* edges, std::uint64_t* others, std::uint32_t* owners) {
     const std::size_t nv = mesh.positionCount;
     for (auto [t, end] = share; t < end; ++t) {
         const glm::uvec3 tri = mesh.triangles[t];
@@ -224,7 +225,9 @@ void placeItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair
         if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) continue;
         for (int e = 0; e < 3; ++e) {
             const std::uint32_t a = w[e], b = w[(e + 1) % 3];
-            edges[edgeNext[std::min(a, b)]++] = edgeUse<Index>(a, b);
+            const Index at = edgeNext[std::min(a, b)]++;
+            edges[at] = edgeUse<Index>(a, b);
+            if (owners) owners[at] = std::uint32_t(3 * t + std::size_t(e));
         }
         if (w[0] > w[1]) std::swap(w[0], w[1]);
         if (w[1] > w[2]) std::swap(w[1], w[2]);
@@ -233,6 +236,31 @@ void placeItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair
     }
 }
 
+/// Where validation also finds the edges' partners (edge_partners.h):
+/// beside each edge use, its half-edge (`owners`), sorted with it; an edge
+/// used exactly twice, by two triangles, pairs them.
+struct Partners {
+    std::uint32_t* owners = nullptr; ///< none: no partners asked
+    std::uint32_t* partners = nullptr;
+
+    template <class Index> void sort(Index* group, std::uint32_t* owner, std::size_t n) const {
+        thread_local std::vector<std::uint64_t> keys;
+        keys.resize(n);
+        for (std::size_t i = 0; i < n; ++i) keys[i] = (std::uint64_t(group[i]) << 32) | owner[i];
+        sortGroup(keys.data(), n, [](std::uint64_t x, std::uint64_t y) { return x < y; });
+        for (std::size_t i = 0; i < n; ++i) {
+            group[i] = Index(keys[i] >> 32);
+            owner[i] = std::uint32_t(keys[i]);
+        }
+    }
+    void pair(const std::uint32_t* owner, bool sameWay) const {
+        const std::uint32_t h1 = owner[0], h2 = owner[1];
+        if (h1 / 3 == h2 / 3) return;
+        partners[h1] = h2 / 3 | (sameWay ? detail::kSameWay : 0);
+        partners[h2] = h1 / 3 | (sameWay ? detail::kSameWay : 0);
+    }
+};
+
 /// Vertex v's groups, sorted in place and read in runs: its edges' uses
 /// (boundary, non-manifold, inconsistent, unpaired) and its triangles'
 /// corner sets (duplicates), into `f`; an edge used an odd number of times
@@ -240,12 +268,15 @@ void placeItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair
 template <class Index>
 void readGroup(std::size_t v, const std::vector<Index>& edgeEnd, const std::vector<Index>& cornerEnd, Index* edges,
                std::uint64_t* others, Found& f, const std::vector<std::uint32_t>& part,
-               std::atomic<std::uint8_t>* openPart) {
+               std::atomic<std::uint8_t>* openPart, const Partners& partners) {
     const auto less = [](auto x, auto y) { return x < y; };
     const std::size_t first = v == 0 ? 0 : std::size_t(edgeEnd[v - 1]);
     Index* group = edges + first;
     const std::size_t n = std::size_t(edgeEnd[v]) - first;
-    sortGroup(group, n, less);
+    if (partners.owners)
+        partners.sort(group, partners.owners + first, n);
+    else
+        sortGroup(group, n, less);
     for (std::size_t i = 0; i < n;) {
         std::size_t j = i, forward = 0;
         for (; j < n && (group[j] >> 1) == (group[i] >> 1); ++j) forward += std::size_t(group[j] & 1);
@@ -256,6 +287,7 @@ void readGroup(std::size_t v, const std::vector<Index>& edgeEnd, const std::vect
         if (uses % 2 == 0 && 2 * forward != uses) ++f.inconsistent;
         f.unpaired += 2 * forward > uses ? 2 * forward - uses : uses - 2 * forward;
         if (uses % 2 == 1) openPart[part[v]].store(1, std::memory_order_relaxed);
+        if (uses == 2 && partners.owners) partners.pair(partners.owners + first + i, (group[i] & 1) == (group[i + 1] & 1));
         i = j;
     }
     const std::size_t firstSet = v == 0 ? 0 : std::size_t(cornerEnd[v - 1]);
@@ -275,7 +307,8 @@ void readGroup(std::size_t v, const std::vector<Index>& edgeEnd, const std::vect
 /// vertex index shifted left by one and any position in the arrays of items.
 template <class Index>
 void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>& weld, unsigned threads,
-                  std::vector<std::uint32_t>& part, std::atomic<std::uint8_t>* openPart) {
+                  std::vector<std::uint32_t>& part, std::atomic<std::uint8_t>* openPart,
+                  std::vector<std::uint32_t>* partnersOut) {
     const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
     std::unique_ptr<std::atomic<std::uint8_t>[]> used(new std::atomic<std::uint8_t>[nv]());
     // Per thread and vertex: how many edge uses (corner sets) the thread
@@ -310,8 +343,12 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
     // Every item is written below, so the arrays start uninitialised.
     const std::unique_ptr<Index[]> edges(new Index[std::size_t(edgeTotal)]);
     const std::unique_ptr<std::uint64_t[]> others(new std::uint64_t[std::size_t(cornerTotal)]); ///< a triangle's two higher corners: middle << 32 | highest
+    std::unique_ptr<std::uint32_t[]> owners(partnersOut ? new std::uint32_t[std::size_t(edgeTotal)] : nullptr);
+    if (partnersOut) partnersOut->assign(3 * nt, detail::kNoPartner);
+    const Partners partners{owners.get(), partnersOut ? partnersOut->data() : nullptr};
     parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
-        placeItems(mesh, weld, shareOf(nt, threads, k), edgeAt[k].data(), cornerAt[k].data(), edges.get(), others.get());
+        placeItems(mesh, weld, shareOf(nt, threads, k), edgeAt[k].data(), cornerAt[k].data(), edges.get(), others.get(),
+                   owners.get());
     });
     const std::vector<Index> edgeEnd = std::move(edgeAt.back()), cornerEnd = std::move(cornerAt.back());
     edgeAt = {};
@@ -320,7 +357,8 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
     std::vector<Found> groups((nv + kVerticesPerChunk - 1) / kVerticesPerChunk);
     parallelFor(threads, nv, kVerticesPerChunk, [&](std::size_t begin, std::size_t end) {
         for (std::size_t v = begin; v < end; ++v)
-            readGroup(v, edgeEnd, cornerEnd, edges.get(), others.get(), groups[begin / kVerticesPerChunk], part, openPart);
+            readGroup(v, edgeEnd, cornerEnd, edges.get(), others.get(), groups[begin / kVerticesPerChunk], part, openPart,
+                      partners);
     });
 
     found.insert(found.end(), groups.begin(), groups.end());
@@ -532,7 +570,9 @@ std::string MeshReport::summary() const {
     return s.str();
 }
 
-MeshReport validateMesh(MeshView mesh, unsigned threads) {
+namespace {
+
+MeshReport validate(MeshView mesh, unsigned threads, std::vector<std::uint32_t>* partners) {
     MeshReport r;
     const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
     r.vertexCount = nv;
@@ -549,10 +589,13 @@ MeshReport validateMesh(MeshView mesh, unsigned threads) {
     std::vector<std::uint32_t> part; // found by countByEdges, beside its first pass
     std::unique_ptr<std::atomic<std::uint8_t>[]> openPart(new std::atomic<std::uint8_t>[nv]());
     // 32-bit items while vertex indices fit in 31 bits and the edge uses in 32.
-    if (nv < (std::size_t(1) << 31) && 3 * nt < (std::size_t(1) << 32))
-        countByEdges<std::uint32_t>(r, mesh, weld, threads, part, openPart.get());
+    // Partners (their half-edges and flag in 32 bits) with 32-bit items only.
+    if (nv < (std::size_t(1) << 31) && 3 * nt < (std::size_t(1) << 31))
+        countByEdges<std::uint32_t>(r, mesh, weld, threads, part, openPart.get(), partners);
+    else if (nv < (std::size_t(1) << 31) && 3 * nt < (std::size_t(1) << 32))
+        countByEdges<std::uint32_t>(r, mesh, weld, threads, part, openPart.get(), nullptr);
     else
-        countByEdges<std::uint64_t>(r, mesh, weld, threads, part, openPart.get());
+        countByEdges<std::uint64_t>(r, mesh, weld, threads, part, openPart.get(), nullptr);
     const TriangleParts partOf(mesh, weld, part);
     std::vector<std::uint8_t> closed(partOf.count, 0);
     for (std::size_t v = 0; v < nv; ++v)
@@ -561,6 +604,15 @@ MeshReport validateMesh(MeshView mesh, unsigned threads) {
     r.insideOutParts = countInsideOutParts(mesh, partOf, closed, sums);
     r.coplanar = allInOnePlane(mesh, r.bounds, sums);
     return r;
+}
+
+} // namespace
+
+MeshReport validateMesh(MeshView mesh, unsigned threads) { return validate(mesh, threads, nullptr); }
+
+MeshReport detail::validateMesh(MeshView mesh, unsigned threads, std::vector<std::uint32_t>& partners) {
+    partners.clear();
+    return validate(mesh, threads, &partners);
 }
 
 void requireUsable(const MeshReport& report, const std::string& meshName) {

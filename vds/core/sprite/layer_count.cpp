@@ -57,6 +57,7 @@
 #include <utility>
 #include <vector>
 
+#include <vds/detail/edge_partners.h>
 #include <vds/detail/parallel.h>
 
 #include "predicates/projected_mesh.h"
@@ -390,14 +391,10 @@ std::size_t rowsPerBand(std::uint32_t width, std::uint32_t height) {
     return std::max(byCache, (std::size_t(height) + kMaxBands - 1) / kMaxBands);
 }
 
-// Edge e of triangle t runs from its corner e to corner e + 1: half-edge
-// 3t + e. Its partner is the one other triangle with an edge between the
-// same two vertex indices, with kSameWay where that edge runs the same way;
-// kNoPartner where none or several do (a boundary, a non-manifold edge,
-// an edge of a triangle with a repeated index, or one whose twin has other
-// indices: its steps are then kept, which costs time, not exactness).
-constexpr std::uint32_t kNoPartner = ~std::uint32_t(0);
-constexpr std::uint32_t kSameWay = std::uint32_t(1) << 31;
+// The edges' partners (kNoPartner, kSameWay: <vds/detail/edge_partners.h>)
+// are validation's where it found them, by vertices welded by position. An
+// edge without one (a boundary, a non-manifold edge, an edge of a triangle
+// with a repeated vertex) keeps its steps, which costs time, not exactness.
 
 // Sorts a vertex's few edges (insertion: most vertices have about six).
 void sortFew(std::uint64_t* items, std::size_t n) {
@@ -413,7 +410,8 @@ void sortFew(std::uint64_t* items, std::size_t n) {
     }
 }
 
-// The partners, by a counting sort of the edges by their lower vertex and a
+// The partners by vertex index, where validation's were not given: a
+// counting sort of the edges by their lower vertex and a
 // sort of each vertex's few edges by the higher one. Each thread sorts the
 // edges of its own range of lower vertices, reading every triangle: no
 // counts are shared, and the triangles stream while the counts and edges
@@ -495,7 +493,7 @@ std::vector<std::uint8_t> facings(MeshView mesh, const std::vector<glm::ivec3>& 
 // What the listing and the bands share of one count.
 struct Mesh3 {
     MeshView mesh;
-    std::vector<std::uint32_t> partner;
+    const std::vector<std::uint32_t>& partner;
     std::vector<std::uint8_t> facing;
 
     int facingOf(std::size_t t, std::size_t axis) const { return (facing[t] >> (2 * axis)) & 3; }
@@ -609,7 +607,8 @@ std::vector<std::vector<std::uint32_t>> listTriangles(const Mesh3& m, const Axes
 
 } // namespace
 
-std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid, 3>& grids, unsigned threads) {
+std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid, 3>& grids, unsigned threads,
+                                      const std::vector<std::uint32_t>& partners) {
     std::uint32_t width = 1, height = 1;
     for (const SpriteGrid& g : grids) {
         width = std::max(width, g.width);
@@ -624,7 +623,9 @@ std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid
         perms.push_back(axes.rows.back().perm);
         axes.vertexRows.emplace_back(mesh, axes.rows.back().t, perms.back().y, threads);
     }
-    const Mesh3 m{mesh, edgePartners(mesh, threads), facings(mesh, perms, threads)};
+    const bool given = partners.size() == 3 * mesh.triangleCount;
+    const std::vector<std::uint32_t> own = given ? std::vector<std::uint32_t>() : edgePartners(mesh, threads);
+    const Mesh3 m{mesh, given ? partners : own, facings(mesh, perms, threads)};
     const std::vector<std::vector<std::uint32_t>> lists = listTriangles(m, axes, threads);
     // Second pass: each band of each axis, its triangles' steps into the
     // band's difference arrays, then its rows' largest counts. A step of w
