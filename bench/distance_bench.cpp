@@ -1,7 +1,7 @@
 // Benchmark of exact distances (<vds/distance.h>): vds's unsigned and signed
 // distance on one thread against a brute-force loop over every triangle,
-// CGAL's AABB tree and Embree's point query (where they were found at
-// configure time), the same random points in and around each mesh's box,
+// CGAL's AABB tree, Embree's point query and libigl's AABB tree (where they
+// were found at configure time), the same random points in and around each mesh's box,
 // the rounds alternated (A B C, A B C, ...) and the best of each kept.
 // Agreement: vds against brute force on a sample (the same closest-point
 // kernel over every triangle: this checks the hierarchy's search), the sign
@@ -9,7 +9,8 @@
 // peers' distances against vds's. Then signed distance grids (full and a
 // band) on two threads.
 //
-// usage: vds_distance_bench [--points N] [--brute N] [--rounds N] [--sdf N] [--band CELLS] [--full-grid] [mesh ...]
+// usage: vds_distance_bench [--points N] [--brute N] [--rounds N] [--sdf N] [--band CELLS] [--full-grid]
+//                           [--generated sphere|trefoil|soup|holes ...] [mesh ...]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -32,7 +33,7 @@
 #include "points.h"
 #include "solids.h"
 
-#if defined(VDS_DISTANCE_CGAL) || defined(VDS_DISTANCE_EMBREE)
+#if defined(VDS_DISTANCE_CGAL) || defined(VDS_DISTANCE_EMBREE) || defined(VDS_DISTANCE_LIBIGL)
 #include "peers/distance_peer.h"
 #endif
 
@@ -78,8 +79,8 @@ std::vector<Contender> contenders(const vds::SignedDistance& vds, const vds::Tri
     one.threads = 1;
     all.push_back({"vds unsigned", [&vds, one](const auto& p, double* o) { vds.unsignedDistance(p, o, one); }, {}});
     all.push_back({"vds signed", [&vds, one](const auto& p, double* o) { vds.distance(p, o, one); }, {}});
-#if defined(VDS_DISTANCE_CGAL)
     auto start = Clock::now();
+#if defined(VDS_DISTANCE_CGAL)
     std::shared_ptr<vds::peers::DistancePeer> cgal = vds::peers::makeCgalDistance(mesh);
     std::printf("  build %-34s %8.1f ms\n", cgal->name().c_str(), 1e3 * seconds(start));
     all.push_back({cgal->name(), [cgal](const auto& p, double* o) { cgal->distances(p, o); }, {}});
@@ -90,7 +91,14 @@ std::vector<Contender> contenders(const vds::SignedDistance& vds, const vds::Tri
     std::printf("  build %-34s %8.1f ms\n", embree->name().c_str(), 1e3 * seconds(start));
     all.push_back({embree->name(), [embree](const auto& p, double* o) { embree->distances(p, o); }, {}});
 #endif
+#if defined(VDS_DISTANCE_LIBIGL)
+    start = Clock::now();
+    std::shared_ptr<vds::peers::DistancePeer> libigl = vds::peers::makeLibiglDistance(mesh);
+    std::printf("  build %-34s %8.1f ms\n", libigl->name().c_str(), 1e3 * seconds(start));
+    all.push_back({libigl->name(), [libigl](const auto& p, double* o) { libigl->distances(p, o); }, {}});
+#endif
     (void)mesh;
+    (void)start;
     return all;
 }
 
@@ -190,7 +198,7 @@ void run(const std::string& name, const vds::TriangleMesh& mesh, const Settings&
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app("vds_distance_bench: exact distances against brute force, CGAL and Embree");
+    CLI::App app("vds_distance_bench: exact distances against brute force, CGAL, Embree and libigl");
     Settings settings;
     std::vector<std::string> meshes;
     app.add_option("--points", settings.points, "random points in and around each mesh's box");
@@ -199,14 +207,19 @@ int main(int argc, char** argv) {
     app.add_option("--sdf", settings.sdf, "cells of the SDF grids on the longest side (0: none), meshes of 50k triangles up");
     app.add_option("--band", settings.band, "the band grid's half-width in cells");
     app.add_flag("--full-grid", settings.fullGrid, "the full exact SDF grid too (minutes), and the propagated one checked against it");
-    app.add_option("meshes", meshes, "mesh files (default: generated solids)");
+    std::vector<std::string> generated;
+    app.add_option("--generated", generated, "generated meshes to run (default without mesh files: all four)")
+        ->check(CLI::IsMember({"sphere", "trefoil", "soup", "holes"}));
+    app.add_option("meshes", meshes, "mesh files (default: the generated meshes)");
     CLI11_PARSE(app, argc, argv);
     try {
-        if (meshes.empty()) {
-            run("sphere", vds::solids::sphere(glm::vec3(0.0f), 1.0f, 316).mesh, settings);
-            run("trefoil", vds::solids::torusKnot(glm::vec3(0.0f), 1.0f, 2, 3, 0.25f, 800, 64).mesh, settings);
-            run("soup (open)", vds::solids::looseTriangles(20000, 0.05f, 9), settings);
-            run("sphere with holes (open)", vds::solids::sphereWithHoles(), settings);
+        if (meshes.empty() && generated.empty()) generated = {"sphere", "trefoil", "soup", "holes"};
+        for (const std::string& g : generated) {
+            if (g == "sphere") run("sphere", vds::solids::sphere(glm::vec3(0.0f), 1.0f, 316).mesh, settings);
+            else if (g == "trefoil")
+                run("trefoil", vds::solids::torusKnot(glm::vec3(0.0f), 1.0f, 2, 3, 0.25f, 800, 64).mesh, settings);
+            else if (g == "soup") run("soup (open)", vds::solids::looseTriangles(20000, 0.05f, 9), settings);
+            else run("sphere with holes (open)", vds::solids::sphereWithHoles(), settings);
         }
         for (const std::string& path : meshes) run(path, vds::loadMesh(path), settings);
     } catch (const vds::Error& e) {

@@ -481,9 +481,9 @@ void gwnTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMe
     std::puts("warm-up. `brute force`: the plain kernel summing every boundary edge for every point (bench/plain_kernels.h),");
     std::puts("and its edge terms/s. `differ`: labels unlike the CPU's (float against double, near 1/2). Occupancy:");
     std::printf("%u^3 cells over the box, G cells/s, generalized winding against parity.\n\n", set.gwnDims);
-    std::puts("| mesh | boundary edges | vds | brute force | vds / brute | G edge terms/s (brute) | differ | "
-              "occupancy GWN | occupancy parity | GWN / parity |");
-    std::puts("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    std::puts("| mesh | w x h x d (axis; CPU count's axis) | boundary edges | vds | brute force | vds / brute | "
+              "G edge terms/s (brute) | differ | occupancy GWN | occupancy parity | GWN / parity |");
+    std::puts("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     vds::GpuClassifier classifier(gl);
     vds::GpuOccupancy occupancy(gl);
     const vds::bench::PlainKernels plain(gl);
@@ -520,7 +520,10 @@ void gwnTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMe
         const Timed og = timeGpu(set, [&] { occupancy.occupancy(gpu, grid, cellBuffer.id(), gwn); });
         const Timed op = timeGpu(set, [&] { occupancy.occupancy(gpu, grid, cellBuffer.id(), parity); });
         const double edges = double(sprite.boundaryEdges.size() / 2);
-        std::printf("| %s | %.0f | %s | %s | %s | %s | %zu | %s | %s | %s |\n", m.mesh.name.c_str(), edges,
+        const vds::Axis cpuAxis = vds::chooseViewAxis(m.mesh, set.gwnResolution).axis;
+        std::printf("| %s | %s (%s; %s) | %.0f | %s | %s | %s | %s | %zu | %s | %s | %s |\n", m.mesh.name.c_str(),
+                    sizeText(sprite.width(), sprite.height(), sprite.depthComplexity).c_str(),
+                    vds::toString(sprite.grid.axis), vds::toString(cpuAxis), edges,
                     rate(double(n), tv.best()).c_str(), rate(double(n), tb.best()).c_str(),
                     ratio(tb.best(), tv.best()).c_str(), rate(double(n) * edges, tb.best()).c_str(), differ,
                     rate(double(cells), og.best()).c_str(), rate(double(cells), op.best()).c_str(),

@@ -1,6 +1,6 @@
 // vds_distance_bench: the peers' nearest-surface queries behind one shape,
-// each compiled in its own library (CGAL's -frounding-math, Embree's headers
-// stay out of the vds code).
+// each compiled in its own library (CGAL's -frounding-math, Embree's and
+// libigl's headers stay out of the vds code).
 #pragma once
 
 #include <memory>
@@ -29,5 +29,8 @@ std::unique_ptr<DistancePeer> makeCgalDistance(MeshView mesh);
 /// Embree 3's rtcPointQuery over a triangle scene, with the closest point on
 /// each candidate triangle in float, as Open3D's RaycastingScene computes it.
 std::unique_ptr<DistancePeer> makeEmbreeDistance(MeshView mesh);
+/// libigl's igl::AABB over double vertices, squared_distance per point (the
+/// search under igl::signed_distance).
+std::unique_ptr<DistancePeer> makeLibiglDistance(MeshView mesh);
 
 } // namespace vds::peers

@@ -16,11 +16,9 @@
 // bytes, three aligned vec4 loads) and writes their labels as one 32-bit
 // word, byte k for point k: one byte a point, as the host's uint8 arrays hold
 // them, written in whole words. The points go through each step together, so
-// that their memory reads overlap: the four columns' offsets are loaded
-// together, then their crossings a step of each at a time (a column walk is
-// a chain of dependent loads, and random points' columns are far apart; one
-// point a thread, tried on an H200, ran no faster on random points and 17%
-// slower on coherent ones).
+// that their memory reads overlap. (Measured on an H200 against this form:
+// one point an invocation with the labels gathered in shared memory, and the
+// four column walks in lockstep, were each slower, docs/benchmarks.md.)
 //
 // Parity and winding: a grid-stride loop per invocation covers any count.
 // Generalized winding: the loop runs per workgroup (every invocation takes
@@ -64,46 +62,25 @@ uniform uint u_count;
 
 #define VDS_N VDS_POINTS_PER_INVOCATION
 
-#ifdef VDS_COLUMNS
-// Each point's signed count and parity of the crossings in front of its
-// texture depth, the points' columns walked in lockstep: every step loads
-// the next crossing of each column still in walk, independent loads that
-// are in flight together.
-void vdsCountColumns(ivec2 column[VDS_N], bool inBox[VDS_N], vec3 T[VDS_N], out int winding[VDS_N],
-                     out int parity[VDS_N]) {
-    uint next[VDS_N], end[VDS_N];
-    for (uint k = 0u; k < uint(VDS_N); ++k) {
-        uint c = uint(column[k].y) * uint(u_size.x) + uint(column[k].x);
-        next[k] = inBox[k] ? offsets[c] : 0u;
-        end[k] = inBox[k] ? offsets[c + 1u] : 0u;
-        winding[k] = 0;
-        parity[k] = 0;
-    }
-    bool walking = true;
-    while (walking) {
-        walking = false;
-        for (uint k = 0u; k < uint(VDS_N); ++k) {
-            if (next[k] >= end[k]) continue;
-            float e = crossings[next[k]];
-            if (!(abs(e) < T[k].z)) { // sorted: nothing further is in front
-                end[k] = next[k];
-                continue;
-            }
-            parity[k] ^= 1;
-            winding[k] += floatBitsToInt(e) < 0 ? -1 : 1;
-            ++next[k];
-            walking = walking || next[k] < end[k];
-        }
-    }
-}
-#else
 // The column's signed count and parity in front of texture depth r.
 int vdsCount(ivec2 column, bool inBox, float r, out int parity) {
     parity = 0;
     if (!inBox) return 0;
+#ifdef VDS_COLUMNS
+    uint c = uint(column.y) * uint(u_size.x) + uint(column.x);
+    uint begin = offsets[c], end = offsets[c + 1u];
+    int winding = 0;
+    for (uint i = begin; i < end; ++i) {
+        float e = crossings[i];
+        if (!(abs(e) < r)) break; // sorted: nothing further is in front
+        parity ^= 1;
+        winding += floatBitsToInt(e) < 0 ? -1 : 1;
+    }
+    return winding;
+#else
     return vdsColumnWinding(u_ldi, column, r, parity);
-}
 #endif
+}
 
 // The labels of the points, as one word (0 or 1 in byte k for point k);
 // points past `valid` are left 0. For the generalized winding rule every
@@ -127,11 +104,7 @@ uint vdsClassifyPoints(vec3 p[VDS_N], uint valid) {
         inBox[k] = k < valid && vdsColumnOf(T[k], VDS_SIZE, column[k]);
 #endif
     }
-#ifdef VDS_COLUMNS
-    vdsCountColumns(column, inBox, T, winding, parity);
-#else
     for (uint k = 0u; k < uint(VDS_N); ++k) winding[k] = vdsCount(column[k], inBox[k], T[k].z, parity[k]);
-#endif
     uint word = 0u;
 #ifdef VDS_BOUNDARY_TERM
     vec3 q[VDS_N]; // where the CPU evaluates the term: the texel-centre point, or the point itself beside the box

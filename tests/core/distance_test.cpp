@@ -161,6 +161,46 @@ TEST(Distance, SlabBoundsHoldJustOffATiltedPatchFarFromTheOrigin) {
     for (std::size_t k = 0; k < points.size(); ++k) ASSERT_NEAR(d[k], bruteForce(mesh, points[k]), 1e-9) << "point " << k;
 }
 
+TEST(Distance, TriangleBoundsHoldNearCornersAndEdgesOfNeedlesFarFromTheOrigin) {
+    // A curved, sheared strip at 1000 units cut into obtuse needles (10:1),
+    // and points a few float steps off its corners and edge midpoints, where
+    // the nearest triangle and its neighbours are nearly equidistant. A
+    // triangle's float lower bound (face and edge planes, TriangleBound)
+    // without the rounding slack on its edge planes, or with an edge plane
+    // turned inward, turns away the triangle nearest such a point and
+    // answers a farther one.
+    TriangleMesh mesh;
+    const std::uint32_t n = 24;
+    const glm::vec3 origin(1000.0f, -700.0f, 500.0f);
+    for (std::uint32_t i = 0; i <= n; ++i)
+        for (std::uint32_t j = 0; j <= n; ++j) {
+            const float x = float(i) / n, y = float(j) / n;
+            mesh.positions.push_back(origin + glm::vec3(x + 0.7f * y, 0.1f * y, 0.2f * (x - 0.5f) * (x - 0.5f) + 0.01f * y * y));
+        }
+    for (std::uint32_t i = 0; i < n; ++i)
+        for (std::uint32_t j = 0; j < n; ++j) {
+            const std::uint32_t a = i * (n + 1) + j;
+            mesh.triangles.emplace_back(a, a + n + 1, a + 1);
+            mesh.triangles.emplace_back(a + 1, a + n + 1, a + n + 2);
+        }
+    const std::uint32_t far = std::uint32_t(mesh.positions.size()); // gives the mesh a volume
+    mesh.positions.insert(mesh.positions.end(), {origin - glm::vec3(5.0f), origin - glm::vec3(5.0f, 4.0f, 5.0f),
+                                                 origin - glm::vec3(5.0f, 5.0f, 4.0f)});
+    mesh.triangles.emplace_back(far, far + 1, far + 2);
+    std::vector<glm::vec3> points;
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> off(-3e-4f, 3e-4f);
+    for (const glm::uvec3& t : mesh.triangles)
+        for (const glm::vec3& at : {mesh.positions[t.x], (mesh.positions[t.x] + mesh.positions[t.y]) * 0.5f,
+                                    (mesh.positions[t.y] + mesh.positions[t.z]) * 0.5f,
+                                    (mesh.positions[t.z] + mesh.positions[t.x]) * 0.5f})
+            points.push_back(at + glm::vec3(off(rng), off(rng), off(rng)));
+    const SignedDistance distance(mesh, Rule::GeneralizedWinding);
+    std::vector<double> d(points.size());
+    distance.unsignedDistance(points, d.data(), DistanceOptions{2});
+    for (std::size_t k = 0; k < points.size(); ++k) ASSERT_NEAR(d[k], bruteForce(mesh, points[k]), 1e-9) << "point " << k;
+}
+
 TEST(Distance, ClosestPointsLieOnTheirTriangleAtTheDistance) {
     const TriangleMesh mesh = solids::sphereWithHoles();
     const SignedDistance distance(mesh, Rule::GeneralizedWinding);

@@ -172,6 +172,26 @@ TEST_F(GpuClassifyTest, HostArraysInManyBatchesMatchCpp) {
         }
 }
 
+// Blocks of MiBs (points and labels) are copied by the classifier's copy
+// threads, kept from one batch and one call to the next.
+TEST_F(GpuClassifyTest, LargeHostArraysMatchCppCallAfterCall) {
+    const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.45f, 64);
+    const Sprite sprite = bakeSolid(torus.mesh, 64, Axis::Y);
+    const GpuSprite gpu(sprite);
+    const std::size_t n = 3000007; // 36 MB of points, 3 MB of labels: several batches of 1M points
+    const auto points = test::randomPoints(sprite.grid.box, n, 0.1f, 11);
+    std::vector<std::uint8_t> cpu(n);
+    classify(sprite, PointsView(points.data(), n), cpu.data());
+    for (HostTransfer transfer : {HostTransfer::Mapped, HostTransfer::Copied}) {
+        GpuClassifier classifier(gl(), std::size_t(1) << 20, transfer);
+        for (int call = 0; call < 2; ++call) {
+            std::vector<std::uint8_t> labels(n, 9);
+            classifier.classify(gpu, {points.data(), n}, labels.data(), {Rule::Parity});
+            EXPECT_EQ(cpu, labels) << "call " << call << ", copied " << (transfer == HostTransfer::Copied);
+        }
+    }
+}
+
 TEST_F(GpuClassifyTest, TransformedSpriteAnswersForTheTransformedSolid) {
     const auto sphere = solids::sphere({0, 0, 0}, 1.0f, 96);
     Sprite s = bakeSolid(sphere.mesh, 128);

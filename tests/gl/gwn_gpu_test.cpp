@@ -374,6 +374,92 @@ TEST_F(GwnGpuTest, VertexStageValueMatchesTheReference) {
     EXPECT_GT(fractional, points.size() / 10);
 }
 
+// boundary_tiles.glsl's vdsBoundaryTerms in a compute shader, one point an
+// invocation, workgroups of 64: the term at each point.
+std::vector<float> tiledTerms(const GpuSprite& gpu, const std::vector<glm::vec3>& points) {
+    const std::string cs = R"(#define VDS_LOCAL_SIZE 64
+layout(local_size_x = VDS_LOCAL_SIZE) in;
+#define VDS_BOUNDARY_BINDING 1
+#include "vds/vpt.glsl"
+#define VDS_TERM_POINTS 1
+#include "vds/boundary_tiles.glsl"
+layout(std430, binding = 0) readonly buffer Points { float points[]; };
+layout(std430, binding = 2) writeonly buffer Values { float values[]; };
+uniform VdsPlacement u_placement;
+uniform VdsBoundary u_boundary;
+uniform ivec2 u_size;
+uniform uint u_count;
+void main() {
+    uint i = gl_WorkGroupID.x * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+    bool live[1] = bool[1](i < u_count);
+    vec3 p = live[0] ? vec3(points[3u * i], points[3u * i + 1u], points[3u * i + 2u]) : vec3(0.0);
+    vec3 q[1] = vec3[1](vdsBesidePoint(u_boundary, u_size, vdsToTexture(u_placement, p)));
+    float term[1];
+    vdsBoundaryTerms(u_boundary, q, live, term);
+    if (live[0]) values[i] = term[0];
+}
+)";
+    const Program program = buildProgram({{GL_COMPUTE_SHADER, "tiles.comp", cs}});
+    Buffer pointBuffer = Buffer::create(), valueBuffer = Buffer::create();
+    glNamedBufferStorage(pointBuffer.id(), GLsizeiptr(points.size() * 12), points.data(), 0);
+    glNamedBufferStorage(valueBuffer.id(), GLsizeiptr(points.size() * 4), nullptr, 0);
+    const GLuint id = program.id();
+    glUseProgram(id);
+    glUniformMatrix3fv(glGetUniformLocation(id, "u_placement.matrix"), 1, GL_FALSE, &gpu.matrix()[0][0]);
+    glUniform3fv(glGetUniformLocation(id, "u_placement.position"), 1, &gpu.position()[0]);
+    glUniform2i(glGetUniformLocation(id, "u_size"), GLint(gpu.size().x), GLint(gpu.size().y));
+    glUniform1ui(glGetUniformLocation(id, "u_count"), GLuint(points.size()));
+    gpu.setBoundaryUniforms(id, "u_boundary", 1);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pointBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, valueBuffer.id());
+    glDispatchCompute(GLuint((points.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<float> values(points.size());
+    glGetNamedBufferSubData(valueBuffer.id(), 0, GLsizeiptr(values.size() * 4), values.data());
+    for (GLuint b = 0; b <= 2; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    glUseProgram(0);
+    return values;
+}
+
+// The workgroup's walk of the chain tree: clusters of 64 points beside the
+// box (no crossing in their column: the winding number is the term), some
+// close to the openings, most far from some of them, so that the workgroup
+// takes far chains and loops whole by their expansions and sums the rest;
+// the terms against the double reference.
+TEST_F(GwnGpuTest, WorkgroupTreeWalkMatchesTheReferenceForClusteredPoints) {
+    const Sprite sprite = bakeAt(solids::sphereWithHoles(), Axis::Z, 64);
+    const GpuSprite gpu(sprite, GpuSpriteParts::ColumnsOnly);
+    // The texture's extent in x and y (its s and t: whole texels, so up to one past the box).
+    const glm::vec3 lo = sprite.grid.box.lo, size = sprite.grid.box.hi - lo;
+    const glm::vec3 hi = lo + glm::vec3(float(sprite.width()), float(sprite.height()), 0.0f) * sprite.grid.texelSize +
+                         glm::vec3(0.0f, 0.0f, size.z);
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<glm::vec3> points;
+    for (int cluster = 0; cluster < 200; ++cluster) {
+        // Beside the texture in x or y (the sprite's s or t), 0.02 to 6 sizes away.
+        const int side = cluster % 4;
+        const float away = 0.02f + 6.0f * u(rng) * u(rng);
+        glm::vec3 c = lo + glm::vec3(u(rng), u(rng), u(rng)) * size;
+        if (side < 2) c.x = side == 0 ? lo.x - away * size.x : hi.x + away * size.x;
+        else c.y = side == 2 ? lo.y - away * size.y : hi.y + away * size.y;
+        const float spread = 0.01f + 0.1f * u(rng);
+        for (int k = 0; k < 64; ++k) {
+            glm::vec3 p = c + (glm::vec3(u(rng), u(rng), u(rng)) - 0.5f) * spread * size;
+            if (side < 2) p.x = side == 0 ? std::min(p.x, lo.x - 1e-3f * size.x) : std::max(p.x, hi.x + 1e-3f * size.x);
+            else p.y = side == 2 ? std::min(p.y, lo.y - 1e-3f * size.y) : std::max(p.y, hi.y + 1e-3f * size.y);
+            points.push_back(p);
+        }
+    }
+    const std::vector<float> terms = tiledTerms(gpu, points);
+    std::vector<double> errors;
+    for (std::size_t k = 0; k < points.size(); ++k) errors.push_back(std::fabs(double(terms[k]) - referenceGwn(sprite, points[k])));
+    std::sort(errors.begin(), errors.end());
+    // Float, and at most 1e-5 a node taken (VDS_NODE_TOLERANCE).
+    EXPECT_LT(errors[errors.size() / 2], 5e-6);
+    EXPECT_LT(errors.back(), 2e-4);
+}
+
 // One large opening: a UV sphere (256 segments) without its cap above
 // z = 0.5, its rim one loop of 256 edges in a plane z = c. Points near that
 // plane inside the rim have w near 1/2 (on the disk the rim bounds,

@@ -31,11 +31,17 @@ constexpr int kStackEntries = 3 * (kSahDepth + 32) + 4;
 /// distance by this relative margin: above the few float roundings of a box
 /// distance (4 * 2^-24) and of the bound itself (2^-24).
 constexpr double kPruneMargin = 1.0 + 1.0 / (1 << 20);
-/// A float plane distance |n . p - w| is within kPlaneError (|p|_1 + 2
-/// max |v|_1) of the exact distance to the plane: the normal's rounding to
+/// A float plane distance n . p - w (a triangle's face, edge or edge
+/// direction plane, TriangleBlock) is within kPlaneError (|p|_1 + 2 max |v|_1) of
+/// the exact signed distance to the plane: the unit normal's rounding to
 /// float (sqrt(3) 2^-24 relative), the offset's (2^-24) and four float
 /// roundings of the dot product (4 2^-24), with a factor of 2 to spare.
 constexpr float kPlaneError = 1e-6f;
+/// A triangle gets planes only where |ab x ac| >= kMinSine |ab| |ac|: then
+/// the double cross product of its float corners' differences (off by
+/// about 2^-52 |ab| |ac| at worst) gives its normal, and so its edges'
+/// normals, to 2^-32 relative, far inside kPlaneError's spare.
+constexpr double kMinSine = 1.0 / (1 << 20);
 
 struct Aabb {
     glm::vec3 lo{kInf}, hi{-kInf};
@@ -163,14 +169,15 @@ private:
     std::vector<Prim>& prims_;
 };
 
-std::int32_t leafReference(std::uint32_t first, std::uint32_t count) {
-    return ~std::int32_t(first << 2 | (count - 1));
+std::int32_t leafReference(std::uint32_t block, std::uint32_t count) {
+    return ~std::int32_t(block << kLeafBits | (count - 1));
 }
 
 /// The four-wide tree of a binary one, depth first.
 class Collapser {
 public:
-    Collapser(const std::vector<BuildNode>& binary, std::vector<BvhNode>& nodes) : binary_(binary), nodes_(nodes) {}
+    Collapser(const std::vector<BuildNode>& binary, std::vector<BvhNode>& nodes, const std::vector<std::uint32_t>& slotOf)
+        : binary_(binary), nodes_(nodes), slotOf_(slotOf) {}
 
     std::uint32_t emit(std::uint32_t b) {
         const std::uint32_t self = std::uint32_t(nodes_.size());
@@ -205,7 +212,8 @@ public:
             nodes_[self].slabLo[k] = nodes_[self].slabHi[k] = 0.0f;
             if (used) slabs.push_back({self, std::uint32_t(k), binary_[kids[k]].begin, binary_[kids[k]].end});
             std::int32_t reference = kEmptyChild;
-            if (used && binary_[kids[k]].leaf()) reference = leafReference(binary_[kids[k]].first, binary_[kids[k]].count);
+            if (used && binary_[kids[k]].leaf())
+                reference = leafReference(slotOf_[binary_[kids[k]].first] / 4, binary_[kids[k]].count);
             else if (used) reference = std::int32_t(emit(kids[k]));
             nodes_[self].child[k] = reference;
         }
@@ -217,6 +225,7 @@ public:
 private:
     const std::vector<BuildNode>& binary_;
     std::vector<BvhNode>& nodes_;
+    const std::vector<std::uint32_t>& slotOf_; ///< of each triangle in the build's order
 };
 
 /// Lower bounds of the squared distances from p to the four children of
@@ -254,6 +263,105 @@ inline void boxDistances(const BvhNode& node, const glm::vec3& p, float slack, f
 
 float pruneBound(double distance2) { return float(distance2 * kPruneMargin); }
 
+void setPlane(Plane4& plane, int lane, const glm::dvec3& unit, const glm::dvec3& on) {
+    const glm::vec3 rounded(unit);
+    plane.x[lane] = rounded.x;
+    plane.y[lane] = rounded.y;
+    plane.z[lane] = rounded.z;
+    plane.w[lane] = float(glm::dot(glm::dvec3(rounded), on));
+}
+
+/// Lane `lane` of `block` and `extents`: the planes of triangle abc and its
+/// edges' extents (TriangleBlock), zero where it is too thin.
+void setLane(TriangleBlock& block, ExtentBlock& extents, int lane, const glm::vec3& a, const glm::vec3& b,
+             const glm::vec3& c) {
+    const glm::dvec3 v[3] = {glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)};
+    const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+    const double length = glm::length(n);
+    if (!(length >= kMinSine * glm::length(v[1] - v[0]) * glm::length(v[2] - v[0])) || !(length > 0.0)) return;
+    const glm::dvec3 unit = n / length;
+    setPlane(block.face, lane, unit, v[0]);
+    for (int e = 0; e < 3; ++e) { // outward: (b - a) x n points away from c
+        const glm::dvec3 edge = v[(e + 1) % 3] - v[e];
+        const glm::dvec3 outward = glm::cross(edge, unit);
+        setPlane(block.edge[e], lane, outward / glm::length(outward), v[e]);
+        setPlane(extents.along[e], lane, edge / glm::length(edge), v[e]);
+        // The far corner's position along the rounded direction, rounded up:
+        // a longer edge only lowers the bound.
+        const glm::dvec3 u(extents.along[e].x[lane], extents.along[e].y[lane], extents.along[e].z[lane]);
+        extents.length[e][lane] = std::nextafter(float(glm::dot(u, edge)), kInf);
+    }
+}
+
+/// An empty block: every lane's bound infinity until set.
+TriangleBlock emptyBlock() {
+    TriangleBlock block{};
+    for (float& w : block.face.w) w = -kInf;
+    return block;
+}
+
+#if defined(__SSE2__)
+inline __m128 planeDistance(const Plane4& q, __m128 x, __m128 y, __m128 z) {
+    return _mm_sub_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(q.x), x), _mm_mul_ps(_mm_load_ps(q.y), y)),
+                                 _mm_mul_ps(_mm_load_ps(q.z), z)),
+                      _mm_load_ps(q.w));
+}
+#endif
+
+/// Lower bounds of the squared distances from p to the four triangles of
+/// `block` into out[0..3] (TriangleBlock): each plane distance is within
+/// `slack` of the exact one, so each term is taken less `slack`, and an
+/// edge counts wherever its e may be > 0 (e > -slack), the triangle is
+/// certainly outside only where some e > slack.
+inline void lowerBounds(const TriangleBlock& block, const ExtentBlock& extents, const glm::vec3& p, float slack,
+                        float bound, float* out) {
+#if defined(__SSE2__)
+    const __m128 x = _mm_set1_ps(p.x), y = _mm_set1_ps(p.y), z = _mm_set1_ps(p.z), s = _mm_set1_ps(slack);
+    const __m128 zero = _mm_setzero_ps(), sign = _mm_set1_ps(-0.0f), inf = _mm_set1_ps(kInf);
+    const __m128 h = _mm_max_ps(_mm_sub_ps(_mm_andnot_ps(sign, planeDistance(block.face, x, y, z)), s), zero);
+    __m128 e[3], farthest = zero;
+    for (int i = 0; i < 3; ++i) {
+        e[i] = planeDistance(block.edge[i], x, y, z);
+        farthest = _mm_max_ps(farthest, _mm_sub_ps(e[i], s));
+    }
+    // The planes alone first (h^2 + the largest e^2): where they leave no
+    // lane within `bound`, the block ends here.
+    const __m128 h2 = _mm_mul_ps(h, h);
+    const __m128 planes = _mm_add_ps(h2, _mm_mul_ps(farthest, farthest));
+    if (_mm_movemask_ps(_mm_cmple_ps(planes, _mm_set1_ps(bound))) == 0) {
+        _mm_storeu_ps(out, planes);
+        return;
+    }
+    __m128 inPlane = inf, outside = zero;
+    for (int i = 0; i < 3; ++i) {
+        const __m128 t = planeDistance(extents.along[i], x, y, z);
+        const __m128 g = _mm_max_ps(_mm_xor_ps(t, sign), _mm_sub_ps(t, _mm_load_ps(extents.length[i])));
+        const __m128 es = _mm_max_ps(_mm_sub_ps(e[i], s), zero), gs = _mm_max_ps(_mm_sub_ps(g, s), zero);
+        const __m128 term = _mm_add_ps(_mm_mul_ps(es, es), _mm_mul_ps(gs, gs));
+        const __m128 counts = _mm_cmpgt_ps(e[i], _mm_xor_ps(s, sign));
+        inPlane = _mm_min_ps(inPlane, _mm_or_ps(_mm_and_ps(counts, term), _mm_andnot_ps(counts, inf)));
+        outside = _mm_or_ps(outside, _mm_cmpgt_ps(e[i], s));
+    }
+    _mm_storeu_ps(out, _mm_max_ps(planes, _mm_add_ps(h2, _mm_and_ps(outside, inPlane))));
+#else
+    (void)bound;
+    for (int k = 0; k < 4; ++k) {
+        const auto distance = [&](const Plane4& q) { return q.x[k] * p.x + q.y[k] * p.y + q.z[k] * p.z - q.w[k]; };
+        const float h = std::max(std::abs(distance(block.face)) - slack, 0.0f);
+        float inPlane = kInf;
+        bool outside = false;
+        for (int i = 0; i < 3; ++i) {
+            const float e = distance(block.edge[i]), t = distance(extents.along[i]);
+            const float es = std::max(e - slack, 0.0f);
+            const float gs = std::max(std::max(-t, t - extents.length[i][k]) - slack, 0.0f);
+            if (e > -slack) inPlane = std::min(inPlane, es * es + gs * gs);
+            outside = outside || e > slack;
+        }
+        out[k] = h * h + (outside ? inPlane : 0.0f);
+    }
+#endif
+}
+
 } // namespace
 
 Bvh::Bvh(MeshView mesh) {
@@ -269,24 +377,36 @@ Bvh::Bvh(MeshView mesh) {
     }
     BinaryBuilder builder(prims);
     builder.build(0, std::uint32_t(prims.size()), 0);
+    // Each leaf's triangles from a multiple of 4: its lanes fill whole blocks.
+    std::vector<std::uint32_t> slotOf(prims.size());
+    std::uint32_t slots = 0;
+    for (const BuildNode& b : builder.nodes) // leaves in the build's order: depth first, left first
+        if (b.leaf()) {
+            slots = (slots + 3u) & ~3u;
+            for (std::uint32_t k = 0; k < b.count; ++k) slotOf[b.first + k] = slots++;
+        }
+    slots = (slots + 3u) & ~3u;
     nodes_.reserve(builder.nodes.size() / 2 + 1);
-    Collapser collapser(builder.nodes, nodes_);
+    Collapser collapser(builder.nodes, nodes_, slotOf);
     collapser.emit(0);
-    triangles_.resize(prims.size());
-    planes_.resize(prims.size());
-    for (std::size_t s = 0; s < prims.size(); ++s) {
-        const glm::uvec3 v = mesh.triangles[prims[s].index];
-        const BvhTriangle t{mesh.positions[v.x], mesh.positions[v.y], mesh.positions[v.z], prims[s].index};
-        triangles_[s] = t;
-        const glm::dvec3 n = glm::cross(glm::dvec3(t.b) - glm::dvec3(t.a), glm::dvec3(t.c) - glm::dvec3(t.a));
-        const double length = glm::length(n);
-        // A degenerate triangle's plane bounds nothing: the zero plane gives |0 - 0| = 0.
-        const glm::vec3 unit = length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.0f);
-        planes_[s] = glm::vec4(unit, float(glm::dot(glm::dvec3(unit), glm::dvec3(t.a))));
-        for (const glm::vec3& corner : {t.a, t.b, t.c})
-            verticesL1_ = std::max(verticesL1_, std::abs(corner.x) + std::abs(corner.y) + std::abs(corner.z));
+    triangleCount_ = prims.size();
+    indices_.assign(slots, kNoTriangle);
+    blocks_.assign(slots / 4, emptyBlock());
+    extents_.assign(slots / 4, ExtentBlock{});
+    for (std::size_t k = 0; k < prims.size(); ++k) {
+        const glm::uvec3 v = mesh.triangles[prims[k].index];
+        const glm::vec3 corners[3] = {mesh.positions[v.x], mesh.positions[v.y], mesh.positions[v.z]};
+        const std::uint32_t slot = slotOf[k];
+        const int lane = int(slot % 4);
+        indices_[slot] = prims[k].index;
+        blocks_[slot / 4].face.w[lane] = 0.0f;
+        setLane(blocks_[slot / 4], extents_[slot / 4], lane, corners[0], corners[1], corners[2]);
+        for (int c = 0; c < 3; ++c) {
+            for (int a = 0; a < 3; ++a) extents_[slot / 4].corner[c][a][lane] = corners[c][a];
+            verticesL1_ = std::max(verticesL1_, std::abs(corners[c].x) + std::abs(corners[c].y) + std::abs(corners[c].z));
+        }
     }
-    fillSlabs(collapser.slabs);
+    fillSlabs(collapser.slabs, slotOf);
 }
 
 /// Each child's slab: its triangles' area-weighted mean normal, shrunk so
@@ -294,20 +414,20 @@ Bvh::Bvh(MeshView mesh) {
 /// bound), and the range of n . x over their corners in double, rounded
 /// outward to float. A child whose normals cancel keeps the zero slab,
 /// which bounds nothing.
-void Bvh::fillSlabs(const std::vector<SlabJob>& jobs) {
+void Bvh::fillSlabs(const std::vector<SlabJob>& jobs, const std::vector<std::uint32_t>& slotOf) {
     for (const SlabJob& job : jobs) {
         glm::dvec3 sum(0.0);
-        for (std::uint32_t s = job.begin; s < job.end; ++s) {
-            const BvhTriangle& t = triangles_[s];
-            sum += glm::cross(glm::dvec3(t.b) - glm::dvec3(t.a), glm::dvec3(t.c) - glm::dvec3(t.a));
+        for (std::uint32_t k = job.begin; k < job.end; ++k) {
+            const glm::dvec3 a = corner(slotOf[k], 0);
+            sum += glm::cross(corner(slotOf[k], 1) - a, corner(slotOf[k], 2) - a);
         }
         const double length = glm::length(sum);
         if (!(length > 0.0)) continue;
         const glm::vec3 n(sum * ((1.0 - 1e-6) / length));
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        for (std::uint32_t s = job.begin; s < job.end; ++s)
-            for (const glm::vec3& corner : {triangles_[s].a, triangles_[s].b, triangles_[s].c}) {
-                const double w = glm::dot(glm::dvec3(n), glm::dvec3(corner));
+        for (std::uint32_t k = job.begin; k < job.end; ++k)
+            for (int c = 0; c < 3; ++c) {
+                const double w = glm::dot(glm::dvec3(n), corner(slotOf[k], c));
                 lo = std::min(lo, w);
                 hi = std::max(hi, w);
             }
@@ -326,18 +446,27 @@ float Bvh::slack(const glm::vec3& p) const {
 }
 
 double Bvh::distance2(const glm::vec3& p, std::uint32_t slot) const {
-    const BvhTriangle& t = triangles_[slot];
     const glm::dvec3 q(p);
-    const glm::dvec3 d = q - closestOnTriangle(q, glm::dvec3(t.a), glm::dvec3(t.b), glm::dvec3(t.c)).point;
+    const glm::dvec3 d = q - closestOnTriangle(q, corner(slot, 0), corner(slot, 1), corner(slot, 2)).point;
     return d.x * d.x + d.y * d.y + d.z * d.z;
 }
 
 ClosestPoint Bvh::closest(const glm::vec3& p, std::uint32_t slot) const {
-    const BvhTriangle& t = triangles_[slot];
     const glm::dvec3 q(p);
-    const TriangleHit hit = closestOnTriangle(q, glm::dvec3(t.a), glm::dvec3(t.b), glm::dvec3(t.c));
+    const TriangleHit hit = closestOnTriangle(q, corner(slot, 0), corner(slot, 1), corner(slot, 2));
     const glm::dvec3 d = q - hit.point;
-    return {hit.point, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z), t.index, hit.feature, hit.index};
+    return {hit.point, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z), indices_[slot], hit.feature, hit.index};
+}
+
+/// Asks for a pushed node's lines, which arrive while the nodes popped
+/// before it are searched.
+void Bvh::prefetch(std::int32_t node) const {
+#if defined(__SSE2__)
+    const char* at = reinterpret_cast<const char*>(&nodes_[std::size_t(node)]);
+    for (std::size_t line = 0; line < sizeof(BvhNode); line += 64) _mm_prefetch(at + line, _MM_HINT_T0);
+#else
+    (void)node;
+#endif
 }
 
 void Bvh::nearest(const glm::vec3& p, NearestState& state) const {
@@ -370,27 +499,46 @@ void Bvh::nearest(const glm::vec3& p, NearestState& state) const {
         // children are pushed (farthest first: the nearest is popped next).
         for (int i = 0; i < n; ++i) {
             const std::int32_t ref = node.child[order[i]];
-            if (ref < 0 && d2[order[i]] <= bound) searchLeaf(p, ref, state, bound);
+            if (ref < 0 && d2[order[i]] <= bound) searchLeaf(p, margin, ref, state, bound);
         }
         for (int i = n - 1; i >= 0; --i) {
             const std::int32_t ref = node.child[order[i]];
-            if (ref >= 0 && d2[order[i]] <= bound) stack[top++] = {d2[order[i]], ref};
+            if (ref >= 0 && d2[order[i]] <= bound) {
+                stack[top++] = {d2[order[i]], ref};
+                prefetch(ref);
+            }
         }
     }
 }
 
-void Bvh::searchLeaf(const glm::vec3& p, std::int32_t leaf, NearestState& state, float& bound) const {
+/// The leaf's triangles' lower bounds first, then the exact test of each
+/// whose bound is still within `bound`, the lowest bound first: the bound is
+/// the distance itself (less the slack) where the closest point is on a face
+/// or an edge, so few triangles of a leaf get the exact test.
+void Bvh::searchLeaf(const glm::vec3& p, float margin, std::int32_t leaf, NearestState& state, float& bound) const {
     const std::uint32_t code = std::uint32_t(~leaf);
-    const std::uint32_t first = code >> 2, end = first + (code & 3u) + 1;
-    const float margin = slack(p);
-    for (std::uint32_t s = first; s < end; ++s) {
-        const glm::vec4& plane = planes_[s];
-        const float below = std::abs(plane.x * p.x + plane.y * p.y + plane.z * p.z - plane.w) - margin;
-        if (below > 0.0f && below * below > bound) continue;
-        const double t2 = distance2(p, s);
+    const std::uint32_t block = code >> kLeafBits, first = 4 * block, count = (code & (kLeafTriangles - 1)) + 1;
+    float below[(kLeafTriangles + 3) / 4 * 4];
+#if defined(__SSE2__)
+    // The extents and corners, read after the planes if at all, asked for
+    // now: their latency overlaps the planes'.
+    for (std::uint32_t b = 0; 4 * b < count; ++b) {
+        const char* at = reinterpret_cast<const char*>(&extents_[block + b]);
+        for (std::size_t line = 0; line < sizeof(ExtentBlock); line += 64) _mm_prefetch(at + line, _MM_HINT_T0);
+    }
+#endif
+    for (std::uint32_t b = 0; 4 * b < count; ++b)
+        lowerBounds(blocks_[block + b], extents_[block + b], p, margin, bound, below + 4 * b);
+    for (std::uint32_t tested = 0; tested < count; ++tested) {
+        std::uint32_t next = 0;
+        for (std::uint32_t i = 1; i < count; ++i)
+            if (below[i] < below[next]) next = i;
+        if (below[next] > bound) return;
+        below[next] = kInf;
+        const double t2 = distance2(p, first + next);
         if (t2 < state.distance2) {
             state.distance2 = t2;
-            state.slot = s;
+            state.slot = first + next;
             bound = pruneBound(t2);
         }
     }
@@ -453,7 +601,7 @@ void Bvh::nearestAmong(const glm::vec3& p, const std::vector<BvhNode>& leaves, N
         float d2[4];
         boxDistances(group, p, margin, d2);
         for (int k = 0; k < 4; ++k)
-            if (d2[k] <= bound && group.child[k] != kEmptyChild) searchLeaf(p, group.child[k], state, bound);
+            if (d2[k] <= bound && group.child[k] != kEmptyChild) searchLeaf(p, margin, group.child[k], state, bound);
     }
 }
 

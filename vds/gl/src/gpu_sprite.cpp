@@ -18,6 +18,7 @@
 #include <vds/gl/shader.h>
 
 #include "bake_gl.h"
+#include "copy_crew.h"
 #include "sprite_parts.h"
 
 namespace vds {
@@ -217,21 +218,9 @@ constexpr std::uint32_t kLocalSize = 256;
 
 std::size_t labelBytes(std::size_t points) { return (points + 3) / 4 * 4; }
 
-// Copies big blocks on several threads: one thread's memcpy is slower than
-// the bus the points then cross (a PCIe 5 x16 link moves about 50 GB/s, a
-// core's memcpy a fraction of that). A chunk of 1 MiB bounds the threads'
-// imbalance and keeps a 4 MiB block of labels on four of them.
-void copyParallel(void* dst, const void* src, std::size_t bytes) {
-    constexpr std::size_t kChunk = std::size_t(1) << 20;
-    if (bytes <= 2 * kChunk) {
-        std::memcpy(dst, src, bytes);
-        return;
-    }
-    const unsigned threads = std::min(16u, std::max(1u, std::thread::hardware_concurrency()));
-    parallelFor(threads, bytes, kChunk, [&](std::size_t begin, std::size_t end) {
-        std::memcpy(static_cast<char*>(dst) + begin, static_cast<const char*>(src) + begin, end - begin);
-    });
-}
+// Below this a block is copied on the calling thread: waking the crew costs
+// more than it saves.
+constexpr std::size_t kCrewBytes = std::size_t(2) << 20;
 
 // The program of one form and rule (classify.comp): the generalized winding
 // number's boundary term is compiled into its own program only.
@@ -281,7 +270,7 @@ GpuClassifier::~GpuClassifier() {
 
 GpuClassifier::GpuClassifier(GpuClassifier&& o) noexcept
     : gl_(std::exchange(o.gl_, nullptr)), stamp_(o.stamp_), batch_(o.batch_), maxBlock_(o.maxBlock_), maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)),
-      capacity_(std::exchange(o.capacity_, 0)), copied_(o.copied_) {}
+      capacity_(std::exchange(o.capacity_, 0)), copied_(o.copied_), crew_(std::move(o.crew_)) {}
 
 GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
     if (this != &o) {
@@ -293,6 +282,7 @@ GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
         capacity_ = std::exchange(o.capacity_, 0);
         batch_ = o.batch_;
         copied_ = o.copied_;
+        crew_ = std::move(o.crew_);
     }
     return *this;
 }
@@ -385,9 +375,21 @@ void GpuClassifier::reserve(std::size_t points) {
 void GpuClassifier::finish(Slot& slot, std::uint8_t* labels) {
     if (slot.count == 0) return;
     slot.done.wait();
-    copyParallel(labels + slot.first, slot.labelsMap, slot.count);
+    copy(labels + slot.first, slot.labelsMap, slot.count);
     slot.done.reset();
     slot.count = 0;
+}
+
+// A host block of a batch copied on the crew (started at the first large
+// copy and kept: a core's memcpy is slower than the bus the points then
+// cross, a PCIe 5 x16 link's 50 GB/s).
+void GpuClassifier::copy(void* dst, const void* src, std::size_t bytes) {
+    if (bytes < kCrewBytes) {
+        std::memcpy(dst, src, bytes);
+        return;
+    }
+    if (!crew_) crew_ = std::make_unique<detail::CopyCrew>(std::min(16u, std::max(1u, std::thread::hardware_concurrency())));
+    crew_->copy(dst, src, bytes);
 }
 
 // The staged batch classified, its labels back in the slot's staging
@@ -426,8 +428,8 @@ void GpuClassifier::classify(const GpuSprite& sprite, const PointsView& points, 
             slot.first = first;
             slot.count = std::min(step, count - first);
             if (packed) {
-                copyParallel(slot.pointsMap, static_cast<const char*>(points.data) + first * kPointBytes,
-                             slot.count * kPointBytes);
+                copy(slot.pointsMap, static_cast<const char*>(points.data) + first * kPointBytes,
+                     slot.count * kPointBytes);
             } else {
                 auto* to = static_cast<glm::vec3*>(slot.pointsMap);
                 for (std::size_t k = 0; k < slot.count; ++k) to[k] = points[first + k];

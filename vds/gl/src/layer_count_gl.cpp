@@ -39,13 +39,15 @@ CountPrograms countPrograms(const GlContext& gl) {
                         [] { return buildProgram({{GL_COMPUTE_SHADER, "vds/count_layers.comp", ""}}); })};
 }
 
-// d_S and the crossings of the GL bake along `grid.axis`, into the axis's
-// pair of words in `result` (cleared before).
+// d_S and the crossings of the GL bake along `grid.axis`. The read-back
+// also orders the next axis's clear of `counts` after this reduce's reads
+// (a memory barrier orders shader writes, not reads, before a clear).
 void countAxis(const GlContext& gl, const CountPrograms& programs, const GpuMesh& mesh, const SpriteGrid& grid,
-               GLuint counts, GLuint result) {
+               GLuint counts, GLuint result, std::uint32_t out[2]) {
     const std::uint64_t columns = std::uint64_t(grid.width) * grid.height;
     const GLuint zero = 0;
     glClearNamedBufferSubData(counts, GL_R32UI, 0, GLsizeiptr(columns * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferSubData(result, GL_R32UI, 0, 8, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     Framebuffer fbo = Framebuffer::create();
     glNamedFramebufferParameteri(fbo.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, GLint(grid.width));
@@ -61,10 +63,10 @@ void countAxis(const GlContext& gl, const CountPrograms& programs, const GpuMesh
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(programs.reduce->id());
     glUniform1ui(glGetUniformLocation(programs.reduce->id(), "u_columns"), GLuint(columns));
-    glUniform1ui(glGetUniformLocation(programs.reduce->id(), "u_axis"), GLuint(grid.axis));
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, result, 0, 24);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, result, 0, 8);
     glDispatchCompute(strideGroups(columns, kReduceLocal), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(result, 0, 8, out);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
     glUseProgram(0);
@@ -94,18 +96,14 @@ std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, const GpuMesh& dr
     if (most * 4 > std::uint64_t(maxBlock) || drawn.triangleCount() >= (std::uint64_t(1) << 32)) return std::nullopt;
     const CountPrograms programs = countPrograms(gl);
     const GLuint counts = gl.scratchBuffer("vds.count.columns", std::size_t(most) * 4).id();
-    const GLuint result = gl.scratchBuffer("vds.count.result", 24).id();
-    const GLuint zero = 0;
-    glClearNamedBufferSubData(result, GL_R32UI, 0, 24, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) countAxis(gl, programs, drawn, grids[std::size_t(axis)], counts, result);
-    std::uint32_t out[6] = {};
-    glGetNamedBufferSubData(result, 0, 24, out); // the one wait for the GPU
-    checkGl("reading the layer counts");
+    const GLuint result = gl.scratchBuffer("vds.count.result", 8).id();
     AxisChoice choice;
     choice.resolution = resolution;
-    for (std::size_t a = 0; a < 3; ++a) {
-        choice.layers[a] = out[2 * a];
-        choice.crossings[a] = out[2 * a + 1];
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+        std::uint32_t out[2] = {0, 0};
+        countAxis(gl, programs, drawn, grids[std::size_t(axis)], counts, result, out);
+        choice.layers[std::size_t(axis)] = out[0];
+        choice.crossings[std::size_t(axis)] = out[1];
     }
     pickFewestLayers(choice);
     return choice;

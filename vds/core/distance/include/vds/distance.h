@@ -10,15 +10,19 @@
 // says inside by the rule (see `distance`).
 //
 // Unsigned distance: a 4-wide bounding volume hierarchy over the triangles
-// (binned surface-area heuristic, nodes of 128 bytes in depth-first order,
-// the four children's box distances in one SIMD step), searched nearest box
-// first; the closest point on each candidate triangle is computed in double
-// (Ericson, "Real-Time Collision Detection", 2005, 5.1.5).
+// (binned surface-area heuristic, nodes of 192 bytes in depth-first order,
+// the four children's box and slab distances in one SIMD step), searched
+// nearest box first; the leaves' triangles, four to a SIMD step, are first
+// bounded below in float by their face and edge planes and their edges'
+// extents (the distance itself up to rounding), and only where that bound
+// does not rule a triangle out is the closest point on it computed in
+// double (Ericson, "Real-Time Collision Detection", 2005, 5.1.5).
 //
 // Error bound. Points are rounded to float first (as every classifier does,
 // <vds/classify.h>), and the distance is that of the float point. The box
 // tests prune only boxes whose distance exceeds the best found by a margin
 // of 2^-20 relative (more than float rounding of a box distance can make),
+// and a triangle's float bound is lowered by its rounding's bound first,
 // so no triangle that could be nearest is skipped. The closest point on a
 // triangle is a convex combination of its corners computed in double, so
 // the distance returned is within 2^-45 * L of the exact distance from the

@@ -27,6 +27,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,7 @@
 namespace vds {
 
 namespace detail {
+class CopyCrew;
 struct GpuSpriteAccess;
 } // namespace detail
 
@@ -244,6 +246,7 @@ private:
     void reserve(std::size_t points);
     void finish(Slot& slot, std::uint8_t* labels);
     void send(Slot& slot, const GpuSprite& sprite, Rule rule);
+    void copy(void* dst, const void* src, std::size_t bytes);
     void enter(const char* what) const;
 
     const GlContext* gl_ = nullptr;
@@ -256,6 +259,7 @@ private:
     std::array<Slot, 3> slots_;
     std::size_t capacity_ = 0;
     bool copied_ = false; // HostTransfer::Copied, Auto resolved
+    std::unique_ptr<detail::CopyCrew> crew_; // threads for the host copies, started at the first large one
 };
 
 } // namespace vds
