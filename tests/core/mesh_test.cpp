@@ -512,6 +512,64 @@ TEST(MeshAccount, AClosedMeshWithOneBodyInsideOutIsToldAsMisoriented) {
     EXPECT_EQ(s.validation, r.summary());
 }
 
+/// A mesh turned inside out: every triangle reversed.
+TriangleMesh reversed(TriangleMesh m) {
+    for (glm::uvec3& t : m.triangles) std::swap(t.y, t.z);
+    return m;
+}
+
+// The parts' volumes are summed over fixed chunks of 65,536 triangles where
+// there are few parts, over all the triangles at once where there are many:
+// an inside-out part is found either way, and any number of threads finds
+// the same report.
+TEST(MeshAccount, InsideOutPartsAreFoundInLargeMeshesAndAmongManyParts) {
+    const TriangleMesh big = reversed(solids::sphere({0, 0, 0}, 1.0f, 370).mesh);
+    ASSERT_GT(big.triangles.size(), 2u * 65536u);
+    TriangleMesh many = reversed(solids::box({0, 0, 0}, {0.5f, 0.5f, 0.5f}).mesh);
+    for (int k = 1; k < 300; ++k)
+        many = solids::merge(many, solids::box({float(k), 0, 0}, {float(k) + 0.5f, 0.5f, 0.5f}).mesh);
+    for (const TriangleMesh& m : {solids::merge(big, solids::box({3, 3, 3}, {4, 4, 4}).mesh), many}) {
+        const MeshReport r = validateMesh(m, 1);
+        EXPECT_TRUE(r.closed());
+        EXPECT_EQ(r.insideOutParts, 1u);
+        EXPECT_FALSE(r.coplanar);
+        for (unsigned threads : {2u, 3u}) {
+            const MeshReport again = validateMesh(m, threads);
+            EXPECT_EQ(again.summary(), r.summary()) << threads;
+            EXPECT_EQ(again.insideOutParts, r.insideOutParts) << threads;
+            EXPECT_EQ(again.bounds.lo, r.bounds.lo) << threads;
+            EXPECT_EQ(again.bounds.hi, r.bounds.hi) << threads;
+        }
+    }
+    // The same sphere facing outward has none.
+    EXPECT_EQ(validateMesh(reversed(big), 2).insideOutParts, 0u);
+}
+
+// A sheet of more than 65,536 triangles in the plane z = 0, the largest in
+// the last chunk; the first chunk's largest is a loose triangle tilted off
+// that plane by less than the tolerance at its corners but far more across
+// the sheet. The plane is the largest triangle's, found across the chunks:
+// coplanar; lifting a vertex of the first chunk makes it not.
+TEST(MeshAccount, APlaneIsFoundAcrossChunksOfTriangles) {
+    TriangleMesh sheet;
+    sheet.positions = {{0, 0, 0}, {1.5f, 0, 1e-4f}, {0, 1.5f, 0}};
+    sheet.triangles = {{0, 1, 2}};
+    constexpr std::uint32_t kSide = 200; // 2 * 199^2 = 79,202 triangles
+    for (std::uint32_t j = 0; j < kSide; ++j)
+        for (std::uint32_t i = 0; i < kSide; ++i)
+            sheet.positions.push_back({float(i), float(j) + (j + 1 == kSide ? 5.0f : 0.0f), 0.0f}); // the last row wide
+    for (std::uint32_t j = 0; j + 1 < kSide; ++j)
+        for (std::uint32_t i = 0; i + 1 < kSide; ++i) {
+            const std::uint32_t v = 3 + j * kSide + i;
+            sheet.triangles.push_back({v, v + 1, v + kSide});
+            sheet.triangles.push_back({v + 1, v + kSide + 1, v + kSide});
+        }
+    EXPECT_TRUE(validateMesh(sheet, 1).coplanar);
+    EXPECT_TRUE(validateMesh(sheet, 2).coplanar);
+    sheet.positions[3 + kSide + 1].z += 0.5f;
+    EXPECT_FALSE(validateMesh(sheet, 2).coplanar);
+}
+
 // The closed box with one triangle reversed: three conflicting edges, each
 // counted twice by the generalized winding number's boundary, as the exact
 // classifier and the sprite count it; an open box's counts agree the same way.

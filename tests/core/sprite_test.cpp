@@ -277,6 +277,85 @@ TEST(ChooseViewAxis, CountsExactlyWhatTheBakerMakesAtThatResolution) {
         }
 }
 
+// The count cuts each axis's rows into bands of about 2^16 texels (65 rows
+// at 1000 texels) and lists each triangle in every band it spans: a long box
+// spans them all, a knot's triangles a few; and any number of threads counts
+// alike.
+TEST(ChooseViewAxis, CountsExactlyAcrossBandsAndThreads) {
+    const TriangleMesh mesh = solids::merge(solids::torusKnot({0, 0, 0}, 1.0f, 2, 3, 0.25f, 64, 8).mesh,
+                                            solids::box({-1.6f, -0.1f, -1.5f}, {1.4f, 0.15f, 1.6f}).mesh);
+    constexpr std::uint32_t kResolution = 1000;
+    const AxisChoice choice = chooseViewAxis(mesh, kResolution, 1);
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+        BakeOptions o;
+        o.resolution = kResolution;
+        o.axis = axis;
+        const Sprite sprite = bakeCpu(mesh, o);
+        EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis);
+        EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis);
+    }
+    for (unsigned threads : {2u, 3u}) {
+        const AxisChoice again = chooseViewAxis(mesh, kResolution, threads);
+        EXPECT_EQ(again.layers, choice.layers) << threads;
+        EXPECT_EQ(again.crossings, choice.crossings) << threads;
+    }
+}
+
+// The count computes only the steps that do not cancel against a
+// neighbour's (the triangles on either side of a shared edge): boundary
+// edges, non-manifold edges, edges whose triangles run them the same way,
+// loose triangles and triangles that share positions but no indices keep
+// theirs where the count pairs edges by index (`chooseViewAxis(mesh, report,
+// ...)`), not where validation pairs them by position (`chooseViewAxis(mesh,
+// resolution)`, the bakes). Each counts what the baker makes.
+TEST(ChooseViewAxis, CountsExactlyOnOpenNonManifoldAndUnsharedMeshes) {
+    TriangleMesh flipped = solids::sphere({0.1f, 0.0f, -0.2f}, 1.0f, 20).mesh;
+    for (std::size_t k = 0; k < flipped.triangles.size(); k += 7) std::swap(flipped.triangles[k].y, flipped.triangles[k].z);
+    TriangleMesh unshared; // the same sphere, every triangle with its own three vertices
+    for (const glm::uvec3& t : solids::sphere({0.1f, 0.0f, -0.2f}, 1.0f, 20).mesh.triangles) {
+        const auto& p = solids::sphere({0.1f, 0.0f, -0.2f}, 1.0f, 20).mesh.positions;
+        const auto n = std::uint32_t(unshared.positions.size());
+        unshared.positions.insert(unshared.positions.end(), {p[t.x], p[t.y], p[t.z]});
+        unshared.triangles.push_back({n, n + 1, n + 2});
+    }
+    const std::vector<TriangleMesh> meshes = {solids::sphereWithHoles(), solids::boxesSharingAnEdge({0, 0, 0}, 1.0f).mesh,
+                                              flipped, unshared, solids::looseTriangles(200, 0.3f, 7),
+                                              solids::merge(flipped, solids::overlappingShells())};
+    for (const TriangleMesh& mesh : meshes)
+        for (std::uint32_t resolution : {64u, 301u}) {
+            const AxisChoice choice = chooseViewAxis(mesh, resolution);
+            const AxisChoice byIndex = chooseViewAxis(mesh, validateMesh(mesh), resolution);
+            EXPECT_EQ(byIndex.layers, choice.layers);
+            EXPECT_EQ(byIndex.crossings, choice.crossings);
+            for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+                BakeOptions o;
+                o.resolution = resolution;
+                o.axis = axis;
+                const Sprite sprite = bakeCpu(mesh, o);
+                EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis) << " " << resolution;
+                EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis) << " " << resolution;
+            }
+        }
+}
+
+// Texel centres rounded to floats far from the origin are unevenly spaced,
+// some equal: the count then searches the centres instead of trusting the
+// even spacing, and still counts what the baker makes.
+TEST(ChooseViewAxis, CountsExactlyWhereCentresAreUnevenlySpaced) {
+    const TriangleMesh mesh = solids::torusKnot({1000.0f, -2000.0f, 500.0f}, 0.01f, 2, 3, 0.0025f, 48, 8).mesh;
+    for (std::uint32_t resolution : {300u, 900u}) {
+        const AxisChoice choice = chooseViewAxis(mesh, resolution);
+        for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+            BakeOptions o;
+            o.resolution = resolution;
+            o.axis = axis;
+            const Sprite sprite = bakeCpu(mesh, o);
+            EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis) << " " << resolution;
+            EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis) << " " << resolution;
+        }
+    }
+}
+
 // The count's two paths (a row through a vertex or along an edge: the claim
 // test at both ends; a row through the interior: the edges' slopes and a
 // margin) give the baker's counts where rows run through vertices and along

@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <vds/detail/edge_partners.h>
 #include <vds/detail/parallel.h>
 #include <vds/detail/solid_angle.h>
 #include <vds/error.h>
@@ -84,6 +85,26 @@ std::vector<std::uint32_t> weldByPosition(const glm::vec3* positions, std::size_
         }
     }
     return first;
+}
+
+/// For each welded vertex, the part it belongs to (vertices joined by
+/// triangles), named by one of its vertices: union-find, halving paths.
+std::vector<std::uint32_t> connectedParts(MeshView mesh, const std::vector<std::uint32_t>& weld) {
+    std::vector<std::uint32_t> parent(mesh.positionCount);
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto root = [&](std::uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
+        const glm::uvec3 tri = mesh.triangles[t];
+        if (tri.x >= mesh.positionCount || tri.y >= mesh.positionCount || tri.z >= mesh.positionCount) continue;
+        const std::uint32_t a = root(weld[tri.x]), b = root(weld[tri.y]), c = root(weld[tri.z]);
+        const std::uint32_t low = std::min({a, b, c});
+        parent[a] = parent[b] = parent[c] = low;
+    }
+    for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = root(std::uint32_t(v));
+    return parent;
 }
 
 /// Sorts a short run in place (most groups hold a handful of items).
@@ -195,7 +216,7 @@ std::pair<Index, Index> groupStarts(std::vector<std::vector<Index>>& edgeAt, std
 /// set into its group, at the thread's next place there.
 template <class Index>
 void placeItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair<std::size_t, std::size_t> share,
-                Index* edgeNext, Index* cornerNext, Index* edges, std::uint64_t* others) {
+                Index* edgeNext, Index* cornerNext, Index* edges, std::uint64_t* others, std::uint32_t* owners) {
     const std::size_t nv = mesh.positionCount;
     for (auto [t, end] = share; t < end; ++t) {
         const glm::uvec3 tri = mesh.triangles[t];
@@ -204,7 +225,9 @@ void placeItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair
         if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) continue;
         for (int e = 0; e < 3; ++e) {
             const std::uint32_t a = w[e], b = w[(e + 1) % 3];
-            edges[edgeNext[std::min(a, b)]++] = edgeUse<Index>(a, b);
+            const Index at = edgeNext[std::min(a, b)]++;
+            edges[at] = edgeUse<Index>(a, b);
+            if (owners) owners[at] = std::uint32_t(3 * t + std::size_t(e));
         }
         if (w[0] > w[1]) std::swap(w[0], w[1]);
         if (w[1] > w[2]) std::swap(w[1], w[2]);
@@ -213,6 +236,31 @@ void placeItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair
     }
 }
 
+/// Where validation also finds the edges' partners (edge_partners.h):
+/// beside each edge use, its half-edge (`owners`), sorted with it; an edge
+/// used exactly twice, by two triangles, pairs them.
+struct Partners {
+    std::uint32_t* owners = nullptr; ///< none: no partners asked
+    std::uint32_t* partners = nullptr;
+
+    template <class Index> void sort(Index* group, std::uint32_t* owner, std::size_t n) const {
+        thread_local std::vector<std::uint64_t> keys;
+        keys.resize(n);
+        for (std::size_t i = 0; i < n; ++i) keys[i] = (std::uint64_t(group[i]) << 32) | owner[i];
+        sortGroup(keys.data(), n, [](std::uint64_t x, std::uint64_t y) { return x < y; });
+        for (std::size_t i = 0; i < n; ++i) {
+            group[i] = Index(keys[i] >> 32);
+            owner[i] = std::uint32_t(keys[i]);
+        }
+    }
+    void pair(const std::uint32_t* owner, bool sameWay) const {
+        const std::uint32_t h1 = owner[0], h2 = owner[1];
+        if (h1 / 3 == h2 / 3) return;
+        partners[h1] = h2 / 3 | (sameWay ? detail::kSameWay : 0);
+        partners[h2] = h1 / 3 | (sameWay ? detail::kSameWay : 0);
+    }
+};
+
 /// Vertex v's groups, sorted in place and read in runs: its edges' uses
 /// (boundary, non-manifold, inconsistent, unpaired) and its triangles'
 /// corner sets (duplicates), into `f`; an edge used an odd number of times
@@ -220,12 +268,15 @@ void placeItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair
 template <class Index>
 void readGroup(std::size_t v, const std::vector<Index>& edgeEnd, const std::vector<Index>& cornerEnd, Index* edges,
                std::uint64_t* others, Found& f, const std::vector<std::uint32_t>& part,
-               std::atomic<std::uint8_t>* openPart) {
+               std::atomic<std::uint8_t>* openPart, const Partners& partners) {
     const auto less = [](auto x, auto y) { return x < y; };
     const std::size_t first = v == 0 ? 0 : std::size_t(edgeEnd[v - 1]);
     Index* group = edges + first;
     const std::size_t n = std::size_t(edgeEnd[v]) - first;
-    sortGroup(group, n, less);
+    if (partners.owners)
+        partners.sort(group, partners.owners + first, n);
+    else
+        sortGroup(group, n, less);
     for (std::size_t i = 0; i < n;) {
         std::size_t j = i, forward = 0;
         for (; j < n && (group[j] >> 1) == (group[i] >> 1); ++j) forward += std::size_t(group[j] & 1);
@@ -236,6 +287,7 @@ void readGroup(std::size_t v, const std::vector<Index>& edgeEnd, const std::vect
         if (uses % 2 == 0 && 2 * forward != uses) ++f.inconsistent;
         f.unpaired += 2 * forward > uses ? 2 * forward - uses : uses - 2 * forward;
         if (uses % 2 == 1) openPart[part[v]].store(1, std::memory_order_relaxed);
+        if (uses == 2 && partners.owners) partners.pair(partners.owners + first + i, (group[i] & 1) == (group[i + 1] & 1));
         i = j;
     }
     const std::size_t firstSet = v == 0 ? 0 : std::size_t(cornerEnd[v - 1]);
@@ -255,7 +307,8 @@ void readGroup(std::size_t v, const std::vector<Index>& edgeEnd, const std::vect
 /// vertex index shifted left by one and any position in the arrays of items.
 template <class Index>
 void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>& weld, unsigned threads,
-                  const std::vector<std::uint32_t>& part, std::atomic<std::uint8_t>* openPart) {
+                  std::vector<std::uint32_t>& part, std::atomic<std::uint8_t>* openPart,
+                  std::vector<std::uint32_t>* partnersOut) {
     const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
     std::unique_ptr<std::atomic<std::uint8_t>[]> used(new std::atomic<std::uint8_t>[nv]());
     // Per thread and vertex: how many edge uses (corner sets) the thread
@@ -263,7 +316,15 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
     std::vector<std::vector<Index>> edgeAt(threads, std::vector<Index>(nv, 0));
     std::vector<std::vector<Index>> cornerAt(threads, std::vector<Index>(nv, 0));
     std::vector<Found> found(threads);
-    parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
+    // The parts (union-find, serial) are found beside the first pass: task
+    // 0, taken first, while the other threads count the shares; only the
+    // groups' reading needs them.
+    parallelFor(threads, threads + 1, 1, [&](std::size_t task, std::size_t) {
+        if (task == 0) {
+            part = connectedParts(mesh, weld);
+            return;
+        }
+        const std::size_t k = task - 1;
         countItems(mesh, weld, shareOf(nt, threads, k), used.get(), edgeAt[k].data(), cornerAt[k].data(), found[k]);
     });
     // The bounds of the used vertices' positions: those of the vertices the
@@ -282,8 +343,12 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
     // Every item is written below, so the arrays start uninitialised.
     const std::unique_ptr<Index[]> edges(new Index[std::size_t(edgeTotal)]);
     const std::unique_ptr<std::uint64_t[]> others(new std::uint64_t[std::size_t(cornerTotal)]); ///< a triangle's two higher corners: middle << 32 | highest
+    std::unique_ptr<std::uint32_t[]> owners(partnersOut ? new std::uint32_t[std::size_t(edgeTotal)] : nullptr);
+    if (partnersOut) partnersOut->assign(3 * nt, detail::kNoPartner);
+    const Partners partners{owners.get(), partnersOut ? partnersOut->data() : nullptr};
     parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
-        placeItems(mesh, weld, shareOf(nt, threads, k), edgeAt[k].data(), cornerAt[k].data(), edges.get(), others.get());
+        placeItems(mesh, weld, shareOf(nt, threads, k), edgeAt[k].data(), cornerAt[k].data(), edges.get(), others.get(),
+                   owners.get());
     });
     const std::vector<Index> edgeEnd = std::move(edgeAt.back()), cornerEnd = std::move(cornerAt.back());
     edgeAt = {};
@@ -292,7 +357,8 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
     std::vector<Found> groups((nv + kVerticesPerChunk - 1) / kVerticesPerChunk);
     parallelFor(threads, nv, kVerticesPerChunk, [&](std::size_t begin, std::size_t end) {
         for (std::size_t v = begin; v < end; ++v)
-            readGroup(v, edgeEnd, cornerEnd, edges.get(), others.get(), groups[begin / kVerticesPerChunk], part, openPart);
+            readGroup(v, edgeEnd, cornerEnd, edges.get(), others.get(), groups[begin / kVerticesPerChunk], part, openPart,
+                      partners);
     });
 
     found.insert(found.end(), groups.begin(), groups.end());
@@ -308,110 +374,162 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
     }
 }
 
-/// For each welded vertex, the part it belongs to (vertices joined by
-/// triangles), named by one of its vertices: union-find, halving paths.
-std::vector<std::uint32_t> connectedParts(MeshView mesh, const std::vector<std::uint32_t>& weld) {
-    std::vector<std::uint32_t> parent(mesh.positionCount);
-    std::iota(parent.begin(), parent.end(), 0u);
-    const auto root = [&](std::uint32_t v) {
-        while (parent[v] != v) v = parent[v] = parent[parent[v]];
-        return v;
-    };
-    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        const glm::uvec3 tri = mesh.triangles[t];
-        if (tri.x >= mesh.positionCount || tri.y >= mesh.positionCount || tri.z >= mesh.positionCount) continue;
-        const std::uint32_t a = root(weld[tri.x]), b = root(weld[tri.y]), c = root(weld[tri.z]);
-        const std::uint32_t low = std::min({a, b, c});
-        parent[a] = parent[b] = parent[c] = low;
+/// Each triangle's part, numbered densely: that of its first corner's
+/// welded vertex (valid indices only).
+struct TriangleParts {
+    MeshView mesh;
+    const std::vector<std::uint32_t>& weld;
+    const std::vector<std::uint32_t>& part;
+    std::vector<std::uint32_t> dense; ///< per part's root vertex, its number
+    std::size_t count = 0;            ///< parts
+
+    TriangleParts(MeshView m, const std::vector<std::uint32_t>& w, const std::vector<std::uint32_t>& p)
+        : mesh(m), weld(w), part(p), dense(p.size(), 0) {
+        for (std::size_t v = 0; v < part.size(); ++v)
+            if (part[v] == v) dense[v] = std::uint32_t(count++);
     }
-    for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = root(std::uint32_t(v));
-    return parent;
+    std::uint32_t operator[](std::size_t t) const { return dense[part[weld[mesh.triangles[t].x]]]; }
+};
+
+/// What one pass over the triangles finds for `countInsideOutParts` and
+/// `allInOnePlane`, chunk by chunk of triangles in parallel.
+struct TriangleSums {
+    /// Per part (numbered densely), the signed volume about the box's centre
+    /// and the sum of its magnitudes; only the closed parts' are summed.
+    std::vector<double> volume, magnitude;
+    /// The largest area of a valid triangle (finite), and the first
+    /// triangle of that area.
+    double largest = 0.0;
+    std::size_t largestTriangle = 0;
+};
+
+/// Triangles a chunk of `sumTriangles`; parts at most for which each chunk
+/// keeps its own sums (otherwise the triangles are one chunk). The chunks
+/// are fixed, not one per thread, and their sums added in order: the same
+/// rounding for any number of threads.
+constexpr std::size_t kSumChunk = std::size_t(1) << 16;
+constexpr std::size_t kChunkedParts = 256;
+
+/// The triangle's corners in double; false if an index is out of range.
+bool cornersOf(MeshView mesh, std::size_t t, glm::dvec3 (&c)[3]) {
+    const glm::uvec3 tri = mesh.triangles[t];
+    const std::size_t n = mesh.positionCount;
+    if (tri.x >= n || tri.y >= n || tri.z >= n) return false;
+    for (int k = 0; k < 3; ++k) c[k] = glm::dvec3(mesh.positions[tri[k]]);
+    return true;
+}
+
+bool finiteCorners(const glm::dvec3 (&c)[3]) {
+    return std::isfinite(c[0].x + c[0].y + c[0].z + c[1].x + c[1].y + c[1].z + c[2].x + c[2].y + c[2].z);
+}
+
+/// The sums of `TriangleSums`, the volume counted only where `closed[part]`.
+TriangleSums sumTriangles(MeshView mesh, const TriangleParts& partOf, const std::vector<std::uint8_t>& closed,
+                          const Box& bounds, unsigned threads) {
+    const std::size_t parts = partOf.count;
+    const glm::dvec3 centre = (glm::dvec3(bounds.lo) + glm::dvec3(bounds.hi)) * 0.5;
+    const std::size_t nt = mesh.triangleCount;
+    const std::size_t chunk = parts <= kChunkedParts ? kSumChunk : std::max<std::size_t>(1, nt);
+    const std::size_t chunks = std::max<std::size_t>(1, (nt + chunk - 1) / chunk);
+    std::vector<TriangleSums> found(chunks);
+    parallelFor(threads, nt, chunk, [&](std::size_t begin, std::size_t end) {
+        TriangleSums& f = found[begin / chunk];
+        f.volume.assign(parts, 0.0);
+        f.magnitude.assign(parts, 0.0);
+        glm::dvec3 c[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+        for (std::size_t t = begin; t < end; ++t) {
+            if (!cornersOf(mesh, t, c)) continue;
+            const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+            // sqrt is monotone: only a triangle whose squared area reaches
+            // the largest's, less rounding, can be larger.
+            const double squared = glm::dot(n, n);
+            if (squared >= f.largest * f.largest * (1.0 - 1e-9)) {
+                const double area = glm::length(n);
+                if (std::isfinite(area) && area > f.largest) f.largest = area, f.largestTriangle = t;
+            }
+            const std::uint32_t p = partOf[t];
+            if (!finiteCorners(c) || !closed[p]) continue;
+            const double v = glm::dot(c[0] - centre, glm::cross(c[1] - centre, c[2] - centre));
+            f.volume[p] += v;
+            f.magnitude[p] += std::abs(v);
+        }
+    });
+    TriangleSums all = std::move(found[0]);
+    all.volume.resize(parts, 0.0);
+    all.magnitude.resize(parts, 0.0);
+    for (std::size_t k = 1; k < chunks; ++k) {
+        const TriangleSums& f = found[k];
+        for (std::size_t p = 0; p < parts; ++p) {
+            all.volume[p] += f.volume[p];
+            all.magnitude[p] += f.magnitude[p];
+        }
+        if (f.largest > all.largest) all.largest = f.largest, all.largestTriangle = f.largestTriangle;
+    }
+    return all;
 }
 
 /// Whether every vertex the (valid) triangles use lies within 1e-6 of the
 /// box's diagonal of the plane of the largest triangle (`MeshReport::coplanar`).
-bool allInOnePlane(MeshView mesh, const Box& bounds) {
+bool allInOnePlane(MeshView mesh, const Box& bounds, const TriangleSums& sums) {
     constexpr double kPlaneTolerance = 1e-6;
-    const auto valid = [&](const glm::uvec3& t) {
-        return t.x < mesh.positionCount && t.y < mesh.positionCount && t.z < mesh.positionCount;
-    };
-    glm::dvec3 normal(0.0), origin(0.0);
-    double largest = 0.0;
-    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        const glm::uvec3 tri = mesh.triangles[t];
-        if (!valid(tri)) continue;
-        const glm::dvec3 a(mesh.positions[tri.x]), b(mesh.positions[tri.y]), c(mesh.positions[tri.z]);
-        const glm::dvec3 n = glm::cross(b - a, c - a);
-        const double area = glm::length(n);
-        if (std::isfinite(area) && area > largest) largest = area, normal = n / area, origin = a;
-    }
-    if (largest == 0.0) return true; // every triangle degenerate: no plane, no volume
+    if (sums.largest == 0.0) return true; // every triangle degenerate: no plane, no volume
+    glm::dvec3 c[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+    cornersOf(mesh, sums.largestTriangle, c);
+    const glm::dvec3 normal = glm::cross(c[1] - c[0], c[2] - c[0]) / sums.largest, origin = c[0];
     const double reach = kPlaneTolerance * glm::length(glm::dvec3(bounds.hi) - glm::dvec3(bounds.lo));
     for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        const glm::uvec3 tri = mesh.triangles[t];
-        if (!valid(tri)) continue;
+        if (!cornersOf(mesh, t, c)) continue;
         for (int k = 0; k < 3; ++k) {
-            const double off = glm::dot(glm::dvec3(mesh.positions[tri[k]]) - origin, normal);
+            const double off = glm::dot(c[k] - origin, normal);
             if (!(std::abs(off) <= reach)) return false;
         }
     }
     return true;
 }
 
-/// Closed parts (no edge at fault: `openPart` unset) turned inside out. A
-/// part whose signed volume is negative beyond rounding (below -1e-6 of the
-/// sum of its triangles' magnitudes, about the box's centre: a flat part is
-/// not) encloses a region on its triangles' front side; it is inside out
-/// where the winding number of the closed parts there is negative, and a
-/// cavity (a reversed sphere inside an outward one: winding 0) where it is
-/// not. The point asked lies off the centroid of the part's largest
-/// triangle, a thousandth of its size along its normal; its winding number
-/// is the closed parts' solid angles summed (an integer, rounded), the
-/// candidates of the largest volume first while the work stays within
+/// Closed parts (no edge at fault) turned inside out, from the parts' sums.
+/// A part whose signed volume is negative beyond rounding (below -1e-6 of
+/// the sum of its triangles' magnitudes, about the box's centre: a flat
+/// part is not) encloses a region on its triangles' front side; it is
+/// inside out where the winding number of the closed parts there is
+/// negative, and a cavity (a reversed sphere inside an outward one: winding
+/// 0) where it is not. The point asked lies off the centroid of the part's
+/// largest triangle, a thousandth of its size along its normal; its winding
+/// number is the closed parts' solid angles summed (an integer, rounded),
+/// the candidates of the largest volume first while the work stays within
 /// kProbeBudget triangle-point pairs (a part left unasked is not counted).
-std::size_t countInsideOutParts(MeshView mesh, const std::vector<std::uint32_t>& weld,
-                                const std::vector<std::uint32_t>& part, const std::atomic<std::uint8_t>* openPart,
-                                const Box& bounds) {
+std::size_t countInsideOutParts(MeshView mesh, const TriangleParts& partOf,
+                                const std::vector<std::uint8_t>& closed, const TriangleSums& sums) {
     constexpr double kRounding = 1e-6, kOffset = 1e-3, kFourPi = 4.0 * 3.14159265358979323846;
     constexpr std::size_t kProbeBudget = std::size_t(1) << 27;
-    const glm::dvec3 centre = (glm::dvec3(bounds.lo) + glm::dvec3(bounds.hi)) * 0.5;
-    const std::size_t n = mesh.positionCount;
-    std::vector<double> volume(n, 0.0), magnitude(n, 0.0), largest(n, 0.0);
-    std::vector<std::size_t> largestTriangle(n, 0);
-    const auto corners = [&](std::size_t t, glm::dvec3 (&c)[3]) {
-        const glm::uvec3 tri = mesh.triangles[t];
-        if (tri.x >= n || tri.y >= n || tri.z >= n) return false;
-        for (int k = 0; k < 3; ++k) c[k] = glm::dvec3(mesh.positions[tri[k]]);
-        return std::isfinite(c[0].x + c[0].y + c[0].z + c[1].x + c[1].y + c[1].z + c[2].x + c[2].y + c[2].z);
-    };
-    glm::dvec3 c[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
-    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        if (!corners(t, c)) continue;
-        const double v = glm::dot(c[0] - centre, glm::cross(c[1] - centre, c[2] - centre));
-        const double area = glm::length(glm::cross(c[1] - c[0], c[2] - c[0]));
-        const std::uint32_t p = part[weld[mesh.triangles[t].x]];
-        volume[p] += v;
-        magnitude[p] += std::abs(v);
-        if (area > largest[p]) largest[p] = area, largestTriangle[p] = t;
-    }
     std::vector<std::uint32_t> candidates;
-    for (std::size_t p = 0; p < n; ++p)
-        if (part[p] == p && magnitude[p] > 0.0 && !openPart[p].load(std::memory_order_relaxed) &&
-            volume[p] < -kRounding * magnitude[p])
+    for (std::size_t p = 0; p < sums.volume.size(); ++p)
+        if (sums.magnitude[p] > 0.0 && closed[p] && sums.volume[p] < -kRounding * sums.magnitude[p])
             candidates.push_back(std::uint32_t(p));
     if (candidates.empty()) return 0;
-    std::sort(candidates.begin(), candidates.end(), [&](std::uint32_t a, std::uint32_t b) { return volume[a] < volume[b]; });
+    std::sort(candidates.begin(), candidates.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return sums.volume[a] < sums.volume[b]; });
     candidates.resize(std::min(candidates.size(), std::max<std::size_t>(1, kProbeBudget / std::max<std::size_t>(1, mesh.triangleCount))));
+    // Each candidate's largest triangle: the first of the largest area.
+    std::vector<double> largest(sums.volume.size(), 0.0);
+    std::vector<std::size_t> largestTriangle(sums.volume.size(), 0);
+    glm::dvec3 c[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
+        if (!cornersOf(mesh, t, c) || !finiteCorners(c)) continue;
+        const std::uint32_t p = partOf[t];
+        const double area = glm::length(glm::cross(c[1] - c[0], c[2] - c[0]));
+        if (area > largest[p]) largest[p] = area, largestTriangle[p] = t;
+    }
     std::vector<glm::dvec3> probes;
     for (std::uint32_t p : candidates) {
-        corners(largestTriangle[p], c);
+        cornersOf(mesh, largestTriangle[p], c);
         const glm::dvec3 normal = glm::cross(c[1] - c[0], c[2] - c[0]);
         const double size = glm::length(normal);
         probes.push_back((c[0] + c[1] + c[2]) / 3.0 + normal / size * (kOffset * std::sqrt(size)));
     }
     std::vector<double> angle(probes.size(), 0.0);
     for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        if (!corners(t, c) || openPart[part[weld[mesh.triangles[t].x]]].load(std::memory_order_relaxed)) continue;
+        if (!cornersOf(mesh, t, c) || !finiteCorners(c) || !closed[partOf[t]]) continue;
         for (std::size_t k = 0; k < probes.size(); ++k)
             angle[k] += detail::solidAngle(c[0] - probes[k], c[1] - probes[k], c[2] - probes[k]);
     }
@@ -452,7 +570,9 @@ std::string MeshReport::summary() const {
     return s.str();
 }
 
-MeshReport validateMesh(MeshView mesh, unsigned threads) {
+namespace {
+
+MeshReport validate(MeshView mesh, unsigned threads, std::vector<std::uint32_t>* partners) {
     MeshReport r;
     const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
     r.vertexCount = nv;
@@ -466,16 +586,33 @@ MeshReport validateMesh(MeshView mesh, unsigned threads) {
     for (std::size_t i = 0; i < nv; ++i)
         if (!finite(mesh.positions[i])) ++r.nonFiniteVertices;
     const std::vector<std::uint32_t> weld = weldByPosition(mesh.positions, nv);
-    const std::vector<std::uint32_t> part = connectedParts(mesh, weld);
+    std::vector<std::uint32_t> part; // found by countByEdges, beside its first pass
     std::unique_ptr<std::atomic<std::uint8_t>[]> openPart(new std::atomic<std::uint8_t>[nv]());
     // 32-bit items while vertex indices fit in 31 bits and the edge uses in 32.
-    if (nv < (std::size_t(1) << 31) && 3 * nt < (std::size_t(1) << 32))
-        countByEdges<std::uint32_t>(r, mesh, weld, threads, part, openPart.get());
+    // Partners (their half-edges and flag in 32 bits) with 32-bit items only.
+    if (nv < (std::size_t(1) << 31) && 3 * nt < (std::size_t(1) << 31))
+        countByEdges<std::uint32_t>(r, mesh, weld, threads, part, openPart.get(), partners);
+    else if (nv < (std::size_t(1) << 31) && 3 * nt < (std::size_t(1) << 32))
+        countByEdges<std::uint32_t>(r, mesh, weld, threads, part, openPart.get(), nullptr);
     else
-        countByEdges<std::uint64_t>(r, mesh, weld, threads, part, openPart.get());
-    r.insideOutParts = countInsideOutParts(mesh, weld, part, openPart.get(), r.bounds);
-    r.coplanar = allInOnePlane(mesh, r.bounds);
+        countByEdges<std::uint64_t>(r, mesh, weld, threads, part, openPart.get(), nullptr);
+    const TriangleParts partOf(mesh, weld, part);
+    std::vector<std::uint8_t> closed(partOf.count, 0);
+    for (std::size_t v = 0; v < nv; ++v)
+        if (part[v] == v) closed[partOf.dense[v]] = !openPart[v].load(std::memory_order_relaxed);
+    const TriangleSums sums = sumTriangles(mesh, partOf, closed, r.bounds, threads);
+    r.insideOutParts = countInsideOutParts(mesh, partOf, closed, sums);
+    r.coplanar = allInOnePlane(mesh, r.bounds, sums);
     return r;
+}
+
+} // namespace
+
+MeshReport validateMesh(MeshView mesh, unsigned threads) { return validate(mesh, threads, nullptr); }
+
+MeshReport detail::validateMesh(MeshView mesh, unsigned threads, std::vector<std::uint32_t>& partners) {
+    partners.clear();
+    return validate(mesh, threads, &partners);
 }
 
 void requireUsable(const MeshReport& report, const std::string& meshName) {

@@ -9,38 +9,6 @@
 #include <vds/error.h>
 
 namespace vds::detail {
-namespace {
-
-bool isTopLeft(const float* a, const float* b) { return b[1] < a[1] || (b[1] == a[1] && b[0] < a[0]); }
-
-} // namespace
-
-Box2 boxOf(const Triangle& t) {
-    Box2 b;
-    for (int a = 0; a < 2; ++a) {
-        b.lo[a] = std::min({t.v[0][a], t.v[1][a], t.v[2][a]});
-        b.hi[a] = std::max({t.v[0][a], t.v[1][a], t.v[2][a]});
-    }
-    return b;
-}
-
-Triangle projectTriangle(MeshView mesh, std::size_t k, const glm::ivec3& perm) {
-    Triangle t;
-    for (int c = 0; c < 3; ++c) {
-        const glm::vec3& p = mesh.positions[mesh.triangles[k][c]];
-        t.v[c][0] = p[perm.x];
-        t.v[c][1] = p[perm.y];
-        t.v[c][2] = p[perm.z];
-    }
-    t.index = std::uint32_t(k);
-    const int o = orient2d(t.v[0], t.v[1], t.v[2]);
-    t.flags = o == 0 ? kParallel : o < 0 ? kEntering : 0;
-    if (o < 0) std::swap(t.v[1], t.v[2]);
-    for (int e = 0; e < 3; ++e)
-        if (isTopLeft(t.v[e], t.v[(e + 1) % 3])) t.flags |= kTopLeft0 << e;
-    return t;
-}
-
 void CellGrid::setDims(std::uint32_t s, std::uint32_t t) {
     dims_[0] = s;
     dims_[1] = t;

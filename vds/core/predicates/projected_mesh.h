@@ -36,8 +36,10 @@
 // the same predicates to every triangle.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -66,12 +68,36 @@ struct Box2 {
     float lo[2], hi[2];
 };
 
-Box2 boxOf(const Triangle& t);
+inline Box2 boxOf(const Triangle& t) {
+    Box2 b;
+    for (int a = 0; a < 2; ++a) {
+        b.lo[a] = std::min({t.v[0][a], t.v[1][a], t.v[2][a]});
+        b.hi[a] = std::max({t.v[0][a], t.v[1][a], t.v[2][a]});
+    }
+    return b;
+}
+
 /// Triangle k of `mesh` in view space ((s,t,r) = the coordinates `perm`
 /// picks), counter-clockwise unless parallel, with its facing and top-left
 /// flags: the one projection of the exact classifier, the CPU baker and the
-/// layer count.
-Triangle projectTriangle(MeshView mesh, std::size_t k, const glm::ivec3& perm);
+/// layer count (inline: the layer count projects millions a second).
+inline Triangle projectTriangle(MeshView mesh, std::size_t k, const glm::ivec3& perm) {
+    const auto isTopLeft = [](const float* a, const float* b) { return b[1] < a[1] || (b[1] == a[1] && b[0] < a[0]); };
+    Triangle t;
+    for (int c = 0; c < 3; ++c) {
+        const glm::vec3& p = mesh.positions[mesh.triangles[k][c]];
+        t.v[c][0] = p[perm.x];
+        t.v[c][1] = p[perm.y];
+        t.v[c][2] = p[perm.z];
+    }
+    t.index = std::uint32_t(k);
+    const int o = orient2d(t.v[0], t.v[1], t.v[2]);
+    t.flags = o == 0 ? kParallel : o < 0 ? kEntering : 0;
+    if (o < 0) std::swap(t.v[1], t.v[2]);
+    for (int e = 0; e < 3; ++e)
+        if (isTopLeft(t.v[e], t.v[(e + 1) % 3])) t.flags |= kTopLeft0 << e;
+    return t;
+}
 /// Whether the projection of `tri` claims the point q (its (s,t) in q[0],
 /// q[1]) under the top-left rule. `tri` must not be parallel. A first pass
 /// evaluates the three edges as orient2d's filter does (q as the pivot) and

@@ -8,6 +8,7 @@
 #include <vds/error.h>
 
 #include <vds/detail/bake_common.h>
+#include <vds/detail/edge_partners.h>
 #include "winding/antipodal.h"
 #include "sprite/layer_count.h"
 #include <vds/detail/parallel.h>
@@ -16,25 +17,28 @@ namespace vds {
 
 namespace detail {
 
-MeshReport validateForBake(MeshView mesh, const BakeOptions& options) {
+MeshReport validateForBake(MeshView mesh, const BakeOptions& options, std::vector<std::uint32_t>* partners) {
     const HostPhase phase(options.timings, BakePhase::Validation);
-    MeshReport report = validateMesh(mesh);
+    MeshReport report = partners ? validateMesh(mesh, 0, *partners) : validateMesh(mesh);
     requireUsable(report, options.sourceName);
     requireVolume(report, options.sourceName);
     return report;
 }
 
-Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const AxisCounter& count) {
+Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const AxisCounter& count,
+              const std::vector<std::uint32_t>& partners) {
     if (options.axis) return *options.axis;
     const HostPhase phase(options.timings, BakePhase::Axis);
     const std::optional<AxisChoice> counted = count ? count(report) : std::nullopt;
-    return counted ? counted->axis : chooseViewAxis(mesh, report, options.resolution).axis;
+    return counted ? counted->axis : chooseViewAxis(mesh, report, options.resolution, 0, partners).axis;
 }
 
 BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count) {
     BakeSetup setup;
-    setup.report = validateForBake(mesh, options);
-    setup.grid = makeGrid(setup.report.bounds, bakeAxis(mesh, setup.report, options, count), options.resolution);
+    // Validation finds the edges' partners where the CPU will count the axis.
+    std::vector<std::uint32_t> partners;
+    setup.report = validateForBake(mesh, options, options.axis || count ? nullptr : &partners);
+    setup.grid = makeGrid(setup.report.bounds, bakeAxis(mesh, setup.report, options, count, partners), options.resolution);
     return setup;
 }
 
@@ -99,20 +103,28 @@ std::string AxisChoice::summary() const {
 }
 
 AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution, unsigned threads) {
-    const MeshReport report = validateMesh(mesh);
+    std::vector<std::uint32_t> partners; // found by validation, used by the count
+    const MeshReport report = detail::validateMesh(mesh, threads, partners);
     requireUsable(report, "mesh");
     requireVolume(report, "mesh");
-    return chooseViewAxis(mesh, report, resolution, threads);
+    return detail::chooseViewAxis(mesh, report, resolution, threads, partners);
 }
 
 AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads) {
+    return detail::chooseViewAxis(mesh, report, resolution, threads, {});
+}
+
+AxisChoice detail::chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads,
+                                  const std::vector<std::uint32_t>& partners) {
     AxisChoice choice;
     choice.resolution = resolution;
-    detail::LayerCounter counter;
+    const std::array<SpriteGrid, 3> grids = {makeGrid(report.bounds, Axis::X, resolution),
+                                             makeGrid(report.bounds, Axis::Y, resolution),
+                                             makeGrid(report.bounds, Axis::Z, resolution)};
+    const std::array<detail::LayerCount, 3> counts = detail::countLayers(mesh, grids, threads, partners);
     for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
-        const detail::LayerCount count = counter.count(mesh, makeGrid(report.bounds, axis, resolution), threads);
-        choice.layers[std::size_t(axis)] = count.most;
-        choice.crossings[std::size_t(axis)] = count.total;
+        choice.layers[std::size_t(axis)] = counts[std::size_t(axis)].most;
+        choice.crossings[std::size_t(axis)] = counts[std::size_t(axis)].total;
     }
     detail::pickFewestLayers(choice);
     return choice;

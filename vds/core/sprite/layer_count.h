@@ -2,8 +2,9 @@
 // counted without baking (chooseViewAxis, bake.cpp).
 #pragma once
 
+#include <array>
 #include <cstdint>
-#include <memory>
+#include <vector>
 
 #include <vds/mesh.h>
 #include <vds/sprite.h>
@@ -15,21 +16,14 @@ struct LayerCount {
     std::uint64_t total = 0;  ///< crossings in all
 };
 
-/// The counts of the CPU baker's sprite of `mesh` along a grid's axis at
-/// the grid's texel centres, by its claim rule: equal to counting every
-/// texel of every triangle's box (see layer_count.cpp), in time proportional
-/// to the rows the triangles span rather than the texels they cover. One
-/// counter counts several grids in turn (the three axes of
-/// `chooseViewAxis`), reusing its buffers from one count to the next.
-class LayerCounter {
-public:
-    LayerCounter();
-    ~LayerCounter();
-    LayerCount count(MeshView mesh, const SpriteGrid& grid, unsigned threads);
-
-private:
-    struct Buffers;
-    std::unique_ptr<Buffers> buffers_;
-};
+/// The counts of the CPU baker's sprites of `mesh` along the three grids'
+/// axes at their texel centres, by its claim rule: equal to counting every
+/// texel of every triangle's box (see layer_count.cpp), in time
+/// proportional to the rows the triangles span rather than the texels they
+/// cover. `grids` are those of x, y and z (`chooseViewAxis`); `partners`,
+/// the edges' partners validation found (<vds/detail/edge_partners.h>), or
+/// empty: the count then pairs the edges by vertex index itself.
+std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid, 3>& grids, unsigned threads,
+                                      const std::vector<std::uint32_t>& partners = {});
 
 } // namespace vds::detail

@@ -142,12 +142,13 @@ struct AxisChoice {
 /// The view axis with the fewest layers (the least depth complexity d_S; ties
 /// go to fewer crossings in all) at `resolution`: the d_S and crossing counts
 /// of the sprites the bakers would make along x, y and z, counted exactly
-/// (the CPU baker's texel centres and claim rule, triangle by triangle and
-/// row by row: each triangle claims one run of texels on a row, counted by
-/// its two ends, without sorting or storing crossings: a few percent of one
-/// CPU bake). Trapp &
-/// Doellner 2008, section 6, name this "optimal view direction" as future
-/// work: fewer layers mean a smaller texture and fewer lookups per test.
+/// (the CPU baker's texel centres and claim rule, row by row: each triangle
+/// claims one run of texels on a row, counted by its two ends, and where two
+/// triangles continue a surface across an edge their ends there cancel, so
+/// mostly the silhouette's edges are counted; without sorting or storing
+/// crossings: a few percent of one CPU bake). Trapp & Doellner 2008,
+/// section 6, name this "optimal view direction" as future work: fewer
+/// layers mean a smaller texture and fewer lookups per test.
 /// Throws like `bakeCpu` (an unusable mesh, a resolution out of range).
 AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution = 1024, unsigned threads = 0);
 /// The same for a mesh that `validateMesh` gave `report` for and that passed

@@ -60,11 +60,18 @@ private:
 using AxisCounter = std::function<std::optional<AxisChoice>(const MeshReport&)>;
 
 /// Validates the mesh (throws `InvalidMesh` if unusable); timed as
-/// `BakePhase::Validation`.
-MeshReport validateForBake(MeshView mesh, const BakeOptions& options);
+/// `BakePhase::Validation`. With `partners`, also the edges' partners
+/// (<vds/detail/edge_partners.h>) for the CPU's axis count.
+MeshReport validateForBake(MeshView mesh, const BakeOptions& options, std::vector<std::uint32_t>* partners = nullptr);
 /// `options.axis`, or the axis of the fewest layers (`count`, or the CPU's
-/// `chooseViewAxis`), timed as `BakePhase::Axis`.
-Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const AxisCounter& count = {});
+/// `chooseViewAxis`, given the partners validation found, if any), timed
+/// as `BakePhase::Axis`.
+Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const AxisCounter& count = {},
+              const std::vector<std::uint32_t>& partners = {});
+/// `chooseViewAxis(mesh, report, ...)` given the edges' partners validation
+/// found (empty: the count pairs the edges itself).
+AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads,
+                          const std::vector<std::uint32_t>& partners);
 /// Both, and the grid along the axis.
 BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count = {});
 
