@@ -67,14 +67,17 @@ ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOpti
     BakeOptions untimed = options;
     untimed.timings = nullptr;
     ValidatedMesh out;
+    // On a software renderer the CPU counts the axis: validation finds the edges' partners for it.
+    const bool cpuCount = !options.axis && softwareRenderer(gl);
+    std::vector<std::uint32_t> partners;
     {
         const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
-        out.report = validateForBake(mesh, untimed);
+        out.report = validateForBake(mesh, untimed, cpuCount ? &partners : nullptr);
     }
     Axis axis = options.axis.value_or(Axis::Z);
     if (!options.axis) {
-        const GlPhaseClock::Scope phase(clock, BakePhase::Axis, !softwareRenderer(gl));
-        axis = bakeAxis(mesh, out.report, untimed, axisCounter(gl, mesh, options, &out.drawn));
+        const GlPhaseClock::Scope phase(clock, BakePhase::Axis, !cpuCount);
+        axis = bakeAxis(mesh, out.report, untimed, axisCounter(gl, mesh, options, &out.drawn), partners);
     }
     out.grid = makeGrid(out.report.bounds, axis, options.resolution);
     return out;
