@@ -5,19 +5,18 @@
 // tile for its points, all in lockstep with no divergence), and the chain
 // tree's nodes are walked by the workgroup as one: a node is taken whole by
 // its chord and its fan's expansion only when every point of the workgroup
-// may take it, which every invocation decides alike from the box of the
-// workgroup's points (one reduction through shared memory a call, no vote a
-// node), so the walk, its loads and its branches are the same in every
-// invocation. The ranges of edges of the nodes not taken are merged where
-// they follow one another (the tree's leaves are in edge order) and summed
-// in full tiles.
+// may take it (a vote through shared memory), so the walk, its loads and its
+// branches are the same in every invocation. The ranges of edges of the
+// nodes not taken are merged where they follow one another (the tree's
+// leaves are in edge order) and summed in full tiles: a boundary of many
+// small loops (a scan's holes) is then one tile pass, not one a loop.
 //
 // The floor is the brute-force sum (every edge for every point, tiled): the
-// walk costs a box test a node visited more, and a node of at most one tile
-// of edges is summed rather than opened, so it stays within a few tests of
-// that floor where no node is ever taken (random points), and skips whole
-// chains or loops where the workgroup's points (coherent queries, an
-// occupancy tile's cells) all lie far from them.
+// walk costs one vote a node visited more, and a node of at most one tile of
+// edges is summed rather than opened, so it stays within a few votes of
+// that floor where no node is ever taken, and skips whole chains or loops
+// where the workgroup's points (coherent queries, an occupancy column's
+// cells) all lie far from them.
 //
 // Float error: the same as vdsBoundaryTerm's (vpt.glsl): the edges' solid
 // angles in float, summed in another order, and at most VDS_NODE_TOLERANCE
@@ -36,18 +35,9 @@
 
 shared vec3 vdsTileFrom[VDS_LOCAL_SIZE];
 shared vec3 vdsTileTo[VDS_LOCAL_SIZE];
-// The box of the workgroup's live points, as order-preserving integers
-// (vdsOrdered) for atomicMin and atomicMax.
-shared uint vdsBoxLo[3];
-shared uint vdsBoxHi[3];
-
-// A float as an unsigned integer of the same order.
-uint vdsOrdered(float f) {
-    uint u = floatBitsToUint(f);
-    return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u;
-}
-
-float vdsUnordered(uint u) { return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u); }
+// The last vote round each slot was refused in (rounds alternate slots, so
+// a round's writers never overwrite what the round before is still reading).
+shared int vdsRefused[2];
 
 // Adds the solid angles of edges [first, first + count) at each point to
 // `sum`, a tile of VDS_LOCAL_SIZE edges at a time.
@@ -89,35 +79,20 @@ void vdsSumEdgeTiles(int first, int count, vec3 q[VDS_TERM_POINTS], inout float 
     }
 }
 
-// The box of the live points of the whole workgroup; `any` false where
-// there are none. Three barriers.
-void vdsWorkgroupBox(vec3 q[VDS_TERM_POINTS], bool live[VDS_TERM_POINTS], out vec3 lo, out vec3 hi, out bool any) {
-    barrier(); // a previous call's box is read
-    if (gl_LocalInvocationID.x == 0u) {
-        for (int c = 0; c < 3; ++c) {
-            vdsBoxLo[c] = 0xffffffffu;
-            vdsBoxHi[c] = 0u;
-        }
-    }
+// Whether every invocation's live points may take the node whose ball and
+// error scale are given: one vote of the workgroup, in round `round`.
+bool vdsAllTake(vec4 ball, float errorScale, vec3 q[VDS_TERM_POINTS], bool live[VDS_TERM_POINTS], int round) {
+    bool take = true;
+    for (int k = 0; k < VDS_TERM_POINTS; ++k) take = take && (!live[k] || vdsNodeTaken(ball, errorScale, q[k]));
+    if (!take) vdsRefused[round & 1] = round; // every refusing invocation writes the same value
     memoryBarrierShared();
     barrier();
-    for (int k = 0; k < VDS_TERM_POINTS; ++k) {
-        if (!live[k]) continue;
-        for (int c = 0; c < 3; ++c) {
-            atomicMin(vdsBoxLo[c], vdsOrdered(q[k][c]));
-            atomicMax(vdsBoxHi[c], vdsOrdered(q[k][c]));
-        }
-    }
-    memoryBarrierShared();
-    barrier();
-    any = vdsBoxLo[0] <= vdsBoxHi[0];
-    lo = vec3(vdsUnordered(vdsBoxLo[0]), vdsUnordered(vdsBoxLo[1]), vdsUnordered(vdsBoxLo[2]));
-    hi = vec3(vdsUnordered(vdsBoxHi[0]), vdsUnordered(vdsBoxHi[1]), vdsUnordered(vdsBoxHi[2]));
+    return vdsRefused[round & 1] != round;
 }
 
 // The boundary term (winding number units) at each point q[k]; where
-// live[k] is false the point takes part in the loads but its term is
-// meaningless.
+// live[k] is false the point takes part in the loads and votes but its term
+// is meaningless.
 void vdsBoundaryTerms(VdsBoundary boundary, vec3 q[VDS_TERM_POINTS], bool live[VDS_TERM_POINTS],
                       out float term[VDS_TERM_POINTS]) {
     float sum[VDS_TERM_POINTS];
@@ -125,17 +100,22 @@ void vdsBoundaryTerms(VdsBoundary boundary, vec3 q[VDS_TERM_POINTS], bool live[V
     if (boundary.nodeCount == 0) {
         vdsSumEdgeTiles(0, boundary.edgeCount, q, sum);
     } else {
-        vec3 lo, hi;
-        bool any;
-        vdsWorkgroupBox(q, live, lo, hi, any);
+        barrier(); // a previous call's last vote is read
+        if (gl_LocalInvocationID.x == 0u) {
+            vdsRefused[0] = -1;
+            vdsRefused[1] = -1;
+        }
+        memoryBarrierShared();
+        barrier();
         int base = 2 * boundary.edgeCount;
+        int node = 0;
         int first = 0, count = 0; // edges to sum, merged while the nodes' ranges follow one another
-        for (int node = 0; node < boundary.nodeCount;) {
+        for (int round = 0; node < boundary.nodeCount; ++round) {
             int at = base + 14 * node;
             vec4 ball = vdsBoundaryEdges[at];
             vec4 links = vdsBoundaryEdges[at + 1]; // errorScale, skip, first edge, count << 2 | flags
             int flags = floatBitsToInt(links.w);
-            if (!any || vdsNodeTakenByBox(ball, links.x, lo, hi)) {
+            if (vdsAllTake(ball, links.x, q, live, round)) {
                 for (int k = 0; k < VDS_TERM_POINTS; ++k) sum[k] -= vdsNodeExpansion(at, ball.xyz - q[k]);
                 if ((flags & 2) != 0) { // its chord
                     vec3 a = vdsBoundaryEdges[at + 12].xyz, b = vdsBoundaryEdges[at + 13].xyz;

@@ -259,21 +259,6 @@ bool vdsNodeTaken(vec4 ball, float errorScale, vec3 q) {
            errorScale * ball.w * (d + 3.0 * e) <= VDS_NODE_TOLERANCE * 3.0 * d2 * d2 * e * e;
 }
 
-// Whether every point of the box [lo, hi] may take the node (vdsNodeTaken
-// at each): the box's nearest point to the ball's centre stands for them
-// all (the remainder bound only shrinks as the distance grows, and the
-// shadow test holds for the box where it holds for its nearest (s, t) or
-// its front lies before the ball).
-bool vdsNodeTakenByBox(vec4 ball, float errorScale, vec3 lo, vec3 hi) {
-    vec3 y = clamp(ball.xyz, lo, hi) - ball.xyz;
-    float r2 = ball.w * ball.w;
-    float d2 = dot(y, y);
-    float d = sqrt(d2);
-    float e = d - ball.w;
-    return (y.x * y.x + y.y * y.y > r2 || hi.z < ball.z - ball.w) && e > 0.0 &&
-           errorScale * ball.w * (d + 3.0 * e) <= VDS_NODE_TOLERANCE * 3.0 * d2 * d2 * e * e;
-}
-
 // The boundary term at q (the bake's frame, (s, t, r) order): the sum over
 // the edges of their solid angles, over 4 pi. With the chain tree
 // (GpuSprite::setBoundaryUniforms sets nodeCount; C++ caps_tree.h,
