@@ -16,9 +16,10 @@
 // bytes, three aligned vec4 loads) and writes their labels as one 32-bit
 // word, byte k for point k: one byte a point, as the host's uint8 arrays hold
 // them, written in whole words. The points go through each step together, so
-// that their memory reads overlap. (Measured on an H200 against this form:
-// one point an invocation with the labels gathered in shared memory, and the
-// four column walks in lockstep, were each slower, docs/benchmarks.md.)
+// that their memory reads overlap. (Measured on an H200 in the parity
+// program against this form: one point an invocation with the labels
+// gathered in shared memory, and the four column walks in lockstep, were
+// each slower; docs/benchmarks.md.)
 //
 // Parity and winding: a grid-stride loop per invocation covers any count.
 // Generalized winding: the loop runs per workgroup (every invocation takes
@@ -82,6 +83,44 @@ int vdsCount(ivec2 column, bool inBox, float r, out int parity) {
 #endif
 }
 
+#if defined(VDS_COLUMNS) && defined(VDS_BOUNDARY_TERM)
+// The generalized winding number's program: each point's signed count and
+// parity of the crossings in front of its texture depth, the points'
+// columns walked in lockstep (every step loads the next crossing of each
+// column still in walk). This program as measured fastest on an H200
+// (lockstep walks, a vote a node, each node's edges summed on their own):
+// suzanne 6.5 G points/s, against 4.1 with serial walks and merged ranges;
+// in the parity and winding programs the lockstep walks were the slower on
+// random points (docs/benchmarks.md).
+void vdsCountColumns(ivec2 column[VDS_N], bool inBox[VDS_N], vec3 T[VDS_N], out int winding[VDS_N],
+                     out int parity[VDS_N]) {
+    uint next[VDS_N], end[VDS_N];
+    for (uint k = 0u; k < uint(VDS_N); ++k) {
+        uint c = uint(column[k].y) * uint(u_size.x) + uint(column[k].x);
+        next[k] = inBox[k] ? offsets[c] : 0u;
+        end[k] = inBox[k] ? offsets[c + 1u] : 0u;
+        winding[k] = 0;
+        parity[k] = 0;
+    }
+    bool walking = true;
+    while (walking) {
+        walking = false;
+        for (uint k = 0u; k < uint(VDS_N); ++k) {
+            if (next[k] >= end[k]) continue;
+            float e = crossings[next[k]];
+            if (!(abs(e) < T[k].z)) { // sorted: nothing further is in front
+                end[k] = next[k];
+                continue;
+            }
+            parity[k] ^= 1;
+            winding[k] += floatBitsToInt(e) < 0 ? -1 : 1;
+            ++next[k];
+            walking = walking || next[k] < end[k];
+        }
+    }
+}
+#endif
+
 // The labels of the points, as one word (0 or 1 in byte k for point k);
 // points past `valid` are left 0. For the generalized winding rule every
 // invocation of the workgroup must call it (it sums the boundary term
@@ -104,7 +143,11 @@ uint vdsClassifyPoints(vec3 p[VDS_N], uint valid) {
         inBox[k] = k < valid && vdsColumnOf(T[k], VDS_SIZE, column[k]);
 #endif
     }
+#if defined(VDS_COLUMNS) && defined(VDS_BOUNDARY_TERM)
+    vdsCountColumns(column, inBox, T, winding, parity);
+#else
     for (uint k = 0u; k < uint(VDS_N); ++k) winding[k] = vdsCount(column[k], inBox[k], T[k].z, parity[k]);
+#endif
     uint word = 0u;
 #ifdef VDS_BOUNDARY_TERM
     vec3 q[VDS_N]; // where the CPU evaluates the term: the texel-centre point, or the point itself beside the box
