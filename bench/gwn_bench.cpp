@@ -187,24 +187,126 @@ void dump(const std::string& dir, const std::string& name, const vds::TriangleMe
     if (!obj) throw vds::Error(base + ".obj: cannot write");
 }
 
+struct GwnSettings {
+    std::size_t points = 200000;
+    std::uint32_t resolution = 1024, dims = 64;
+    unsigned threads = 1;
+    std::string dumpDir;
+};
+
+// The sprite's rows: its caps built by the classifier's first call (one
+// point), then the timed calls.
+Row spriteRow(const std::string& name, const GwnSettings& set,
+              const std::vector<glm::vec3>& points, const std::vector<double>& w,
+              const std::vector<std::vector<glm::vec3>>& bands, const vds::SpriteClassifier& sprite) {
+    const vds::ClassifyOptions gwn{vds::Rule::GeneralizedWinding, set.threads};
+    std::uint8_t one = 0;
+    const auto built = Clock::now();
+    sprite.classify(vds::PointsView(points.data(), 1), &one, gwn);
+    const double spriteBuild = seconds(built) * 1e3;
+    Row row = measure(name, "sprite GWN @" + std::to_string(set.resolution), points, w, bands,
+                      [&](const auto& p, auto& l) { sprite.classify(vds::PointsView(p.data(), p.size()), l.data(), gwn); });
+    row.build = spriteBuild;
+    return row;
+}
+
+// Occupancy by the mesh sweep, checked against the exact classifier at the
+// cell centres: one table row.
+void occupancyRow(const std::string& name, const vds::TriangleMesh& mesh, const GwnSettings& set,
+                  const vds::ExactClassifier& exact, std::size_t edges) {
+    const vds::ClassifyOptions gwn{vds::Rule::GeneralizedWinding, set.threads};
+    const vds::Box b = vds::meshBounds(mesh);
+    const vds::Grid grid = vds::cubicGrid({b.lo - 0.1f * (b.hi - b.lo), b.hi + 0.1f * (b.hi - b.lo)}, set.dims);
+    std::vector<std::uint8_t> cells(grid.cellCount()), expected(grid.cellCount());
+    const auto t0 = Clock::now();
+    vds::occupancy(vds::MeshView(mesh), grid, cells.data(), gwn);
+    const double occupancyRate = double(cells.size()) / seconds(t0) / 1e6;
+    std::vector<glm::vec3> centres;
+    centres.reserve(cells.size());
+    for (std::uint32_t i = 0; i < grid.dims.x; ++i)
+        for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+            for (std::uint32_t k = 0; k < grid.dims.z; ++k) centres.push_back(grid.cellCentre(i, j, k));
+    exact.classify({centres.data(), centres.size()}, expected.data(), {vds::Rule::GeneralizedWinding, 0});
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < cells.size(); ++k) differ += cells[k] != expected[k];
+    std::printf("| %s | %zu | occupancy GWN %ux%ux%u | %zu (vs exact) | | %.3f | | | | | |\n", name.c_str(), edges,
+                grid.dims.x, grid.dims.y, grid.dims.z, differ, occupancyRate);
+}
+
+// One mesh: the yardstick's values, the methods' rows, the occupancy row
+// and how the sprite's caps answer.
+void benchMesh(const std::string& name, const vds::TriangleMesh& mesh, const GwnSettings& set) {
+    auto built = Clock::now();
+    const vds::ExactClassifier exact(mesh, vds::Axis::Z);
+    const double exactBuild = seconds(built) * 1e3;
+    const std::size_t edges = vds::meshBoundaryEdges(mesh).size() / 2;
+    std::mt19937 rng(1);
+    const std::vector<glm::vec3> points = uniformPoints(vds::meshBounds(mesh), set.points, rng);
+    std::vector<double> w(points.size());
+    vds::parallelFor(0, points.size(), 256, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) w[k] = exact.generalizedWinding(points[k]);
+    });
+    if (!set.dumpDir.empty()) dump(set.dumpDir, name, mesh, points, w);
+    std::vector<std::vector<glm::vec3>> bands(kBandCount);
+    std::size_t counts[kBandCount] = {};
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        bands[std::size_t(bandOf(w[k]))].push_back(points[k]);
+        ++counts[bandOf(w[k])];
+    }
+    const vds::ClassifyOptions gwn{vds::Rule::GeneralizedWinding, set.threads};
+    std::vector<Row> rows;
+    rows.push_back(measure(name, "brute-force per-edge sum", points, w, bands, [&](const auto& p, auto& l) {
+        for (std::size_t k = 0; k < p.size(); ++k) l[k] = inside(exact.generalizedWinding(p[k])) ? 1 : 0;
+    }));
+    rows.push_back(measure(name, "exact GWN", points, w, bands,
+                           [&](const auto& p, auto& l) { exact.classify({p.data(), p.size()}, l.data(), gwn); }));
+    rows.back().build = exactBuild;
+    vds::BakeOptions o;
+    o.resolution = set.resolution;
+    const vds::SpriteClassifier sprite(vds::bakeCpu(mesh, o));
+    rows.push_back(spriteRow(name, set, points, w, bands, sprite));
+    // How the sprite's caps answer: their coarse grid's cells by kind once
+    // the uniform points have landed in them (the same caps built again,
+    // untimed). A matter of speed, not of labels, so reported here rather
+    // than asserted by the tests.
+    const vds::detail::BoundaryCapsCache spriteCaps;
+    std::vector<std::uint8_t> landed(points.size());
+    vds::detail::classifySpriteFloats(sprite.sprite(), spriteCaps, {}, &points[0].x, points.size(), sizeof(glm::vec3),
+                                      landed.data(), gwn);
+    const vds::detail::BoundaryCaps::RangedCells ranged = spriteCaps.get(sprite.sprite(), set.threads).rangedCells();
+    // (A sprite's labels may differ from the yardstick's within a texel of
+    // the surface: its points sit at texel centres.)
+    for (const Row& r : rows) {
+        char build[32] = "";
+        if (r.build >= 0.0) std::snprintf(build, sizeof build, "%.1f", r.build);
+        std::printf("| %s | %zu | %s | %zu | %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f |\n", r.mesh.c_str(), edges,
+                    r.method.c_str(), r.wrong, build, r.all, r.again, r.band[0], r.band[1], r.band[2], r.band[3]);
+    }
+    occupancyRow(name, mesh, set, exact, edges);
+    std::printf("| %s | | points per band | | | %zu | | %zu | %zu | %zu | %zu |\n", name.c_str(), points.size(),
+                counts[0], counts[1], counts[2], counts[3]);
+    std::printf("| %s | | sprite caps' coarse cells: by range (boundary %zu, winding %zu of which closed %zu, "
+                "capped %zu), planned %zu | | | | | | | | |\n",
+                name.c_str(), ranged.boundary, ranged.winding, ranged.closed, ranged.capped, ranged.planned);
+    std::fflush(stdout);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     CLI::App app("vds_gwn_bench: generalized winding numbers on open meshes");
     std::vector<std::string> meshes;
-    std::size_t pointCount = 200000;
-    std::uint32_t resolution = 1024, dims = 64;
-    unsigned threads = 1;
+    GwnSettings set;
     bool noGenerated = false;
-    std::string only, dumpDir;
+    std::string only;
     app.add_option("meshes", meshes, "meshes (default: the bunny, teapot and suzanne of bench/meshes, from bench/fetch-meshes.sh)");
-    app.add_option("--points", pointCount, "uniform points in the padded box");
-    app.add_option("--resolution", resolution, "sprite resolution");
-    app.add_option("--dims", dims, "occupancy grid cells along each side");
-    app.add_option("--threads", threads, "threads (0: all)");
+    app.add_option("--points", set.points, "uniform points in the padded box");
+    app.add_option("--resolution", set.resolution, "sprite resolution");
+    app.add_option("--dims", set.dims, "occupancy grid cells along each side");
+    app.add_option("--threads", set.threads, "threads (0: all)");
     app.add_flag("--no-generated", noGenerated, "leave out the hard cases built in code");
     app.add_option("--only", only, "measure only the meshes whose name contains this");
-    app.add_option("--dump", dumpDir, "write each mesh, its points and the yardstick's values into this folder");
+    app.add_option("--dump", set.dumpDir, "write each mesh, its points and the yardstick's values into this folder");
     CLI11_PARSE(app, argc, argv);
     if (meshes.empty())
         for (const char* name : {"stanford-bunny", "teapot", "suzanne"})
@@ -223,96 +325,11 @@ int main(int argc, char** argv) {
         }
         std::printf("%zu uniform points in the padded box, %u thread(s); rates in million points (cells) per "
                     "second; bands by the yardstick's |w - 1/2|\n\n",
-                    pointCount, threads);
+                    set.points, set.threads);
         std::printf("| mesh | boundary edges | method | wrong | build ms | all | again | < 0.001 | < 0.02 | < 0.1 | >= 0.1 |\n"
                     "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-        for (const auto& [name, mesh] : inputs) {
-            if (name.find(only) == std::string::npos) continue;
-            auto built = Clock::now();
-            const vds::ExactClassifier exact(mesh, vds::Axis::Z);
-            const double exactBuild = seconds(built) * 1e3;
-            const std::vector<glm::vec3> edges = vds::meshBoundaryEdges(mesh);
-            std::mt19937 rng(1);
-            const std::vector<glm::vec3> points = uniformPoints(vds::meshBounds(mesh), pointCount, rng);
-            std::vector<double> w(points.size());
-            vds::parallelFor(0, points.size(), 256, [&](std::size_t begin, std::size_t end) {
-                for (std::size_t k = begin; k < end; ++k) w[k] = exact.generalizedWinding(points[k]);
-            });
-            if (!dumpDir.empty()) dump(dumpDir, name, mesh, points, w);
-            std::vector<std::vector<glm::vec3>> bands(kBandCount);
-            std::size_t counts[kBandCount] = {};
-            for (std::size_t k = 0; k < points.size(); ++k) {
-                bands[std::size_t(bandOf(w[k]))].push_back(points[k]);
-                ++counts[bandOf(w[k])];
-            }
-            const vds::ClassifyOptions gwn{vds::Rule::GeneralizedWinding, threads};
-            std::vector<Row> rows;
-            rows.push_back(measure(name, "brute-force per-edge sum", points, w, bands, [&](const auto& p, auto& l) {
-                for (std::size_t k = 0; k < p.size(); ++k) l[k] = inside(exact.generalizedWinding(p[k])) ? 1 : 0;
-            }));
-            rows.push_back(measure(name, "exact GWN", points, w, bands, [&](const auto& p, auto& l) {
-                exact.classify({p.data(), p.size()}, l.data(), gwn);
-            }));
-            rows.back().build = exactBuild;
-            vds::BakeOptions o;
-            o.resolution = resolution;
-            const vds::SpriteClassifier sprite(vds::bakeCpu(mesh, o));
-            // Its caps, built by the classifier's first call: one point.
-            std::uint8_t one = 0;
-            built = Clock::now();
-            sprite.classify(vds::PointsView(points.data(), 1), &one, gwn);
-            const double spriteBuild = seconds(built) * 1e3;
-            rows.push_back(measure(name, "sprite GWN @" + std::to_string(resolution), points, w, bands,
-                                   [&](const auto& p, auto& l) {
-                                       sprite.classify(vds::PointsView(p.data(), p.size()), l.data(), gwn);
-                                   }));
-            rows.back().build = spriteBuild;
-            // How the sprite's caps answer: their coarse grid's cells by
-            // kind once the uniform points have landed in them (the same
-            // caps built again, untimed). A matter of speed, not of
-            // labels, so reported here rather than asserted by the tests.
-            const vds::detail::BoundaryCapsCache spriteCaps;
-            std::vector<std::uint8_t> landed(points.size());
-            vds::detail::classifySpriteFloats(sprite.sprite(), spriteCaps, {}, &points[0].x, points.size(),
-                                              sizeof(glm::vec3), landed.data(), gwn);
-            const vds::detail::BoundaryCaps::RangedCells ranged =
-                spriteCaps.get(sprite.sprite(), threads).rangedCells();
-            // (A sprite's labels may differ from the yardstick's within a
-            // texel of the surface: its points sit at texel centres.)
-            for (const Row& r : rows) {
-                char build[32] = "";
-                if (r.build >= 0.0) std::snprintf(build, sizeof build, "%.1f", r.build);
-                std::printf("| %s | %zu | %s | %zu | %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f |\n", r.mesh.c_str(),
-                            edges.size() / 2, r.method.c_str(), r.wrong, build, r.all, r.again, r.band[0], r.band[1],
-                            r.band[2], r.band[3]);
-            }
-            // Occupancy by the mesh sweep, checked against the exact
-            // classifier at the cell centres.
-            const vds::Grid grid = vds::cubicGrid(
-                {vds::meshBounds(mesh).lo - 0.1f * (vds::meshBounds(mesh).hi - vds::meshBounds(mesh).lo),
-                 vds::meshBounds(mesh).hi + 0.1f * (vds::meshBounds(mesh).hi - vds::meshBounds(mesh).lo)},
-                dims);
-            std::vector<std::uint8_t> cells(grid.cellCount()), expected(grid.cellCount());
-            auto t0 = Clock::now();
-            vds::occupancy(vds::MeshView(mesh), grid, cells.data(), gwn);
-            const double occupancyRate = double(cells.size()) / seconds(t0) / 1e6;
-            std::vector<glm::vec3> centres;
-            centres.reserve(cells.size());
-            for (std::uint32_t i = 0; i < grid.dims.x; ++i)
-                for (std::uint32_t j = 0; j < grid.dims.y; ++j)
-                    for (std::uint32_t k = 0; k < grid.dims.z; ++k) centres.push_back(grid.cellCentre(i, j, k));
-            exact.classify({centres.data(), centres.size()}, expected.data(), {vds::Rule::GeneralizedWinding, 0});
-            std::size_t differ = 0;
-            for (std::size_t k = 0; k < cells.size(); ++k) differ += cells[k] != expected[k];
-            std::printf("| %s | %zu | occupancy GWN %ux%ux%u | %zu (vs exact) | | %.3f | | | | | |\n", name.c_str(),
-                        edges.size() / 2, grid.dims.x, grid.dims.y, grid.dims.z, differ, occupancyRate);
-            std::printf("| %s | | points per band | | | %zu | | %zu | %zu | %zu | %zu |\n", name.c_str(), points.size(),
-                        counts[0], counts[1], counts[2], counts[3]);
-            std::printf("| %s | | sprite caps' coarse cells: by range (boundary %zu, winding %zu of which closed %zu, "
-                        "capped %zu), planned %zu | | | | | | | | |\n",
-                        name.c_str(), ranged.boundary, ranged.winding, ranged.closed, ranged.capped, ranged.planned);
-            std::fflush(stdout);
-        }
+        for (const auto& [name, mesh] : inputs)
+            if (name.find(only) != std::string::npos) benchMesh(name, mesh, set);
     } catch (const vds::Error& e) {
         std::fprintf(stderr, "vds_gwn_bench: %s\n", e.what());
         return 1;

@@ -234,100 +234,89 @@ struct SizeRow {
     std::size_t file, dense, crossings;
 };
 
-void bakeTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMesh>& meshes,
-               std::vector<SizeRow>& sizes) {
-    std::printf("## Bake time: CPU vs fragment lists vs depth peeling (ms, best of %u after an untimed bake; "
-                "peeling: one run)\n\n",
-                set.bakeRuns);
-    std::puts("`cpu`: exact ray casting on every core. `lists`: fragment lists, the sprite read back to the host.");
-    std::puts("`to GPU`: fragment lists into a GpuSprite (3D texture + columns), nothing read back (`bakeToGpu`).");
-    std::puts("Ratios above 1 mean lists are faster. `CPU time`: the same ratio in process CPU time (every thread,");
-    std::puts("llvmpipe's too), which other programs on a shared machine disturb less than wall time.");
-    std::puts("`lists == peel`: the two GL bakers' layers, bit for bit.\n");
-    std::puts("| mesh | triangles | res | w x h x d | cpu | lists | to GPU | peel | cpu / lists | (CPU time) | "
-              "peel / lists | lists == peel |");
-    std::puts("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|");
-    struct PhaseRow {
-        std::string mesh;
-        std::uint32_t res;
-        vds::BakeTimings host, gpu;
-    };
-    std::vector<PhaseRow> phases;
-    std::vector<double> bundledRatios, bundledCpuRatios;
-    for (const auto& m : meshes)
-        for (std::uint32_t res : m.resolutions) {
-            vds::BakeOptions o;
-            o.resolution = res;
-            o.sourceName = m.mesh.name;
-            vds::Sprite lists, peel, cpu;
-            // Untimed first bakes: the GL bakers' scratch space grows to this
-            // size once, and the allocator warms up for the CPU baker.
-            o.method = vds::BakeMethod::Lists;
-            vds::bake(gl, m.mesh, o);
-            if (set.cpuBake) {
-                o.method = vds::BakeMethod::Cpu;
-                vds::bake(m.mesh, o);
-                o.method = vds::BakeMethod::Lists;
-            }
-            double cLists = 0, cCpu = 0;
-            const double tLists = best(set.bakeRuns, [&] { lists = vds::bake(gl, m.mesh, o); }, &cLists);
-            const double tGpu = best(set.bakeRuns, [&] {
-                const vds::GpuBake b = vds::bakeToGpu(gl, m.mesh, o);
-                glFinish();
-            });
-            double tPeel = -1, tCpu = -1;
-            if (set.peel) {
-                o.method = vds::BakeMethod::Peel;
-                tPeel = seconds([&] { peel = vds::bake(gl, m.mesh, o); });
-            }
-            if (set.cpuBake) {
-                o.method = vds::BakeMethod::Cpu;
-                tCpu = best(set.bakeRuns, [&] { cpu = vds::bake(m.mesh, o); }, &cCpu);
-                if (m.bundled) {
-                    bundledRatios.push_back(tCpu / tLists);
-                    bundledCpuRatios.push_back(cCpu / cLists);
-                }
-            }
-            PhaseRow row{m.mesh.name, res, {}, {}};
-            o.method = vds::BakeMethod::Lists;
-            o.timings = &row.host;
-            vds::bake(gl, m.mesh, o);
-            o.timings = &row.gpu;
-            vds::bakeToGpu(gl, m.mesh, o);
-            phases.push_back(row);
-            std::printf("| %s | %zu | %u | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", m.mesh.name.c_str(),
-                        m.mesh.triangles.size(), res, sizeText(lists.width(), lists.height(), lists.depthComplexity).c_str(),
-                        tCpu < 0 ? "-" : ms(tCpu).c_str(), ms(tLists).c_str(), ms(tGpu).c_str(),
-                        tPeel < 0 ? "-" : ms(tPeel).c_str(), tCpu < 0 ? "-" : ratio(tCpu, tLists).c_str(),
-                        tCpu < 0 ? "-" : ratio(cCpu, cLists).c_str(), tPeel < 0 ? "-" : ratio(tPeel, tLists).c_str(),
-                        tPeel < 0 ? "-" : identical(peel, lists) ? "yes" : "NO");
-            std::fflush(stdout);
-            if (set.sizes && m.bundled) {
-                const fs::path file = fs::temp_directory_path() / "vds_bench.vds";
-                vds::writeSprite(lists, file.string());
-                sizes.push_back({m.mesh.name, res, std::size_t(fs::file_size(file)), lists.denseBytes(),
-                                 lists.crossings.size()});
-                fs::remove(file);
-            }
-        }
-    auto summary = [](const char* what, const std::vector<double>& ratios) {
-        double logSum = 0;
-        std::size_t faster = 0;
-        for (double r : ratios) {
-            logSum += std::log(r);
-            faster += r >= 1.0;
-        }
-        const auto [lo, hi] = std::minmax_element(ratios.begin(), ratios.end());
-        std::printf("- %s: lists as fast or faster on %zu of %zu; cpu / lists from %.2fx to %.2fx, geometric mean "
-                    "%.2fx.\n",
-                    what, faster, ratios.size(), *lo, *hi, std::exp(logSum / double(ratios.size())));
-    };
-    if (!bundledRatios.empty()) {
-        std::puts("\nFragment lists vs the CPU baker on the mesh files, this run:");
-        summary("wall time", bundledRatios);
-        summary("process CPU time", bundledCpuRatios);
-    }
+struct PhaseRow {
+    std::string mesh;
+    std::uint32_t res;
+    vds::BakeTimings host, gpu;
+};
 
+// Wall-time ratios of the CPU baker over the lists on the mesh files.
+struct BakeRatios {
+    std::vector<double> wall, cpu;
+};
+
+// One mesh at one resolution: every baker timed (an untimed bake first),
+// the row printed, the phases measured once, the file size kept.
+PhaseRow bakeRow(const Settings& set, vds::GlContext& gl, const BenchMesh& m, std::uint32_t res,
+                 std::vector<SizeRow>& sizes, BakeRatios& ratios) {
+    vds::BakeOptions o;
+    o.resolution = res;
+    o.sourceName = m.mesh.name;
+    vds::Sprite lists, peel, cpu;
+    // Untimed first bakes: the GL bakers' scratch space grows to this
+    // size once, and the allocator warms up for the CPU baker.
+    o.method = vds::BakeMethod::Lists;
+    vds::bake(gl, m.mesh, o);
+    if (set.cpuBake) {
+        o.method = vds::BakeMethod::Cpu;
+        vds::bake(m.mesh, o);
+        o.method = vds::BakeMethod::Lists;
+    }
+    double cLists = 0, cCpu = 0;
+    const double tLists = best(set.bakeRuns, [&] { lists = vds::bake(gl, m.mesh, o); }, &cLists);
+    const double tGpu = best(set.bakeRuns, [&] {
+        const vds::GpuBake b = vds::bakeToGpu(gl, m.mesh, o);
+        glFinish();
+    });
+    double tPeel = -1, tCpu = -1;
+    if (set.peel) {
+        o.method = vds::BakeMethod::Peel;
+        tPeel = seconds([&] { peel = vds::bake(gl, m.mesh, o); });
+    }
+    if (set.cpuBake) {
+        o.method = vds::BakeMethod::Cpu;
+        tCpu = best(set.bakeRuns, [&] { cpu = vds::bake(m.mesh, o); }, &cCpu);
+        if (m.bundled) {
+            ratios.wall.push_back(tCpu / tLists);
+            ratios.cpu.push_back(cCpu / cLists);
+        }
+    }
+    PhaseRow row{m.mesh.name, res, {}, {}};
+    o.method = vds::BakeMethod::Lists;
+    o.timings = &row.host;
+    vds::bake(gl, m.mesh, o);
+    o.timings = &row.gpu;
+    vds::bakeToGpu(gl, m.mesh, o);
+    std::printf("| %s | %zu | %u | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", m.mesh.name.c_str(),
+                m.mesh.triangles.size(), res, sizeText(lists.width(), lists.height(), lists.depthComplexity).c_str(),
+                tCpu < 0 ? "-" : ms(tCpu).c_str(), ms(tLists).c_str(), ms(tGpu).c_str(),
+                tPeel < 0 ? "-" : ms(tPeel).c_str(), tCpu < 0 ? "-" : ratio(tCpu, tLists).c_str(),
+                tCpu < 0 ? "-" : ratio(cCpu, cLists).c_str(), tPeel < 0 ? "-" : ratio(tPeel, tLists).c_str(),
+                tPeel < 0 ? "-" : identical(peel, lists) ? "yes" : "NO");
+    std::fflush(stdout);
+    if (set.sizes && m.bundled) {
+        const fs::path file = fs::temp_directory_path() / "vds_bench.vds";
+        vds::writeSprite(lists, file.string());
+        sizes.push_back({m.mesh.name, res, std::size_t(fs::file_size(file)), lists.denseBytes(), lists.crossings.size()});
+        fs::remove(file);
+    }
+    return row;
+}
+
+void printRatioSummary(const char* what, const std::vector<double>& ratios) {
+    double logSum = 0;
+    std::size_t faster = 0;
+    for (double r : ratios) {
+        logSum += std::log(r);
+        faster += r >= 1.0;
+    }
+    const auto [lo, hi] = std::minmax_element(ratios.begin(), ratios.end());
+    std::printf("- %s: lists as fast or faster on %zu of %zu; cpu / lists from %.2fx to %.2fx, geometric mean "
+                "%.2fx.\n",
+                what, faster, ratios.size(), *lo, *hi, std::exp(logSum / double(ratios.size())));
+}
+
+void printPhaseTable(const std::vector<PhaseRow>& phases) {
     std::puts("\n## Fragment-list bake, phase by phase (ms: wall / GPU timer; one measured run)\n");
     std::puts("Measured runs wait for GL at the end of each phase, so the phases add up to about the total; GPU");
     std::puts("times are GL timer queries (none where the driver's timer reports nothing usable, as llvmpipe's).");
@@ -346,8 +335,32 @@ void bakeTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchM
                         phaseCell(*t, P::Assembly).c_str(), ms(t->wallSeconds).c_str(),
                         t->gpuSeconds() > 0 ? ms(t->gpuSeconds()).c_str() : "-",
                         t->gpuSeconds() > 0 ? ratio(t->wallSeconds, t->gpuSeconds()).c_str() : "-",
-                        (unsigned long long)t->crossings,
-                        (unsigned long long)t->listNodes, t->bands);
+                        (unsigned long long)t->crossings, (unsigned long long)t->listNodes, t->bands);
+}
+
+void bakeTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMesh>& meshes,
+               std::vector<SizeRow>& sizes) {
+    std::printf("## Bake time: CPU vs fragment lists vs depth peeling (ms, best of %u after an untimed bake; "
+                "peeling: one run)\n\n",
+                set.bakeRuns);
+    std::puts("`cpu`: exact ray casting on every core. `lists`: fragment lists, the sprite read back to the host.");
+    std::puts("`to GPU`: fragment lists into a GpuSprite (3D texture + columns), nothing read back (`bakeToGpu`).");
+    std::puts("Ratios above 1 mean lists are faster. `CPU time`: the same ratio in process CPU time (every thread,");
+    std::puts("llvmpipe's too), which other programs on a shared machine disturb less than wall time.");
+    std::puts("`lists == peel`: the two GL bakers' layers, bit for bit.\n");
+    std::puts("| mesh | triangles | res | w x h x d | cpu | lists | to GPU | peel | cpu / lists | (CPU time) | "
+              "peel / lists | lists == peel |");
+    std::puts("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|");
+    std::vector<PhaseRow> phases;
+    BakeRatios ratios;
+    for (const auto& m : meshes)
+        for (std::uint32_t res : m.resolutions) phases.push_back(bakeRow(set, gl, m, res, sizes, ratios));
+    if (!ratios.wall.empty()) {
+        std::puts("\nFragment lists vs the CPU baker on the mesh files, this run:");
+        printRatioSummary("wall time", ratios.wall);
+        printRatioSummary("process CPU time", ratios.cpu);
+    }
+    printPhaseTable(phases);
 }
 
 // `n` points, 32 to a column: columns spread evenly over the image, in

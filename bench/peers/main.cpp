@@ -356,6 +356,49 @@ void printTable(const PointSet& set) {
     if (anyOnce) std::printf("\n\\* timed once: its warm-up run took more than %.0f s.\n", kTimeOnceAbove);
 }
 
+// Which peers this program was built with, and which it lacks.
+void printPeers() {
+    std::string compiled, missing;
+#if VDS_PEERS_EMBREE
+    compiled += vds::peers::embreeVersion() + " ray parity (TBB)";
+#else
+    missing += "Embree (libembree-dev, libtbb-dev)";
+#endif
+#if VDS_PEERS_CGAL
+    compiled += (compiled.empty() ? "" : ", ") + vds::peers::cgalVersion() + " Side_of_triangle_mesh";
+#else
+    missing += std::string(missing.empty() ? "" : ", ") + "CGAL (libcgal-dev)";
+#endif
+    std::printf("peers compiled in: %s\n", compiled.empty() ? "none" : compiled.c_str());
+    if (!missing.empty())
+        std::printf("peers missing (not found when this program was built): %s; see bench/install-peers.sh\n",
+                    missing.c_str());
+}
+
+// Every closed case against every point set (the open ones are skipped, said so in the table).
+void runCases(const std::vector<Case>& cases, std::vector<PointSet>& sets, std::size_t pointCount, unsigned threads,
+              std::uint32_t resolution, std::size_t cgalLimit) {
+    std::printf("\n| mesh | triangles | sprite |\n|---|---:|---|\n");
+    for (const Case& c : cases) {
+        const vds::MeshReport report = vds::validateMesh(c.mesh);
+        if (!report.closed()) {
+            std::printf("| %s | %zu | skipped: %s |\n", c.name.c_str(), c.mesh.triangles.size(), report.summary().c_str());
+            continue;
+        }
+        std::string shape;
+        std::size_t kSprite = 0, kSweep = 0;
+        const std::vector<Method> methods = buildMethods(c.mesh, threads, resolution, shape, kSprite, kSweep);
+        std::printf("| %s | %zu | %s |\n", c.name.c_str(), c.mesh.triangles.size(), shape.c_str());
+        std::fflush(stdout);
+        const std::vector<glm::vec3> random = vds::test::randomPoints(vds::meshBounds(c.mesh), pointCount);
+        for (PointSet& set : sets) {
+            const auto t0 = Clock::now();
+            measureSet(set, c, methods, random, threads, cgalLimit, kSprite, kSweep);
+            std::fprintf(stderr, "  %s, %s: %.1f s\n", c.name.c_str(), set.title.c_str(), since(t0));
+        }
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -396,21 +439,7 @@ int main(int argc, char** argv) {
     try {
         std::printf("vds_peers_bench: %s, %u hardware threads; vds and Embree query on %u threads, CGAL on 1\n",
                     cpuModel().c_str(), std::thread::hardware_concurrency(), threads);
-        std::string compiled, missing;
-#if VDS_PEERS_EMBREE
-        compiled += vds::peers::embreeVersion() + " ray parity (TBB)";
-#else
-        missing += "Embree (libembree-dev, libtbb-dev)";
-#endif
-#if VDS_PEERS_CGAL
-        compiled += (compiled.empty() ? "" : ", ") + vds::peers::cgalVersion() + " Side_of_triangle_mesh";
-#else
-        missing += std::string(missing.empty() ? "" : ", ") + "CGAL (libcgal-dev)";
-#endif
-        std::printf("peers compiled in: %s\n", compiled.empty() ? "none" : compiled.c_str());
-        if (!missing.empty())
-            std::printf("peers missing (not found when this program was built): %s; see bench/install-peers.sh\n",
-                        missing.c_str());
+        printPeers();
 
         std::vector<Case> cases;
         if (meshPaths.empty()) meshPaths = defaultMeshPaths(meshDir);
@@ -431,26 +460,7 @@ int main(int argc, char** argv) {
                             n,
                             {}});
 
-        std::printf("\n| mesh | triangles | sprite |\n|---|---:|---|\n");
-        for (const Case& c : cases) {
-            const vds::MeshReport report = vds::validateMesh(c.mesh);
-            if (!report.closed()) {
-                std::printf("| %s | %zu | skipped: %s |\n", c.name.c_str(), c.mesh.triangles.size(),
-                            report.summary().c_str());
-                continue;
-            }
-            std::string shape;
-            std::size_t kSprite = 0, kSweep = 0;
-            const std::vector<Method> methods = buildMethods(c.mesh, threads, resolution, shape, kSprite, kSweep);
-            std::printf("| %s | %zu | %s |\n", c.name.c_str(), c.mesh.triangles.size(), shape.c_str());
-            std::fflush(stdout);
-            const std::vector<glm::vec3> random = vds::test::randomPoints(vds::meshBounds(c.mesh), pointCount);
-            for (PointSet& set : sets) {
-                const auto t0 = Clock::now();
-                measureSet(set, c, methods, random, threads, cgalLimit, kSprite, kSweep);
-                std::fprintf(stderr, "  %s, %s: %.1f s\n", c.name.c_str(), set.title.c_str(), since(t0));
-            }
-        }
+        runCases(cases, sets, pointCount, threads, resolution, cgalLimit);
         for (const PointSet& set : sets) printTable(set);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "vds_peers_bench: %s\n", e.what());
