@@ -239,6 +239,17 @@ TEST(Sprite, CrossingEncodingKeepsFacingAtDepthZero) {
     EXPECT_EQ(crossingDepth(encodeCrossing(0.25f, false)), 0.25f);
 }
 
+// The choice's layers and crossings along `axis` against the CPU baker's
+// sprite along that axis at the choice's resolution.
+void expectCountsOfTheBake(const TriangleMesh& mesh, const AxisChoice& choice, Axis axis) {
+    BakeOptions o;
+    o.resolution = choice.resolution;
+    o.axis = axis;
+    const Sprite sprite = bakeCpu(mesh, o);
+    EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis) << " " << choice.resolution;
+    EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis) << " " << choice.resolution;
+}
+
 TEST(ChooseViewAxis, PicksTheAxisWithTheFewestLayers) {
     // A torus seen along its symmetry axis has two layers, from the side four.
     auto torus = solids::torus({0, 0, 0}, 1.0f, 0.3f, 48).mesh;
@@ -262,14 +273,7 @@ TEST(ChooseViewAxis, CountsExactlyWhatTheBakerMakesAtThatResolution) {
         for (std::uint32_t resolution : {7u, 64u, 300u}) {
             const AxisChoice choice = chooseViewAxis(mesh, resolution);
             EXPECT_EQ(choice.resolution, resolution);
-            for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
-                BakeOptions o;
-                o.resolution = resolution;
-                o.axis = axis;
-                const Sprite sprite = bakeCpu(mesh, o);
-                EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis) << " " << resolution;
-                EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis);
-            }
+            for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) expectCountsOfTheBake(mesh, choice, axis);
             // No axis assigned: the bakers take the choice.
             BakeOptions unset;
             unset.resolution = resolution;
@@ -286,14 +290,7 @@ TEST(ChooseViewAxis, CountsExactlyAcrossBandsAndThreads) {
                                             solids::box({-1.6f, -0.1f, -1.5f}, {1.4f, 0.15f, 1.6f}).mesh);
     constexpr std::uint32_t kResolution = 1000;
     const AxisChoice choice = chooseViewAxis(mesh, kResolution, 1);
-    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
-        BakeOptions o;
-        o.resolution = kResolution;
-        o.axis = axis;
-        const Sprite sprite = bakeCpu(mesh, o);
-        EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis);
-        EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis);
-    }
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) expectCountsOfTheBake(mesh, choice, axis);
     for (unsigned threads : {2u, 3u}) {
         const AxisChoice again = chooseViewAxis(mesh, kResolution, threads);
         EXPECT_EQ(again.layers, choice.layers) << threads;
@@ -327,14 +324,7 @@ TEST(ChooseViewAxis, CountsExactlyOnOpenNonManifoldAndUnsharedMeshes) {
             const AxisChoice byIndex = chooseViewAxis(mesh, validateMesh(mesh), resolution);
             EXPECT_EQ(byIndex.layers, choice.layers);
             EXPECT_EQ(byIndex.crossings, choice.crossings);
-            for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
-                BakeOptions o;
-                o.resolution = resolution;
-                o.axis = axis;
-                const Sprite sprite = bakeCpu(mesh, o);
-                EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis) << " " << resolution;
-                EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis) << " " << resolution;
-            }
+            for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) expectCountsOfTheBake(mesh, choice, axis);
         }
 }
 
@@ -345,14 +335,7 @@ TEST(ChooseViewAxis, CountsExactlyWhereCentresAreUnevenlySpaced) {
     const TriangleMesh mesh = solids::torusKnot({1000.0f, -2000.0f, 500.0f}, 0.01f, 2, 3, 0.0025f, 48, 8).mesh;
     for (std::uint32_t resolution : {300u, 900u}) {
         const AxisChoice choice = chooseViewAxis(mesh, resolution);
-        for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
-            BakeOptions o;
-            o.resolution = resolution;
-            o.axis = axis;
-            const Sprite sprite = bakeCpu(mesh, o);
-            EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis) << " " << resolution;
-            EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis) << " " << resolution;
-        }
+        for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) expectCountsOfTheBake(mesh, choice, axis);
     }
 }
 
@@ -380,13 +363,7 @@ TEST(ChooseViewAxis, CountsExactlyWithVerticesOnTexelCentres) {
         for (glm::vec3& p : slab.positions) p = glm::vec3(p.x + 0.2f * p.z, p.y + 0.3f * p.x, p.z);
         for (const TriangleMesh& mesh : {solids::merge(sphere, anchors), solids::merge(slab, anchors)}) {
             ASSERT_EQ(validateMesh(mesh).bounds.lo, validateMesh(anchors).bounds.lo);
-            const AxisChoice choice = chooseViewAxis(mesh, kResolution);
-            BakeOptions o;
-            o.resolution = kResolution;
-            o.axis = axis;
-            const Sprite sprite = bakeCpu(mesh, o);
-            EXPECT_EQ(choice.layers[std::size_t(axis)], sprite.depthComplexity) << toString(axis);
-            EXPECT_EQ(choice.crossings[std::size_t(axis)], sprite.crossings.size()) << toString(axis);
+            expectCountsOfTheBake(mesh, chooseViewAxis(mesh, kResolution), axis);
         }
     }
 }
