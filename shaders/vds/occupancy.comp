@@ -69,6 +69,26 @@ void vdsFlush(uint word, uint bits) {
     if (bits != 0u) atomicOr(cells[word], bits);
 }
 
+// Marks cell `index` inside: its bit in the word being gathered, the word
+// before flushed when the cell lies in another.
+void vdsMark(uint index, inout uint word, inout uint bits) {
+    if (index >> 2u != word) {
+        vdsFlush(word, bits);
+        word = index >> 2u;
+        bits = 0u;
+    }
+    bits |= 1u << (8u * (index & 3u));
+}
+
+// Counts the column's crossings in [e, last) that lie in front of `depth`
+// (each counts for the cells strictly behind it).
+void vdsPassCrossings(inout uint e, uint last, float depth, inout int parity, inout int winding) {
+    for (; e < last && abs(crossings[e]) < depth; ++e) {
+        parity ^= 1;
+        winding += floatBitsToInt(crossings[e]) < 0 ? -1 : 1;
+    }
+}
+
 // Walks grid column `column`'s cells (none where `live` is false, which
 // still takes every step for the workgroup's votes and tiles). With the
 // boundary term every slice of the grid is walked (u_firstSlice 0), in
@@ -97,11 +117,7 @@ void vdsSweepColumn(uint column, bool live) {
 #endif
     for (uint k = u_firstSlice; k < u_endSlice; ++k) {
         float depth = depths[k];
-        // Each crossing counts for the cells whose depth lies strictly behind it.
-        for (; e < last && abs(crossings[e]) < depth; ++e) {
-            parity ^= 1;
-            winding += floatBitsToInt(crossings[e]) < 0 ? -1 : 1;
-        }
+        vdsPassCrossings(e, last, depth, parity, winding);
 #ifdef VDS_BOUNDARY_TERM
         vec3 q[1] = vec3[1](live ? vdsColumnPoint(u_boundary, st, depth)
                                  : vdsBesidePoint(u_boundary, u_size, vec3(beside, depth)));
@@ -119,15 +135,7 @@ void vdsSweepColumn(uint column, bool live) {
 #else
         bool inside = parity != 0;
 #endif
-        if (inside) { // (no `continue`: the loop stays uniform for the workgroup's barriers)
-            uint index = base + k * u_step;
-            if (index >> 2u != word) {
-                vdsFlush(word, bits);
-                word = index >> 2u;
-                bits = 0u;
-            }
-            bits |= 1u << (8u * (index & 3u));
-        }
+        if (inside) vdsMark(base + k * u_step, word, bits); // (no `continue`: the loop stays uniform for the barriers)
     }
     vdsFlush(word, bits);
 }
@@ -169,24 +177,13 @@ void vdsSweepQuad(uint quad) {
     for (uint k = u_firstSlice; k < u_endSlice; ++k) {
         float depth = depths[k];
         for (uint j = 0u; j < 4u; ++j) {
-            for (; e[j] < last[j] && abs(crossings[e[j]]) < depth; ++e[j]) {
-                parity[j] ^= 1;
-                winding[j] += floatBitsToInt(crossings[e[j]]) < 0 ? -1 : 1;
-            }
+            vdsPassCrossings(e[j], last[j], depth, parity[j], winding[j]);
 #if VDS_RULE_ID == VDS_RULE_WINDING
             bool inside = live[j] && winding[j] != 0;
 #else
             bool inside = live[j] && parity[j] != 0;
 #endif
-            if (inside) {
-                uint index = base[j] + k * u_step;
-                if (index >> 2u != word) {
-                    vdsFlush(word, bits);
-                    word = index >> 2u;
-                    bits = 0u;
-                }
-                bits |= 1u << (8u * (index & 3u));
-            }
+            if (inside) vdsMark(base[j] + k * u_step, word, bits);
         }
     }
     vdsFlush(word, bits);

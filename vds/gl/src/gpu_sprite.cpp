@@ -14,7 +14,6 @@
 #include <glm/vec4.hpp>
 
 #include <vds/error.h>
-#include <vds/detail/parallel.h>
 #include <vds/gl/shader.h>
 
 #include "bake_gl.h"
