@@ -10,9 +10,11 @@
 #include <gtest/gtest.h>
 
 #include <vds/bake.h>
+#include <vds/detail/edge_partners.h>
 #include <vds/distance.h>
 #include <vds/error.h>
 #include <vds/exact.h>
+#include "predicates/predicates.h"
 #include "solids.h"
 #include <vds/sprite.h>
 
@@ -365,6 +367,61 @@ TEST(ChooseViewAxis, CountsExactlyWithVerticesOnTexelCentres) {
             ASSERT_EQ(validateMesh(mesh).bounds.lo, validateMesh(anchors).bounds.lo);
             expectCountsOfTheBake(mesh, chooseViewAxis(mesh, kResolution), axis);
         }
+    }
+}
+
+// A square prism turned 45 degrees about z, each side fanned about its
+// centre: seen along z, each side's triangles are three points on a line
+// (the centre and two corners, two of them on one vertical edge or not),
+// whose products in the orientation are not zero but cancel exactly.
+TriangleMesh fannedDiamondPrism() {
+    TriangleMesh mesh;
+    const glm::vec2 c[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+    for (int k = 0; k < 4; ++k) mesh.positions.push_back({c[k], 1.0f});                            // t_k: 0-3
+    for (int k = 0; k < 4; ++k) mesh.positions.push_back({c[k], -1.0f});                           // b_k: 4-7
+    for (int k = 0; k < 4; ++k) mesh.positions.push_back({0.5f * (c[k] + c[(k + 1) % 4]), 0.0f}); // m_k: 8-11
+    for (std::uint32_t k = 0; k < 4; ++k) {
+        const std::uint32_t t0 = k, t1 = (k + 1) % 4, b0 = 4 + k, b1 = 4 + (k + 1) % 4, m = 8 + k;
+        mesh.triangles.insert(mesh.triangles.end(), {{m, b0, b1}, {m, b1, t1}, {m, t1, t0}, {m, t0, b0}});
+    }
+    mesh.triangles.insert(mesh.triangles.end(), {{0, 1, 2}, {0, 2, 3}, {4, 6, 5}, {4, 7, 6}});
+    return mesh;
+}
+
+// Validation hands the count each triangle's facing along x, y and z,
+// decided in double where Shewchuk's bound allows: each facing it decides is
+// the exact predicate's, it leaves undecided the ones double cannot settle
+// (the prism's collinear projections), and the count, settling those
+// exactly, counts what the baker makes.
+TEST(ChooseViewAxis, ValidationsFacingsAreExactOrLeftToTheExactPredicate) {
+    const std::vector<TriangleMesh> meshes = {fannedDiamondPrism(), solids::sphere({0.1f, 0.0f, -0.2f}, 1.0f, 20).mesh,
+                                              solids::torusKnot({0, 0, 0}, 1.0f, 2, 3, 0.25f, 64, 8).mesh};
+    for (const TriangleMesh& mesh : meshes) {
+        detail::MeshFinds finds;
+        const MeshReport report = detail::validateMesh(mesh, 2, finds);
+        ASSERT_TRUE(report.closed()) << report.summary();
+        ASSERT_EQ(finds.facings.size(), mesh.triangles.size());
+        std::size_t undecided = 0;
+        for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+            for (int a = 0; a < 3; ++a) {
+                const int s = (a + 1) % 3, r = (a + 2) % 3;
+                float v[3][2];
+                for (int k = 0; k < 3; ++k) {
+                    const glm::vec3& p = mesh.positions[mesh.triangles[t][k]];
+                    v[k][0] = p[s], v[k][1] = p[r];
+                }
+                const int o = detail::orient2d(v[0], v[1], v[2]);
+                const unsigned exact = o > 0 ? detail::kFacesPlus : o < 0 ? detail::kFacesMinus : 0;
+                const unsigned found = (finds.facings[t] >> (2 * a)) & 3u;
+                undecided += found == detail::kFacesUndecided;
+                // Only a zero is too near zero on these meshes.
+                EXPECT_EQ(found == detail::kFacesUndecided ? 0u : found, exact) << "triangle " << t << " axis " << a;
+            }
+        if (&mesh == &meshes[0]) {
+            EXPECT_EQ(undecided, 16u); // every side's four, along z
+        }
+        const AxisChoice choice = chooseViewAxis(mesh, 64);
+        for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) expectCountsOfTheBake(mesh, choice, axis);
     }
 }
 

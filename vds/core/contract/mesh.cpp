@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include <vds/detail/edge_partners.h>
+#include <vds/detail/large_vector.h>
 #include <vds/detail/parallel.h>
 #include <vds/detail/solid_angle.h>
 #include <vds/error.h>
@@ -19,6 +20,9 @@
 
 namespace vds {
 namespace {
+
+/// A vertex index a vertex (or triangle): the arrays of the size of the mesh.
+using Indices = detail::LargeVector<std::uint32_t>;
 
 bool finite(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
@@ -51,13 +55,13 @@ struct PositionKey {
 /// the upper half of the key's hash beside the vertex index, so a probe
 /// reads a position only when the hashes agree, and the slots of vertices a
 /// little ahead are prefetched: the table's cache misses overlap.
-std::vector<std::uint32_t> weldByPosition(const glm::vec3* positions, std::size_t n) {
-    std::vector<std::uint32_t> first(n);
+Indices weldByPosition(const glm::vec3* positions, std::size_t n) {
+    Indices first(n);
     int bits = 1;
     while ((std::size_t(1) << bits) < 2 * n) ++bits;
     const std::size_t mask = (std::size_t(1) << bits) - 1;
     constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
-    std::vector<std::uint64_t> table(mask + 1, kEmpty);
+    detail::LargeVector<std::uint64_t> table(mask + 1, kEmpty);
     const auto hashOf = [&](std::size_t i) { return PositionKey(positions[i]).hash(); };
     constexpr std::size_t kAhead = 16;
     for (std::size_t i = 0; i < n; ++i) {
@@ -89,8 +93,8 @@ std::vector<std::uint32_t> weldByPosition(const glm::vec3* positions, std::size_
 
 /// For each welded vertex, the part it belongs to (vertices joined by
 /// triangles), named by one of its vertices: union-find, halving paths.
-std::vector<std::uint32_t> connectedParts(MeshView mesh, const std::vector<std::uint32_t>& weld) {
-    std::vector<std::uint32_t> parent(mesh.positionCount);
+Indices connectedParts(MeshView mesh, const Indices& weld) {
+    Indices parent(mesh.positionCount);
     std::iota(parent.begin(), parent.end(), 0u);
     const auto root = [&](std::uint32_t v) {
         while (parent[v] != v) v = parent[v] = parent[parent[v]];
@@ -151,7 +155,7 @@ std::pair<std::size_t, std::size_t> shareOf(std::size_t nt, unsigned threads, st
 /// `f`), marks their welded vertices `used`, and counts per vertex the edge
 /// uses and corner sets that go to the vertex's group.
 template <class Index>
-void countItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair<std::size_t, std::size_t> share,
+void countItems(MeshView mesh, const Indices& weld, std::pair<std::size_t, std::size_t> share,
                 std::atomic<std::uint8_t>* used, Index* edgeCount, Index* cornerCount, Found& f) {
     const std::size_t nv = mesh.positionCount;
     for (auto [t, end] = share; t < end; ++t) {
@@ -181,7 +185,8 @@ constexpr std::size_t kVerticesPerChunk = 1 << 14;
 /// vertices, their running sums, then each chunk's own, chunks in
 /// parallel. Returns the totals (edge uses, corner sets).
 template <class Index>
-std::pair<Index, Index> groupStarts(std::vector<std::vector<Index>>& edgeAt, std::vector<std::vector<Index>>& cornerAt,
+std::pair<Index, Index> groupStarts(std::vector<detail::LargeVector<Index>>& edgeAt,
+                                    std::vector<detail::LargeVector<Index>>& cornerAt,
                                     std::size_t nv, unsigned threads) {
     const std::size_t chunks = (nv + kVerticesPerChunk - 1) / kVerticesPerChunk;
     std::vector<std::pair<Index, Index>> chunkStart(chunks + 1); // edges, corners
@@ -215,7 +220,7 @@ std::pair<Index, Index> groupStarts(std::vector<std::vector<Index>>& edgeAt, std
 /// countByEdges' second pass, thread k's share: each edge use and corner
 /// set into its group, at the thread's next place there.
 template <class Index>
-void placeItems(MeshView mesh, const std::vector<std::uint32_t>& weld, std::pair<std::size_t, std::size_t> share,
+void placeItems(MeshView mesh, const Indices& weld, std::pair<std::size_t, std::size_t> share,
                 Index* edgeNext, Index* cornerNext, Index* edges, std::uint64_t* others, std::uint32_t* owners) {
     const std::size_t nv = mesh.positionCount;
     for (auto [t, end] = share; t < end; ++t) {
@@ -266,9 +271,9 @@ struct Partners {
 /// corner sets (duplicates), into `f`; an edge used an odd number of times
 /// marks its part open (`openPart[part[v]]`).
 template <class Index>
-void readGroup(std::size_t v, const std::vector<Index>& edgeEnd, const std::vector<Index>& cornerEnd, Index* edges,
-               std::uint64_t* others, Found& f, const std::vector<std::uint32_t>& part,
-               std::atomic<std::uint8_t>* openPart, const Partners& partners) {
+void readGroup(std::size_t v, const detail::LargeVector<Index>& edgeEnd, const detail::LargeVector<Index>& cornerEnd,
+               Index* edges, std::uint64_t* others, Found& f, const Indices& part, std::atomic<std::uint8_t>* openPart,
+               const Partners& partners) {
     const auto less = [](auto x, auto y) { return x < y; };
     const std::size_t first = v == 0 ? 0 : std::size_t(edgeEnd[v - 1]);
     Index* group = edges + first;
@@ -306,15 +311,14 @@ void readGroup(std::size_t v, const std::vector<Index>& edgeEnd, const std::vect
 /// a handful of items, is sorted in place and read in runs. `Index` holds a
 /// vertex index shifted left by one and any position in the arrays of items.
 template <class Index>
-void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>& weld, unsigned threads,
-                  std::vector<std::uint32_t>& part, std::atomic<std::uint8_t>* openPart,
-                  std::vector<std::uint32_t>* partnersOut) {
+void countByEdges(MeshReport& r, MeshView mesh, const Indices& weld, unsigned threads, Indices& part,
+                  std::atomic<std::uint8_t>* openPart, Indices* partnersOut) {
     const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
     std::unique_ptr<std::atomic<std::uint8_t>[]> used(new std::atomic<std::uint8_t>[nv]());
     // Per thread and vertex: how many edge uses (corner sets) the thread
     // has for the vertex's group; then where it puts the next one.
-    std::vector<std::vector<Index>> edgeAt(threads, std::vector<Index>(nv, 0));
-    std::vector<std::vector<Index>> cornerAt(threads, std::vector<Index>(nv, 0));
+    std::vector<detail::LargeVector<Index>> edgeAt(threads, detail::LargeVector<Index>(nv, 0));
+    std::vector<detail::LargeVector<Index>> cornerAt(threads, detail::LargeVector<Index>(nv, 0));
     std::vector<Found> found(threads);
     // The parts (union-find, serial) are found beside the first pass: task
     // 0, taken first, while the other threads count the shares; only the
@@ -341,16 +345,18 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
 
     const auto [edgeTotal, cornerTotal] = groupStarts(edgeAt, cornerAt, nv, threads);
     // Every item is written below, so the arrays start uninitialised.
-    const std::unique_ptr<Index[]> edges(new Index[std::size_t(edgeTotal)]);
-    const std::unique_ptr<std::uint64_t[]> others(new std::uint64_t[std::size_t(cornerTotal)]); ///< a triangle's two higher corners: middle << 32 | highest
-    std::unique_ptr<std::uint32_t[]> owners(partnersOut ? new std::uint32_t[std::size_t(edgeTotal)] : nullptr);
+    const detail::LargeArray<Index> edges = detail::largeArray<Index>(std::size_t(edgeTotal));
+    /// A triangle's two higher corners: middle << 32 | highest.
+    const detail::LargeArray<std::uint64_t> others = detail::largeArray<std::uint64_t>(std::size_t(cornerTotal));
+    const detail::LargeArray<std::uint32_t> owners =
+        partnersOut ? detail::largeArray<std::uint32_t>(std::size_t(edgeTotal)) : detail::LargeArray<std::uint32_t>();
     if (partnersOut) partnersOut->assign(3 * nt, detail::kNoPartner);
     const Partners partners{owners.get(), partnersOut ? partnersOut->data() : nullptr};
     parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
         placeItems(mesh, weld, shareOf(nt, threads, k), edgeAt[k].data(), cornerAt[k].data(), edges.get(), others.get(),
                    owners.get());
     });
-    const std::vector<Index> edgeEnd = std::move(edgeAt.back()), cornerEnd = std::move(cornerAt.back());
+    const detail::LargeVector<Index> edgeEnd = std::move(edgeAt.back()), cornerEnd = std::move(cornerAt.back());
     edgeAt = {};
     cornerAt = {};
 
@@ -378,12 +384,12 @@ void countByEdges(MeshReport& r, MeshView mesh, const std::vector<std::uint32_t>
 /// welded vertex (valid indices only).
 struct TriangleParts {
     MeshView mesh;
-    const std::vector<std::uint32_t>& weld;
-    const std::vector<std::uint32_t>& part;
-    std::vector<std::uint32_t> dense; ///< per part's root vertex, its number
+    const Indices& weld;
+    const Indices& part;
+    Indices dense; ///< per part's root vertex, its number
     std::size_t count = 0;            ///< parts
 
-    TriangleParts(MeshView m, const std::vector<std::uint32_t>& w, const std::vector<std::uint32_t>& p)
+    TriangleParts(MeshView m, const Indices& w, const Indices& p)
         : mesh(m), weld(w), part(p), dense(p.size(), 0) {
         for (std::size_t v = 0; v < part.size(); ++v)
             if (part[v] == v) dense[v] = std::uint32_t(count++);
@@ -423,9 +429,37 @@ bool finiteCorners(const glm::dvec3 (&c)[3]) {
     return std::isfinite(c[0].x + c[0].y + c[0].z + c[1].x + c[1].y + c[1].z + c[2].x + c[2].y + c[2].z);
 }
 
+/// Shewchuk's forward error bound of orient2d evaluated in double (1997,
+/// ccwerrboundA; predicates/predicates.h evaluates the same in the room
+/// above, with its exact fallback).
+constexpr double kOrientBound = (3.0 + 16.0 * 0x1p-53) * 0x1p-53;
+
+/// The triangle's facings along x, y and z (<vds/detail/edge_partners.h>):
+/// each component of (c1 - c0) x (c2 - c0) is the orientation of the
+/// corners projected along its axis, formed as orient2d forms it from
+/// float coordinates: its sign where it exceeds the bound, undecided
+/// otherwise.
+std::uint8_t facingsOf(const glm::dvec3 (&c)[3]) {
+    const glm::dvec3 u = c[1] - c[0], v = c[2] - c[0];
+    std::uint8_t bits = 0;
+    for (int a = 0; a < 3; ++a) {
+        const int s = (a + 1) % 3, t = (a + 2) % 3;
+        const double left = u[s] * v[t], right = u[t] * v[s], det = left - right;
+        const double bound = kOrientBound * (std::fabs(left) + std::fabs(right));
+        // Both products exactly zero: a factor is (a difference of floats
+        // rounds to zero only when exact), so the orientation is: parallel.
+        const std::uint8_t f = det > bound                   ? detail::kFacesPlus
+                               : -det > bound                ? detail::kFacesMinus
+                               : left == 0.0 && right == 0.0 ? 0
+                                                             : detail::kFacesUndecided;
+        bits |= std::uint8_t(f << (2 * a));
+    }
+    return bits;
+}
+
 /// The sums of `TriangleSums`, the volume counted only where `closed[part]`.
 TriangleSums sumTriangles(MeshView mesh, const TriangleParts& partOf, const std::vector<std::uint8_t>& closed,
-                          const Box& bounds, unsigned threads) {
+                          const Box& bounds, unsigned threads, std::uint8_t* facings) {
     const std::size_t parts = partOf.count;
     const glm::dvec3 centre = (glm::dvec3(bounds.lo) + glm::dvec3(bounds.hi)) * 0.5;
     const std::size_t nt = mesh.triangleCount;
@@ -440,6 +474,7 @@ TriangleSums sumTriangles(MeshView mesh, const TriangleParts& partOf, const std:
         for (std::size_t t = begin; t < end; ++t) {
             if (!cornersOf(mesh, t, c)) continue;
             const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+            if (facings) facings[t] = facingsOf(c);
             // sqrt is monotone: only a triangle whose squared area reaches
             // the largest's, less rounding, can be larger.
             const double squared = glm::dot(n, n);
@@ -572,7 +607,7 @@ std::string MeshReport::summary() const {
 
 namespace {
 
-MeshReport validate(MeshView mesh, unsigned threads, std::vector<std::uint32_t>* partners) {
+MeshReport validate(MeshView mesh, unsigned threads, detail::MeshFinds* finds) {
     MeshReport r;
     const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
     r.vertexCount = nv;
@@ -585,13 +620,13 @@ MeshReport validate(MeshView mesh, unsigned threads, std::vector<std::uint32_t>*
 
     for (std::size_t i = 0; i < nv; ++i)
         if (!finite(mesh.positions[i])) ++r.nonFiniteVertices;
-    const std::vector<std::uint32_t> weld = weldByPosition(mesh.positions, nv);
-    std::vector<std::uint32_t> part; // found by countByEdges, beside its first pass
+    const Indices weld = weldByPosition(mesh.positions, nv);
+    Indices part; // found by countByEdges, beside its first pass
     std::unique_ptr<std::atomic<std::uint8_t>[]> openPart(new std::atomic<std::uint8_t>[nv]());
     // 32-bit items while vertex indices fit in 31 bits and the edge uses in 32.
     // Partners (their half-edges and flag in 32 bits) with 32-bit items only.
     if (nv < (std::size_t(1) << 31) && 3 * nt < (std::size_t(1) << 31))
-        countByEdges<std::uint32_t>(r, mesh, weld, threads, part, openPart.get(), partners);
+        countByEdges<std::uint32_t>(r, mesh, weld, threads, part, openPart.get(), finds ? &finds->partners : nullptr);
     else if (nv < (std::size_t(1) << 31) && 3 * nt < (std::size_t(1) << 32))
         countByEdges<std::uint32_t>(r, mesh, weld, threads, part, openPart.get(), nullptr);
     else
@@ -600,7 +635,9 @@ MeshReport validate(MeshView mesh, unsigned threads, std::vector<std::uint32_t>*
     std::vector<std::uint8_t> closed(partOf.count, 0);
     for (std::size_t v = 0; v < nv; ++v)
         if (part[v] == v) closed[partOf.dense[v]] = !openPart[v].load(std::memory_order_relaxed);
-    const TriangleSums sums = sumTriangles(mesh, partOf, closed, r.bounds, threads);
+    if (finds) finds->facings.assign(nt, 0);
+    const TriangleSums sums =
+        sumTriangles(mesh, partOf, closed, r.bounds, threads, finds ? finds->facings.data() : nullptr);
     r.insideOutParts = countInsideOutParts(mesh, partOf, closed, sums);
     r.coplanar = allInOnePlane(mesh, r.bounds, sums);
     return r;
@@ -610,9 +647,9 @@ MeshReport validate(MeshView mesh, unsigned threads, std::vector<std::uint32_t>*
 
 MeshReport validateMesh(MeshView mesh, unsigned threads) { return validate(mesh, threads, nullptr); }
 
-MeshReport detail::validateMesh(MeshView mesh, unsigned threads, std::vector<std::uint32_t>& partners) {
-    partners.clear();
-    return validate(mesh, threads, &partners);
+MeshReport detail::validateMesh(MeshView mesh, unsigned threads, MeshFinds& finds) {
+    finds = MeshFinds();
+    return validate(mesh, threads, &finds);
 }
 
 void requireUsable(const MeshReport& report, const std::string& meshName) {

@@ -17,28 +17,28 @@ namespace vds {
 
 namespace detail {
 
-MeshReport validateForBake(MeshView mesh, const BakeOptions& options, std::vector<std::uint32_t>* partners) {
+MeshReport validateForBake(MeshView mesh, const BakeOptions& options, MeshFinds* finds) {
     const HostPhase phase(options.timings, BakePhase::Validation);
-    MeshReport report = partners ? validateMesh(mesh, 0, *partners) : validateMesh(mesh);
+    MeshReport report = finds ? validateMesh(mesh, 0, *finds) : validateMesh(mesh);
     requireUsable(report, options.sourceName);
     requireVolume(report, options.sourceName);
     return report;
 }
 
 Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const AxisCounter& count,
-              const std::vector<std::uint32_t>& partners) {
+              const MeshFinds& finds) {
     if (options.axis) return *options.axis;
     const HostPhase phase(options.timings, BakePhase::Axis);
     const std::optional<AxisChoice> counted = count ? count(report) : std::nullopt;
-    return counted ? counted->axis : chooseViewAxis(mesh, report, options.resolution, 0, partners).axis;
+    return counted ? counted->axis : chooseViewAxis(mesh, report, options.resolution, 0, finds).axis;
 }
 
 BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count) {
     BakeSetup setup;
-    // Validation finds the edges' partners where the CPU will count the axis.
-    std::vector<std::uint32_t> partners;
-    setup.report = validateForBake(mesh, options, options.axis || count ? nullptr : &partners);
-    setup.grid = makeGrid(setup.report.bounds, bakeAxis(mesh, setup.report, options, count, partners), options.resolution);
+    // Validation finds the edges' partners and the facings where the CPU will count the axis.
+    MeshFinds finds;
+    setup.report = validateForBake(mesh, options, options.axis || count ? nullptr : &finds);
+    setup.grid = makeGrid(setup.report.bounds, bakeAxis(mesh, setup.report, options, count, finds), options.resolution);
     return setup;
 }
 
@@ -103,25 +103,25 @@ std::string AxisChoice::summary() const {
 }
 
 AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution, unsigned threads) {
-    std::vector<std::uint32_t> partners; // found by validation, used by the count
-    const MeshReport report = detail::validateMesh(mesh, threads, partners);
+    detail::MeshFinds finds; // found by validation, used by the count
+    const MeshReport report = detail::validateMesh(mesh, threads, finds);
     requireUsable(report, "mesh");
     requireVolume(report, "mesh");
-    return detail::chooseViewAxis(mesh, report, resolution, threads, partners);
+    return detail::chooseViewAxis(mesh, report, resolution, threads, finds);
 }
 
 AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads) {
-    return detail::chooseViewAxis(mesh, report, resolution, threads, {});
+    return detail::chooseViewAxis(mesh, report, resolution, threads, detail::MeshFinds());
 }
 
 AxisChoice detail::chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads,
-                                  const std::vector<std::uint32_t>& partners) {
+                                  const MeshFinds& finds) {
     AxisChoice choice;
     choice.resolution = resolution;
     const std::array<SpriteGrid, 3> grids = {makeGrid(report.bounds, Axis::X, resolution),
                                              makeGrid(report.bounds, Axis::Y, resolution),
                                              makeGrid(report.bounds, Axis::Z, resolution)};
-    const std::array<detail::LayerCount, 3> counts = detail::countLayers(mesh, grids, threads, partners);
+    const std::array<detail::LayerCount, 3> counts = detail::countLayers(mesh, grids, threads, finds);
     for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
         choice.layers[std::size_t(axis)] = counts[std::size_t(axis)].most;
         choice.crossings[std::size_t(axis)] = counts[std::size_t(axis)].total;

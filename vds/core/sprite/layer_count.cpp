@@ -52,6 +52,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <thread>
 #include <utility>
@@ -416,9 +417,9 @@ void sortFew(std::uint64_t* items, std::size_t n) {
 // edges of its own range of lower vertices, reading every triangle: no
 // counts are shared, and the triangles stream while the counts and edges
 // are written at random.
-std::vector<std::uint32_t> edgePartners(MeshView mesh, unsigned threads) {
+LargeVector<std::uint32_t> edgePartners(MeshView mesh, unsigned threads) {
     const std::size_t nt = mesh.triangleCount, nv = mesh.positionCount;
-    std::vector<std::uint32_t> partner(3 * nt, kNoPartner);
+    LargeVector<std::uint32_t> partner(3 * nt, kNoPartner);
     if (nt >= kSameWay / 3) return partner; // half-edges and partners must fit their bits
     const auto ends = [&](std::size_t h) {
         const glm::uvec3 tri = mesh.triangles[h / 3];
@@ -470,19 +471,34 @@ std::vector<std::uint32_t> edgePartners(MeshView mesh, unsigned threads) {
 }
 
 // Each triangle's facing along each axis, two bits an axis (axis a at bit
-// 2a): 1 counter-clockwise in projection, 2 clockwise, 0 parallel.
-std::vector<std::uint8_t> facings(MeshView mesh, const std::vector<glm::ivec3>& perms, unsigned threads) {
-    std::vector<std::uint8_t> facing(mesh.triangleCount, 0);
+// 2a): 1 counter-clockwise in projection, 2 clockwise, 0 parallel
+// (<vds/detail/edge_partners.h>). Validation's, where given, with the few it
+// left undecided decided here by the exact predicate; otherwise all found here.
+LargeVector<std::uint8_t> facings(MeshView mesh, const std::vector<glm::ivec3>& perms, unsigned threads,
+                                  const LargeVector<std::uint8_t>& found) {
+    const bool given = found.size() == mesh.triangleCount;
+    LargeVector<std::uint8_t> facing = given ? found : LargeVector<std::uint8_t>(mesh.triangleCount, 0);
     parallelFor(threads, mesh.triangleCount, kChunk, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) {
-            const glm::uvec3 tri = mesh.triangles[k];
-            const glm::vec3* p[3] = {&mesh.positions[tri.x], &mesh.positions[tri.y], &mesh.positions[tri.z]};
-            std::uint8_t bits = 0;
+            // Given: eight triangles a word, skipped where no pair of bits is
+            // kFacesUndecided (both set).
+            std::uint64_t word = 0;
+            if (given && k % 8 == 0 && k + 8 <= end) {
+                std::memcpy(&word, facing.data() + k, 8);
+                if ((word & (word >> 1) & 0x1515151515151515ull) == 0) {
+                    k += 7;
+                    continue;
+                }
+            }
+            std::uint8_t bits = facing[k];
             for (std::size_t a = 0; a < 3; ++a) {
+                if (given && ((bits >> (2 * a)) & 3) != kFacesUndecided) continue;
+                const glm::uvec3 tri = mesh.triangles[k];
                 float v[3][2];
-                for (int c = 0; c < 3; ++c) v[c][0] = (*p[c])[perms[a].x], v[c][1] = (*p[c])[perms[a].y];
+                for (int c = 0; c < 3; ++c)
+                    v[c][0] = mesh.positions[tri[c]][perms[a].x], v[c][1] = mesh.positions[tri[c]][perms[a].y];
                 const int o = orient2d(v[0], v[1], v[2]);
-                bits |= std::uint8_t((o > 0 ? 1 : o < 0 ? 2 : 0) << (2 * a));
+                bits = std::uint8_t((bits & ~(3u << (2 * a))) | unsigned(o > 0 ? 1 : o < 0 ? 2 : 0) << (2 * a));
             }
             facing[k] = bits;
         }
@@ -493,8 +509,8 @@ std::vector<std::uint8_t> facings(MeshView mesh, const std::vector<glm::ivec3>& 
 // What the listing and the bands share of one count.
 struct Mesh3 {
     MeshView mesh;
-    const std::vector<std::uint32_t>& partner;
-    std::vector<std::uint8_t> facing;
+    const LargeVector<std::uint32_t>& partner;
+    LargeVector<std::uint8_t> facing;
 
     int facingOf(std::size_t t, std::size_t axis) const { return (facing[t] >> (2 * axis)) & 3; }
     /// The bits e of triangle t's edges whose steps along `axis` cancel
@@ -558,6 +574,7 @@ struct VertexRows {
         const auto it = std::lower_bound(values.begin(), values.end(), double(lo));
         return it != values.end() && *it <= double(hi);
     }
+    /// Whether a row through a vertex lies in rows [begin, end).
     bool anyIn(std::ptrdiff_t begin, std::ptrdiff_t end) const {
         return before[std::size_t(end)] > before[std::size_t(begin)];
     }
@@ -580,17 +597,17 @@ std::vector<std::vector<std::uint32_t>> listTriangles(const Mesh3& m, const Axes
         const std::size_t chunk = begin / kChunk;
         for (std::size_t k = begin; k < end; ++k) {
             const unsigned cancel = m.cancelling(k);
+            const glm::uvec3 tri = mesh.triangles[k];
+            const glm::vec3 &p0 = mesh.positions[tri.x], &p1 = mesh.positions[tri.y], &p2 = mesh.positions[tri.z];
+            const glm::vec3 lo = glm::min(glm::min(p0, p1), p2), hi = glm::max(glm::max(p0, p1), p2);
             for (std::size_t a = 0; a < 3; ++a) {
                 const VertexRows& vertexRows = axes.vertexRows[a];
                 const bool silent = ((cancel >> (3 * a)) & 7u) == 7u;
                 if (m.facingOf(k, a) == 0 || (silent && vertexRows.values.empty())) continue;
-                const glm::uvec3 tri = mesh.triangles[k];
                 const int c = axes.rows[a].perm.y;
-                const float t0 = mesh.positions[tri.x][c], t1 = mesh.positions[tri.y][c], t2 = mesh.positions[tri.z][c];
-                const float tLo = std::min({t0, t1, t2}), tHi = std::max({t0, t1, t2});
-                if (silent && !vertexRows.anyWithin(tLo, tHi)) continue;
+                if (silent && !vertexRows.anyWithin(lo[c], hi[c])) continue;
                 const Centres& t = axes.rows[a].t;
-                const std::ptrdiff_t j0 = t.first(tLo), j1 = t.past(tHi);
+                const std::ptrdiff_t j0 = t.first(lo[c]), j1 = t.past(hi[c]);
                 if (j0 >= j1) continue; // between two rows of centres
                 const std::size_t rows = axes.bandRows;
                 for (std::size_t b = std::size_t(j0) / rows, last = std::size_t(j1 - 1) / rows; b <= last; ++b) {
@@ -608,7 +625,7 @@ std::vector<std::vector<std::uint32_t>> listTriangles(const Mesh3& m, const Axes
 } // namespace
 
 std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid, 3>& grids, unsigned threads,
-                                      const std::vector<std::uint32_t>& partners) {
+                                      const MeshFinds& finds) {
     std::uint32_t width = 1, height = 1;
     for (const SpriteGrid& g : grids) {
         width = std::max(width, g.width);
@@ -623,9 +640,9 @@ std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid
         perms.push_back(axes.rows.back().perm);
         axes.vertexRows.emplace_back(mesh, axes.rows.back().t, perms.back().y, threads);
     }
-    const bool given = partners.size() == 3 * mesh.triangleCount;
-    const std::vector<std::uint32_t> own = given ? std::vector<std::uint32_t>() : edgePartners(mesh, threads);
-    const Mesh3 m{mesh, given ? partners : own, facings(mesh, perms, threads)};
+    const bool given = finds.partners.size() == 3 * mesh.triangleCount;
+    const LargeVector<std::uint32_t> own = given ? LargeVector<std::uint32_t>() : edgePartners(mesh, threads);
+    const Mesh3 m{mesh, given ? finds.partners : own, facings(mesh, perms, threads, finds.facings)};
     const std::vector<std::vector<std::uint32_t>> lists = listTriangles(m, axes, threads);
     // Second pass: each band of each axis, its triangles' steps into the
     // band's difference arrays, then its rows' largest counts. A step of w

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <vds/detail/edge_partners.h>
 #include <vds/mesh.h>
 #include <vds/sprite.h>
 
@@ -20,10 +21,11 @@ struct LayerCount {
 /// axes at their texel centres, by its claim rule: equal to counting every
 /// texel of every triangle's box (see layer_count.cpp), in time
 /// proportional to the rows the triangles span rather than the texels they
-/// cover. `grids` are those of x, y and z (`chooseViewAxis`); `partners`,
-/// the edges' partners validation found (<vds/detail/edge_partners.h>), or
-/// empty: the count then pairs the edges by vertex index itself.
+/// cover. `grids` are those of x, y and z (`chooseViewAxis`); `finds`,
+/// what validation found of the mesh (<vds/detail/edge_partners.h>), or
+/// empty: the count then pairs the edges by vertex index and finds the
+/// facings itself.
 std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid, 3>& grids, unsigned threads,
-                                      const std::vector<std::uint32_t>& partners = {});
+                                      const MeshFinds& finds = MeshFinds());
 
 } // namespace vds::detail

@@ -67,17 +67,17 @@ ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOpti
     BakeOptions untimed = options;
     untimed.timings = nullptr;
     ValidatedMesh out;
-    // On a software renderer the CPU counts the axis: validation finds the edges' partners for it.
+    // On a software renderer the CPU counts the axis: validation finds the edges' partners and facings for it.
     const bool cpuCount = !options.axis && softwareRenderer(gl);
-    std::vector<std::uint32_t> partners;
+    MeshFinds finds;
     {
         const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
-        out.report = validateForBake(mesh, untimed, cpuCount ? &partners : nullptr);
+        out.report = validateForBake(mesh, untimed, cpuCount ? &finds : nullptr);
     }
     Axis axis = options.axis.value_or(Axis::Z);
     if (!options.axis) {
         const GlPhaseClock::Scope phase(clock, BakePhase::Axis, !cpuCount);
-        axis = bakeAxis(mesh, out.report, untimed, axisCounter(gl, mesh, options, &out.drawn), partners);
+        axis = bakeAxis(mesh, out.report, untimed, axisCounter(gl, mesh, options, &out.drawn), finds);
     }
     out.grid = makeGrid(out.report.bounds, axis, options.resolution);
     return out;

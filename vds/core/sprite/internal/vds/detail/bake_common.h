@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <vds/bake.h>
+#include <vds/detail/edge_partners.h>
 
 namespace vds::detail {
 
@@ -60,18 +61,18 @@ private:
 using AxisCounter = std::function<std::optional<AxisChoice>(const MeshReport&)>;
 
 /// Validates the mesh (throws `InvalidMesh` if unusable); timed as
-/// `BakePhase::Validation`. With `partners`, also the edges' partners
-/// (<vds/detail/edge_partners.h>) for the CPU's axis count.
-MeshReport validateForBake(MeshView mesh, const BakeOptions& options, std::vector<std::uint32_t>* partners = nullptr);
+/// `BakePhase::Validation`. With `finds`, also what the CPU's axis count
+/// would find again (<vds/detail/edge_partners.h>).
+MeshReport validateForBake(MeshView mesh, const BakeOptions& options, MeshFinds* finds = nullptr);
 /// `options.axis`, or the axis of the fewest layers (`count`, or the CPU's
-/// `chooseViewAxis`, given the partners validation found, if any), timed
-/// as `BakePhase::Axis`.
+/// `chooseViewAxis`, given what validation found for it, if anything),
+/// timed as `BakePhase::Axis`.
 Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const AxisCounter& count = {},
-              const std::vector<std::uint32_t>& partners = {});
-/// `chooseViewAxis(mesh, report, ...)` given the edges' partners validation
-/// found (empty: the count pairs the edges itself).
+              const MeshFinds& finds = MeshFinds());
+/// `chooseViewAxis(mesh, report, ...)` given what validation found for it
+/// (empty: the count pairs the edges and finds the facings itself).
 AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads,
-                          const std::vector<std::uint32_t>& partners);
+                          const MeshFinds& finds);
 /// Both, and the grid along the axis.
 BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count = {});
 
