@@ -1,5 +1,6 @@
 // Mesh validation, on meshes built in code.
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -12,6 +13,7 @@
 #include <vds/error.h>
 #include <vds/exact.h>
 #include <vds/bake.h>
+#include <vds/detail/edge_partners.h>
 #include <vds/mesh.h>
 #include <vds/sprite.h>
 #include "solids.h"
@@ -543,6 +545,38 @@ TEST(MeshAccount, InsideOutPartsAreFoundInLargeMeshesAndAmongManyParts) {
     }
     // The same sphere facing outward has none.
     EXPECT_EQ(validateMesh(reversed(big), 2).insideOutParts, 0u);
+}
+
+// The weld splits the vertices among the threads by their hash: a soup of
+// more than 65,536 vertices (every triangle with its own three, a few
+// vertices not finite, unused) welds into the closed sphere it came from,
+// with the same report and the same edge partners for any number of threads.
+TEST(MeshAccount, AWeldOfManyVerticesIsTheSameForAnyNumberOfThreads) {
+    const TriangleMesh sphere = solids::sphere({0.3f, -0.1f, 0.2f}, 1.0f, 160).mesh;
+    TriangleMesh soup;
+    for (const glm::uvec3& t : sphere.triangles) {
+        const auto n = std::uint32_t(soup.positions.size());
+        soup.positions.insert(soup.positions.end(), {sphere.positions[t.x], sphere.positions[t.y], sphere.positions[t.z]});
+        soup.triangles.push_back({n, n + 1, n + 2});
+    }
+    const float nan = std::nanf(""), inf = std::numeric_limits<float>::infinity();
+    soup.positions.insert(soup.positions.begin() + 1000, 3, glm::vec3(nan, 0.0f, inf)); // unused: indices shift past them
+    for (glm::uvec3& t : soup.triangles)
+        for (int k = 0; k < 3; ++k) t[k] += t[k] >= 1000 ? 3 : 0;
+    ASSERT_GT(soup.positions.size(), 65536u);
+    detail::MeshFinds one;
+    const MeshReport r = detail::validateMesh(soup, 1, one);
+    EXPECT_TRUE(r.closed());
+    EXPECT_EQ(r.boundaryEdges, 0u);
+    EXPECT_EQ(r.inconsistentEdges, 0u);
+    EXPECT_EQ(r.nonFiniteVertices, 3u);
+    EXPECT_EQ(r.isolatedVertices, 3u);
+    for (unsigned threads : {2u, 3u, 4u}) {
+        detail::MeshFinds again;
+        EXPECT_EQ(detail::validateMesh(soup, threads, again).summary(), r.summary()) << threads;
+        EXPECT_TRUE(again.partners == one.partners) << threads;
+        EXPECT_TRUE(again.facings == one.facings) << threads;
+    }
 }
 
 // A sheet of more than 65,536 triangles in the plane z = 0, the largest in

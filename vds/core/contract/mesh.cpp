@@ -49,45 +49,82 @@ struct PositionKey {
     }
 };
 
+/// Vertices at least for the weld to take more than one thread: below it
+/// the threads' start outweighs their share.
+constexpr std::size_t kWeldParallelVertices = std::size_t(1) << 16;
+/// The most parts of the weld (the threads it takes).
+constexpr std::size_t kMaxWeldParts = 8;
+/// Vertices a chunk of the weld's hashing.
+constexpr std::size_t kWeldChunk = std::size_t(1) << 14;
+
 /// For each vertex, the first vertex at the same position (equal as floats,
-/// so -0 = +0); a vertex with a NaN or infinite coordinate is its own. An
+/// so -0 = +0); a vertex with a NaN or infinite coordinate is its own, and
+/// counted in `notFinite`. The keys are split by their hash's low bits into
+/// parts (a power of two, at most the threads): chunks of vertices in
+/// parallel hash their keys and list each vertex under its part, in index
+/// order; then a thread a part takes its list, so the first found at a
+/// position is the lowest vertex, for any number of threads. A part is an
 /// open-addressing table, linear probing, at most half full; a slot holds
 /// the upper half of the key's hash beside the vertex index, so a probe
 /// reads a position only when the hashes agree, and the slots of vertices a
 /// little ahead are prefetched: the table's cache misses overlap.
-Indices weldByPosition(const glm::vec3* positions, std::size_t n) {
+Indices weldByPosition(const glm::vec3* positions, std::size_t n, unsigned threads, std::size_t& notFinite) {
+    std::size_t parts = 1;
+    while (n >= kWeldParallelVertices && 2 * parts <= std::min<std::size_t>(threads, kMaxWeldParts)) parts *= 2;
+    const std::size_t chunks = (n + kWeldChunk - 1) / kWeldChunk;
     Indices first(n);
-    int bits = 1;
-    while ((std::size_t(1) << bits) < 2 * n) ++bits;
-    const std::size_t mask = (std::size_t(1) << bits) - 1;
-    constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
-    detail::LargeVector<std::uint64_t> table(mask + 1, kEmpty);
-    const auto hashOf = [&](std::size_t i) { return PositionKey(positions[i]).hash(); };
-    constexpr std::size_t kAhead = 16;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (i + kAhead < n) __builtin_prefetch(&table[std::size_t(hashOf(i + kAhead) >> (64 - bits))]);
-        const glm::vec3 p = positions[i];
-        if (!finite(p)) {
+    detail::LargeVector<std::uint64_t> hashes(n);
+    std::vector<std::size_t> at((parts + 1) * chunks + 1, 0); // per part and chunk, its place in `order`
+    std::vector<std::size_t> notFiniteIn(chunks, 0);
+    parallelFor(threads, n, kWeldChunk, [&](std::size_t begin, std::size_t end) {
+        // Counted here, written once: neighbouring chunks' counts share cache lines.
+        std::size_t count[kMaxWeldParts + 1] = {};
+        for (std::size_t i = begin; i < end; ++i) {
             first[i] = std::uint32_t(i);
-            continue;
+            const std::uint64_t h = PositionKey(positions[i]).hash();
+            hashes[i] = h;
+            ++count[finite(positions[i]) ? h & (parts - 1) : kMaxWeldParts];
         }
-        const PositionKey key(p);
-        const std::uint64_t h = key.hash();
-        const std::uint64_t tag = h & 0xFFFFFFFF00000000ull;
-        for (std::size_t slot = std::size_t(h >> (64 - bits));; slot = (slot + 1) & mask) {
-            const std::uint64_t entry = table[slot];
-            if (entry == kEmpty) {
-                table[slot] = tag | i;
-                first[i] = std::uint32_t(i);
-                break;
-            }
-            const auto j = std::uint32_t(entry);
-            if ((entry & 0xFFFFFFFF00000000ull) == tag && PositionKey(positions[j]) == key) {
-                first[i] = j;
-                break;
+        const std::size_t chunk = begin / kWeldChunk;
+        for (std::size_t part = 0; part < parts; ++part) at[1 + part * chunks + chunk] = count[part];
+        notFiniteIn[chunk] = count[kMaxWeldParts];
+    });
+    notFinite = std::accumulate(notFiniteIn.begin(), notFiniteIn.end(), std::size_t(0));
+    std::partial_sum(at.begin(), at.end(), at.begin());
+    Indices order(n - notFinite);
+    parallelFor(threads, n, kWeldChunk, [&](std::size_t begin, std::size_t end) {
+        const std::size_t chunk = begin / kWeldChunk;
+        std::size_t next[kMaxWeldParts];
+        for (std::size_t part = 0; part < parts; ++part) next[part] = at[part * chunks + chunk];
+        for (std::size_t i = begin; i < end; ++i)
+            if (finite(positions[i])) order[next[hashes[i] & (parts - 1)]++] = std::uint32_t(i);
+    });
+    parallelFor(unsigned(parts), parts, 1, [&](std::size_t part, std::size_t) {
+        const std::size_t from = at[part * chunks], to = at[(part + 1) * chunks];
+        int bits = 1;
+        while ((std::size_t(1) << bits) < 2 * (to - from) + 2) ++bits;
+        const std::size_t mask = (std::size_t(1) << bits) - 1;
+        constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+        detail::LargeVector<std::uint64_t> table(mask + 1, kEmpty);
+        constexpr std::size_t kAhead = 16;
+        for (std::size_t k = from; k < to; ++k) {
+            if (k + kAhead < to) __builtin_prefetch(&table[std::size_t(hashes[order[k + kAhead]] >> (64 - bits))]);
+            const std::uint32_t i = order[k];
+            const std::uint64_t h = hashes[i], tag = h & 0xFFFFFFFF00000000ull;
+            for (std::size_t slot = std::size_t(h >> (64 - bits));; slot = (slot + 1) & mask) {
+                const std::uint64_t entry = table[slot];
+                if (entry == kEmpty) {
+                    table[slot] = tag | i;
+                    break;
+                }
+                const auto j = std::uint32_t(entry);
+                if ((entry & 0xFFFFFFFF00000000ull) == tag && PositionKey(positions[j]) == PositionKey(positions[i])) {
+                    first[i] = j;
+                    break;
+                }
             }
         }
-    }
+    });
     return first;
 }
 
@@ -618,9 +655,7 @@ MeshReport validate(MeshView mesh, unsigned threads, detail::MeshFinds* finds) {
     // vertex, so at most 8.
     threads = unsigned(std::min<std::size_t>({threads, nt / 65536 + 1, 8}));
 
-    for (std::size_t i = 0; i < nv; ++i)
-        if (!finite(mesh.positions[i])) ++r.nonFiniteVertices;
-    const Indices weld = weldByPosition(mesh.positions, nv);
+    const Indices weld = weldByPosition(mesh.positions, nv, threads, r.nonFiniteVertices);
     Indices part; // found by countByEdges, beside its first pass
     std::unique_ptr<std::atomic<std::uint8_t>[]> openPart(new std::atomic<std::uint8_t>[nv]());
     // 32-bit items while vertex indices fit in 31 bits and the edge uses in 32.
