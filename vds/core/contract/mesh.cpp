@@ -286,10 +286,14 @@ struct Partners {
     std::uint32_t* partners = nullptr;
 
     template <class Index> void sort(Index* group, std::uint32_t* owner, std::size_t n) const {
-        thread_local std::vector<std::uint64_t> keys;
-        keys.resize(n);
+        // On the stack for the usual handful; a rare crowded vertex takes the heap.
+        constexpr std::size_t kFew = 32;
+        std::uint64_t few[kFew];
+        thread_local std::vector<std::uint64_t> many;
+        if (n > kFew) many.resize(n);
+        std::uint64_t* keys = n > kFew ? many.data() : few;
         for (std::size_t i = 0; i < n; ++i) keys[i] = (std::uint64_t(group[i]) << 32) | owner[i];
-        sortGroup(keys.data(), n, [](std::uint64_t x, std::uint64_t y) { return x < y; });
+        sortGroup(keys, n, [](std::uint64_t x, std::uint64_t y) { return x < y; });
         for (std::size_t i = 0; i < n; ++i) {
             group[i] = Index(keys[i] >> 32);
             owner[i] = std::uint32_t(keys[i]);
