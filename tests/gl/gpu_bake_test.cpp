@@ -1,6 +1,9 @@
 // vds::bakeToGpu: the sprite baked straight into GL equals, texel for texel
 // and offset for offset, the host bake uploaded with GpuSprite.
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <string>
 #include <cstring>
 #include <vector>
 
@@ -162,6 +165,68 @@ TEST_F(GpuBakeTest, AxisCountedInTheRasterEqualsTheListsBakes) {
             }
             EXPECT_EQ(choice.layers[std::size_t(choice.axis)], fewest);
         }
+}
+
+// VDS_AXIS_COUNT=gpu for a scope: the GL bakes count the axis on llvmpipe's
+// GPU path as on a GPU.
+class AxisCountOnGpu {
+public:
+    AxisCountOnGpu() { setenv("VDS_AXIS_COUNT", "gpu", 1); }
+    ~AxisCountOnGpu() { unsetenv("VDS_AXIS_COUNT"); }
+    AxisCountOnGpu(const AxisCountOnGpu&) = delete;
+    AxisCountOnGpu& operator=(const AxisCountOnGpu&) = delete;
+};
+
+// Where the GPU counts the axis, bakeToGpu issues the count before
+// validating and validates while the GPU draws: the axis and the sprite are
+// the sequential bake's (count after validation), also where an unused
+// vertex lies outside the used box (counted again in validation's bounds),
+// and a mesh that cannot be drawn (an index out of range, a coordinate not
+// finite) is refused by validation with the same message.
+TEST_F(GpuBakeTest, AxisCountedBesideValidationIsTheSequentialBakes) {
+    const AxisCountOnGpu onGpu;
+    // A 1 x 2 x 3 box: two layers along each axis, the fewest crossings
+    // along y (its 3 x 1 side fills the least of its square view). An unused
+    // vertex at y = 10 would make z's the fewest in the box it stretches.
+    TriangleMesh outlier = solids::box({0, 0, 0}, {1, 2, 3}).mesh;
+    outlier.positions.push_back({0.0f, 10.0f, 0.0f});
+    ASSERT_EQ(chooseViewAxisOnGl(gl(), outlier, 80).axis, Axis::Y);
+    const std::vector<TriangleMesh> meshes = {
+        solids::torusKnot({0, 0, 0}, 1.0f, 2, 3, 0.25f, 96, 12).mesh,
+        solids::merge(solids::sphere({0, 0, 0}, 1.0f, 24).mesh, solids::box({1.5f, -0.2f, -2.0f}, {1.6f, 0.2f, 2.0f}).mesh),
+        outlier};
+    for (const TriangleMesh& mesh : meshes) {
+        BakeTimings t;
+        BakeOptions o;
+        o.resolution = 80;
+        o.method = BakeMethod::Lists;
+        expectSameAsHostBake(mesh, o);
+        o.timings = &t;
+        const GpuBake baked = bakeToGpu(gl(), mesh, o);
+        EXPECT_EQ(baked.grid.axis, chooseViewAxisOnGl(gl(), mesh, o.resolution).axis);
+        EXPECT_EQ(t[BakePhase::Axis].runs, 2u); // issued, then read back (or counted again)
+        EXPECT_EQ(t[BakePhase::Validation].runs, 1u);
+    }
+    TriangleMesh badIndex = meshes[0], notFinite = meshes[0];
+    badIndex.triangles[5].y = std::uint32_t(badIndex.positions.size());
+    notFinite.positions[3].x = std::nanf("");
+    for (const TriangleMesh& mesh : {badIndex, notFinite}) {
+        std::string onGpuMessage, onCpuMessage;
+        try {
+            bakeToGpu(gl(), mesh, {});
+        } catch (const InvalidMesh& e) {
+            onGpuMessage = e.what();
+        }
+        setenv("VDS_AXIS_COUNT", "cpu", 1);
+        try {
+            bakeToGpu(gl(), mesh, {});
+        } catch (const InvalidMesh& e) {
+            onCpuMessage = e.what();
+        }
+        setenv("VDS_AXIS_COUNT", "gpu", 1);
+        EXPECT_FALSE(onGpuMessage.empty());
+        EXPECT_EQ(onGpuMessage, onCpuMessage);
+    }
 }
 
 } // namespace

@@ -2,13 +2,16 @@
 #include "bake_gl.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
+#include <vector>
 
 #include <GL/glext.h>
 
 #include <vds/error.h>
 #include <vds/gl/bake.h>
 #include <vds/detail/bake_common.h>
+#include <vds/detail/parallel.h>
 
 namespace vds::detail {
 namespace {
@@ -21,12 +24,13 @@ bool hasClipControl(const GlContext& gl) {
 
 } // namespace
 
-void GlPhaseClock::begin(BakePhase phase, bool gpu) {
+void GlPhaseClock::begin(BakePhase phase, bool gpu, bool wait) {
     end();
     if (!timings_) return;
     running_ = true;
     phase_ = phase;
     gpu_ = gpu;
+    wait_ = wait;
     start_ = std::chrono::steady_clock::now();
     if (!gpu) return;
     queries_.push_back({phase, Query::create(GL_TIME_ELAPSED), 0.0});
@@ -38,7 +42,7 @@ void GlPhaseClock::end() noexcept {
     running_ = false;
     if (!detail::glUsable()) return;
     if (gpu_) glEndQuery(GL_TIME_ELAPSED);
-    glFinish();
+    if (wait_) glFinish();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     if (gpu_) queries_.back().wallSeconds = wall;
     BakeTimings::Phase& p = (*timings_)[phase_];
@@ -61,23 +65,93 @@ void GlPhaseClock::collect() {
     checkGl("reading the bake's timer queries");
 }
 
-// The one validation of every baker (detail::prepareBake), timed on the GL
-// bake's clock: the axis count on the GPU's timer where it runs there.
-ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
+namespace {
+
+// Triangles a chunk of `drawableBox`.
+constexpr std::size_t kBoxChunk = std::size_t(1) << 16;
+
+// The box of every position, where every index is in range and every
+// coordinate finite (the mesh can be drawn before validation); nullopt
+// otherwise. Validation's bounds (of the used vertices) equal it unless an
+// unused vertex lies outside.
+std::optional<Box> drawableBox(MeshView mesh) {
+    const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
+    if (nv == 0 || nt == 0) return std::nullopt;
+    const std::size_t chunks = (std::max(nv, nt) + kBoxChunk - 1) / kBoxChunk;
+    std::vector<Box> boxes(chunks, Box{mesh.positions[0], mesh.positions[0]});
+    std::vector<std::uint8_t> bad(chunks, 0);
+    parallelFor(0, std::max(nv, nt), kBoxChunk, [&](std::size_t begin, std::size_t end) {
+        Box& box = boxes[begin / kBoxChunk];
+        bool wrong = false;
+        for (std::size_t i = begin; i < std::min(end, nv); ++i) {
+            const glm::vec3 p = mesh.positions[i];
+            wrong |= !(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+            box.lo = glm::min(box.lo, p);
+            box.hi = glm::max(box.hi, p);
+        }
+        for (std::size_t t = begin; t < std::min(end, nt); ++t) {
+            const glm::uvec3 tri = mesh.triangles[t];
+            wrong |= tri.x >= nv || tri.y >= nv || tri.z >= nv;
+        }
+        bad[begin / kBoxChunk] = wrong;
+    });
+    if (std::find(bad.begin(), bad.end(), 1) != bad.end()) return std::nullopt;
+    Box all = boxes[0];
+    for (const Box& b : boxes) all.lo = glm::min(all.lo, b.lo), all.hi = glm::max(all.hi, b.hi);
+    return all;
+}
+
+// validateForBake where the GPU counts the axis: the count is issued first,
+// in the box of the positions, and validation runs on the host while the GPU
+// draws; the count is read back after (recounted in validation's bounds
+// where they differ). False where the mesh cannot be drawn before
+// validation (an index out of range or a coordinate not finite): then
+// validation goes first, and throws.
+bool countBesideValidation(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock,
+                           ValidatedMesh& out, Axis& axis) {
+    const std::optional<Box> box = drawableBox(mesh);
+    if (!box) return false;
     BakeOptions untimed = options;
     untimed.timings = nullptr;
-    ValidatedMesh out;
-    // On a software renderer the CPU counts the axis: validation finds the edges' partners and facings for it.
-    const bool cpuCount = !options.axis && softwareRenderer(gl);
-    MeshFinds finds;
+    std::optional<PendingLayerCount> pending;
+    {
+        const GlPhaseClock::Scope phase(clock, BakePhase::Axis, true, false); // timed on the GPU, not waited for
+        const CurrentContext current(gl);
+        out.drawn.emplace(mesh);
+        pending = PendingLayerCount::start(gl, *out.drawn, *box, options.resolution);
+    }
     {
         const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
-        out.report = validateForBake(mesh, untimed, cpuCount ? &finds : nullptr);
+        out.report = validateForBake(mesh, untimed);
     }
+    const bool ready = pending && out.report.bounds.lo == box->lo && out.report.bounds.hi == box->hi;
+    const GlPhaseClock::Scope phase(clock, BakePhase::Axis, !ready);
+    axis = ready ? pending->finish().axis : bakeAxis(mesh, out.report, untimed, axisCounter(gl, mesh, options));
+    return true;
+}
+
+} // namespace
+
+// The one validation of every baker (detail::prepareBake), timed on the GL
+// bake's clock: the axis count on the GPU's timer where it runs there, and
+// then beside validation.
+ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
+    ValidatedMesh out;
     Axis axis = options.axis.value_or(Axis::Z);
-    if (!options.axis) {
-        const GlPhaseClock::Scope phase(clock, BakePhase::Axis, !cpuCount);
-        axis = bakeAxis(mesh, out.report, untimed, axisCounter(gl, mesh, options, &out.drawn), finds);
+    const bool gpuCount = !options.axis && countsOnGpu(gl);
+    if (!gpuCount || !countBesideValidation(gl, mesh, options, clock, out, axis)) {
+        BakeOptions untimed = options;
+        untimed.timings = nullptr;
+        // Where the CPU counts the axis, validation finds the edges' partners and facings for it.
+        MeshFinds finds;
+        {
+            const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
+            out.report = validateForBake(mesh, untimed, options.axis ? nullptr : &finds);
+        }
+        if (!options.axis) {
+            const GlPhaseClock::Scope phase(clock, BakePhase::Axis, gpuCount);
+            axis = bakeAxis(mesh, out.report, untimed, axisCounter(gl, mesh, options, &out.drawn), finds);
+        }
     }
     out.grid = makeGrid(out.report.bounds, axis, options.resolution);
     return out;

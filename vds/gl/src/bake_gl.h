@@ -34,8 +34,11 @@ public:
     GlPhaseClock(const GlPhaseClock&) = delete;
     GlPhaseClock& operator=(const GlPhaseClock&) = delete;
 
-    /// Starts `phase`; `gpu` = false for host work (no timer query).
-    void begin(BakePhase phase, bool gpu = true);
+    /// Starts `phase`; `gpu` = false for host work (no timer query). Its
+    /// end waits for the GPU, unless `wait` is false (work issued to run
+    /// beside the host's next phase: its wall is the issuing, its GPU time
+    /// the timer's).
+    void begin(BakePhase phase, bool gpu = true, bool wait = true);
     /// Ends the running phase, if any.
     void end() noexcept;
     /// Adds the GPU times of the finished phases (waits for their queries).
@@ -44,7 +47,9 @@ public:
     /// One phase for the scope.
     class Scope {
     public:
-        Scope(GlPhaseClock& clock, BakePhase phase, bool gpu = true) : clock_(clock) { clock.begin(phase, gpu); }
+        Scope(GlPhaseClock& clock, BakePhase phase, bool gpu = true, bool wait = true) : clock_(clock) {
+            clock.begin(phase, gpu, wait);
+        }
         ~Scope() { clock_.end(); }
         Scope(const Scope&) = delete;
         Scope& operator=(const Scope&) = delete;
@@ -57,6 +62,7 @@ private:
     BakeTimings* timings_;
     bool running_ = false;
     bool gpu_ = false;
+    bool wait_ = true;
     BakePhase phase_ = BakePhase::Validation;
     std::chrono::steady_clock::time_point start_;
     struct Measured {
@@ -94,10 +100,32 @@ std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, co
 /// The same with the mesh in GL already.
 std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, const GpuMesh& drawn, const Box& bounds,
                                           std::uint32_t resolution);
+/// `countLayersOnGl` in two halves: `start` issues the three axes' draws
+/// and reductions and returns without waiting (nullopt where
+/// `countLayersOnGl` gives none); `finish` reads the counts back, waiting
+/// for the GPU. The host is free in between (the GL bakes validate the mesh
+/// there). Holds `gl` by reference; its scratch buffers hold the counts.
+class PendingLayerCount {
+public:
+    static std::optional<PendingLayerCount> start(const GlContext& gl, const GpuMesh& drawn, const Box& bounds,
+                                                  std::uint32_t resolution);
+    AxisChoice finish() const;
+
+private:
+    PendingLayerCount(const GlContext& gl, std::uint32_t resolution) : gl_(&gl), resolution_(resolution) {}
+    const GlContext* gl_;
+    std::uint32_t resolution_;
+    GLuint results_[3] = {0, 0, 0};
+};
 /// True on llvmpipe, softpipe, SwiftShader and software platforms.
 bool softwareRenderer(const GlContext& gl);
-/// The GL bakers' axis count for `prepareBake`: `countLayersOnGl` on a GPU;
-/// none (the CPU's) on a software renderer, where the CPU's count is faster.
+/// Whether the GL bakes count the auto axis on the GPU: yes but on a
+/// software renderer, where the CPU's count is the faster. The environment
+/// variable VDS_AXIS_COUNT (`gpu` or `cpu`) overrides it, to compare the two
+/// (the tests count on llvmpipe's GPU path so).
+bool countsOnGpu(const GlContext& gl);
+/// The GL bakers' axis count for `prepareBake`: `countLayersOnGl` where
+/// `countsOnGpu`; none (the CPU's) otherwise.
 /// Holds `gl` and `mesh` by reference; where `keep` is given, the mesh the
 /// count uploads stays there for the bake to draw.
 AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options,

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
+#include <string>
 
 #include <GL/glext.h>
 
@@ -39,11 +41,12 @@ CountPrograms countPrograms(const GlContext& gl) {
                         [] { return buildProgram({{GL_COMPUTE_SHADER, "vds/count_layers.comp", ""}}); })};
 }
 
-// d_S and the crossings of the GL bake along `grid.axis`. The read-back
-// also orders the next axis's clear of `counts` after this reduce's reads
-// (a memory barrier orders shader writes, not reads, before a clear).
+// d_S and the crossings of the GL bake along `grid.axis`, into `result`
+// (two words), issued and not waited for. Each axis has its own `counts`
+// and `result`: a clear of counts a reduce still reads would race it (a
+// memory barrier orders shader writes, not reads, before a clear).
 void countAxis(const GlContext& gl, const CountPrograms& programs, const GpuMesh& mesh, const SpriteGrid& grid,
-               GLuint counts, GLuint result, std::uint32_t out[2]) {
+               GLuint counts, GLuint result) {
     const std::uint64_t columns = std::uint64_t(grid.width) * grid.height;
     const GLuint zero = 0;
     glClearNamedBufferSubData(counts, GL_R32UI, 0, GLsizeiptr(columns * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -65,8 +68,6 @@ void countAxis(const GlContext& gl, const CountPrograms& programs, const GpuMesh
     glUniform1ui(glGetUniformLocation(programs.reduce->id(), "u_columns"), GLuint(columns));
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, result, 0, 8);
     glDispatchCompute(strideGroups(columns, kReduceLocal), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(result, 0, 8, out);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
     glUseProgram(0);
@@ -75,14 +76,8 @@ void countAxis(const GlContext& gl, const CountPrograms& programs, const GpuMesh
 
 } // namespace
 
-std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, const Box& bounds,
-                                          std::uint32_t resolution) {
-    const CurrentContext current(gl);
-    return countLayersOnGl(gl, GpuMesh(mesh), bounds, resolution);
-}
-
-std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, const GpuMesh& drawn, const Box& bounds,
-                                          std::uint32_t resolution) {
+std::optional<PendingLayerCount> PendingLayerCount::start(const GlContext& gl, const GpuMesh& drawn,
+                                                          const Box& bounds, std::uint32_t resolution) {
     const CurrentContext current(gl);
     std::array<SpriteGrid, 3> grids;
     std::uint64_t most = 0;
@@ -95,18 +90,46 @@ std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, const GpuMesh& dr
     // The counts of one axis in one storage block; each fewer than 2^32 (as a sprite's crossings are).
     if (most * 4 > std::uint64_t(maxBlock) || drawn.triangleCount() >= (std::uint64_t(1) << 32)) return std::nullopt;
     const CountPrograms programs = countPrograms(gl);
-    const GLuint counts = gl.scratchBuffer("vds.count.columns", std::size_t(most) * 4).id();
-    const GLuint result = gl.scratchBuffer("vds.count.result", 8).id();
-    AxisChoice choice;
-    choice.resolution = resolution;
-    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
-        std::uint32_t out[2] = {0, 0};
-        countAxis(gl, programs, drawn, grids[std::size_t(axis)], counts, result, out);
-        choice.layers[std::size_t(axis)] = out[0];
-        choice.crossings[std::size_t(axis)] = out[1];
+    static const char* const kCounts[3] = {"vds.count.columns.x", "vds.count.columns.y", "vds.count.columns.z"};
+    static const char* const kResults[3] = {"vds.count.result.x", "vds.count.result.y", "vds.count.result.z"};
+    PendingLayerCount pending(gl, resolution);
+    for (std::size_t a = 0; a < 3; ++a) {
+        const SpriteGrid& grid = grids[a];
+        const GLuint counts = gl.scratchBuffer(kCounts[a], std::size_t(grid.width) * grid.height * 4).id();
+        pending.results_[a] = gl.scratchBuffer(kResults[a], 8).id();
+        countAxis(gl, programs, drawn, grid, counts, pending.results_[a]);
     }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // the reduces' atomics before the read-back
+    glFlush();                                     // the GPU starts while the host goes on
+    return pending;
+}
+
+AxisChoice PendingLayerCount::finish() const {
+    const CurrentContext current(*gl_);
+    AxisChoice choice;
+    choice.resolution = resolution_;
+    for (std::size_t a = 0; a < 3; ++a) {
+        std::uint32_t out[2] = {0, 0};
+        glGetNamedBufferSubData(results_[a], 0, 8, out);
+        choice.layers[a] = out[0];
+        choice.crossings[a] = out[1];
+    }
+    checkGl("reading the layer counts back");
     pickFewestLayers(choice);
     return choice;
+}
+
+std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, const Box& bounds,
+                                          std::uint32_t resolution) {
+    const CurrentContext current(gl);
+    return countLayersOnGl(gl, GpuMesh(mesh), bounds, resolution);
+}
+
+std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, const GpuMesh& drawn, const Box& bounds,
+                                          std::uint32_t resolution) {
+    const std::optional<PendingLayerCount> pending = PendingLayerCount::start(gl, drawn, bounds, resolution);
+    if (!pending) return std::nullopt;
+    return pending->finish();
 }
 
 bool softwareRenderer(const GlContext& gl) {
@@ -115,8 +138,15 @@ bool softwareRenderer(const GlContext& gl) {
            renderer.find("softpipe") != std::string::npos || renderer.find("SwiftShader") != std::string::npos;
 }
 
+bool countsOnGpu(const GlContext& gl) {
+    const char* place = std::getenv("VDS_AXIS_COUNT");
+    if (place && std::string(place) == "gpu") return true;
+    if (place && std::string(place) == "cpu") return false;
+    return !softwareRenderer(gl);
+}
+
 AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options, std::optional<GpuMesh>* keep) {
-    if (softwareRenderer(gl)) return {}; // there the CPU's count is the faster
+    if (!countsOnGpu(gl)) return {};
     return [&gl, mesh, resolution = options.resolution, keep](const MeshReport& report) {
         const CurrentContext current(gl);
         std::optional<GpuMesh> local;

@@ -29,8 +29,11 @@ BakeMethod chooseBakeMethod(const GlContext& gl, std::string* why = nullptr);
 /// crossings are those of the GL bakers' sprites, which differ from the CPU
 /// baker's only where the rasterizer's snapping moves an edge across a
 /// texel centre. `bakeOnGl` and `bakeToGpu` with no axis set count so on a
-/// GPU (a few milliseconds), and on the CPU (`chooseViewAxis`) on a software
-/// renderer, where that is faster. Validates the mesh and throws like
+/// GPU (a few milliseconds; `bakeToGpu` issues the count before validating
+/// and validates on the host while the GPU draws), and on the CPU
+/// (`chooseViewAxis`) on a software renderer, where that is faster; the
+/// environment variable VDS_AXIS_COUNT=gpu or =cpu chooses either, to
+/// compare them. Validates the mesh and throws like
 /// `chooseViewAxis`; falls back to it where one axis's counts exceed GL's
 /// largest storage block.
 AxisChoice chooseViewAxisOnGl(const GlContext& gl, MeshView mesh, std::uint32_t resolution = 1024);
