@@ -87,11 +87,13 @@ int vdsCount(ivec2 column, bool inBox, float r, out int parity) {
 // The generalized winding number's program: each point's signed count and
 // parity of the crossings in front of its texture depth, the points'
 // columns walked in lockstep (every step loads the next crossing of each
-// column still in walk). This program as measured fastest on an H200
-// (lockstep walks, a vote a node, each node's edges summed on their own):
-// suzanne 6.5 G points/s, against 4.1 with serial walks and merged ranges;
-// in the parity and winding programs the lockstep walks were the slower on
-// random points (docs/benchmarks.md).
+// column still in walk). Measured on an H200 (docs/benchmarks.md): with
+// lockstep walks suzanne ran 6.5 G points/s, with serial walks and the
+// boundary term's merged ranges 4.1. Suzanne's 42 edges are one range
+// whatever the merging, so the walks made that difference, and the merged
+// ranges (boundary_tiles.glsl: the bunny's small loops one tile pass, not one each)
+// are kept with the lockstep walks. In the parity and winding programs the
+// lockstep walks were the slower on random points.
 void vdsCountColumns(ivec2 column[VDS_N], bool inBox[VDS_N], vec3 T[VDS_N], out int winding[VDS_N],
                      out int parity[VDS_N]) {
     uint next[VDS_N], end[VDS_N];
