@@ -20,6 +20,16 @@
 
 namespace vds::bench {
 
+/// A form of the plain parity kernel: the columns read through buffer
+/// textures (`texel`: the texture cache) instead of storage buffers, and one
+/// point an invocation with a 32-bit label (`onePoint`: labels take 4 bytes a
+/// point) instead of four with one label word. Measured side by side to
+/// find what holds GL below a plain CUDA kernel on random points.
+struct PlainForm {
+    bool texel = false;
+    bool onePoint = false;
+};
+
 class PlainKernels {
 public:
     explicit PlainKernels(const GlContext& gl);
@@ -29,9 +39,13 @@ public:
     /// The same by the generalized winding rule, the boundary term summed
     /// over every edge.
     void generalizedWinding(const GpuSprite& sprite, GLuint points, std::size_t count, GLuint labels) const;
+    /// `parity` in another form (its program compiled on first use).
+    void parity(const GpuSprite& sprite, GLuint points, std::size_t count, GLuint labels, PlainForm form) const;
 
 private:
-    void run(const Program& program, const GpuSprite& sprite, GLuint points, std::size_t count, GLuint labels) const;
+    void run(const Program& program, const GpuSprite& sprite, GLuint points, std::size_t count, GLuint labels,
+             bool onePoint = false) const;
+    const GlContext* gl_ = nullptr;
     const Program* parity_ = nullptr;
     const Program* gwn_ = nullptr;
 };

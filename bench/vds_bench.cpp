@@ -484,6 +484,66 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
     }
 }
 
+// Labels of the plain parity kernel in `form` (4 bytes a point in the
+// one-point form), as one byte a point.
+std::vector<std::uint8_t> readFormLabels(GLuint labels, std::size_t n, vds::bench::PlainForm form) {
+    if (!form.onePoint) {
+        std::vector<std::uint8_t> out;
+        readLabels(labels, n, out);
+        return out;
+    }
+    std::vector<std::uint32_t> wide(n);
+    glGetNamedBufferSubData(labels, 0, GLsizeiptr(n * 4), wide.data());
+    return std::vector<std::uint8_t>(wide.begin(), wide.end());
+}
+
+// The plain parity kernel in each form (bench/plain_kernels.h), random and
+// coherent points resident in GL, GL timer, best of the runs after the
+// warm-up: which of the columns' reads and points an invocation holds GL
+// below a plain CUDA kernel on random points. Each form's labels against
+// the CPU's.
+void plainFormsTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMesh>& meshes) {
+    using vds::bench::PlainForm;
+    const std::size_t n = set.points;
+    const PlainForm forms[4] = {{false, false}, {true, false}, {false, true}, {true, true}};
+    std::printf("\n## The plain parity kernel's forms: %zu points a mesh, sprites at %u (G points/s)\n\n", n,
+                set.classifyResolution);
+    std::puts("`ssbo`: the columns read from storage buffers; `texel`: from buffer textures (the texture cache). `x4`:");
+    std::puts("four points an invocation, one label word; `x1`: one point an invocation, a 32-bit label.\n");
+    std::puts("| mesh | random ssbo x4 | texel x4 | ssbo x1 | texel x1 | coherent ssbo x4 | texel x4 | ssbo x1 | texel x1 | "
+              "labels == CPU |");
+    std::puts("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    const vds::bench::PlainKernels plain(gl);
+    std::vector<glm::vec3> unit(n), random(n), coherent(n);
+    std::mt19937 rng(42);
+    std::uniform_real_distribution<float> u(-0.1f, 1.1f);
+    for (auto& p : unit) p = glm::vec3(u(rng), u(rng), u(rng));
+    for (const auto& m : meshes) {
+        vds::BakeOptions o;
+        o.resolution = set.classifyResolution;
+        const vds::Sprite sprite = vds::bake(gl, m.mesh, o);
+        const vds::GpuSprite gpu(sprite, vds::GpuSpriteParts::ColumnsOnly);
+        for (std::size_t k = 0; k < n; ++k) random[k] = sprite.grid.box.lo + unit[k] * (sprite.grid.box.hi - sprite.grid.box.lo);
+        coherentPoints(sprite.grid, coherent);
+        std::string row = "| " + m.mesh.name;
+        bool equal = true;
+        for (const std::vector<glm::vec3>* set_ : {&random, &coherent}) {
+            std::vector<std::uint8_t> cpu(n);
+            vds::classify(sprite, vds::PointsView(set_->data(), n), cpu.data());
+            vds::Buffer points = vds::Buffer::create(), labels = vds::Buffer::create();
+            glNamedBufferStorage(points.id(), GLsizeiptr(n * 12), set_->data(), 0);
+            glNamedBufferStorage(labels.id(), GLsizeiptr(n * 4 + 4), nullptr, 0);
+            for (const PlainForm& form : forms) {
+                const Timed t = timeGpu(set, [&] { plain.parity(gpu, points.id(), n, labels.id(), form); });
+                equal = equal && readFormLabels(labels.id(), n, form) == cpu;
+                row += " | " + rate(double(n), t.best());
+            }
+        }
+        std::printf("%s | %s |\n", row.c_str(), equal ? "yes" : "NO");
+        std::fflush(stdout);
+    }
+}
+
 // The generalized winding number on the GPU, open meshes only: vds's
 // program against the brute-force plain kernel, and the occupancy sweeps.
 void gwnTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMesh>& meshes) {
@@ -575,7 +635,8 @@ void applyMode(Settings& set, bool quick, bool full) {
 int main(int argc, char** argv) {
     Settings set;
     CLI::App app{"vds_bench: bake time, bake phases, classification throughput and file size, printed as tables"};
-    bool quick = false, full = false, bakeOnly = false, classifyOnly = false, noCpuBake = false, noPeel = false;
+    bool quick = false, full = false, bakeOnly = false, classifyOnly = false, noCpuBake = false, noPeel = false,
+         plainForms = false;
     std::vector<std::uint32_t> resolutions;
     std::size_t points = 0;
     std::uint32_t classifyResolution = 0;
@@ -600,6 +661,9 @@ int main(int argc, char** argv) {
     app.add_flag("--no-peel", noPeel, "skip depth peeling");
     auto* bakeFlag = app.add_flag("--bake-only", bakeOnly, "bake tables only");
     app.add_flag("--classify-only", classifyOnly, "classification table only")->excludes(bakeFlag);
+    app.add_flag("--plain-forms", plainForms,
+                 "the plain parity kernel's forms only (columns from storage buffers or buffer textures; one or four "
+                 "points an invocation), at --points and --classify-resolution");
     app.add_option("meshes", set.meshFiles, "mesh files instead of those of bench/meshes and the generated meshes");
     CLI11_PARSE(app, argc, argv);
 
@@ -629,6 +693,10 @@ int main(int argc, char** argv) {
                 vds::bake(gl, box, o);
             }
             vds::bakeToGpu(gl, box, o);
+        }
+        if (plainForms) {
+            plainFormsTable(set, gl, meshes);
+            return 0;
         }
         std::vector<SizeRow> sizes;
         if (set.bakeTable) bakeTable(set, gl, meshes, sizes);
