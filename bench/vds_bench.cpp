@@ -630,6 +630,28 @@ void applyMode(Settings& set, bool quick, bool full) {
     }
 }
 
+// Every program compiled once, outside the figures.
+void compileOnce(vds::GlContext& gl) {
+    vds::BakeOptions o;
+    o.resolution = 16;
+    const auto box = vds::solids::box({0, 0, 0}, {1, 1, 1}).mesh;
+    for (auto method : {vds::BakeMethod::Peel, vds::BakeMethod::Lists}) {
+        o.method = method;
+        vds::bake(gl, box, o);
+    }
+    vds::bakeToGpu(gl, box, o);
+}
+
+void printSizes(const std::vector<SizeRow>& sizes) {
+    if (sizes.empty()) return;
+    std::puts("\n## File size: .vds (OpenEXR deep, ZIPS) vs the paper's dense float texture\n");
+    std::puts("| mesh | resolution | crossings | .vds bytes | dense bytes | dense / .vds |");
+    std::puts("|---|---:|---:|---:|---:|---:|");
+    for (const auto& s : sizes)
+        std::printf("| %s | %u | %zu | %zu | %zu | %.1fx |\n", s.mesh.c_str(), s.res, s.crossings, s.file, s.dense,
+                    double(s.dense) / double(s.file));
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -684,16 +706,7 @@ int main(int argc, char** argv) {
         std::printf("# vds_bench (%s)\n\nGL: %s | %s | %s | platform %s\n", set.mode.c_str(), info.vendor.c_str(),
                     info.renderer.c_str(), info.version.c_str(), info.platform.c_str());
         std::printf("CPU threads: %u\n\n", std::max(1u, std::thread::hardware_concurrency()));
-        { // compile every program once, outside the figures
-            vds::BakeOptions o;
-            o.resolution = 16;
-            const auto box = vds::solids::box({0, 0, 0}, {1, 1, 1}).mesh;
-            for (auto method : {vds::BakeMethod::Peel, vds::BakeMethod::Lists}) {
-                o.method = method;
-                vds::bake(gl, box, o);
-            }
-            vds::bakeToGpu(gl, box, o);
-        }
+        compileOnce(gl);
         if (plainForms) {
             plainFormsTable(set, gl, meshes);
             return 0;
@@ -702,14 +715,7 @@ int main(int argc, char** argv) {
         if (set.bakeTable) bakeTable(set, gl, meshes, sizes);
         if (set.classifyTable) classifyTable(set, gl, meshes);
         if (set.classifyTable && set.gwnPoints) gwnTable(set, gl, meshes);
-        if (!sizes.empty()) {
-            std::puts("\n## File size: .vds (OpenEXR deep, ZIPS) vs the paper's dense float texture\n");
-            std::puts("| mesh | resolution | crossings | .vds bytes | dense bytes | dense / .vds |");
-            std::puts("|---|---:|---:|---:|---:|---:|");
-            for (const auto& s : sizes)
-                std::printf("| %s | %u | %zu | %zu | %zu | %.1fx |\n", s.mesh.c_str(), s.res, s.crossings, s.file, s.dense,
-                            double(s.dense) / double(s.file));
-        }
+        printSizes(sizes);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "vds_bench: error: %s\n", e.what());
         return 1;
