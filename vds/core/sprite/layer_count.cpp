@@ -491,12 +491,12 @@ LargeVector<std::uint8_t> facings(MeshView mesh, const std::vector<glm::ivec3>& 
                 }
             }
             std::uint8_t bits = facing[k];
+            const glm::uvec3 tri = mesh.triangles[k];
+            const glm::vec3* p[3] = {&mesh.positions[tri.x], &mesh.positions[tri.y], &mesh.positions[tri.z]};
             for (std::size_t a = 0; a < 3; ++a) {
                 if (given && ((bits >> (2 * a)) & 3) != kFacesUndecided) continue;
-                const glm::uvec3 tri = mesh.triangles[k];
                 float v[3][2];
-                for (int c = 0; c < 3; ++c)
-                    v[c][0] = mesh.positions[tri[c]][perms[a].x], v[c][1] = mesh.positions[tri[c]][perms[a].y];
+                for (int c = 0; c < 3; ++c) v[c][0] = (*p[c])[perms[a].x], v[c][1] = (*p[c])[perms[a].y];
                 const int o = orient2d(v[0], v[1], v[2]);
                 bits = std::uint8_t((bits & ~(3u << (2 * a))) | unsigned(o > 0 ? 1 : o < 0 ? 2 : 0) << (2 * a));
             }
