@@ -229,5 +229,20 @@ TEST_F(GpuBakeTest, AxisCountedBesideValidationIsTheSequentialBakes) {
     }
 }
 
+// Past 256 MiB for the three axes' counts at once (4,800 texels a side of
+// a cubic box: 3 x 88 MiB), the GL count takes one buffer, axis after axis;
+// its layers and choice are the CPU's there as at 1,200 texels (three
+// buffers at once).
+TEST_F(GpuBakeTest, AxisCountsOfLargeImagesShareOneBuffer) {
+    const TriangleMesh mesh =
+        solids::merge(solids::box({0, 0, 0}, {1, 2, 3}).mesh, solids::box({2.5f, 2.5f, 2.5f}, {3, 3, 3}).mesh);
+    for (std::uint32_t resolution : {1200u, 4800u}) {
+        const AxisChoice choice = chooseViewAxisOnGl(gl(), mesh, resolution);
+        const AxisChoice cpu = chooseViewAxis(mesh, resolution);
+        EXPECT_EQ(choice.layers, cpu.layers) << resolution;
+        EXPECT_EQ(choice.axis, cpu.axis) << resolution;
+    }
+}
+
 } // namespace
 } // namespace vds

@@ -109,13 +109,16 @@ class PendingLayerCount {
 public:
     static std::optional<PendingLayerCount> start(const GlContext& gl, const GpuMesh& drawn, const Box& bounds,
                                                   std::uint32_t resolution);
-    AxisChoice finish() const;
+    AxisChoice finish();
 
 private:
     PendingLayerCount(const GlContext& gl, std::uint32_t resolution) : gl_(&gl), resolution_(resolution) {}
+    void read(std::size_t axis); ///< axis's counts into choice_, waiting for them
     const GlContext* gl_;
     std::uint32_t resolution_;
     GLuint results_[3] = {0, 0, 0};
+    bool read_[3] = {false, false, false};
+    AxisChoice choice_;
 };
 /// True on llvmpipe, softpipe, SwiftShader and software platforms.
 bool softwareRenderer(const GlContext& gl);

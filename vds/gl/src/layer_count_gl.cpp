@@ -23,6 +23,10 @@ namespace vds::detail {
 namespace {
 
 constexpr std::uint32_t kReduceLocal = 256; // count_layers.comp's local_size_x
+// The most GPU memory the three axes' counts take at once (a 4 bytes a
+// column: three 2048² images are 48 MiB); larger counts share one buffer,
+// axis after axis.
+constexpr std::uint64_t kPendingCountBytes = std::uint64_t(256) << 20;
 
 struct CountPrograms {
     const Program* raster;
@@ -93,30 +97,38 @@ std::optional<PendingLayerCount> PendingLayerCount::start(const GlContext& gl, c
     static const char* const kCounts[3] = {"vds.count.columns.x", "vds.count.columns.y", "vds.count.columns.z"};
     static const char* const kResults[3] = {"vds.count.result.x", "vds.count.result.y", "vds.count.result.z"};
     PendingLayerCount pending(gl, resolution);
+    // Three axes' counts at once up to kPendingCountBytes; past it one
+    // buffer serves them in turn, each axis read back before the next clear.
+    const bool atOnce = 3 * most * 4 <= kPendingCountBytes;
     for (std::size_t a = 0; a < 3; ++a) {
         const SpriteGrid& grid = grids[a];
-        const GLuint counts = gl.scratchBuffer(kCounts[a], std::size_t(grid.width) * grid.height * 4).id();
+        const GLuint counts = gl.scratchBuffer(kCounts[atOnce ? a : 0], std::size_t(most) * 4).id();
         pending.results_[a] = gl.scratchBuffer(kResults[a], 8).id();
         countAxis(gl, programs, drawn, grid, counts, pending.results_[a]);
+        if (!atOnce) pending.read(a);
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // the reduces' atomics before the read-back
     glFlush();                                     // the GPU starts while the host goes on
     return pending;
 }
 
-AxisChoice PendingLayerCount::finish() const {
-    const CurrentContext current(*gl_);
-    AxisChoice choice;
-    choice.resolution = resolution_;
-    for (std::size_t a = 0; a < 3; ++a) {
-        std::uint32_t out[2] = {0, 0};
-        glGetNamedBufferSubData(results_[a], 0, 8, out);
-        choice.layers[a] = out[0];
-        choice.crossings[a] = out[1];
-    }
+void PendingLayerCount::read(std::size_t a) {
+    std::uint32_t out[2] = {0, 0};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(results_[a], 0, 8, out);
     checkGl("reading the layer counts back");
-    pickFewestLayers(choice);
-    return choice;
+    choice_.layers[a] = out[0];
+    choice_.crossings[a] = out[1];
+    read_[a] = true;
+}
+
+AxisChoice PendingLayerCount::finish() {
+    const CurrentContext current(*gl_);
+    for (std::size_t a = 0; a < 3; ++a)
+        if (!read_[a]) read(a);
+    choice_.resolution = resolution_;
+    pickFewestLayers(choice_);
+    return choice_;
 }
 
 std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, const Box& bounds,
@@ -127,7 +139,7 @@ std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, MeshView mesh, co
 
 std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, const GpuMesh& drawn, const Box& bounds,
                                           std::uint32_t resolution) {
-    const std::optional<PendingLayerCount> pending = PendingLayerCount::start(gl, drawn, bounds, resolution);
+    std::optional<PendingLayerCount> pending = PendingLayerCount::start(gl, drawn, bounds, resolution);
     if (!pending) return std::nullopt;
     return pending->finish();
 }
