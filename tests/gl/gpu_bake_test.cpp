@@ -177,12 +177,12 @@ public:
     AxisCountOnGpu& operator=(const AxisCountOnGpu&) = delete;
 };
 
-// Where the GPU counts the axis, bakeToGpu issues the count before
-// validating and validates while the GPU draws: the axis and the sprite are
-// the sequential bake's (count after validation), also where an unused
-// vertex lies outside the used box (counted again in validation's bounds),
-// and a mesh that cannot be drawn (an index out of range, a coordinate not
-// finite) is refused by validation with the same message.
+// Where the GPU counts the axis, bakeToGpu and bake() on GL issue the count
+// before validating and validate while the GPU draws: the axis and the
+// sprite are the sequential bake's (count after validation), also where an
+// unused vertex lies outside the used box (counted again in validation's
+// bounds), and a mesh that cannot be drawn (an index out of range, a
+// coordinate not finite) is refused by validation with the same message.
 TEST_F(GpuBakeTest, AxisCountedBesideValidationIsTheSequentialBakes) {
     const AxisCountOnGpu onGpu;
     // A 1 x 2 x 3 box: two layers along each axis, the fewest crossings
@@ -201,9 +201,17 @@ TEST_F(GpuBakeTest, AxisCountedBesideValidationIsTheSequentialBakes) {
         o.resolution = 80;
         o.method = BakeMethod::Lists;
         expectSameAsHostBake(mesh, o);
+        // bake() on GL validates beside the count too: its sprite is the one
+        // along the axis the sequential count chooses.
+        BakeOptions fixed = o;
+        fixed.axis = chooseViewAxisOnGl(gl(), mesh, o.resolution).axis;
+        const Sprite sequential = bake(gl(), mesh, fixed), overlapped = bake(gl(), mesh, o);
+        EXPECT_EQ(overlapped.grid.axis, *fixed.axis);
+        EXPECT_EQ(overlapped.offsets, sequential.offsets);
+        EXPECT_EQ(overlapped.crossings, sequential.crossings);
         o.timings = &t;
         const GpuBake baked = bakeToGpu(gl(), mesh, o);
-        EXPECT_EQ(baked.grid.axis, chooseViewAxisOnGl(gl(), mesh, o.resolution).axis);
+        EXPECT_EQ(baked.grid.axis, *fixed.axis);
         EXPECT_EQ(t[BakePhase::Axis].runs, 2u); // issued, then read back (or counted again)
         EXPECT_EQ(t[BakePhase::Validation].runs, 1u);
     }

@@ -242,9 +242,16 @@ Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options) 
     }
     if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
     const detail::BakeClock clock(options.timings);
-    std::optional<GpuMesh> drawn; // the axis count's upload, drawn again by the bake
-    const detail::BakeSetup setup = detail::prepareBake(mesh, options, detail::axisCounter(gl, mesh, options, &drawn));
-    return detail::bakeOnGl(gl, setup, mesh, options, drawn ? &*drawn : nullptr);
+    // Validated as bakeToGpu validates: where the GPU counts the axis, while it counts.
+    detail::ValidatedMesh v;
+    {
+        const CurrentContext current(gl);
+        detail::GlPhaseClock phases(options.timings);
+        v = detail::validateForBake(gl, mesh, options, phases);
+        phases.collect();
+    }
+    // The axis count's upload (if any) is drawn again by the bake.
+    return detail::bakeOnGl(gl, {v.report, v.grid}, mesh, options, v.drawn ? &*v.drawn : nullptr);
 }
 
 Sprite detail::bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options,

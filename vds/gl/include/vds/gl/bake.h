@@ -29,8 +29,8 @@ BakeMethod chooseBakeMethod(const GlContext& gl, std::string* why = nullptr);
 /// crossings are those of the GL bakers' sprites, which differ from the CPU
 /// baker's only where the rasterizer's snapping moves an edge across a
 /// texel centre. `bakeOnGl` and `bakeToGpu` with no axis set count so on a
-/// GPU (a few milliseconds; `bakeToGpu` issues the count before validating
-/// and validates on the host while the GPU draws), and on the CPU
+/// GPU (a few milliseconds; the bakes issue the count before validating and
+/// validate on the host while the GPU draws), and on the CPU
 /// (`chooseViewAxis`) on a software renderer, where that is faster; the
 /// environment variable VDS_AXIS_COUNT=gpu or =cpu chooses either, to
 /// compare them. Validates the mesh and throws like
