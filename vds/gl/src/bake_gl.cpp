@@ -126,7 +126,10 @@ bool countBesideValidation(const GlContext& gl, MeshView mesh, const BakeOptions
     }
     const bool ready = pending && out.report.bounds.lo == box->lo && out.report.bounds.hi == box->hi;
     const GlPhaseClock::Scope phase(clock, BakePhase::Axis, !ready);
-    axis = ready ? pending->finish().axis : bakeAxis(mesh, out.report, untimed, axisCounter(gl, mesh, options));
+    const std::optional<AxisChoice> counted =
+        ready ? std::optional<AxisChoice>(pending->finish())
+              : countLayersOnGl(gl, *out.drawn, out.report.bounds, options.resolution); // the mesh drawn again
+    axis = counted ? counted->axis : chooseViewAxis(mesh, out.report, options.resolution).axis; // too large for GL
     return true;
 }
 
@@ -146,7 +149,7 @@ ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOpti
         MeshFinds finds;
         {
             const GlPhaseClock::Scope phase(clock, BakePhase::Validation, false);
-            out.report = validateForBake(mesh, untimed, options.axis ? nullptr : &finds);
+            out.report = validateForBake(mesh, untimed, options.axis || gpuCount ? nullptr : &finds);
         }
         if (!options.axis) {
             const GlPhaseClock::Scope phase(clock, BakePhase::Axis, gpuCount);
