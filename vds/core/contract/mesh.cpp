@@ -73,7 +73,8 @@ Indices weldByPosition(const glm::vec3* positions, std::size_t n, unsigned threa
     while (n >= kWeldParallelVertices && 2 * parts <= std::min<std::size_t>(threads, kMaxWeldParts)) parts *= 2;
     const std::size_t chunks = (n + kWeldChunk - 1) / kWeldChunk;
     Indices first(n);
-    detail::LargeVector<std::uint64_t> hashes(n);
+    // Written before read, by the threads: their first touches fault in parallel.
+    const detail::LargeArray<std::uint64_t> hashes = detail::largeArray<std::uint64_t>(n);
     std::vector<std::size_t> at((parts + 1) * chunks + 1, 0); // per part and chunk, its place in `order`
     std::vector<std::size_t> notFiniteIn(chunks, 0);
     parallelFor(threads, n, kWeldChunk, [&](std::size_t begin, std::size_t end) {
@@ -91,7 +92,7 @@ Indices weldByPosition(const glm::vec3* positions, std::size_t n, unsigned threa
     });
     notFinite = std::accumulate(notFiniteIn.begin(), notFiniteIn.end(), std::size_t(0));
     std::partial_sum(at.begin(), at.end(), at.begin());
-    Indices order(n - notFinite);
+    const detail::LargeArray<std::uint32_t> order = detail::largeArray<std::uint32_t>(n - notFinite);
     parallelFor(threads, n, kWeldChunk, [&](std::size_t begin, std::size_t end) {
         const std::size_t chunk = begin / kWeldChunk;
         std::size_t next[kMaxWeldParts];
@@ -358,8 +359,9 @@ void countByEdges(MeshReport& r, MeshView mesh, const Indices& weld, unsigned th
     std::unique_ptr<std::atomic<std::uint8_t>[]> used(new std::atomic<std::uint8_t>[nv]());
     // Per thread and vertex: how many edge uses (corner sets) the thread
     // has for the vertex's group; then where it puts the next one.
-    std::vector<detail::LargeVector<Index>> edgeAt(threads, detail::LargeVector<Index>(nv, 0));
-    std::vector<detail::LargeVector<Index>> cornerAt(threads, detail::LargeVector<Index>(nv, 0));
+    // Zeroed by the task that counts into them: fresh pages fault (and the
+    // kernel clears them) on every thread at once, not on this one.
+    std::vector<detail::LargeVector<Index>> edgeAt(threads), cornerAt(threads);
     std::vector<Found> found(threads);
     // The parts (union-find, serial) are found beside the first pass: task
     // 0, taken first, while the other threads count the shares; only the
@@ -370,6 +372,8 @@ void countByEdges(MeshReport& r, MeshView mesh, const Indices& weld, unsigned th
             return;
         }
         const std::size_t k = task - 1;
+        edgeAt[k].assign(nv, 0);
+        cornerAt[k].assign(nv, 0);
         countItems(mesh, weld, shareOf(nt, threads, k), used.get(), edgeAt[k].data(), cornerAt[k].data(), found[k]);
     });
     // The bounds of the used vertices' positions: those of the vertices the
@@ -391,7 +395,13 @@ void countByEdges(MeshReport& r, MeshView mesh, const Indices& weld, unsigned th
     const detail::LargeArray<std::uint64_t> others = detail::largeArray<std::uint64_t>(std::size_t(cornerTotal));
     const detail::LargeArray<std::uint32_t> owners =
         partnersOut ? detail::largeArray<std::uint32_t>(std::size_t(edgeTotal)) : detail::LargeArray<std::uint32_t>();
-    if (partnersOut) partnersOut->assign(3 * nt, detail::kNoPartner);
+    if (partnersOut) {
+        partnersOut->resize(3 * nt); // unset: filled by the threads
+        parallelFor(threads, 3 * nt, kVerticesPerChunk * 16, [&](std::size_t begin, std::size_t end) {
+            std::fill(partnersOut->begin() + std::ptrdiff_t(begin), partnersOut->begin() + std::ptrdiff_t(end),
+                      detail::kNoPartner);
+        });
+    }
     const Partners partners{owners.get(), partnersOut ? partnersOut->data() : nullptr};
     parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
         placeItems(mesh, weld, shareOf(nt, threads, k), edgeAt[k].data(), cornerAt[k].data(), edges.get(), others.get(),

@@ -13,6 +13,7 @@
 #include <memory>
 #include <new>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -26,12 +27,26 @@ namespace vds::detail {
 constexpr std::size_t kHugePage = std::size_t(2) << 20;
 constexpr std::size_t kLargeBytes = std::size_t(4) << 20;
 
+/// Items made without a value are default-initialised, as `new T` makes
+/// them: a `LargeVector<int>(n)` or `resize(n)` leaves its new ints unset,
+/// so that the threads that write them first touch (and fault) the pages in
+/// parallel, not a serial zeroing pass. Give a value (`LargeVector(n, 0)`)
+/// where items must start at one.
 template <class T>
 struct LargeAllocator {
     using value_type = T;
     LargeAllocator() = default;
     template <class U>
     LargeAllocator(const LargeAllocator<U>&) noexcept {}
+
+    template <class U>
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
 
     T* allocate(std::size_t n) {
         if (n > std::size_t(-1) / sizeof(T) - kHugePage) throw std::bad_array_new_length();
