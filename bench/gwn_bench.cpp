@@ -56,8 +56,8 @@
 #include <vds/detail/parallel.h>
 
 #include "solids.h"
-#include "sprite/vpt.h"
-#include "winding/caps_tree.h"
+#include <vds/detail/vpt.h>
+#include <vds/detail/caps_tree.h>
 
 namespace {
 

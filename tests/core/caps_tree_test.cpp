@@ -23,9 +23,9 @@
 #include <vds/mesh.h>
 #include <vds/sprite.h>
 
-#include "winding/antipodal.h"
-#include "winding/caps_tree.h"
-#include "predicates/projected_mesh.h"
+#include <vds/detail/antipodal.h>
+#include <vds/detail/caps_tree.h>
+#include <vds/detail/projected_mesh.h>
 #include "solids.h"
 
 namespace vds::detail {

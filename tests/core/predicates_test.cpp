@@ -11,7 +11,7 @@
 #include <CGAL/Simple_cartesian.h>
 #include <gtest/gtest.h>
 
-#include "predicates/predicates.h"
+#include <vds/detail/predicates.h>
 
 namespace vds::detail {
 namespace {

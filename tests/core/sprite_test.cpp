@@ -14,7 +14,7 @@
 #include <vds/distance.h>
 #include <vds/error.h>
 #include <vds/exact.h>
-#include "predicates/predicates.h"
+#include <vds/detail/predicates.h>
 #include "solids.h"
 #include <vds/sprite.h>
 

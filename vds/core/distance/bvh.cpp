@@ -1,5 +1,5 @@
 // vds: the distance hierarchy's build and nearest-triangle search (bvh.h).
-#include "distance/bvh.h"
+#include <vds/detail/bvh.h>
 
 #include <algorithm>
 #include <cassert>
@@ -12,7 +12,7 @@
 #include <emmintrin.h>
 #endif
 
-#include "distance/triangle_distance.h"
+#include <vds/detail/triangle_distance.h>
 
 namespace vds::detail {
 

@@ -14,8 +14,8 @@
 #include <vds/detail/parallel.h>
 #include <vds/error.h>
 
-#include "distance/bvh.h"
-#include "distance/triangle_distance.h"
+#include <vds/detail/bvh.h>
+#include <vds/detail/triangle_distance.h>
 
 namespace vds {
 

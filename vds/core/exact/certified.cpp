@@ -16,8 +16,8 @@
 #include <vds/error.h>
 #include <vds/detail/parallel.h>
 
-#include "predicates/projected_mesh.h"
-#include "sprite/vpt.h"
+#include <vds/detail/projected_mesh.h>
+#include <vds/detail/vpt.h>
 
 namespace vds {
 namespace {

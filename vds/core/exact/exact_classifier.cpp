@@ -31,9 +31,9 @@
 #include <vds/detail/exact_access.h>
 #include <vds/detail/parallel.h>
 
-#include "winding/antipodal.h"
-#include "winding/caps_tree.h"
-#include "predicates/projected_mesh.h"
+#include <vds/detail/antipodal.h>
+#include <vds/detail/caps_tree.h>
+#include <vds/detail/projected_mesh.h>
 
 namespace vds {
 

@@ -24,11 +24,11 @@
 #include <vds/detail/sweep_plan.h>
 #include <vds/detail/tree_walk.h>
 
-#include "winding/caps_tree.h"
-#include "sprite/sprite_winding.h"
-#include "winding/antipodal.h"
-#include "predicates/projected_mesh.h"
-#include "sprite/vpt.h"
+#include <vds/detail/caps_tree.h>
+#include <vds/detail/sprite_winding.h>
+#include <vds/detail/antipodal.h>
+#include <vds/detail/projected_mesh.h>
+#include <vds/detail/vpt.h>
 
 namespace vds {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/file_bytes.h"
+#include <vds/detail/file_bytes.h>
 
 #include <fcntl.h>
 #include <sys/stat.h>

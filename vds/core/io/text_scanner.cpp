@@ -1,4 +1,4 @@
-#include "io/text_scanner.h"
+#include <vds/detail/text_scanner.h>
 
 #include <charconv>
 #include <cmath>

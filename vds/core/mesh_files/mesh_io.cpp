@@ -9,9 +9,9 @@
 
 #include <vds/error.h>
 
-#include "io/file_bytes.h"
-#include "mesh_files/mesh_readers.h"
-#include "io/text_scanner.h"
+#include <vds/detail/file_bytes.h>
+#include <vds/detail/mesh_readers.h>
+#include <vds/detail/text_scanner.h>
 
 namespace vds {
 namespace detail {

@@ -11,11 +11,11 @@
 // The text is read in one pass with a pointer, token by token, without
 // splitting it into lines first: loading is mostly this loop and the number
 // conversions (std::from_chars), so it runs near their speed.
-#include "mesh_files/mesh_readers.h"
+#include <vds/detail/mesh_readers.h>
 
 #include <limits>
 
-#include "io/text_scanner.h"
+#include <vds/detail/text_scanner.h>
 
 namespace vds::detail {
 namespace {

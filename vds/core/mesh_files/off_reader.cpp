@@ -7,11 +7,11 @@
 // vertices is skipped and counted). '#' starts a comment. 4OFF, nOFF and
 // binary OFF are refused. Exactly the declared vertices and faces must
 // follow.
-#include "mesh_files/mesh_readers.h"
+#include <vds/detail/mesh_readers.h>
 
 #include <limits>
 
-#include "io/text_scanner.h"
+#include <vds/detail/text_scanner.h>
 
 namespace vds::detail {
 namespace {

@@ -8,14 +8,14 @@
 // it before anything is allocated, and the data must end where they say. An
 // ascii file laid out one element per line may hold more numbers on a line
 // than its element declares (onePerLine).
-#include "mesh_files/mesh_readers.h"
+#include <vds/detail/mesh_readers.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
 
-#include "io/text_scanner.h"
+#include <vds/detail/text_scanner.h>
 
 namespace vds::detail {
 namespace {

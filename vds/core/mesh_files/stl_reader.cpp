@@ -6,12 +6,12 @@
 // past. STL has no shared vertices: every corner is stored with each of its
 // triangles, so corners are welded by exact position (+0 and -0 alike), in
 // order of first appearance; a binary file and its ASCII twin load alike.
-#include "mesh_files/mesh_readers.h"
+#include <vds/detail/mesh_readers.h>
 
 #include <cmath>
 #include <cstring>
 
-#include "io/text_scanner.h"
+#include <vds/detail/text_scanner.h>
 
 #include <vds/error.h>
 

@@ -1,7 +1,7 @@
 // vds: the exact fallbacks of the orientation predicates (see predicates.h
 // for the argument): Shewchuk 1997, "Adaptive Precision Floating-Point
 // Arithmetic and Fast Robust Geometric Predicates", Grow-Expansion.
-#include "predicates/predicates.h"
+#include <vds/detail/predicates.h>
 
 #include <cassert>
 

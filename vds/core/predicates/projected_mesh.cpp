@@ -1,4 +1,4 @@
-#include "predicates/projected_mesh.h"
+#include <vds/detail/projected_mesh.h>
 
 #include <algorithm>
 #include <cmath>

@@ -9,8 +9,8 @@
 
 #include <vds/detail/bake_common.h>
 #include <vds/detail/edge_partners.h>
-#include "winding/antipodal.h"
-#include "sprite/layer_count.h"
+#include <vds/detail/antipodal.h>
+#include <vds/detail/layer_count.h>
 #include <vds/detail/parallel.h>
 
 namespace vds {

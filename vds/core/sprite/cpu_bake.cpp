@@ -16,7 +16,7 @@
 #include <vds/detail/parallel.h>
 
 #include <vds/detail/bake_common.h>
-#include "predicates/projected_mesh.h"
+#include <vds/detail/projected_mesh.h>
 
 namespace vds {
 

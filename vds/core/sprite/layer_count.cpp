@@ -46,7 +46,7 @@
 // once for the three axes), a second counts each band's steps into its
 // arrays and takes the rows' largest sums, bands in parallel. The counts are
 // sums and maxima of exact integers: the same for any number of threads.
-#include "sprite/layer_count.h"
+#include <vds/detail/layer_count.h>
 
 #include <algorithm>
 #include <array>
@@ -61,7 +61,7 @@
 #include <vds/detail/edge_partners.h>
 #include <vds/detail/parallel.h>
 
-#include "predicates/projected_mesh.h"
+#include <vds/detail/projected_mesh.h>
 
 namespace vds::detail {
 namespace {

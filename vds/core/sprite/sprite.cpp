@@ -20,9 +20,9 @@
 #include <vds/detail/aligned_axes.h>
 #include <vds/detail/parallel.h>
 
-#include "sprite/sprite_winding.h"
-#include "winding/antipodal.h"
-#include "sprite/vpt.h"
+#include <vds/detail/sprite_winding.h>
+#include <vds/detail/antipodal.h>
+#include <vds/detail/vpt.h>
 
 namespace vds {
 

@@ -8,7 +8,7 @@
 
 #include <vds/error.h>
 
-#include "sprite/vpt.h"
+#include <vds/detail/vpt.h>
 
 namespace vds {
 

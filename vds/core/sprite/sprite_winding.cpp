@@ -2,7 +2,7 @@
 // Martens, Trettner & Bessmeltsev, SIGGRAPH 2026): the integer term counted
 // in the sprite's columns, the boundary term by the boundary's caps
 // (winding/caps_tree.h) or the per-edge sum (winding/antipodal.h).
-#include "sprite/sprite_winding.h"
+#include <vds/detail/sprite_winding.h>
 
 #include <algorithm>
 #include <cassert>
@@ -15,9 +15,9 @@
 #include <vds/error.h>
 #include <vds/detail/parallel.h>
 
-#include "sprite/vpt.h"
-#include "winding/antipodal.h"
-#include "winding/caps_tree.h"
+#include <vds/detail/vpt.h>
+#include <vds/detail/antipodal.h>
+#include <vds/detail/caps_tree.h>
 
 namespace vds::detail {
 

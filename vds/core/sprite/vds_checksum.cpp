@@ -1,6 +1,6 @@
 // The .vds file's checksum (docs/format.md, "Checksum"): FNV-1a over every
 // field of the sprite as the file's format version lays them out.
-#include "sprite/vds_checksum.h"
+#include <vds/detail/vds_checksum.h>
 
 #include <cstring>
 #include <string>

@@ -10,8 +10,8 @@
 
 #include <vds/detail/atomic_file.h>
 
-#include "io/file_bytes.h"
-#include "sprite/vds_checksum.h"
+#include <vds/detail/file_bytes.h>
+#include <vds/detail/vds_checksum.h>
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -1,7 +1,7 @@
 // vds: the boundary term of the Antipodal split of the generalized winding
 // number (Martens, Trettner & Bessmeltsev, SIGGRAPH 2026, arXiv 2605.01536),
 // for sprites, the exact classifier and the voxelizers; see antipodal.h.
-#include "winding/antipodal.h"
+#include <vds/detail/antipodal.h>
 
 #include <algorithm>
 #include <cassert>

@@ -2,7 +2,7 @@
 // boundary loops (see caps_tree.h); the Antipodal split is Martens,
 // Trettner & Bessmeltsev 2026, the tree expansion Barill, Dickson, Schmidt,
 // Levin & Jacobson 2018, section 3.
-#include "winding/caps_tree.h"
+#include <vds/detail/caps_tree.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,8 +13,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "winding/antipodal.h"
-#include "winding/caps_math.h"
+#include <vds/detail/antipodal.h>
+#include <vds/detail/caps_math.h>
 #include <vds/detail/tree_walk.h>
 
 namespace vds::detail {

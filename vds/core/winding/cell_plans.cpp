@@ -1,6 +1,6 @@
 // vds: a grid cell's plan: the loops far from the cell collapsed into the
 // range of their caps' -w over it, the near ones refined per query.
-#include "winding/caps_tree.h"
+#include <vds/detail/caps_tree.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,8 +10,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "winding/antipodal.h"
-#include "winding/caps_math.h"
+#include <vds/detail/antipodal.h>
+#include <vds/detail/caps_math.h>
 #include <vds/detail/tree_walk.h>
 
 namespace vds::detail {

@@ -1,6 +1,6 @@
 // vds: the chain tree labels refine (BoundaryCaps::decide): its build, a
 // node taken by its chord and expansion, and the decide-or-refine loop.
-#include "winding/caps_tree.h"
+#include <vds/detail/caps_tree.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "winding/antipodal.h"
-#include "winding/caps_math.h"
+#include <vds/detail/antipodal.h>
+#include <vds/detail/caps_math.h>
 #include <vds/detail/tree_walk.h>
 
 namespace vds::detail {

@@ -1,7 +1,7 @@
 // vds: the tree of the boundary's edges (loops, then each loop's edges)
 // that bounds how far the boundary term may drift over a move: reach() and
 // driftWithin(), which the grid of bounds widens its ranges by.
-#include "winding/edge_tree.h"
+#include <vds/detail/edge_tree.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "winding/antipodal.h"
-#include "winding/caps_math.h"
+#include <vds/detail/antipodal.h>
+#include <vds/detail/caps_math.h>
 #include <vds/detail/tree_walk.h>
 
 namespace vds::detail {

@@ -24,7 +24,7 @@
 //     (decidePlanned); kPlanMisses net misses turn the cell NoRange.
 //  7. Else decide(): the chain tree refined until the value is farther
 //     from 1/2 than its bound, or the per-edge sum where that costs less.
-#include "winding/caps_tree.h"
+#include <vds/detail/caps_tree.h>
 
 #include <algorithm>
 #include <cmath>
@@ -32,8 +32,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "winding/antipodal.h"
-#include "winding/caps_math.h"
+#include <vds/detail/antipodal.h>
+#include <vds/detail/caps_math.h>
 #include <vds/detail/tree_walk.h>
 
 namespace vds::detail {

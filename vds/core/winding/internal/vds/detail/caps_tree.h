@@ -83,10 +83,10 @@
 
 #include <vds/mesh.h>
 
-#include "predicates/projected_mesh.h"
+#include <vds/detail/projected_mesh.h>
 #include <vds/detail/chain_tree.h>
-#include "winding/edge_tree.h"
-#include "winding/range_grid.h"
+#include <vds/detail/edge_tree.h>
+#include <vds/detail/range_grid.h>
 
 namespace vds::detail {
 

@@ -49,7 +49,7 @@
 #include <vds/axis.h>
 #include <vds/classify.h>
 
-#include "predicates/predicates.h"
+#include <vds/detail/predicates.h>
 
 namespace vds::detail {
 
