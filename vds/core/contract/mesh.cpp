@@ -14,6 +14,7 @@
 #include <vds/detail/edge_partners.h>
 #include <vds/detail/large_vector.h>
 #include <vds/detail/parallel.h>
+#include <vds/detail/pi.h>
 #include <vds/detail/solid_angle.h>
 #include <vds/error.h>
 #include <vds/rule.h>
@@ -586,7 +587,7 @@ bool allInOnePlane(MeshView mesh, const Box& bounds, const TriangleSums& sums) {
 /// kProbeBudget triangle-point pairs (a part left unasked is not counted).
 std::size_t countInsideOutParts(MeshView mesh, const TriangleParts& partOf,
                                 const std::vector<std::uint8_t>& closed, const TriangleSums& sums) {
-    constexpr double kRounding = 1e-6, kOffset = 1e-3, kFourPi = 4.0 * 3.14159265358979323846;
+    constexpr double kRounding = 1e-6, kOffset = 1e-3;
     constexpr std::size_t kProbeBudget = std::size_t(1) << 27;
     std::vector<std::uint32_t> candidates;
     for (std::size_t p = 0; p < sums.volume.size(); ++p)

@@ -1,4 +1,5 @@
-// vds internal: pi, once, for the solid angles of the winding number and
+// vds internal: pi, once, for the solid angles of the winding number, the
+// mesh check's inside-out parts
 // anything else in the library that measures angles.
 #pragma once
 
