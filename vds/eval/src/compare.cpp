@@ -19,6 +19,7 @@
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
+#include <vds/mesh_check.h>
 #include <vds/sprite.h>
 #include <vds/voxel/representation.h>
 

@@ -7,6 +7,7 @@
 
 #include <vds/error.h>
 #include <vds/gl/bake.h>
+#include <vds/mesh_check.h>
 
 #include "bake_gl.h"
 

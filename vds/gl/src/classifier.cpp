@@ -1,12 +1,11 @@
 // vds: the GPU sprite behind the classify contract (<vds/gl/classifier.h>).
 #include <vds/gl/classifier.h>
 
-#include <vds/detail/aligned_axes.h>
 
 namespace vds {
 
 GpuSpriteClassifier::GpuSpriteClassifier(const GlContext& gl, const Sprite& sprite)
-    : gl_(gl), sweepsByColumns_(detail::sweepsByColumns(sprite.grid)),
+    : gl_(gl), sweepsByColumns_(sweepsByColumns(sprite.grid)),
       summary_("sprite-gpu " + std::to_string(sprite.width()) + " x " + std::to_string(sprite.height()) + " x " +
                std::to_string(sprite.depthComplexity) + " along " + toString(sprite.grid.axis)) {
     const CurrentContext current(gl_);

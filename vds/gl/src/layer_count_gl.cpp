@@ -17,6 +17,7 @@
 #include <vds/gl/bake.h>
 #include <vds/gl/mesh.h>
 #include <vds/gl/shader.h>
+#include <vds/mesh_check.h>
 
 namespace vds::detail {
 

@@ -8,6 +8,7 @@
 
 #include <vds/error.h>
 #include <vds/gl/shader.h>
+#include <vds/mesh_check.h>
 
 #include "gl_util.h"
 

@@ -76,8 +76,8 @@
 //     an OpenMesh mesh, viewed in place where the layout is vds's own and
 //     copied otherwise (<vds/interop/adapted_mesh.h>); header-only, bring
 //     your own Eigen or OpenMesh. Python takes numpy arrays.
-//   MeshReport validateMesh(mesh)
-//     the one account of a mesh: boundary, non-manifold, odd and flipped
+//   MeshReport validateMesh(mesh)                      <vds/mesh_check.h>
+//     (the report itself: <vds/mesh.h>) the one account of a mesh: boundary, non-manifold, odd and flipped
 //     edges, inside-out parts, the generalized winding number's boundary
 //     (`windingBoundaryText(n)` its words), degenerate triangles, non-finite
 //     vertices, bad indices; `closed()` says whether the mesh bounds a solid
@@ -95,6 +95,8 @@
 //     caller has, named only where it has them);
 //     `flat()` / `requireVolume(report, name)` the one for a flat sheet,
 //     which bounds no volume (bake, classify, voxelize, compare refuse it).
+//   MeshValidation(mesh)   validation that keeps what it found beside its
+//     `report()`, for `chooseViewAxis(mesh, validation, resolution)`.
 //   Box meshBounds(mesh)    the axis-aligned bounds.
 //   loadPoints(path) / parsePoints(data, size, PointFormat, name)
 //     points from text, PLY vertices or .npy.
@@ -189,7 +191,8 @@
 //   bool Sprite::contains(p, rule)   one point; points outside the sprite's
 //     box are outside. Errors lie within about half a texel diagonal of the
 //     surface (docs/accuracy.md). Sprite::transform(mat4) moves it without
-//     baking again.
+//     baking again; `sweepsByColumns(sprite.grid)` says whether grids are
+//     still swept through it column by column (the fast occupancy path).
 //   classify(sprite, PointsView, labels, ClassifyOptions, SpriteQueryOptions)
 //     the engine: batches on threads; the same answers as `contains`.
 //     QueryLayout::Auto builds a 16-byte-a-column table for large batches;
@@ -210,6 +213,9 @@
 //   occupancy(classifier, grid, cells, options)  any method.
 //   readNpy / parseNpy / npyPoints / npyHeader / writeNpy / NpyArray:
 //     numpy .npy in and out                                <vds/npy.h>
+//   AtomicFile(target): every output is written to a temporary file beside
+//     its target and renamed over it by `commit()`, so a failed run leaves
+//     the old file or none, never half of one.           <vds/atomic_file.h>
 //
 // ---- 7. Exact answers ---------------------------------------------------------
 //
@@ -334,6 +340,7 @@
 //   once the process exits.
 #pragma once
 
+#include <vds/atomic_file.h>
 #include <vds/axis.h>
 #include <vds/bake.h>
 #include <vds/certified.h>
@@ -344,6 +351,7 @@
 #include <vds/exact.h>
 #include <vds/grid.h>
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 #include <vds/occupancy.h>

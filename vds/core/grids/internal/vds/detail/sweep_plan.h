@@ -4,7 +4,7 @@
 // construction.
 //
 // With a sprite whose texture s, t and r each follow one world axis (depth
-// growing along the world axis `a` r follows: detail::sweepsByColumns), a grid column along `a` falls in one
+// growing along the world axis `a` r follows: sweepsByColumns), a grid column along `a` falls in one
 // texel column, and a cell's texture depth depends on its slice alone:
 // one depth per slice, shared by every column, increasing; cells with
 // depth outside [0, 1] are outside.

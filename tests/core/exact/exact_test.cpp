@@ -12,7 +12,6 @@
 
 #include <vds/bake.h>
 
-#include <vds/detail/exact_access.h>
 
 #include <vds/error.h>
 #include "solids.h"
@@ -83,7 +82,7 @@ void expectAgreement(const TriangleMesh& mesh, const std::vector<glm::vec3>& poi
             for (const auto& p : points) {
                 const bool fast = exact.contains(p, rule);
                 inside += fast;
-                if (fast != vds::detail::ExactAccess::containsBruteForce(exact, p, rule)) {
+                if (fast != exact.containsByEveryTriangle(p, rule)) {
                     if (++mismatches <= 5)
                         ADD_FAILURE() << mesh.name << " axis " << vds::toString(axis) << " rule " << vds::toString(rule)
                                       << ": disagree at (" << p.x << ", " << p.y << ", " << p.z << ")";
@@ -251,7 +250,7 @@ TEST(ExactClassifier, RaysThroughSharedEdgesCountOneCrossingPerSheet) {
                 q[p.z] = depth;
                 const int expected = std::fabs(depth) < 1.0f ? 1 : 0;
                 EXPECT_EQ(exact.winding(q), expected) << vds::toString(axis) << " u " << u << " depth " << depth;
-                EXPECT_EQ(vds::detail::ExactAccess::containsBruteForce(exact, q, Rule::Winding), expected == 1);
+                EXPECT_EQ(exact.containsByEveryTriangle(q, Rule::Winding), expected == 1);
             }
         }
     }
@@ -322,7 +321,7 @@ TEST(ExactClassifier, FarAndNonFinitePointsAreOutside) {
     for (const glm::vec3 p : {glm::vec3(5, 0, 0), glm::vec3(0, 0, -5), glm::vec3(0, 0, inf), glm::vec3(nan, 0, 0),
                               glm::vec3(0, nan, 0), glm::vec3(0, 0, nan), glm::vec3(1e30f, -1e30f, 0)}) {
         EXPECT_EQ(exact.winding(p), 0);
-        EXPECT_FALSE(vds::detail::ExactAccess::containsBruteForce(exact, p, Rule::Winding));
+        EXPECT_FALSE(exact.containsByEveryTriangle(p, Rule::Winding));
     }
 }
 
@@ -336,7 +335,7 @@ TEST(ExactClassifier, TrianglesParallelToTheAxisAreNeverCrossed) {
         const ExactClassifier exact(wall, axis);
         for (const glm::vec3 p : {glm::vec3(0, 0.5f, 0.5f), glm::vec3(0, 0.25f, 2), glm::vec3(0, 2, 0.25f)}) {
             EXPECT_EQ(exact.winding(p), 0);
-            EXPECT_FALSE(vds::detail::ExactAccess::containsBruteForce(exact, p, Rule::Winding));
+            EXPECT_FALSE(exact.containsByEveryTriangle(p, Rule::Winding));
         }
     }
     const ExactClassifier alongX(wall, Axis::X);
@@ -376,7 +375,7 @@ TEST(ExactClassifier, BatchedClassifyMatchesBruteForce) {
         exact.classify({points.data(), points.size()}, labels.data(), {rule, 2});
         std::size_t inside = 0;
         for (std::size_t k = 0; k < points.size(); ++k) {
-            ASSERT_EQ(labels[k], vds::detail::ExactAccess::containsBruteForce(exact, points[k], rule) ? 1 : 0) << k << " " << toString(rule);
+            ASSERT_EQ(labels[k], exact.containsByEveryTriangle(points[k], rule) ? 1 : 0) << k << " " << toString(rule);
             inside += labels[k];
         }
         EXPECT_GT(inside, points.size() / 10);

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include <vds/error.h>
+#include <vds/mesh_check.h>
 
 #include <vds/detail/bake_common.h>
 #include <vds/detail/edge_partners.h>
@@ -112,6 +113,11 @@ AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution, unsigned thre
 
 AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads) {
     return detail::chooseViewAxis(mesh, report, resolution, threads, detail::MeshFinds());
+}
+
+AxisChoice chooseViewAxis(MeshView mesh, const MeshValidation& validation, std::uint32_t resolution,
+                          unsigned threads) {
+    return detail::chooseViewAxis(mesh, validation.report(), resolution, threads, validation.finds());
 }
 
 AxisChoice detail::chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads,

@@ -1,5 +1,5 @@
 // vds internal: what validation finds of a mesh that the axis count
-// (sprite/layer_count.cpp) would otherwise find again: the partners of its
+// (bake/layer_count.cpp) would otherwise find again: the partners of its
 // edges (validation's grouping of edges) and its triangles' facings along
 // x, y and z (validation's pass over the triangles' corners).
 #pragma once
@@ -9,7 +9,7 @@
 
 #include <vds/detail/large_vector.h>
 
-#include <vds/mesh.h>
+#include <vds/mesh_check.h>
 
 namespace vds::detail {
 
@@ -43,3 +43,6 @@ struct MeshFinds {
 MeshReport validateMesh(MeshView mesh, unsigned threads, MeshFinds& finds);
 
 } // namespace vds::detail
+
+/// The public `MeshValidation`'s finds are the internal ones.
+struct vds::MeshValidation::Finds : detail::MeshFinds {};

@@ -15,6 +15,7 @@
 
 #include <vds/error.h>
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include "solids.h"
 

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/sprite.h>
 
 namespace vds {
@@ -154,6 +155,11 @@ AxisChoice chooseViewAxis(MeshView mesh, std::uint32_t resolution = 1024, unsign
 /// The same for a mesh that `validateMesh` gave `report` for and that passed
 /// `requireUsable` and `requireVolume` (no second validation).
 AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads = 0);
+/// The same, reusing what `validation` (of this `mesh`) found beside its
+/// report: the edges are not grouped a second time, nor the facings found.
+/// The report must have passed `requireUsable` and `requireVolume`.
+AxisChoice chooseViewAxis(MeshView mesh, const MeshValidation& validation, std::uint32_t resolution,
+                          unsigned threads = 0);
 
 /// The CPU baker: the sprite the GL bakers make, by exact ray casting at
 /// texel centres (what every entry point runs for `BakeMethod::Cpu`). A column holds

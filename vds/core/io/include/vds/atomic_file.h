@@ -1,4 +1,4 @@
-// vds: write to a temporary file beside the target, then rename it into place,
+// vds: outputs written whole or not at all: to a temporary file beside the target, then renamed into place,
 // so an output is never left half-written (a crash leaves the old file or none).
 // What the target already is decides how: a regular file (or none) is
 // replaced by the rename; a symbolic link is written through, its final
