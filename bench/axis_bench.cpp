@@ -14,6 +14,7 @@
 
 #include <vds/bake.h>
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include "solids.h"
 

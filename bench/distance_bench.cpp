@@ -28,6 +28,7 @@
 #include <vds/distance.h>
 #include <vds/error.h>
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 
 #include "points.h"

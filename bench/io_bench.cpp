@@ -33,6 +33,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 
 namespace {

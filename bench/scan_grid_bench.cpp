@@ -18,6 +18,7 @@
 
 #include <vds/error.h>
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/occupancy.h>
 
 #include "solids.h"

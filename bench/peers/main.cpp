@@ -53,6 +53,7 @@
 #include <vds/error.h>
 #include <vds/exact.h>
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include <vds/occupancy.h>
 #include <vds/detail/parallel.h>
