@@ -19,7 +19,7 @@
 #include <vds/sprite.h>
 #include "solids.h"
 
-#include "../support/points.h"
+#include "points.h"
 
 namespace vds {
 namespace {

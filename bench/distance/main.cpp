@@ -35,7 +35,7 @@
 #include "solids.h"
 
 #if defined(VDS_DISTANCE_CGAL) || defined(VDS_DISTANCE_EMBREE) || defined(VDS_DISTANCE_LIBIGL)
-#include "peers/distance_peer.h"
+#include "distance_peer.h"
 #endif
 
 namespace {

@@ -414,7 +414,7 @@ void classifyTable(const Settings& set, vds::GlContext& gl, const std::vector<Be
     std::printf("CPU: vds::classify on 1 and %u threads. GPU host -> host: GpuClassifier from and to host arrays, the\n"
                 "transfers included (HostTransfer::Auto; `mapped`: HostTransfer::Mapped). GPU resident: points and labels in GL buffers (wall time with glFinish, and the\n"
                 "GL timer), best of %u, each after %.1f s of warm-up. `plain`: the plainest GL kernel over the same\n"
-                "buffers in the same run (bench/plain_kernels.h; GL timer where there is one), and vds / plain.\n"
+                "buffers in the same run (bench/vds/plain_kernels.h; GL timer where there is one), and vds / plain.\n"
                 "`exact`: the exact classifier on the first %zu random points, %u threads;\n"
                 "`VDS vs exact`: share of those points where the sprite answers otherwise (all near the surface).\n\n",
                 threads, set.classifyRuns, set.warmUp, std::min(n, set.exactPoints), threads);
@@ -497,7 +497,7 @@ std::vector<std::uint8_t> readFormLabels(GLuint labels, std::size_t n, vds::benc
     return std::vector<std::uint8_t>(wide.begin(), wide.end());
 }
 
-// The plain parity kernel in each form (bench/plain_kernels.h), random and
+// The plain parity kernel in each form (bench/vds/plain_kernels.h), random and
 // coherent points resident in GL, GL timer, best of the runs after the
 // warm-up: which of the columns' reads and points an invocation holds GL
 // below a plain CUDA kernel on random points. Each form's labels against
@@ -551,7 +551,7 @@ void gwnTable(const Settings& set, vds::GlContext& gl, const std::vector<BenchMe
     std::printf("\n## Generalized winding number on the GPU: %zu points a mesh, sprites at %u (G points/s)\n\n", n,
                 set.gwnResolution);
     std::puts("Open meshes only. Points uniform in the box grown by 10%, resident in GL; best of the runs after the");
-    std::puts("warm-up. `brute force`: the plain kernel summing every boundary edge for every point (bench/plain_kernels.h),");
+    std::puts("warm-up. `brute force`: the plain kernel summing every boundary edge for every point (bench/vds/plain_kernels.h),");
     std::puts("and its edge terms/s. `differ`: labels unlike the CPU's (float against double, near 1/2). Occupancy:");
     std::printf("%u^3 cells over the box, G cells/s, generalized winding against parity.\n\n", set.gwnDims);
     std::puts("| mesh | w x h x d (axis; CPU count's axis) | boundary edges | vds | brute force | vds / brute | "

@@ -1,4 +1,4 @@
-// Test support: reproducible random points.
+// vds: reproducible random points, for the tests and the benchmarks.
 #pragma once
 
 #include <cstdint>
