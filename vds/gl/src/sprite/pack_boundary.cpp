@@ -1,6 +1,6 @@
 // vds: a boundary's chain tree (<vds/detail/chain_tree.h>) packed in the
 // std430 layout the GLSL include reads (boundary_loops.h).
-#include "boundary_loops.h"
+#include <vds/gl/detail/pack_boundary.h>
 
 #include <algorithm>
 #include <cstring>

@@ -8,7 +8,8 @@
 #include <vds/error.h>
 #include <vds/gl/bake.h>
 
-#include "bake_gl.h"
+#include <vds/gl/detail/bake_setup.h>
+#include <vds/gl/detail/layer_count.h>
 
 namespace vds {
 
@@ -84,7 +85,7 @@ Sprite Baker::rebake() {
         setup.grid = makeGrid(box, *options_.axis, options_.resolution);
     }
     if (!gl_) return detail::bakeCpu(setup, mesh_, options_);
-    return detail::bakeOnGl(*gl_, setup, mesh_, options_);
+    return detail::bakeOnGl(*gl_, setup, mesh_, options_, {});
 }
 
 } // namespace vds
