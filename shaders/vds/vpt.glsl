@@ -280,7 +280,7 @@ bool vdsNodeTaken(vec4 ball, float errorScale, vec3 q) {
 // The boundary term at q (the bake's frame, (s, t, r) order): the sum over
 // the edges of their solid angles, over 4 pi. With the chain tree
 // (GpuSprite::setBoundaryUniforms sets nodeCount; C++ caps_tree.h,
-// BoundaryCaps::chains, and boundary_loops.h for the records): a node's
+// BoundaryCaps::chains, and vds/gl/src/sprite pack_boundary.h for the records): a node's
 // edges run from P to Q, closed by its chord Q -> P into a fan in its
 // ball (whole loops have no chord). Where q's ray towards -r misses the
 // ball, the ray crosses no fan, so the node's edges' angles sum to the
