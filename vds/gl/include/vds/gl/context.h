@@ -144,9 +144,12 @@ struct NativeContext {
     unsigned long glxDraw = 0, glxRead = 0; ///< GLX drawables (XIDs)
     void* eglDraw = nullptr;
     void* eglRead = nullptr;
+    /// The context current on the calling thread (`Api::None` where none is).
     static NativeContext current() noexcept;
-    /// Makes this context current again (or, for None, releases the current one).
+    /// Makes this context current again (or, for None, releases the current
+    /// one); false where the API refuses.
     bool makeCurrent() const noexcept;
+    /// The same context, whatever its drawables.
     bool same(const NativeContext& o) const noexcept { return api == o.api && context == o.context; }
 };
 
