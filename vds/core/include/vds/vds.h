@@ -157,10 +157,11 @@
 //     without GL: `chooseBakeMethod([gl,] &why)`),
 //     progress callback, timings. Unusable meshes throw InvalidMesh; open or
 //     non-manifold ones are baked and marked `SolidStatus::Open`.
-//   Sprite bakeOnGl(gl, mesh, options)                     <vds/gl/bake.h>
+//   Sprite bakeOnGl(gl, mesh, options[, glOptions])        <vds/gl/bake.h>
 //     the GL methods (Lists: fragment lists; Peel: depth peeling) on the
 //     caller's context; the same layers as the CPU baker up to the
-//     rasterizer's sub-texel snapping.
+//     rasterizer's sub-texel snapping. GlBakeOptions: the GL bakers' own
+//     knobs (maxListNodes, the fragment lists' node pool).
 //   chooseViewAxisOnGl(gl, mesh, resolution)  the auto axis counted in the
 //                        GL bakers' own raster on a GPU.  <vds/gl/bake.h>
 //   Baker(mesh, options)  a deforming mesh: validated once, then
@@ -251,10 +252,13 @@
 //                        library's own, `GlContext()` (NVIDIA's EGL device,
 //                        Mesa's llvmpipe without a GPU); GlUnavailable with
 //                        the reasons when none can be had. `glAvailable()`
-//                        is the cheap probe, `glUsable()` says whether a
-//                        context is current, GlInfo names the renderer,
+//                        is the cheap probe, GlInfo names the renderer,
+//                        GlLimits what GL allows there (asked once a context),
 //                        `checkGl(what)` turns a GL error into GlError.
-//                        CurrentContext scopes restore the caller's context.
+//                        CurrentContext scopes restore the caller's context
+//                        (a NativeContext: the EGL or GLX handles); a
+//                        ContextStamp is what a GL object remembers of its
+//                        context and thread.
 //                        The rules (how a context is passed, what is
 //                        restored) head <vds/gl/context.h>.
 //   GlObject (Buffer, Texture, Framebuffer, VertexArray, Query, Shader,
@@ -285,7 +289,7 @@
 //   uploadDistanceTexture(grid, cells)  a signed distance grid as a 3D
 //                        texture for `vdsDistance` in vpt.glsl (within half
 //                        a cell's diagonal of the exact distance). <vds/gl/distance.h>
-//   GpuBake bakeToGpu(gl, mesh, options, parts)  a GpuSprite straight from
+//   GpuBake bakeToGpu(gl, mesh, options, parts[, glOptions])  a GpuSprite straight from
 //                        the fragment-list bake, nothing read back. <vds/gl/bake.h>
 //   setStyleUniforms(program, solids, StyleOptions)  the uniforms of
 //                        shaders/vds/styles.glsl (clip, lens and styles bound
@@ -322,7 +326,7 @@
 //     refraction (RefractionMethod, RefractionView, RefractionParameters,
 //     RefractionImage, refractionColour, refractOnCpu, refractExactly,
 //     GpuRefractionCaster, renderRefraction)        <vds/voxel/refraction.h>;
-//     both casters upload through one base, detail::GpuCaster
+//     both casters upload through one base, voxel::GpuCaster
 //     (a GpuSlicemap, a sprite's texture or a 3D texture) <vds/voxel/caster.h>
 //
 // ---- 10. Measuring (vds::eval) ------------------------------------------------

@@ -98,7 +98,7 @@ struct BakeTimings {
     double wallSeconds = 0.0;        ///< the whole call
     std::string renderer;            ///< GL_RENDERER of the context that baked; empty for the CPU baker
     std::uint32_t bands = 0;         ///< fragment lists: row bands baked (1: the whole image in one pass)
-    std::uint64_t listNodes = 0;     ///< fragment lists: the node pool's final capacity (see maxListNodes)
+    std::uint64_t listNodes = 0;     ///< fragment lists: the node pool's final capacity (see GlBakeOptions::maxListNodes, <vds/gl/bake.h>)
     std::uint64_t crossings = 0;     ///< crossings in the sprite
 
     Phase& operator[](BakePhase p) { return phases[std::size_t(p)]; }
@@ -117,10 +117,6 @@ struct BakeOptions {
     std::optional<Axis> axis;
     BakeMethod method = BakeMethod::Auto;
     std::string sourceName;                 ///< recorded in the sprite (e.g. the mesh file name)
-    /// Fragment lists: limit of the node pool, which holds the crossings past
-    /// the first two of each column; 0 = as many as one GL buffer may hold.
-    /// When a pass needs more, the image is baked in row bands.
-    std::uint64_t maxListNodes = 0;
     /// Called now and then with a short description of the work in progress.
     std::function<void(const std::string&)> progress;
     /// If set, reset and filled with the phase times of this bake (see
@@ -172,8 +168,7 @@ AxisChoice chooseViewAxis(MeshView mesh, const MeshValidation& validation, std::
 /// answers are those of a surface, not a solid); a closed, oriented mesh
 /// with non-manifold edges bounds a solid and is marked
 /// `SolidStatus::Closed`. Throws `InvalidArgument` for a resolution out of
-/// range; `options.maxListNodes` is
-/// ignored. Runs on every hardware thread; `options.progress` is called on
+/// range. Runs on every hardware thread; `options.progress` is called on
 /// the calling thread. Fills `options.timings` (validation, upload = indexing
 /// the triangles, raster = casting the rays, assembly) if set.
 Sprite bakeCpu(MeshView mesh, const BakeOptions& options);

@@ -41,11 +41,6 @@
 
 namespace vds {
 
-namespace detail {
-class CopyCrew;
-struct GpuSpriteAccess;
-} // namespace detail
-
 /// Which forms of a sprite a `GpuSprite` keeps in GL.
 enum class GpuSpriteParts : std::uint8_t {
     Both,        ///< the texture and the columns (the default)
@@ -64,6 +59,17 @@ public:
     /// Uploads `sprite` to the context current on the calling thread, of any
     /// origin. Throws `GlError` "no GL context current" when there is none.
     explicit GpuSprite(const Sprite& sprite, GpuSpriteParts parts = GpuSpriteParts::Both);
+    /// A sprite of GL objects made elsewhere in the context current on the
+    /// calling thread (`bakeToGpu` builds its sprites so), which it takes
+    /// over: the 3D texture and the columns, laid out as `texture()`,
+    /// `offsets()` and `crossings()` say (either form may be empty),
+    /// `crossingCount` crossings, `size` as `size()`, placed as `grid` says;
+    /// the baked mesh's `status` and boundary edges (as
+    /// `Sprite::boundaryEdges`, uploaded here). Throws `GlError` "no GL
+    /// context current" when there is none.
+    static GpuSprite adopt(Texture texture, Buffer offsets, Buffer crossings, std::uint64_t crossingCount,
+                           glm::uvec3 size, const SpriteGrid& grid, SolidStatus status,
+                           const std::vector<glm::vec3>& boundaryEdges);
     ~GpuSprite();
     GpuSprite(GpuSprite&&) noexcept = default;
     GpuSprite& operator=(GpuSprite&&) noexcept;
@@ -138,10 +144,9 @@ public:
                              GLuint unit) const;
 
 private:
-    friend struct detail::GpuSpriteAccess;
     void upload(const Sprite& sprite, GpuSpriteParts parts);
     void releaseIfForeign() noexcept;
-    detail::ContextStamp context_;
+    ContextStamp context_;
     Texture texture_;
     Buffer offsets_;
     Buffer crossings_;
@@ -250,7 +255,7 @@ private:
     void enter(const char* what) const;
 
     const GlContext* gl_ = nullptr;
-    detail::ContextStamp stamp_;
+    ContextStamp stamp_;
     std::size_t batch_ = std::size_t(1) << 22;
     std::uint64_t maxBlock_ = 0;
     std::size_t maxDispatch_ = 0;
@@ -259,7 +264,8 @@ private:
     std::array<Slot, 3> slots_;
     std::size_t capacity_ = 0;
     bool copied_ = false; // HostTransfer::Copied, Auto resolved
-    std::unique_ptr<detail::CopyCrew> crew_; // threads for the host copies, started at the first large one
+    struct HostCopies; // threads for the host copies, started at the first large one
+    std::unique_ptr<HostCopies> crew_;
 };
 
 } // namespace vds

@@ -1,5 +1,5 @@
 // vds internal: the one plan of a sprite's occupancy sweep, consumed by the
-// CPU sweep (occupancy.cpp) and the GPU sweep (gl/src/gpu_occupancy.cpp,
+// CPU sweep (occupancy.cpp) and the GPU sweep (gl/src/grids/occupancy.cpp,
 // shaders/vds/occupancy.comp), so the two give the same labels by
 // construction.
 //

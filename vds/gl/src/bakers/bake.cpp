@@ -1,4 +1,5 @@
-// vds::bakeToGpu: the fragment-list bake (bake_lists.cpp) without the read-back.
+// The GL bakes of <vds/gl/bake.h>: `bakeOnGl`, and `bakeToGpu`, the
+// fragment-list bake (lists.cpp) without the read-back.
 #include <vds/gl/bake.h>
 
 #include <algorithm>
@@ -10,8 +11,11 @@
 #include <vds/error.h>
 #include <vds/gl/shader.h>
 
-#include "lists_bake.h"
-#include "sprite_parts.h"
+#include <vds/gl/detail/bake_setup.h>
+#include <vds/gl/detail/context.h>
+#include <vds/gl/detail/dispatch.h>
+#include <vds/gl/detail/lists.h>
+#include <vds/gl/detail/sprite.h>
 
 namespace vds {
 
@@ -75,10 +79,11 @@ void joinBands(const SpriteGrid& grid, std::vector<GpuBand>& bands, std::uint64_
     checkGl("joining the row bands");
 }
 
-GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlContext& gl, GpuSpriteParts parts) {
+GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlBakeOptions& glOptions, const GlContext& gl,
+                       GpuSpriteParts parts) {
     GlPhaseClock clock(options.timings);
     const detail::ValidatedMesh v = detail::validateForBake(gl, mesh, options, clock);
-    detail::ListsBake lists(gl, v.grid, options, clock, true);
+    detail::ListsBake lists(gl, v.grid, options, glOptions, clock, true);
     std::vector<GpuBand> bands;
     lists.run(mesh, [&](GpuBand& band) { bands.push_back(std::move(band)); }, v.drawn ? &*v.drawn : nullptr);
 
@@ -99,7 +104,7 @@ GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlContex
     {
         // The GpuSprite: an open mesh's boundary edges found and packed with their chain tree.
         const GlPhaseClock::Scope phase(clock, BakePhase::Assembly, false);
-        out.sprite = detail::GpuSpriteAccess::make(std::move(texture), std::move(offsets), std::move(crossings),
+        out.sprite = GpuSprite::adopt(std::move(texture), std::move(offsets), std::move(crossings),
                                                    out.crossings, size, v.grid, out.status,
                                                    v.report.oriented() ? std::vector<glm::vec3>{}
                                                                        : meshBoundaryEdges(mesh)); // as bakeCpu keeps them
@@ -111,7 +116,38 @@ GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlContex
 
 } // namespace
 
-GpuBake bakeToGpu(const GlContext& gl, MeshView mesh, const BakeOptions& options, GpuSpriteParts parts) {
+BakeMethod chooseBakeMethod(const GlContext& gl, std::string* why) {
+    const std::string& renderer = gl.info().renderer;
+    const bool software = detail::softwareRenderer(gl);
+    if (why)
+        *why = software ? "bake method auto: cpu, because GL here is the software renderer " + renderer +
+                              " (the CPU baker is faster for a one-shot bake there)"
+                        : "bake method auto: lists (GL fragment lists) on the GPU " + renderer;
+    return software ? BakeMethod::Cpu : BakeMethod::Lists;
+}
+
+Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options, const GlBakeOptions& glOptions) {
+    if (options.method == BakeMethod::Auto) {
+        BakeOptions chosen = options;
+        chosen.method = chooseBakeMethod(gl);
+        return bakeOnGl(gl, mesh, chosen, glOptions);
+    }
+    if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
+    const detail::BakeClock clock(options.timings);
+    // Validated as bakeToGpu validates: where the GPU counts the axis, while it counts.
+    detail::ValidatedMesh v;
+    {
+        const CurrentContext current(gl);
+        detail::GlPhaseClock phases(options.timings);
+        v = detail::validateForBake(gl, mesh, options, phases);
+        phases.collect();
+    }
+    // The axis count's upload (if any) is drawn again by the bake.
+    return detail::bakeOnGl(gl, {v.report, v.grid}, mesh, options, glOptions, v.drawn ? &*v.drawn : nullptr);
+}
+
+GpuBake bakeToGpu(const GlContext& gl, MeshView mesh, const BakeOptions& options, GpuSpriteParts parts,
+                  const GlBakeOptions& glOptions) {
     const auto start = std::chrono::steady_clock::now();
     const CurrentContext restore(gl);
     if (options.timings) *options.timings = BakeTimings{};
@@ -119,9 +155,9 @@ GpuBake bakeToGpu(const GlContext& gl, MeshView mesh, const BakeOptions& options
     // Auto is the fragment lists here: the point of baking to the GPU is that nothing comes back.
     if (options.method == BakeMethod::Lists || options.method == BakeMethod::Auto) {
         if (options.timings) options.timings->renderer = gl.info().renderer;
-        out = bakeListsToGpu(mesh, options, gl, parts);
+        out = bakeListsToGpu(mesh, options, glOptions, gl, parts);
     } else {
-        const Sprite sprite = bakeOnGl(gl, mesh, options);
+        const Sprite sprite = bakeOnGl(gl, mesh, options, glOptions);
         {
             GlPhaseClock clock(options.timings);
             clock.begin(BakePhase::TextureFill);

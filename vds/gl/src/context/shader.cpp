@@ -12,6 +12,7 @@
 #include <GL/glext.h>
 
 #include <vds/error.h>
+#include <vds/detail/pi.h>
 
 namespace vds {
 namespace detail {
@@ -327,6 +328,18 @@ std::string assembleShader(const ShaderStage& stage, const std::string& versionL
     return out;
 }
 
+namespace {
+// The library's constants, defined in every program it builds, ahead of the
+// caller's defines: GLSL takes them from the C++ (vpt.glsl's defaults serve
+// a user's shader built elsewhere).
+std::string libraryDefines() {
+    std::ostringstream out;
+    out.precision(17);
+    out << "#define VDS_FOUR_PI " << detail::kFourPi << "\n";
+    return out.str();
+}
+} // namespace
+
 Program buildProgram(const std::vector<ShaderStage>& stages, const std::string& defines) {
     GLint major = 0, minor = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
@@ -337,7 +350,7 @@ Program buildProgram(const std::vector<ShaderStage>& stages, const std::string& 
     std::string names;
     for (const auto& stage : stages) {
         std::vector<std::string> files;
-        const std::string text = assembleShader(stage, version, defines, &files);
+        const std::string text = assembleShader(stage, version, libraryDefines() + defines, &files);
         Shader shader = Shader::create(stage.type);
         const char* src = text.c_str();
         glShaderSource(shader.id(), 1, &src, nullptr);

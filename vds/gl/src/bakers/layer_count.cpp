@@ -1,10 +1,10 @@
-// vds: the auto axis counted in the GL bakers' own raster (bake_gl.h's
+// vds: the auto axis counted in the GL bakers' own raster (layer_count.h's
 // countLayersOnGl): the mesh drawn along each axis with the bake's vertex
 // stage and raster state, each fragment counted in its column, the counts
 // reduced on the GPU to d_S and the crossings; two words read back per axis.
 // On a GPU that is a few milliseconds where the CPU's count takes a share
 // of a core for every triangle and row.
-#include "bake_gl.h"
+#include <vds/gl/detail/layer_count.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -17,6 +17,9 @@
 #include <vds/gl/bake.h>
 #include <vds/gl/mesh.h>
 #include <vds/gl/shader.h>
+#include <vds/gl/detail/context.h>
+#include <vds/gl/detail/dispatch.h>
+#include <vds/gl/detail/raster_state.h>
 #include <vds/mesh_check.h>
 
 namespace vds::detail {
@@ -90,10 +93,8 @@ std::optional<PendingLayerCount> PendingLayerCount::start(const GlContext& gl, c
         grids[std::size_t(axis)] = makeGrid(bounds, axis, resolution);
         most = std::max(most, std::uint64_t(grids[std::size_t(axis)].width) * grids[std::size_t(axis)].height);
     }
-    GLint64 maxBlock = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     // The counts of one axis in one storage block; each fewer than 2^32 (as a sprite's crossings are).
-    if (most * 4 > std::uint64_t(maxBlock) || drawn.triangleCount() >= (std::uint64_t(1) << 32)) return std::nullopt;
+    if (most * 4 > gl.limits().maxStorageBlockBytes || drawn.triangleCount() >= (std::uint64_t(1) << 32)) return std::nullopt;
     const CountPrograms programs = countPrograms(gl);
     static const char* const kCounts[3] = {"vds.count.columns.x", "vds.count.columns.y", "vds.count.columns.z"};
     static const char* const kResults[3] = {"vds.count.result.x", "vds.count.result.y", "vds.count.result.z"};
@@ -143,12 +144,6 @@ std::optional<AxisChoice> countLayersOnGl(const GlContext& gl, const GpuMesh& dr
     std::optional<PendingLayerCount> pending = PendingLayerCount::start(gl, drawn, bounds, resolution);
     if (!pending) return std::nullopt;
     return pending->finish();
-}
-
-bool softwareRenderer(const GlContext& gl) {
-    const std::string& renderer = gl.info().renderer;
-    return gl.info().platform.find("software") != std::string::npos || renderer.find("llvmpipe") != std::string::npos ||
-           renderer.find("softpipe") != std::string::npos || renderer.find("SwiftShader") != std::string::npos;
 }
 
 bool countsOnGpu(const GlContext& gl) {

@@ -3,13 +3,15 @@
 // keeping the nearest crossing behind the previous layer; an occlusion query
 // finds d_S. Equal depths are ordered by triangle index, as in every baker.
 // Each layer is read back and the columns are built on the host.
-#include "bake_gl.h"
+#include <vds/gl/detail/peel.h>
 
 #include <GL/glext.h>
 
 #include <vds/error.h>
 #include <vds/gl/mesh.h>
 #include <vds/gl/shader.h>
+#include <vds/gl/detail/bake_setup.h>
+#include <vds/gl/detail/raster_state.h>
 
 namespace vds::detail {
 

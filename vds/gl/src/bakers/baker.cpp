@@ -9,7 +9,8 @@
 #include <vds/gl/bake.h>
 #include <vds/mesh_check.h>
 
-#include "bake_gl.h"
+#include <vds/gl/detail/bake_setup.h>
+#include <vds/gl/detail/layer_count.h>
 
 namespace vds {
 
@@ -85,7 +86,7 @@ Sprite Baker::rebake() {
         setup.grid = makeGrid(box, *options_.axis, options_.resolution);
     }
     if (!gl_) return detail::bakeCpu(setup, mesh_, options_);
-    return detail::bakeOnGl(*gl_, setup, mesh_, options_);
+    return detail::bakeOnGl(*gl_, setup, mesh_, options_, {});
 }
 
 } // namespace vds

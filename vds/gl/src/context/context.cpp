@@ -21,6 +21,7 @@
 #include <GL/glext.h>
 
 #include <vds/error.h>
+#include <vds/gl/detail/context.h>
 
 namespace vds {
 namespace {
@@ -181,11 +182,12 @@ std::string GlInfo::glslVersionLine() const {
 
 struct GlContext::Impl {
     bool owned = true;
-    detail::NativeContext adopted; // the application's context, when not owned
+    NativeContext adopted; // the application's context, when not owned
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext context = EGL_NO_CONTEXT;
     EGLSurface surface = EGL_NO_SURFACE;
     GlInfo info;
+    GlLimits limits; // asked once, with the info
     mutable std::unordered_map<std::string, Program> programs;
     struct Scratch {
         std::size_t bytes = 0;
@@ -203,7 +205,7 @@ struct GlContext::Impl {
         if (!owned) {
             // Not ours to destroy: free what we cached in it if it is still
             // current, else leave the names to it (never free them in another).
-            if (detail::NativeContext::current().same(adopted)) {
+            if (NativeContext::current().same(adopted)) {
                 programs.clear();
                 scratch.clear();
             } else {
@@ -228,10 +230,10 @@ struct GlContext::Impl {
         releaseOwnDisplay(display);
     }
 
-    detail::NativeContext native() const {
+    NativeContext native() const {
         if (!owned) return adopted;
-        detail::NativeContext n;
-        n.api = detail::NativeContext::Api::Egl;
+        NativeContext n;
+        n.api = NativeContext::Api::Egl;
         n.display = display;
         n.context = context;
         n.eglDraw = n.eglRead = surface;
@@ -248,6 +250,7 @@ struct GlContext::Impl {
         info.version = str(GL_VERSION);
         glGetIntegerv(GL_MAJOR_VERSION, &info.major);
         glGetIntegerv(GL_MINOR_VERSION, &info.minor);
+        limits = GlLimits::query();
     }
 
     // Tries one platform; on failure leaves `why` and cleans up.
@@ -306,7 +309,7 @@ struct GlContext::Impl {
         // One API's context at a time on a thread: a GLX context (the
         // application's window) is released first; a CurrentContext scope
         // of the caller's brings it back.
-        if (detail::NativeContext::current().api == detail::NativeContext::Api::Glx) detail::NativeContext().makeCurrent();
+        if (NativeContext::current().api == NativeContext::Api::Glx) NativeContext().makeCurrent();
         if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
             const EGLint pb[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
             if (config != EGL_NO_CONFIG_KHR) surface = eglCreatePbufferSurface(d, config, pb);
@@ -340,7 +343,7 @@ struct GlContext::Impl {
 };
 
 GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
-    const detail::NativeContext before = detail::NativeContext::current(); // current again if this fails
+    const NativeContext before = NativeContext::current(); // current again if this fails
     std::string notes;
     const auto order = candidates(notes);
     std::string reasons;
@@ -360,14 +363,14 @@ GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
 GlContext::GlContext(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 GlContext GlContext::adoptCurrent() {
-    const detail::NativeContext now = detail::NativeContext::current();
-    if (now.api == detail::NativeContext::Api::None)
+    const NativeContext now = NativeContext::current();
+    if (now.api == NativeContext::Api::None)
         throw GlError("GlContext::adoptCurrent: no GL context current on this thread");
     auto impl = std::make_unique<Impl>();
     impl->owned = false;
     impl->adopted = now;
-    if (now.api == detail::NativeContext::Api::Egl) markShared(static_cast<EGLDisplay>(now.display));
-    impl->info.platform = now.api == detail::NativeContext::Api::Egl ? "adopted EGL" : "adopted GLX";
+    if (now.api == NativeContext::Api::Egl) markShared(static_cast<EGLDisplay>(now.display));
+    impl->info.platform = now.api == NativeContext::Api::Egl ? "adopted EGL" : "adopted GLX";
     impl->readInfo();
     if (impl->info.major < 4 || (impl->info.major == 4 && impl->info.minor < 3))
         throw GlUnavailable("GlContext::adoptCurrent: the current context is GL " + impl->info.version +
@@ -379,9 +382,9 @@ bool GlContext::owned() const { return impl_ && impl_->owned; }
 
 void GlContext::requireCurrent(const char* what) const {
     if (!impl_) throw GlError(std::string(what) + ": the GL context was moved from");
-    const detail::NativeContext now = detail::NativeContext::current();
+    const NativeContext now = NativeContext::current();
     if (now.same(impl_->native())) return;
-    if (now.api == detail::NativeContext::Api::None) throw GlError(std::string(what) + ": no GL context current");
+    if (now.api == NativeContext::Api::None) throw GlError(std::string(what) + ": no GL context current");
     throw GlError(std::string(what) + ": another GL context is current, not the one given");
 }
 
@@ -391,17 +394,15 @@ GlContext& GlContext::operator=(GlContext&&) noexcept = default;
 
 void GlContext::makeCurrent() const {
     if (!impl_) throw GlError("cannot make a moved-from GL context current");
-    const detail::NativeContext target = impl_->native();
-    if (detail::NativeContext::current().same(target)) return;
+    const NativeContext target = impl_->native();
+    if (NativeContext::current().same(target)) return;
     if (!target.makeCurrent())
         throw GlError(impl_->owned ? "cannot make the GL context current (is it current on another thread?)"
                                    : "cannot make the adopted GL context current again (destroyed, or current "
                                      "on another thread?)");
 }
 
-bool GlContext::isCurrent() const { return impl_ && detail::NativeContext::current().same(impl_->native()); }
-
-namespace detail {
+bool GlContext::isCurrent() const { return impl_ && NativeContext::current().same(impl_->native()); }
 
 NativeContext NativeContext::current() noexcept {
     NativeContext n;
@@ -475,9 +476,7 @@ void ContextStamp::check(const char* what) const {
     throw GlError(std::string(what) + ": made in another GL context than the one current");
 }
 
-} // namespace detail
-
-CurrentContext::CurrentContext() noexcept : saved_(detail::NativeContext::current()) {}
+CurrentContext::CurrentContext() noexcept : saved_(NativeContext::current()) {}
 
 CurrentContext::CurrentContext(const GlContext& context) : CurrentContext() { context.makeCurrent(); }
 
@@ -566,6 +565,22 @@ void checkGl(const char* what) {
 
 namespace detail {
 bool glUsable() noexcept { return !gExiting; }
+
+bool softwareRenderer(const GlContext& gl) {
+    const std::string& renderer = gl.info().renderer;
+    return gl.info().platform.find("software") != std::string::npos || renderer.find("llvmpipe") != std::string::npos ||
+           renderer.find("softpipe") != std::string::npos || renderer.find("SwiftShader") != std::string::npos;
+}
 } // namespace detail
+
+GlLimits GlLimits::query() {
+    GLint64 maxBlock = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+    GlLimits limits;
+    limits.maxStorageBlockBytes = std::uint64_t(std::max<GLint64>(maxBlock, 0));
+    return limits;
+}
+
+const GlLimits& GlContext::limits() const { return impl_->limits; }
 
 } // namespace vds

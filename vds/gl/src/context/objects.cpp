@@ -4,8 +4,9 @@
 
 #include <vds/error.h>
 #include <vds/gl/context.h>
+#include <vds/gl/detail/context.h>
 
-namespace vds::detail {
+namespace vds {
 namespace {
 GLuint checked(GLuint id, const char* what) {
     if (id == 0) throw GlError(std::string("cannot create GL ") + what);
@@ -14,21 +15,21 @@ GLuint checked(GLuint id, const char* what) {
 } // namespace
 
 GLuint BufferTraits::create() { GLuint id = 0; glCreateBuffers(1, &id); return checked(id, "buffer"); }
-void BufferTraits::destroy(GLuint id) noexcept { if (glUsable()) glDeleteBuffers(1, &id); }
+void BufferTraits::destroy(GLuint id) noexcept { if (detail::glUsable()) glDeleteBuffers(1, &id); }
 GLuint TextureTraits::create(GLenum target) { GLuint id = 0; glCreateTextures(target, 1, &id); return checked(id, "texture"); }
-void TextureTraits::destroy(GLuint id) noexcept { if (glUsable()) glDeleteTextures(1, &id); }
+void TextureTraits::destroy(GLuint id) noexcept { if (detail::glUsable()) glDeleteTextures(1, &id); }
 GLuint FramebufferTraits::create() { GLuint id = 0; glCreateFramebuffers(1, &id); return checked(id, "framebuffer"); }
-void FramebufferTraits::destroy(GLuint id) noexcept { if (glUsable()) glDeleteFramebuffers(1, &id); }
+void FramebufferTraits::destroy(GLuint id) noexcept { if (detail::glUsable()) glDeleteFramebuffers(1, &id); }
 GLuint VertexArrayTraits::create() { GLuint id = 0; glCreateVertexArrays(1, &id); return checked(id, "vertex array"); }
-void VertexArrayTraits::destroy(GLuint id) noexcept { if (glUsable()) glDeleteVertexArrays(1, &id); }
+void VertexArrayTraits::destroy(GLuint id) noexcept { if (detail::glUsable()) glDeleteVertexArrays(1, &id); }
 GLuint QueryTraits::create(GLenum target) { GLuint id = 0; glCreateQueries(target, 1, &id); return checked(id, "query"); }
-void QueryTraits::destroy(GLuint id) noexcept { if (glUsable()) glDeleteQueries(1, &id); }
+void QueryTraits::destroy(GLuint id) noexcept { if (detail::glUsable()) glDeleteQueries(1, &id); }
 GLuint ShaderTraits::create(GLenum type) { return checked(glCreateShader(type), "shader"); }
-void ShaderTraits::destroy(GLuint id) noexcept { if (glUsable()) glDeleteShader(id); }
+void ShaderTraits::destroy(GLuint id) noexcept { if (detail::glUsable()) glDeleteShader(id); }
 GLuint ProgramTraits::create() { return checked(glCreateProgram(), "program"); }
-void ProgramTraits::destroy(GLuint id) noexcept { if (glUsable()) glDeleteProgram(id); }
+void ProgramTraits::destroy(GLuint id) noexcept { if (detail::glUsable()) glDeleteProgram(id); }
 
-} // namespace vds::detail
+} // namespace vds
 
 namespace vds {
 

@@ -1,4 +1,4 @@
-// vds internal: the fragment-list bake on the GPU (bake_lists.cpp), shared by
+// vds::gl internal: the fragment-list bake on the GPU (lists.cpp), shared by
 // the host path (vds::bake, BakeMethod::Lists) and vds::bakeToGpu.
 #pragma once
 
@@ -6,9 +6,12 @@
 #include <functional>
 #include <vector>
 
+#include <vds/bake.h>
+#include <vds/gl/bake.h>
+#include <vds/gl/context.h>
+#include <vds/gl/detail/phase_clock.h>
 #include <vds/gl/mesh.h>
-
-#include "bake_gl.h"
+#include <vds/gl/objects.h>
 
 namespace vds::detail {
 
@@ -41,8 +44,8 @@ class ListsBake {
 public:
     /// `keepBands`: each band's columns in buffers of its own, which `take`
     /// may keep; else in scratch buffers, to be read before the next band.
-    ListsBake(const GlContext& gl, const SpriteGrid& grid, const BakeOptions& options, GlPhaseClock& clock,
-              bool keepBands);
+    ListsBake(const GlContext& gl, const SpriteGrid& grid, const BakeOptions& options,
+              const GlBakeOptions& glOptions, GlPhaseClock& clock, bool keepBands);
     ListsBake(const ListsBake&) = delete;
     ListsBake& operator=(const ListsBake&) = delete;
 
@@ -69,6 +72,7 @@ private:
     const GlContext& gl_;
     const SpriteGrid& grid_;
     const BakeOptions& options_;
+    const GlBakeOptions& glOptions_;
     GlPhaseClock& clock_;
     const Program* fill_ = nullptr;
     const Program* reduceFirst_ = nullptr;
@@ -77,7 +81,7 @@ private:
     const Program* scatter_ = nullptr;
     const Program* sort_ = nullptr;
     bool keepBands_;
-    std::uint64_t maxBlock_ = 0;    ///< GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+    std::uint64_t maxBlock_ = 0;    ///< GlLimits::maxStorageBlockBytes
     std::uint32_t maxBandRows_ = 0;
     std::uint64_t countsBytes_ = 0; ///< a band's counts, padded to whole scan blocks
     std::uint64_t capacity_ = 0;    ///< crossings the node pool holds
@@ -87,5 +91,12 @@ private:
     std::vector<GLuint> scanSums_; ///< the chunk totals of each scan level above the counts
     Framebuffer fbo_;
 };
+
+/// The fragment-list bake behind bakeOnGl(): fills the CSR layers of `grid`
+/// on `gl` (current), timing its phases on `clock`. `uploaded`: the mesh
+/// already in GL (the axis count's), or null to upload it.
+void bakeLists(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const BakeOptions& options,
+               const GlBakeOptions& glOptions, GlPhaseClock& clock, std::vector<std::uint32_t>& offsets,
+               std::vector<float>& crossings, const GpuMesh* uploaded = nullptr);
 
 } // namespace vds::detail

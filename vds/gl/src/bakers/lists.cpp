@@ -7,7 +7,7 @@
 // per-column sort in compute, into a CSR buffer read back once. When the
 // node pool overflows it is grown, then the image is baked in row bands; no
 // crossing is ever dropped.
-#include "lists_bake.h"
+#include <vds/gl/detail/lists.h>
 
 #include <algorithm>
 #include <optional>
@@ -17,6 +17,9 @@
 
 #include <vds/error.h>
 #include <vds/gl/shader.h>
+#include <vds/gl/detail/bake_setup.h>
+#include <vds/gl/detail/dispatch.h>
+#include <vds/gl/detail/raster_state.h>
 
 namespace vds::detail {
 namespace {
@@ -45,9 +48,9 @@ GLint uniform(const Program& p, const char* name) { return glGetUniformLocation(
 
 } // namespace
 
-ListsBake::ListsBake(const GlContext& gl, const SpriteGrid& grid, const BakeOptions& options, GlPhaseClock& clock,
-                     bool keepBands)
-    : gl_(gl), grid_(grid), options_(options), clock_(clock), keepBands_(keepBands) {
+ListsBake::ListsBake(const GlContext& gl, const SpriteGrid& grid, const BakeOptions& options,
+                     const GlBakeOptions& glOptions, GlPhaseClock& clock, bool keepBands)
+    : gl_(gl), grid_(grid), options_(options), glOptions_(glOptions), clock_(clock), keepBands_(keepBands) {
     {
         const GlPhaseClock::Scope phase(clock, BakePhase::Compile, false);
         const std::string defines = bakeDefines(gl);
@@ -64,9 +67,7 @@ ListsBake::ListsBake(const GlContext& gl, const SpriteGrid& grid, const BakeOpti
         scatter_ = compute("vds.lists.scatter", "vds/lists_scatter.comp", "");
         sort_ = compute("vds.lists.sort", "vds/lists_sort.comp", "");
     }
-    GLint64 maxBlock = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
-    maxBlock_ = std::uint64_t(maxBlock);
+    maxBlock_ = gl.limits().maxStorageBlockBytes;
     // A band's fixed places (16 bytes a column) and the sorted pairs of its
     // first two crossings a column (16 bytes) take up to half a storage
     // block; the node pool's crossings have the other half of the pairs.
@@ -98,7 +99,7 @@ ListsBake::ListsBake(const GlContext& gl, const SpriteGrid& grid, const BakeOpti
 
 std::uint64_t ListsBake::maxNodes(std::uint64_t columns) const {
     std::uint64_t most = std::min(maxBlock_ / kNodeBytes, (maxBlock_ - 2 * columns * kPairBytes) / kPairBytes);
-    if (options_.maxListNodes) most = std::min<std::uint64_t>(most, options_.maxListNodes);
+    if (glOptions_.maxListNodes) most = std::min<std::uint64_t>(most, glOptions_.maxListNodes);
     return std::min<std::uint64_t>(most, 0xfffffff0u - 2 * columns);
 }
 
@@ -287,12 +288,12 @@ std::uint32_t ListsBake::depthComplexity() const {
 }
 
 void bakeLists(const GlContext& gl, MeshView mesh, const SpriteGrid& grid, const BakeOptions& options,
-               GlPhaseClock& clock, std::vector<std::uint32_t>& offsets, std::vector<float>& crossings,
-               const GpuMesh* uploaded) {
+               const GlBakeOptions& glOptions, GlPhaseClock& clock, std::vector<std::uint32_t>& offsets,
+               std::vector<float>& crossings, const GpuMesh* uploaded) {
     const std::size_t columns = std::size_t(grid.width) * grid.height;
     offsets.assign(columns + 1, 0);
     crossings.clear();
-    ListsBake lists(gl, grid, options, clock, false);
+    ListsBake lists(gl, grid, options, glOptions, clock, false);
     lists.run(mesh, [&](GpuBand& band) {
         const GlPhaseClock::Scope phase(clock, BakePhase::ReadBack);
         const std::size_t first = std::size_t(band.y0) * grid.width;

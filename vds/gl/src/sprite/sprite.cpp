@@ -1,7 +1,7 @@
 #include <vds/gl/sprite.h>
 #include <vds/gl/distance.h>
 
-#include "boundary_loops.h"
+#include <vds/gl/detail/sprite.h>
 
 #include <algorithm>
 #include <cassert>
@@ -16,9 +16,12 @@
 #include <vds/error.h>
 #include <vds/gl/shader.h>
 
-#include "bake_gl.h"
-#include "copy_crew.h"
-#include "sprite_parts.h"
+#include <vds/gl/detail/buffers.h>
+#include <vds/gl/detail/context.h>
+#include <vds/gl/detail/dispatch.h>
+#include <vds/gl/detail/pack_boundary.h>
+
+#include "copy_crew.h" // beside its source until the library's one thread pool replaces it
 
 namespace vds {
 
@@ -45,9 +48,11 @@ Texture makeSpriteTexture(glm::uvec3 size) {
     return t;
 }
 
-GpuSprite GpuSpriteAccess::make(Texture texture, Buffer offsets, Buffer crossings, std::uint64_t crossingCount,
-                                glm::uvec3 size, const SpriteGrid& grid, SolidStatus status,
-                                const std::vector<glm::vec3>& boundaryEdges) {
+} // namespace detail
+
+GpuSprite GpuSprite::adopt(Texture texture, Buffer offsets, Buffer crossings, std::uint64_t crossingCount,
+                           glm::uvec3 size, const SpriteGrid& grid, SolidStatus status,
+                           const std::vector<glm::vec3>& boundaryEdges) {
     GpuSprite s;
     s.context_ = ContextStamp::current("GpuSprite");
     s.setBoundary(grid, boundaryEdges, true);
@@ -60,8 +65,6 @@ GpuSprite GpuSpriteAccess::make(Texture texture, Buffer offsets, Buffer crossing
     s.setPlacement(grid);
     return s;
 }
-
-} // namespace detail
 
 GpuSprite::GpuSprite(const GlContext& gl, const Sprite& sprite, GpuSpriteParts parts) {
     const CurrentContext current(gl);
@@ -110,7 +113,7 @@ void GpuSprite::releaseIfForeign() noexcept {
 void GpuSprite::requireContext(const char* what) const { context_.check(what); }
 
 void GpuSprite::upload(const Sprite& sprite, GpuSpriteParts parts) {
-    context_ = detail::ContextStamp::current("GpuSprite upload");
+    context_ = ContextStamp::current("GpuSprite upload");
     const std::uint32_t w = sprite.width(), h = sprite.height(), d = std::max<std::uint32_t>(1, sprite.depthComplexity);
     size_ = {w, h, d};
     crossingCount_ = sprite.crossings.size();
@@ -236,15 +239,18 @@ const Program& classifierProgram(const GlContext& gl, bool columns, Rule rule) {
 
 } // namespace
 
+// The copy crew, under the name the header gives it.
+struct GpuClassifier::HostCopies : detail::CopyCrew {
+    using CopyCrew::CopyCrew;
+};
+
 GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints, HostTransfer transfer)
     : gl_(&gl), batch_(batchPoints) {
     const CurrentContext current(gl);
     copied_ = transfer == HostTransfer::Copied || (transfer == HostTransfer::Auto && !detail::softwareRenderer(gl));
-    stamp_ = detail::ContextStamp::current("GpuClassifier");
+    stamp_ = ContextStamp::current("GpuClassifier");
     classifierProgram(gl, true, Rule::Parity); // a shader error shows at construction, not at the first call
-    GLint64 maxBlock = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
-    maxBlock_ = std::uint64_t(maxBlock);
+    maxBlock_ = gl.limits().maxStorageBlockBytes;
     // Dispatches of a power of two of points keep every range's offset aligned.
     maxDispatch_ = std::size_t(1) << 30;
     while (maxDispatch_ * kPointBytes > maxBlock_) maxDispatch_ >>= 1;
@@ -387,7 +393,7 @@ void GpuClassifier::copy(void* dst, const void* src, std::size_t bytes) {
         std::memcpy(dst, src, bytes);
         return;
     }
-    if (!crew_) crew_ = std::make_unique<detail::CopyCrew>(std::min(16u, std::max(1u, std::thread::hardware_concurrency())));
+    if (!crew_) crew_ = std::make_unique<HostCopies>(std::min(16u, std::max(1u, std::thread::hardware_concurrency())));
     crew_->copy(dst, src, bytes);
 }
 

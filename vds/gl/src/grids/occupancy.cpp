@@ -18,7 +18,8 @@
 #include <vds/detail/sweep_plan.h>
 #include <vds/gl/shader.h>
 
-#include "bake_gl.h"
+#include <vds/gl/detail/buffers.h>
+#include <vds/gl/detail/dispatch.h>
 
 namespace vds {
 
@@ -56,11 +57,14 @@ AcrossColumns acrossColumns(const SpriteGrid& sg, const Grid& grid, const detail
     return out;
 }
 
+// The labels' index steps along x, y and z: (i * dims.y + j) * dims.z + k.
+glm::uvec3 labelStrides(const Grid& grid) { return {grid.dims.y * grid.dims.z, grid.dims.z, 1u}; }
+
 // The sweep's uniforms: where each column's cells lie in the labels, and
 // which slices it walks (every one where the boundary term counts).
 void setSweepUniforms(GLuint id, const Grid& grid, const detail::SweepPlan& plan, const SpriteGrid& sg,
                       bool boundaryTerm) {
-    const glm::uvec3 stride(grid.dims.y * grid.dims.z, grid.dims.z, 1u);
+    const glm::uvec3 stride = labelStrides(grid);
     glUniform1ui(glGetUniformLocation(id, "u_columns"), GLuint(plan.columns));
     glUniform1ui(glGetUniformLocation(id, "u_dimV"), grid.dims[plan.v]);
     glUniform1ui(glGetUniformLocation(id, "u_strideU"), stride[plan.u]);
@@ -70,37 +74,34 @@ void setSweepUniforms(GLuint id, const Grid& grid, const detail::SweepPlan& plan
     glUniform1ui(glGetUniformLocation(id, "u_endSlice"), boundaryTerm ? plan.n : plan.endSlice);
     glUniform1ui(glGetUniformLocation(id, "u_width"), sg.width);
     glUniform1ui(glGetUniformLocation(id, "u_dimU"), grid.dims[plan.u]);
-    if (!boundaryTerm) {
-        // Quads of columns along the labels' fastest axis where the sweep
-        // does not follow it (occupancy.comp's vdsSweepQuad).
-        const bool alongV = stride[plan.v] == 1, alongU = stride[plan.u] == 1;
-        const GLuint quads = alongV ? (grid.dims[plan.v] + 3) / 4 : alongU ? (grid.dims[plan.u] + 3) / 4 : 0;
-        glUniform1ui(glGetUniformLocation(id, "u_quads"), quads);
-        glUniform1i(glGetUniformLocation(id, "u_quadAlongV"), alongV ? 1 : 0);
-    }
+    if (!boundaryTerm) // quads along v: how many a row of v holds (occupancy.comp's vdsQuadColumn)
+        glUniform1ui(glGetUniformLocation(id, "u_quads"), (grid.dims[plan.v] + 3) / 4);
     glUniform2i(glGetUniformLocation(id, "u_size"), GLint(sg.width), GLint(sg.height));
 }
 
 } // namespace
 
-// The sweep of one rule (occupancy.comp): the generalized winding number's
-// boundary term is compiled into its own program only.
-const Program& GpuOccupancy::program(Rule rule) const {
+// The sweep of one rule and form (occupancy.comp), chosen at compile time:
+// the generalized winding number's boundary term, and each sweep's walk
+// (quads of columns along the labels' fastest axis where the sweep does not
+// follow it, else single columns), are compiled into their own programs.
+const Program& GpuOccupancy::program(Rule rule, Sweep sweep) const {
+    static const char* const kSweeps[3] = {"columns", "quads.v", "quads.u"};
     const int id = rule == Rule::Parity ? 0 : rule == Rule::Winding ? 1 : 2;
-    return gl_->program(std::string("vds.occupancy.") + toString(rule), [id] {
+    return gl_->program(std::string("vds.occupancy.") + toString(rule) + "." + kSweeps[int(sweep)], [id, sweep] {
         std::string defines = "#define VDS_RULE_ID " + std::to_string(id) + "\n";
         if (id == 2) defines += "#define VDS_BOUNDARY_TERM\n";
+        if (sweep == Sweep::QuadsAlongV) defines += "#define VDS_SWEEP_QUADS_ALONG_V\n";
+        if (sweep == Sweep::QuadsAlongU) defines += "#define VDS_SWEEP_QUADS_ALONG_U\n";
         return buildProgram({{GL_COMPUTE_SHADER, "vds/occupancy.comp", ""}}, defines);
     });
 }
 
 GpuOccupancy::GpuOccupancy(const GlContext& gl) : gl_(&gl) {
     const CurrentContext current(gl);
-    stamp_ = detail::ContextStamp::current("GpuOccupancy");
-    program(Rule::Parity); // a shader error shows at construction, not at the first call
-    GLint64 maxBlock = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
-    maxBlock_ = std::uint64_t(maxBlock);
+    stamp_ = ContextStamp::current("GpuOccupancy");
+    program(Rule::Parity, Sweep::Columns); // a shader error shows at construction, not at the first call
+    maxBlock_ = gl.limits().maxStorageBlockBytes;
 }
 
 void GpuOccupancy::occupancy(const GpuSprite& sprite, const Grid& grid, GLuint cells, const ClassifyOptions& options) {
@@ -146,7 +147,12 @@ void GpuOccupancy::sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells
     const GLuint zero = 0;
     glClearNamedBufferSubData(cells, GL_R32UI, 0, GLsizeiptr(labelBytes(grid)), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    const GLuint id = program(boundaryTerm || rule == Rule::Parity ? rule : Rule::Winding).id();
+    const glm::uvec3 stride = labelStrides(grid);
+    const Sweep walk = boundaryTerm            ? Sweep::Columns
+                       : stride[plan.v] == 1 ? Sweep::QuadsAlongV
+                       : stride[plan.u] == 1 ? Sweep::QuadsAlongU
+                                             : Sweep::Columns;
+    const GLuint id = program(boundaryTerm || rule == Rule::Parity ? rule : Rule::Winding, walk).id();
     glUseProgram(id);
     const std::uint64_t offsetBytes = (std::uint64_t(sg.width) * sg.height + 1) * 4;
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sprite.offsets().id(), 0, GLsizeiptr(offsetBytes));

@@ -1,6 +1,6 @@
 // vds: a boundary's chain tree (<vds/detail/chain_tree.h>) packed in the
-// std430 layout the GLSL include reads (boundary_loops.h).
-#include "boundary_loops.h"
+// std430 layout the GLSL include reads (pack_boundary.h).
+#include <vds/gl/detail/pack_boundary.h>
 
 #include <algorithm>
 #include <cstring>
@@ -84,7 +84,7 @@ float intBits(std::uint32_t v) {
     return f;
 }
 
-/// Appends node `at`'s record (kBoundaryNodeSize vec4s, boundary_loops.h)
+/// Appends node `at`'s record (kBoundaryNodeSize vec4s, pack_boundary.h)
 /// in the (s, t, r) frame of permutation `p`.
 void packNode(const ChainNode& node, const Placed& at, const glm::ivec3& p, std::vector<glm::vec4>& data) {
     const auto permuted = [&](const glm::dvec3& v) { return glm::vec3(float(v[p.x]), float(v[p.y]), float(v[p.z])); };
