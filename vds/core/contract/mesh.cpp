@@ -621,7 +621,7 @@ std::size_t countInsideOutParts(MeshView mesh, const TriangleParts& partOf,
             angle[k] += detail::solidAngle(c[0] - probes[k], c[1] - probes[k], c[2] - probes[k]);
     }
     std::size_t count = 0;
-    for (double a : angle) count += std::lround(a / kFourPi) < 0;
+    for (double a : angle) count += std::lround(a / detail::kFourPi) < 0;
     return count;
 }
 
