@@ -412,7 +412,7 @@ void detail::occupancyOfSprite(const Sprite& sprite, const BoundaryCapsCache& ca
 }
 
 void SpriteClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
-    detail::occupancyOfSprite(sprite_, caps_, grid, cells, options);
+    detail::occupancyOfSprite(sprite_, caps_ ? caps_->cache : detail::BoundaryCapsCache(), grid, cells, options);
 }
 
 void occupancy(MeshView mesh, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {
