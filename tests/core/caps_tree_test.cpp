@@ -24,7 +24,7 @@
 #include <vds/sprite.h>
 
 #include <vds/detail/antipodal.h>
-#include <vds/detail/caps_tree.h>
+#include <vds/detail/boundary_caps.h>
 #include <vds/detail/projected_mesh.h>
 #include "solids.h"
 

@@ -24,7 +24,7 @@
 #include <vds/detail/sweep_plan.h>
 #include <vds/detail/tree_walk.h>
 
-#include <vds/detail/caps_tree.h>
+#include <vds/detail/boundary_caps.h>
 #include <vds/detail/sprite_winding.h>
 #include <vds/detail/antipodal.h>
 #include <vds/detail/projected_mesh.h>
@@ -62,7 +62,7 @@ std::vector<float> centres(const Grid& grid, int axis) {
 // rule; columns with such an edge are labelled cell by cell instead, and so
 // are runs whose ends the column passes almost over an edge (see `at`).
 //
-// With the boundary's chain tree (caps_tree.h), a node whose ball the
+// With the boundary's chain tree (boundary_caps.h), a node whose ball the
 // column passes beside (at every depth, so its fan's crossing count is 0)
 // stands for its edges by its chord, an edge like the others, and its fan,
 // taken by expansion: F(z), within the expansions' bounds E of the fans'

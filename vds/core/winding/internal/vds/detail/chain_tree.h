@@ -1,5 +1,5 @@
 // vds internal: the winding engine's trees as other layers see them
-// (BoundaryCaps builds them, winding/caps_tree.h): their nodes, the error
+// (CapsValueTree and ChainLabels build them): their nodes, the error
 // factor of a node's expansion, and a boundary's chain tree by value, for
 // the GPU's packing of it (vds/gl).
 #pragma once
