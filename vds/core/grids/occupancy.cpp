@@ -111,7 +111,7 @@ public:
                 // solid angle moves by at most 2 area / e^3 a unit of depth
                 // (the gradient of n . (x - q) / |x - q|^3 has norm at most
                 // 2 / |x - q|^3).
-                const double bound = detail::BoundaryCaps::firstOrderBound(n, n.radius * (1.0 + 1e-12) + e);
+                const double bound = detail::firstOrderBound(n, n.radius * (1.0 + 1e-12) + e);
                 const double drift = 2.0 * n.area / (e * e * e) / kFourPi;
                 if (bound <= kFarBound && drift * height <= kFarDrift) {
                     far_.push_back(&n);
@@ -157,7 +157,7 @@ public:
         if (!product(ups_, z, up) || !product(downs_, z, down)) return false;
         double fans = 0.0;
         const glm::dvec3 q(x_, y_, z);
-        for (const detail::BoundaryCaps::Node* n : far_) fans += detail::BoundaryCaps::firstOrderSolidAngle(*n, q);
+        for (const detail::BoundaryCaps::Node* n : far_) fans += detail::firstOrderSolidAngle(*n, q);
         // Each edge adds 2 atan2(det, den); over 4 pi.
         split.up = (up[0].angle() + up[1].angle()) / (2.0 * kPi);
         split.down = -(down[0].angle() + down[1].angle()) / (2.0 * kPi);

@@ -4,8 +4,6 @@
 // Levin & Jacobson 2018, section 3.
 #include <vds/detail/boundary_caps.h>
 
-#include <cmath>
-
 namespace vds::detail {
 
 namespace {
@@ -29,16 +27,6 @@ double BoundaryCaps::generalizedWinding(int winding, const glm::vec3& q, double 
 std::size_t BoundaryCaps::memoryBytes() const {
     return loops_.memoryBytes() + edgeTree_.memoryBytes() + labels_.memoryBytes() + values_.memoryBytes() +
            ranges_.memoryBytes();
-}
-
-double BoundaryCaps::firstOrderSolidAngle(const Node& n, const glm::dvec3& q) {
-    const glm::dvec3 y = n.centre - q;
-    const double d2 = y.x * y.x + y.y * y.y + y.z * y.z;
-    return caps::firstOrderTerm(n, y, d2, std::sqrt(d2));
-}
-
-double BoundaryCaps::firstOrderBound(const Node& n, double distance) {
-    return n.errorScale * caps::firstOrderFactor(distance, distance - n.radius);
 }
 
 } // namespace vds::detail

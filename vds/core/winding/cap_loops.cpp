@@ -4,13 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
-#include <tuple>
 
 #include <glm/geometric.hpp>
 
 #include <vds/detail/antipodal.h>
 #include <vds/detail/caps_surface.h>
+#include <vds/detail/position_weld.h>
 
 namespace vds::detail {
 
@@ -20,20 +19,18 @@ namespace {
 /// by loop.
 class LoopWalker {
 public:
-    /// Welds endpoints by bitwise-equal positions, as boundaryEdges() does.
+    /// Welds endpoints equal by value, as boundaryEdges() does (the same weld).
     LoopWalker(const glm::vec3* edges, std::size_t edgeCount)
         : edges_(edges), tail_(edgeCount), head_(edgeCount), used_(edgeCount, 0) {
-        std::map<std::tuple<float, float, float>, std::uint32_t> ids;
-        const auto idOf = [&](const glm::vec3& p) {
-            return ids.emplace(std::make_tuple(p.x, p.y, p.z), std::uint32_t(ids.size())).first->second;
-        };
+        std::vector<glm::vec3> where;
+        const std::vector<std::uint32_t> id = weldPositions(edges, 2 * edgeCount, where);
         for (std::size_t k = 0; k < edgeCount; ++k) {
-            tail_[k] = idOf(edges[2 * k]);
-            head_[k] = idOf(edges[2 * k + 1]);
+            tail_[k] = id[2 * k];
+            head_[k] = id[2 * k + 1];
         }
-        out_.resize(ids.size());
+        out_.resize(where.size());
         for (std::size_t k = 0; k < edgeCount; ++k) out_[tail_[k]].push_back(std::uint32_t(k));
-        nextOut_.assign(ids.size(), 0);
+        nextOut_.assign(where.size(), 0);
     }
 
     bool used(std::size_t edge) const { return used_[edge] != 0; }

@@ -94,7 +94,7 @@ namespace vds::detail {
 
 /// The boundary term of a set of boundary edges by their capped loops: a
 /// label and a value for a point. Built once (O(E log E)), then thread safe
-/// to query.
+/// to query; not copied (its parts refer to each other, BoundRanges).
 class BoundaryCaps {
 public:
     /// `edges`: 2 * `edgeCount` points, edge k from [2k] to [2k+1] (copied).
@@ -109,8 +109,6 @@ public:
     /// the cells over which the integer term is one integer (CellWindings).
     BoundaryCaps(const glm::vec3* edges, std::size_t edgeCount, Axis axis, const Box* domain = nullptr,
                  const CapsSurface* surface = nullptr, const CellWindings* windings = nullptr);
-    BoundaryCaps(const BoundaryCaps&) = delete; // its parts refer to each other
-    BoundaryCaps& operator=(const BoundaryCaps&) = delete;
 
     using Estimate = CapsEstimate;
     using Reach = detail::Reach;
@@ -167,12 +165,6 @@ public:
     /// plans filled so far included).
     std::size_t memoryBytes() const;
 
-    /// A node's fan's solid angle seen from q by its expansion to first
-    /// order, and the bound on that expansion's error (over 4 pi: in B's
-    /// units) at distance `distance` > radius from its centre, which falls
-    /// as the distance grows.
-    static double firstOrderSolidAngle(const Node& n, const glm::dvec3& q);
-    static double firstOrderBound(const Node& n, double distance);
 
 private:
     CapLoops loops_;

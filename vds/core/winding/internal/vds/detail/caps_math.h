@@ -163,3 +163,21 @@ inline void finishNode(CapsNode& node) {
 inline double cellSlack(const glm::dvec3& extent) { return 1e-7 * std::max({extent.x, extent.y, extent.z}); }
 
 } // namespace vds::detail::caps
+
+namespace vds::detail {
+
+/// A node's fan's solid angle seen from q by its expansion to first order
+/// (over 4 pi: in B's units, as the bound below).
+inline double firstOrderSolidAngle(const CapsNode& n, const glm::dvec3& q) {
+    const glm::dvec3 y = n.centre - q;
+    const double d2 = y.x * y.x + y.y * y.y + y.z * y.z;
+    return caps::firstOrderTerm(n, y, d2, std::sqrt(d2));
+}
+
+/// The bound on firstOrderSolidAngle's error at distance `distance` >
+/// radius from the node's centre, which falls as the distance grows.
+inline double firstOrderBound(const CapsNode& n, double distance) {
+    return n.errorScale * caps::firstOrderFactor(distance, distance - n.radius);
+}
+
+} // namespace vds::detail
