@@ -412,7 +412,8 @@ void detail::occupancyOfSprite(const Sprite& sprite, const BoundaryCapsCache& ca
 }
 
 void SpriteClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
-    detail::occupancyOfSprite(sprite_, caps_ ? caps_->cache : detail::BoundaryCapsCache(), grid, cells, options);
+    const detail::BoundaryCapsCache callCaps; // a moved-from classifier's: this call's alone
+    detail::occupancyOfSprite(sprite_, *(caps_ ? &caps_->cache : &callCaps), grid, cells, options);
 }
 
 void occupancy(MeshView mesh, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {

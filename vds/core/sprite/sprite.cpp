@@ -293,8 +293,9 @@ std::string SpriteClassifier::summary() const {
 
 void SpriteClassifier::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes,
                                       std::uint8_t* labels, const ClassifyOptions& options) const {
-    detail::classifySpriteFloats(sprite_, caps_ ? caps_->cache : detail::BoundaryCapsCache(), query_, xyz, count,
-                                 strideBytes, labels, options);
+    const detail::BoundaryCapsCache callCaps; // a moved-from classifier's: this call's alone
+    detail::classifySpriteFloats(sprite_, *(caps_ ? &caps_->cache : &callCaps), query_, xyz, count, strideBytes, labels,
+                                 options);
 }
 
 namespace {
