@@ -165,7 +165,6 @@ public:
     /// plans filled so far included).
     std::size_t memoryBytes() const;
 
-
 private:
     CapLoops loops_;
     EdgeTree edgeTree_; ///< for reach() and driftWithin()
