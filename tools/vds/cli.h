@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -116,6 +117,15 @@ void writeTextFile(const std::string& path, const std::string& text);
 
 /// Prints "vds: <what>" progress lines to stderr, unless quiet.
 std::function<void(const std::string&)> progressPrinter(bool quiet);
+
+/// Seconds since `start`.
+double secondsSince(std::chrono::steady_clock::time_point start);
+
+/// "vds: labelled 32 of 256 x layers (12%) in 1.3 s" (`verb`, `done` of
+/// `total` `units`): a line per step of a long run once it has run past a
+/// second (a quick one says nothing, and neither does its last step).
+void reportSteps(const std::function<void(const std::string&)>& progress, const char* verb, std::size_t done,
+                 std::size_t total, const char* units, double seconds);
 
 /// How this tool spells the flags the library's mesh messages name
 /// (<vds/mesh_check.h>): the generalized winding number's rule; `--allow-open`

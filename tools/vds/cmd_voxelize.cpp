@@ -24,22 +24,6 @@ struct VoxelizeArgs {
     bool packed = false, verbose = false, quiet = false;
 };
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-/// "vds: labelled 32 of 256 x layers (12%) in 1.3 s": a line per slab once
-/// the sweep has run past a second (a quick one says nothing).
-void reportSweep(const std::function<void(const std::string&)>& progress, std::uint32_t done, std::uint32_t total,
-                 double seconds) {
-    constexpr double kQuietSeconds = 1.0;
-    if (seconds < kQuietSeconds || done == total) return;
-    char line[96];
-    std::snprintf(line, sizeof line, "labelled %u of %u x layers (%u%%) in %.1f s", done, total,
-                  unsigned(100.0 * done / total), seconds);
-    progress(line);
-}
-
 /// Reads the sprite INPUT names, warns where its answers are a surface's; its box.
 vds::Box loadSprite(const VoxelizeArgs& a, vds::Sprite& sprite) {
     sprite = vds::readSprite(a.input);
@@ -127,7 +111,7 @@ void voxelize(VoxelizeArgs& a) {
         label(slab == grid.dims.x ? grid : grid.slabX(i0, i1), slabCells);
         const std::size_t count = std::size_t(i1 - i0) * layer;
         for (std::size_t c = 0; c < count; ++c) inside += slabCells[c];
-        reportSweep(progress, i1, grid.dims.x, secondsSince(start));
+        reportSteps(progress, "labelled", i1, grid.dims.x, "x layers", secondsSince(start));
         if (a.packed) // numpy.packbits(cells, axis=-1): each z row packed on its own
             for (std::size_t r = 0; r < std::size_t(i1 - i0) * grid.dims.y; ++r)
                 vds::packLabels(slabCells + r * grid.dims.z, grid.dims.z,

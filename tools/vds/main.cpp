@@ -103,6 +103,20 @@ void writeTextFile(const std::string& path, const std::string& text) {
     out.commit();
 }
 
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void reportSteps(const std::function<void(const std::string&)>& progress, const char* verb, std::size_t done,
+                 std::size_t total, const char* units, double seconds) {
+    constexpr double kQuietSeconds = 1.0;
+    if (seconds < kQuietSeconds || done == total) return;
+    char line[128];
+    std::snprintf(line, sizeof line, "%s %zu of %zu %s (%u%%) in %.1f s", verb, done, total, units,
+                  unsigned(100.0 * double(done) / double(total)), seconds);
+    progress(line);
+}
+
 std::function<void(const std::string&)> progressPrinter(bool quiet) {
     return [quiet](const std::string& what) {
         if (!quiet) std::fprintf(stderr, "vds: %s\n", what.c_str());
