@@ -141,7 +141,7 @@ void addEval(CLI::App& app);
 void addCompare(CLI::App& app);
 void addVoxelize(CLI::App& app);
 void addDistance(CLI::App& app);
-/// What `vds distance` and `vds sdf` refuse, as classify does: an unusable or
+/// What `vds distance`, `vds sdf` and `vds voxelize` refuse, as classify does: an unusable or
 /// flat mesh, and one whose inside `rule` does not define unless `allowOpen`;
 /// warns of non-manifold edges ("vds COMMAND: warning: ...").
 void checkSignedMesh(const vds::TriangleMesh& mesh, const std::string& name, vds::Rule rule, bool allowOpen,

@@ -32,7 +32,7 @@ struct BakeArgs {
     vds::BakeOptions options;
     bool quiet = false, verbose = false;
     std::uint32_t distance = 0; ///< cells of the distance grid along its longest side, 0: none
-    vds::Rule distanceRule = vds::Rule::GeneralizedWinding;
+    vds::Rule distanceRule = vds::Rule::Parity; ///< every command's default rule
 };
 
 // The largest --distance whose grid fits the file whatever the mesh's shape:

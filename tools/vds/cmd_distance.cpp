@@ -112,8 +112,8 @@ void checkSignedMesh(const vds::TriangleMesh& mesh, const std::string& name, vds
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, name);
     vds::requireVolume(report, name);
-    if (!allowOpen) vds::requireInsideDefined(report, name, rule, meshFlags());
-    const std::string warning = vds::insideWarning(report, rule, meshFlags());
+    if (!allowOpen) vds::requireInsideDefined(report, name, rule, meshFlags(true));
+    const std::string warning = vds::insideWarning(report, rule, meshFlags(true));
     if (!warning.empty()) std::fprintf(stderr, "vds %s: warning: %s: %s\n", command, name.c_str(), warning.c_str());
 }
 
