@@ -17,6 +17,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <vds/distance.h>
 #include <vds/enum_names.h>
 #include <vds/error.h>
 #include <vds/grid.h>
@@ -146,6 +147,12 @@ void addDistance(CLI::App& app);
 /// warns of non-manifold edges ("vds COMMAND: warning: ...").
 void checkSignedMesh(const vds::TriangleMesh& mesh, const std::string& name, vds::Rule rule, bool allowOpen,
                      const char* command);
+/// The signed distance of every cell of `grid` into `cells`, as
+/// `query.grid` gives it, a slab of x layers at a time (the same cells,
+/// `Grid::slabX`) so that a run past a second reports progress; a
+/// propagated grid in one call (it spreads across the whole grid).
+void fillDistanceGrid(const vds::SignedDistance& query, const vds::Grid& grid, float* cells,
+                      const vds::DistanceGridOptions& options, const std::function<void(const std::string&)>& progress);
 void addSdf(CLI::App& app);
 
 } // namespace cli

@@ -108,7 +108,10 @@ void bake(BakeArgs& a) {
     if (a.distance > 0) {
         progress("distance grid of " + std::to_string(a.distance) + " cells along the longest side, " +
                  vds::toString(a.distanceRule) + " rule");
-        sprite.distance = vds::bakeDistance(mesh, sprite.grid.box, a.distance, a.distanceRule);
+        sprite.distance.grid = vds::spriteDistanceGrid(sprite.grid.box, a.distance);
+        const vds::SignedDistance query(mesh, a.distanceRule, a.mesh);
+        sprite.distance.cells.resize(sprite.distance.grid.cellCount());
+        fillDistanceGrid(query, sprite.distance.grid, sprite.distance.cells.data(), {}, progress);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (a.verbose) std::fputs(timings.report().c_str(), stderr);

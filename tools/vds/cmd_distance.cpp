@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <optional>
 #include <algorithm>
 #include <string>
@@ -53,8 +54,8 @@ void writeColumn(Outputs& outputs, const Column& column, const char* descr, cons
     outputs.write(column.output, vds::npyHeader(descr, shape), values.data(), values.size() * sizeof(T));
 }
 
-// The points a step: a run past a second says how far it got.
-constexpr std::size_t kProgressSteps = 16;
+// The points or x layers a step: a run past a second says how far it got.
+constexpr std::uint32_t kProgressSteps = 16;
 
 void distance(DistanceArgs& a) {
     // Every output is claimed before the work and written all or none.
@@ -106,6 +107,21 @@ void distance(DistanceArgs& a) {
 }
 
 } // namespace
+
+void fillDistanceGrid(const vds::SignedDistance& query, const vds::Grid& grid, float* cells,
+                      const vds::DistanceGridOptions& options, const std::function<void(const std::string&)>& progress) {
+    // A propagated grid spreads across the whole grid: one call.
+    const std::uint32_t slab = options.far == vds::FarCells::Propagated
+                                   ? grid.dims.x
+                                   : std::max<std::uint32_t>(1, (grid.dims.x + kProgressSteps - 1) / kProgressSteps);
+    const std::size_t layer = std::size_t(grid.dims.y) * grid.dims.z;
+    const auto start = std::chrono::steady_clock::now();
+    for (std::uint32_t i0 = 0; i0 < grid.dims.x; i0 += slab) {
+        const std::uint32_t i1 = std::min(grid.dims.x, i0 + slab);
+        query.grid(slab == grid.dims.x ? grid : grid.slabX(i0, i1), cells + std::size_t(i0) * layer, options);
+        reportSteps(progress, "measured", i1, grid.dims.x, "x layers", secondsSince(start));
+    }
+}
 
 void checkSignedMesh(const vds::TriangleMesh& mesh, const std::string& name, vds::Rule rule, bool allowOpen,
                      const char* command) {

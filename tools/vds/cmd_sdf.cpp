@@ -3,8 +3,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <algorithm>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -53,23 +51,6 @@ std::string geometry(const vds::Grid& grid) {
     return text;
 }
 
-// The x layers a call: a full or band grid goes in slabs (the cells are the
-// same as in one call, `Grid::slabX`), so that a run past a second reports
-// progress; a propagated grid spreads across the whole grid in one call.
-constexpr std::uint32_t kProgressSlabs = 16;
-
-void fillGrid(const SdfArgs& a, const vds::SignedDistance& query, const vds::Grid& grid, float* cells,
-              const std::function<void(const std::string&)>& progress) {
-    const auto start = std::chrono::steady_clock::now();
-    const std::uint32_t slab = a.propagated ? grid.dims.x : std::max<std::uint32_t>(1, (grid.dims.x + kProgressSlabs - 1) / kProgressSlabs);
-    const std::size_t layer = std::size_t(grid.dims.y) * grid.dims.z;
-    for (std::uint32_t i0 = 0; i0 < grid.dims.x; i0 += slab) {
-        const std::uint32_t i1 = std::min(grid.dims.x, i0 + slab);
-        query.grid(slab == grid.dims.x ? grid : grid.slabX(i0, i1), cells + std::size_t(i0) * layer, a.options);
-        reportSteps(progress, "measured", i1, grid.dims.x, "x layers", secondsSince(start));
-    }
-}
-
 void sdf(SdfArgs& a) {
     checkArguments(a);
     Outputs outputs;
@@ -86,7 +67,7 @@ void sdf(SdfArgs& a) {
     a.options.far = a.propagated ? vds::FarCells::Propagated : vds::FarCells::Exact;
     std::vector<float> cells(grid.cellCount());
     const auto start = std::chrono::steady_clock::now();
-    fillGrid(a, query, grid, cells.data(), progress);
+    fillDistanceGrid(query, grid, cells.data(), a.options, progress);
     const double seconds = secondsSince(start);
     outputs.write(output, vds::npyHeader("<f4", {grid.dims.x, grid.dims.y, grid.dims.z}), cells.data(),
                   cells.size() * sizeof(float));

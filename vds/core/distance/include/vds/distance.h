@@ -191,4 +191,9 @@ ClosestPoint closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, co
 SpriteDistance bakeDistance(const TriangleMesh& mesh, const Box& box, std::uint32_t resolution, Rule rule,
                             unsigned threads = 0);
 
+/// The grid `bakeDistance` fills, without the distances: for callers that
+/// fill it themselves (a slab at a time, to report progress). Throws as
+/// `bakeDistance` does for the resolution and the box.
+Grid spriteDistanceGrid(const Box& box, std::uint32_t resolution);
+
 } // namespace vds
