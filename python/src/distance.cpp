@@ -142,8 +142,9 @@ closed mesh, "generalized-winding" for open, messy or badly oriented ones.
 A distance is negative exactly where vds.exact_contains(V, F, points, rule)
 is True. Points are (N, 3) float32 or float64, rounded to float32 first (as
 every classifier does); distances are float64, mesh units, exact up to
-double rounding. Raises vds.InvalidMesh for an empty, flat or unusable mesh,
-vds.InvalidArgument for a point that is not finite; warns (vds.MeshWarning)
+double rounding. Raises vds.InvalidMesh for an empty or unusable mesh; a flat
+one (a sheet) has unsigned_distance and closest_points, while distance and sdf
+raise vds.InvalidMesh (no inside, no sign); vds.InvalidArgument for a point that is not finite; warns (vds.MeshWarning)
 where the rule does not define the mesh's inside (an open mesh by parity or
 winding: crossings are counted as for a surface), at the caller's line.
 Raises vds.DTypeError (a TypeError) for an argument of the wrong type (a rule
@@ -186,7 +187,7 @@ to Dask workers and multiprocessing pools.)doc")
               return PySignedDistance(v, f, py::str("generalized-winding")).closest(points, threads);
           }, py::arg("V"), py::arg("F"), py::arg("points"), py::arg("threads") = 0,
           "(points (N, 3) float64, distances (N,) float64, triangles (N,) uint32): the nearest point of the "
-          "surface (V, F) to each point, its distance and its triangle. Any usable mesh that is not flat.");
+          "surface (V, F) to each point, its distance and its triangle. Any usable mesh, a flat one (a sheet) too.");
     m.def("sdf", [](const py::object& v, const py::object& f, const py::object& grid, const py::object& rule,
                     const py::object& band, const py::object& propagated, const py::object& threads) {
               return PySignedDistance(v, f, rule).grid(grid, band, propagated, threads);

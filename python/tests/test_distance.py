@@ -224,3 +224,19 @@ def test_method_typos_get_a_suggestion_and_custom_is_no_choice():
     assert "custom" not in str(caught.value).split("expected")[1]
     with pytest.raises(vds.InvalidArgument, match=r"did you mean 'parity'\?"):
         vds.signed_distance(V, F, np.zeros((1, 3)), rule="parit")
+
+
+def test_a_flat_mesh_has_unsigned_distances_and_closest_points_but_no_sign():
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float)
+    F = np.array([[0, 1, 2]])
+    P = np.array([[0.25, 0.25, 2.0], [-3.0, 0.0, 4.0]], np.float32)
+    sheet = vds.SignedDistance(V, F, rule="generalized-winding")
+    np.testing.assert_array_equal(sheet.unsigned_distance(P), [2.0, 5.0])
+    Q, d, t = vds.closest_points(V, F, P)
+    np.testing.assert_array_equal(Q, [[0.25, 0.25, 0.0], [0.0, 0.0, 0.0]])
+    np.testing.assert_array_equal(d, [2.0, 5.0])
+    np.testing.assert_array_equal(t, [0, 0])
+    with pytest.raises(vds.InvalidMesh, match="flat.*no sign|no sign.*flat|signed one is not"):
+        sheet.distance(P)
+    with pytest.raises(vds.InvalidMesh, match="flat"):
+        sheet.sdf(vds.Grid((-1, -1, -1), (1, 1, 1), 2))

@@ -213,6 +213,24 @@ TEST_F(DistanceOutputs, BakeDistanceLimitsBeforeAnyWork) {
     EXPECT_EQ(r.code, 0) << r.output;
 }
 
+// A flat mesh (a sheet) has distances and closest points: --unsigned gives
+// them; signed, it is refused with why and what answers it.
+TEST_F(DistanceOutputs, UnsignedDistanceOnAFlatMesh) {
+    std::ofstream(p("sheet.obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::ofstream(p("near.txt")) << "0.25 0.25 2\n-3 0 4\n";
+    Result r = vds("distance " + p("sheet.obj") + " " + p("near.txt") + " --unsigned -o " + p("d.txt") +
+                   " --closest-points " + p("c.txt") + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("2 points, unsigned"), std::string::npos) << r.output;
+    EXPECT_EQ(textValues(readFile(dir / "d.txt"), ' '), (std::vector<double>{2.0, 5.0}));
+    EXPECT_EQ(textValues(readFile(dir / "c.txt"), ' '), (std::vector<double>{0.25, 0.25, 0.0, 0.0, 0.0, 0.0}));
+    r = vds("distance " + p("sheet.obj") + " " + p("near.txt") + " --rule generalized-winding -o " + p("s.npy") + " --quiet");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_EQ(lines(r.output), 1u) << r.output;
+    EXPECT_NE(r.output.find("no sign (--unsigned)"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(p("s.npy")));
+}
+
 // One default rule: distance, sdf, voxelize and bake --distance sign (or
 // label) by parity unless told otherwise, and say so in their help; bake's
 // distance grid is that rule's.

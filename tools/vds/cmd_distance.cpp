@@ -25,7 +25,7 @@ struct DistanceArgs {
     std::string mesh, points, output, closestPoints, triangles, outputFormat = "auto";
     vds::Rule rule = vds::Rule::Parity;
     unsigned threads = 0;
-    bool allowOpen = false, quiet = false;
+    bool allowOpen = false, quiet = false, isUnsigned = false;
 };
 
 // An output of `rows` rows of `columns` values, as `path`'s extension (or
@@ -70,8 +70,17 @@ void distance(DistanceArgs& a) {
     const std::vector<glm::vec3> points = readPointsFile(a.points);
     progress("read " + std::to_string(points.size()) + " points from " + (a.points == kStdio ? "<stdin>" : a.points));
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
-    checkSignedMesh(mesh, a.mesh, a.rule, a.allowOpen, "distance");
+    // Any usable mesh has distances, a flat one (a sheet) too; a sign needs
+    // a mesh whose inside the rule defines.
     const vds::SignedDistance query(mesh, a.rule, a.mesh);
+    if (!a.isUnsigned) {
+        try {
+            checkSignedMesh(mesh, a.mesh, a.rule, a.allowOpen, "distance");
+        } catch (const vds::InvalidMesh& e) {
+            if (query.hasSign()) throw;
+            throw vds::InvalidMesh(std::string(e.what()) + ": it has distances but no sign (--unsigned)");
+        }
+    }
     progress("built " + query.summary());
     vds::DistanceOptions options;
     options.threads = a.threads;
@@ -82,7 +91,8 @@ void distance(DistanceArgs& a) {
     for (std::size_t k0 = 0; k0 < points.size(); k0 += step) {
         const std::size_t k1 = std::min(points.size(), k0 + step);
         const vds::PointsView slice(points.data() + k0, k1 - k0);
-        query.distance(slice, d.data() + k0, options);
+        if (a.isUnsigned) query.unsignedDistance(slice, d.data() + k0, options);
+        else query.distance(slice, d.data() + k0, options);
         if (!closest.empty()) query.closestPoints(slice, closest.data() + k0, options);
         reportSteps(progress, "measured", k1, points.size(), "points", secondsSince(start));
     }
@@ -101,9 +111,11 @@ void distance(DistanceArgs& a) {
     outputs.commit();
     std::size_t inside = 0;
     for (double v : d) inside += std::signbit(v);
+    const std::string sign = a.isUnsigned ? std::string("unsigned")
+                                          : std::to_string(inside) + " inside, " + vds::toString(a.rule) + " rule";
     // With the distances on stdout, the summary goes to stderr.
-    std::fprintf(a.output == kStdio ? stderr : stdout, "wrote %s: %zu points, %zu inside, %s rule, measured in %.3f s\n",
-                 a.output.c_str(), points.size(), inside, vds::toString(a.rule), seconds);
+    std::fprintf(a.output == kStdio ? stderr : stdout, "wrote %s: %zu points, %s, measured in %.3f s\n",
+                 a.output.c_str(), points.size(), sign.c_str(), seconds);
 }
 
 } // namespace
@@ -145,7 +157,8 @@ void addDistance(CLI::App& app) {
         "triangle each lies on, uint32. Each output is a .npy array, or text lines when its name ends in\n"
         ".txt (values separated by spaces) or .csv (by commas); all are written, or none. POINTS '-' reads\n"
         "stdin (told apart by its first bytes), D '-' writes to stdout (text, or .npy with --output-format\n"
-        "npy), with the summary line on stderr. An open mesh needs --rule generalized-winding.",
+        "npy), with the summary line on stderr. An open mesh needs --rule generalized-winding; a flat one\n"
+        "(a sheet) has distances and closest points but no sign: --unsigned.",
         distance);
     addMesh(*c, a->mesh);
     c->add_option("POINTS", a->points, "points file (.npy, text, PLY; '-': stdin)")->required()->type_name("");
@@ -159,6 +172,8 @@ void addDistance(CLI::App& app) {
     c->add_option("--triangles", a->triangles, "also write the closest points' triangles (uint32 .npy)")->type_name("FILE");
     addEnum(*c, "--rule", a->rule, "what is inside (negative): parity, winding, or generalized-winding (open meshes)");
     c->add_flag("--allow-open", a->allowOpen, "sign an open mesh by crossing count anyway");
+    c->add_flag("--unsigned", a->isUnsigned,
+                "distances without a sign: any mesh, a flat one (a sheet) too, which has no inside to sign by");
     addCount(*c, "--threads", a->threads, "CPU threads, 0: all");
 }
 
