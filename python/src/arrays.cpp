@@ -209,10 +209,13 @@ std::uint32_t countOption(const py::object& value, const char* what) {
     }));
 }
 
+std::string typeName(const py::handle& value) {
+    return py::str(py::type::of(value).attr("__name__")).cast<std::string>();
+}
+
 std::string textOption(const py::object& value, const char* what) {
     if (!py::isinstance<py::str>(value))
-        throw DTypeError(std::string(what) + " must be a str, not " +
-                         py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+        throw DTypeError(std::string(what) + " must be a str, not " + typeName(value));
     return value.cast<std::string>();
 }
 

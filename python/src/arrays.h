@@ -87,6 +87,8 @@ unsigned threadCount(const py::object& threads, const char* what = "threads");
 /// `InvalidArgument` naming `what` and what was given. The library judges its range.
 std::uint32_t countOption(const py::object& value, const char* what);
 
+/// The name of `value`'s type ("str", "tuple"), for messages.
+std::string typeName(const py::handle& value);
 /// A text option (rule, axis, method): a str, else `DTypeError` (a
 /// vds.Error and a TypeError) naming `what` and the type given.
 std::string textOption(const py::object& value, const char* what);

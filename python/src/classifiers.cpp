@@ -77,6 +77,16 @@ private:
 
 // ---- classifiers -----------------------------------------------------------
 
+/// The built-in method `name` names (vds.methods()); a typo is told the
+/// nearest name, and "custom" (a C++ classifier's method) is no choice here.
+vds::Method parseMethod(const std::string& name) {
+    std::vector<std::string> names;
+    for (const vds::MethodInfo* m = vds::methodTable(); m != vds::methodTable() + vds::kMethodCount; ++m)
+        if (m->builtIn()) names.push_back(m->name);
+    if (std::find(names.begin(), names.end(), name) == names.end()) vds::throwUnknownName("method", name, names);
+    return vds::parseEnum<vds::Method>(name);
+}
+
 /// vds.Classifier: any `Method`, made by vds::makeClassifier. A CPU method's
 /// classifier is owned here; a GPU method's lives in GlState::classifiers
 /// (it belongs to the module's context) under `glId`.
@@ -86,7 +96,7 @@ public:
     PyClassifier(const py::object& vertices, const py::object& faces, const std::string& methodName,
                  const py::object& resolution, const std::string& axis, const std::string& bakeMethod,
                  const py::object& slices, const py::object& threads, const std::string& name)
-        : method_(vds::parseEnum<vds::Method>(methodName)) {
+        : method_(parseMethod(methodName)) {
         const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
         vds::MethodOptions options;
         options.resolution = vds::python::countOption(resolution, "resolution");
@@ -123,7 +133,7 @@ public:
 
     /// From a sprite (copied: later transforms of `sprite` do not move it).
     PyClassifier(const PySprite& sprite, const std::string& methodName)
-        : method_(vds::parseEnum<vds::Method>(methodName)) {
+        : method_(parseMethod(methodName)) {
         spriteOpen_ = sprite.status != vds::SolidStatus::Closed;
         spriteValidation_ = sprite.validation;
         rebuild_ = py::make_tuple(methodName);

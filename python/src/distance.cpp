@@ -22,30 +22,51 @@ namespace vds::python {
 
 namespace {
 
-/// vds.MeshWarning with the CLI's text where `rule` does not define the
-/// mesh's inside (as vds.exact_contains warns); the distances still come.
+/// vds.MeshWarning where `rule` does not define the mesh's inside (as
+/// vds.exact_contains warns), at the caller's line and in Python's words;
+/// the distances still come.
 void warnIfOpen(const MeshView& mesh, Rule rule) {
     MeshReport report;
     {
         py::gil_scoped_release released;
         report = validateMesh(mesh);
     }
-    if (!report.usable()) return; // SignedDistance says why
-    std::string message = openMeshMessage(report, "", rule, pythonFlags());
-    if (message.empty()) message = insideWarning(report, rule, pythonFlags());
-    if (message.empty()) return;
-    const py::object category = py::module_::import("vds._vds").attr("MeshWarning");
-    if (PyErr_WarnEx(category.ptr(), message.c_str(), 2) < 0) throw py::error_already_set();
+    if (report.usable()) warn(insideMessage(report, "", rule)); // an unusable mesh: SignedDistance says why
+}
+
+/// A distance option (band): a real number, else `DTypeError` naming `what`
+/// and the type given (pybind's own TypeError would print every argument).
+double realOption(const py::object& value, const char* what) {
+    const bool number = py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value) ||
+                        py::isinstance(value, py::module_::import("numpy").attr("number"));
+    if (!number || py::isinstance<py::bool_>(value))
+        throw DTypeError(std::string(what) + " must be a number, not " + typeName(value));
+    return value.cast<double>();
+}
+
+/// A yes/no option (propagated): a bool (Python's or numpy's), else `DTypeError`.
+bool flagOption(const py::object& value, const char* what) {
+    const py::object numpyBool = py::module_::import("numpy").attr("bool_");
+    if (!py::isinstance<py::bool_>(value) && !py::isinstance(value, numpyBool))
+        throw DTypeError(std::string(what) + " must be True or False, not " + typeName(value));
+    return value.cast<bool>();
 }
 
 class PySignedDistance {
 public:
-    PySignedDistance(const py::object& vertices, const py::object& faces, const std::string& rule) {
-        const Rule r = parseRule(rule);
+    PySignedDistance(const py::object& vertices, const py::object& faces, const py::object& rule) {
+        const Rule r = parseRule(textOption(rule, "rule"));
         const MeshArrays mesh = meshArrays(vertices, faces);
         warnIfOpen(mesh.view, r);
         py::gil_scoped_release released;
         distance_ = std::make_unique<SignedDistance>(mesh.view, r); // copies the triangles
+        mesh_ = std::make_shared<const MeshCopy>(mesh.view);
+    }
+
+    /// Pickled as what rebuilds it: (V float32, F uint32, rule).
+    py::tuple state() const {
+        const py::tuple arrays = mesh_->arrays();
+        return py::make_tuple(arrays[0], arrays[1], rule());
     }
 
     py::array_t<double> distance(const py::object& points, const py::object& threads, bool isSigned) const {
@@ -83,7 +104,11 @@ public:
         return py::make_tuple(xyz, d, triangles);
     }
 
-    py::array_t<float> grid(const Grid& grid, double band, bool propagated, const py::object& threads) const {
+    py::array_t<float> grid(const py::object& gridObject, const py::object& bandObject,
+                            const py::object& propagatedObject, const py::object& threads) const {
+        const Grid grid = gridFrom(gridObject);
+        const double band = realOption(bandObject, "band");
+        const bool propagated = flagOption(propagatedObject, "propagated");
         if (propagated && band != 0.0)
             throw InvalidArgument("propagated is a way to fill the full grid: leave band at 0");
         DistanceGridOptions options;
@@ -103,6 +128,7 @@ public:
 
 private:
     std::unique_ptr<SignedDistance> distance_;
+    std::shared_ptr<const MeshCopy> mesh_; ///< what rebuilds it (pickling)
 };
 
 } // namespace
@@ -116,11 +142,16 @@ closed mesh, "generalized-winding" for open, messy or badly oriented ones.
 A distance is negative exactly where vds.exact_contains(V, F, points, rule)
 is True. Points are (N, 3) float32 or float64, rounded to float32 first (as
 every classifier does); distances are float64, mesh units, exact up to
-double rounding. Raises vds.InvalidMesh for an empty, flat or unusable mesh,
-vds.InvalidArgument for a point that is not finite; warns (vds.MeshWarning)
+double rounding. Raises vds.InvalidMesh for an empty or unusable mesh; a flat
+one (a sheet) has unsigned_distance and closest_points, while distance and sdf
+raise vds.InvalidMesh (no inside, no sign); vds.InvalidArgument for a point that is not finite; warns (vds.MeshWarning)
 where the rule does not define the mesh's inside (an open mesh by parity or
-winding: crossings are counted as for a surface).)doc")
-        .def(py::init<const py::object&, const py::object&, const std::string&>(), py::arg("V"), py::arg("F"),
+winding: crossings are counted as for a surface), at the caller's line.
+Raises vds.DTypeError (a TypeError) for an argument of the wrong type (a rule
+that is not a str, a grid that is not a vds.Grid, a band that is not a
+number). Pickles as (V, F, rule), rebuilt where it is unpickled, so it goes
+to Dask workers and multiprocessing pools.)doc")
+        .def(py::init<const py::object&, const py::object&, const py::object&>(), py::arg("V"), py::arg("F"),
              py::arg("rule") = "parity")
         .def("distance", [](const PySignedDistance& s, const py::object& p, const py::object& t) {
                  return s.distance(p, t, true);
@@ -138,22 +169,27 @@ winding: crossings are counted as for a surface).)doc")
              "as a closest-feature transform, exact within a cell diagonal of the surface, beyond it never "
              "below the distance and within 4 cell diagonals above it.")
         .def_property_readonly("rule", &PySignedDistance::rule)
+        .def(py::pickle([](const PySignedDistance& s) { return s.state(); },
+                        [](const py::tuple& t) {
+                            if (t.size() != 3) throw InvalidArgument("not a pickled vds.SignedDistance");
+                            return std::make_unique<PySignedDistance>(t[0], t[1], t[2]);
+                        }))
         .def("__repr__", [](const PySignedDistance& s) { return "<vds.SignedDistance: " + s.summary() + ">"; });
 
     m.def("signed_distance", [](const py::object& v, const py::object& f, const py::object& points,
-                                const std::string& rule, const py::object& threads) {
+                                const py::object& rule, const py::object& threads) {
               return PySignedDistance(v, f, rule).distance(points, threads, true);
           }, py::arg("V"), py::arg("F"), py::arg("points"), py::arg("rule") = "parity", py::arg("threads") = 0,
           "Signed distances of points (N, 3) to the mesh (V, F): (N,) float64, negative exactly where the "
           "exact classifier of `rule` says inside. Builds a SignedDistance for the call: keep one to ask many times.");
     m.def("closest_points", [](const py::object& v, const py::object& f, const py::object& points,
                                const py::object& threads) {
-              return PySignedDistance(v, f, "generalized-winding").closest(points, threads);
+              return PySignedDistance(v, f, py::str("generalized-winding")).closest(points, threads);
           }, py::arg("V"), py::arg("F"), py::arg("points"), py::arg("threads") = 0,
           "(points (N, 3) float64, distances (N,) float64, triangles (N,) uint32): the nearest point of the "
-          "surface (V, F) to each point, its distance and its triangle. Any usable mesh that is not flat.");
-    m.def("sdf", [](const py::object& v, const py::object& f, const Grid& grid, const std::string& rule,
-                    double band, bool propagated, const py::object& threads) {
+          "surface (V, F) to each point, its distance and its triangle. Any usable mesh, a flat one (a sheet) too.");
+    m.def("sdf", [](const py::object& v, const py::object& f, const py::object& grid, const py::object& rule,
+                    const py::object& band, const py::object& propagated, const py::object& threads) {
               return PySignedDistance(v, f, rule).grid(grid, band, propagated, threads);
           }, py::arg("V"), py::arg("F"), py::arg("grid"), py::arg("rule") = "parity", py::arg("band") = 0.0,
           py::arg("propagated") = false, py::arg("threads") = 0,

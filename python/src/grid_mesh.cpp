@@ -32,8 +32,7 @@ py::tuple tuple3(const glm::vec3& v) { return py::make_tuple(double(v.x), double
 
 vds::Grid gridFrom(const py::object& grid) {
     if (!py::isinstance<vds::Grid>(grid))
-        throw DTypeError("grid must be a vds.Grid (vds.Grid(lo, hi, dims)), not " +
-                         py::str(py::type::of(grid).attr("__name__")).cast<std::string>());
+        throw DTypeError("grid must be a vds.Grid (vds.Grid(lo, hi, dims)), not " + typeName(grid));
     return grid.cast<vds::Grid>();
 }
 

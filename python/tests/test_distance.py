@@ -2,6 +2,8 @@
 vds.sdf and vds.SignedDistance against a brute-force distance computed here
 in numpy (plane or nearest edge, over every triangle), the sign against the
 exact classifier of the same rule, and bad input."""
+import sys
+
 import numpy as np
 import pytest
 
@@ -149,3 +151,92 @@ def test_the_command_line_gives_the_same_values(tmp_path):
                     "--quiet"], check=True, capture_output=True)
     np.testing.assert_array_equal(np.load(tmp_path / "d.npy"), vds.signed_distance(V, F, P, rule="winding"))
     np.testing.assert_array_equal(np.load(tmp_path / "q.npy"), vds.closest_points(V, F, P)[0])
+
+
+def _distances(args):
+    """A worker's distances (module level, so that multiprocessing finds it)."""
+    query, points = args
+    return query.distance(points, threads=1)
+
+
+def test_warnings_point_at_the_callers_line_in_pythons_words():
+    import warnings
+
+    P = np.zeros((1, 3), np.float32)
+    V, F = open_cup()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        first = sys._getframe().f_lineno + 1
+        vds.signed_distance(V, F, P, rule="parity")
+        vds.SignedDistance(V, F, rule="winding")
+        vds.sdf(V, F, vds.Grid((-1, -1, -1), (1, 1, 1), 4))
+    assert [w.lineno for w in caught] == [first, first + 1, first + 2]
+    for w in caught:
+        assert issubclass(w.category, vds.MeshWarning) and w.filename == __file__, (w.filename, w.lineno)
+        assert "--" not in str(w.message) and 'rule="generalized-winding"' in str(w.message), str(w.message)
+
+
+def test_wrong_types_raise_dtype_error_not_a_signature_dump():
+    V, F = sphere_mesh(segments=16, rings=8)
+    P = sample(V, 4)
+    query = vds.SignedDistance(V, F)
+    grid = vds.Grid((-1, -1, -1), (1, 1, 1), 4)
+    bad = [lambda: vds.SignedDistance(V, F, rule=3),
+           lambda: vds.signed_distance(V, F, P, rule=None),
+           lambda: vds.sdf(V, F, (4, 4, 4)),
+           lambda: vds.sdf(V, F, grid, rule=b"parity"),
+           lambda: vds.sdf(V, F, grid, band="0.1"),
+           lambda: vds.sdf(V, F, grid, propagated="yes"),
+           lambda: query.sdf((4, 4, 4)),
+           lambda: query.sdf(grid, band=None),
+           lambda: query.sdf(grid, propagated=1)]
+    for call in bad:
+        with pytest.raises(vds.DTypeError) as caught:
+            call()
+        assert isinstance(caught.value, TypeError)
+        assert len(str(caught.value)) < 200 and "array(" not in str(caught.value), str(caught.value)
+    np.testing.assert_array_equal(query.sdf(grid, band=np.float32(0.5)), query.sdf(grid, band=0.5))
+    np.testing.assert_array_equal(query.sdf(grid, propagated=np.bool_(False)), query.sdf(grid))
+
+
+def test_signed_distance_pickles_and_goes_to_other_processes():
+    import multiprocessing
+    import pickle
+
+    V, F = sphere_mesh(segments=16, rings=8)
+    P = sample(V, 50)
+    query = vds.SignedDistance(V, F, rule="winding")
+    copy = pickle.loads(pickle.dumps(query))
+    assert copy.rule == "winding" and repr(copy) == repr(query)
+    np.testing.assert_array_equal(copy.distance(P), query.distance(P))
+    with multiprocessing.get_context("fork").Pool(2) as pool:
+        results = pool.map(_distances, [(query, P[:25]), (query, P[25:])])
+    np.testing.assert_array_equal(np.concatenate(results), query.distance(P))
+
+
+def test_method_typos_get_a_suggestion_and_custom_is_no_choice():
+    V, F = box_mesh((0, 0, 0), (1, 1, 1))
+    with pytest.raises(vds.InvalidArgument, match=r"did you mean 'exact'\?") as caught:
+        vds.Classifier(V, F, method="exakt")
+    assert "custom" not in str(caught.value)
+    with pytest.raises(vds.InvalidArgument) as caught:
+        vds.Classifier(V, F, method="custom")
+    assert "custom" not in str(caught.value).split("expected")[1]
+    with pytest.raises(vds.InvalidArgument, match=r"did you mean 'parity'\?"):
+        vds.signed_distance(V, F, np.zeros((1, 3)), rule="parit")
+
+
+def test_a_flat_mesh_has_unsigned_distances_and_closest_points_but_no_sign():
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float)
+    F = np.array([[0, 1, 2]])
+    P = np.array([[0.25, 0.25, 2.0], [-3.0, 0.0, 4.0]], np.float32)
+    sheet = vds.SignedDistance(V, F, rule="generalized-winding")
+    np.testing.assert_array_equal(sheet.unsigned_distance(P), [2.0, 5.0])
+    Q, d, t = vds.closest_points(V, F, P)
+    np.testing.assert_array_equal(Q, [[0.25, 0.25, 0.0], [0.0, 0.0, 0.0]])
+    np.testing.assert_array_equal(d, [2.0, 5.0])
+    np.testing.assert_array_equal(t, [0, 0])
+    with pytest.raises(vds.InvalidMesh, match="flat.*no sign|no sign.*flat|signed one is not"):
+        sheet.distance(P)
+    with pytest.raises(vds.InvalidMesh, match="flat"):
+        sheet.sdf(vds.Grid((-1, -1, -1), (1, 1, 1), 2))

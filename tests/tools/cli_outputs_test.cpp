@@ -134,14 +134,14 @@ TEST_F(CliOutputs, MisorientedMeshIsToldWithWhatEachRuleAnswers) {
 }
 
 // A message names a flag only where the command has it: --allow-open in
-// classify's, which accepts it; bake, voxelize, eval and compare name none.
+// classify's and voxelize's, which accept it; bake, eval and compare name none.
 TEST_F(CliOutputs, FlagsAreNamedOnlyWhereTheyExist) {
     auto box = vds::solids::box({0, 0, 0}, {1, 1, 1}).mesh;
     box.triangles.pop_back();
     writeObj(dir / "open.obj", box);
     const std::string open = p("open.obj");
     for (const std::string& command :
-         {"bake " + open + " -o " + p("o.vds") + " --resolution 8 --method cpu", "voxelize " + open + " --dims 4 -o " + p("o.npy"),
+         {"bake " + open + " -o " + p("o.vds") + " --resolution 8 --method cpu",
           "eval " + open + " --resolutions 8 --points 10 --surface-points 10", "compare " + open + " --resolutions 8"}) {
         const Result r = vds(command + " --quiet");
         EXPECT_NE(r.output.find("open (3 boundary edges)"), std::string::npos) << command << "\n" << r.output;
@@ -151,9 +151,14 @@ TEST_F(CliOutputs, FlagsAreNamedOnlyWhereTheyExist) {
     // compare's default (parity) is named as the rule that does not answer.
     Result r = vds("compare " + open + " --resolutions 8 --quiet");
     EXPECT_NE(r.output.find("not defined by the parity rule"), std::string::npos) << r.output;
-    r = vds("classify --mesh " + open + " " + p("points.txt") + " -o " + p("l.txt") + " --quiet");
-    EXPECT_EQ(r.code, 1) << r.output;
-    EXPECT_NE(r.output.find("(--allow-open)"), std::string::npos) << r.output;
+    for (const std::string& command : {"classify --mesh " + open + " " + p("points.txt") + " -o " + p("l.txt"),
+                                       "voxelize " + open + " --dims 4 -o " + p("o.npy"),
+                                       "sdf " + open + " --dims 4 -o " + p("o.npy"),
+                                       "distance " + open + " " + p("points.txt") + " -o " + p("d.npy")}) {
+        r = vds(command + " --quiet");
+        EXPECT_EQ(r.code, 1) << command << "\n" << r.output;
+        EXPECT_NE(r.output.find("(--allow-open)"), std::string::npos) << command << "\n" << r.output;
+    }
     r = vds("classify --allow-open --mesh " + open + " " + p("points.txt") + " -o " + p("l.txt") + " --quiet");
     EXPECT_EQ(r.code, 0) << r.output;
     // The warning for answering anyway says so, not that parity defines inside.

@@ -90,7 +90,7 @@ TEST_F(Cli, BakeStoresTheExactDistanceGrid) {
     EXPECT_NE(r.output.find("format version:    3"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("distance grid:     10 x 8 x 12 cells"), std::string::npos) << r.output;
     const vds::Sprite sprite = vds::readSprite(p("d.vds"));
-    const vds::SignedDistance exact(vds::loadMesh(p("box.obj")), vds::Rule::GeneralizedWinding);
+    const vds::SignedDistance exact(vds::loadMesh(p("box.obj")), vds::Rule::Parity); // every command's default
     const vds::Grid& g = sprite.distance.grid;
     ASSERT_EQ(sprite.distance.cells.size(), g.cellCount());
     std::size_t same = 0;
@@ -380,9 +380,13 @@ TEST_F(Cli, OpenMeshIsBakedWithAWarningAndRecorded) {
     EXPECT_NE(r.output.find("warning: "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("3 boundary edges"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("--rule generalized-winding"), std::string::npos) << r.output; // points to what answers
+    // voxelize treats it as classify, distance and sdf do: refused by parity, unless asked for.
     r = vds("voxelize " + p("open.obj") + " --dims 4 -o " + p("open.npy"));
-    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_NE(r.output.find("--rule generalized-winding"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "open.npy"));
+    r = vds("voxelize " + p("open.obj") + " --dims 4 -o " + p("open.npy") + " --allow-open");
+    ASSERT_EQ(r.code, 0) << r.output;
     r = vds("info " + p("open.vds"));
     EXPECT_NE(r.output.find("NOT A SOLID"), std::string::npos) << r.output;
     // Exact answers and accuracy need a solid: refused, unless asked for.

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -16,6 +17,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <vds/distance.h>
 #include <vds/enum_names.h>
 #include <vds/error.h>
 #include <vds/grid.h>
@@ -117,6 +119,15 @@ void writeTextFile(const std::string& path, const std::string& text);
 /// Prints "vds: <what>" progress lines to stderr, unless quiet.
 std::function<void(const std::string&)> progressPrinter(bool quiet);
 
+/// Seconds since `start`.
+double secondsSince(std::chrono::steady_clock::time_point start);
+
+/// "vds: labelled 32 of 256 x layers (12%) in 1.3 s" (`verb`, `done` of
+/// `total` `units`): a line per step of a long run once it has run past a
+/// second (a quick one says nothing, and neither does its last step).
+void reportSteps(const std::function<void(const std::string&)>& progress, const char* verb, std::size_t done,
+                 std::size_t total, const char* units, double seconds);
+
 /// How this tool spells the flags the library's mesh messages name
 /// (<vds/mesh_check.h>): the generalized winding number's rule; `--allow-open`
 /// only where the command has it.
@@ -131,11 +142,17 @@ void addEval(CLI::App& app);
 void addCompare(CLI::App& app);
 void addVoxelize(CLI::App& app);
 void addDistance(CLI::App& app);
-/// What `vds distance` and `vds sdf` refuse, as classify does: an unusable or
+/// What `vds distance`, `vds sdf` and `vds voxelize` refuse, as classify does: an unusable or
 /// flat mesh, and one whose inside `rule` does not define unless `allowOpen`;
 /// warns of non-manifold edges ("vds COMMAND: warning: ...").
 void checkSignedMesh(const vds::TriangleMesh& mesh, const std::string& name, vds::Rule rule, bool allowOpen,
                      const char* command);
+/// The signed distance of every cell of `grid` into `cells`, as
+/// `query.grid` gives it, a slab of x layers at a time (the same cells,
+/// `Grid::slabX`) so that a run past a second reports progress; a
+/// propagated grid in one call (it spreads across the whole grid).
+void fillDistanceGrid(const vds::SignedDistance& query, const vds::Grid& grid, float* cells,
+                      const vds::DistanceGridOptions& options, const std::function<void(const std::string&)>& progress);
 void addSdf(CLI::App& app);
 
 } // namespace cli

@@ -32,8 +32,16 @@ struct BakeArgs {
     vds::BakeOptions options;
     bool quiet = false, verbose = false;
     std::uint32_t distance = 0; ///< cells of the distance grid along its longest side, 0: none
-    vds::Rule distanceRule = vds::Rule::GeneralizedWinding;
+    vds::Rule distanceRule = vds::Rule::Parity; ///< every command's default rule
 };
+
+// The largest --distance whose grid fits the file whatever the mesh's shape:
+// a cube's N^3 cells at most vds::kMaxDistanceCells.
+std::uint32_t maxDistanceResolution() {
+    std::uint32_t n = vds::kMaxDistanceResolution;
+    while (std::size_t(n) * n * n > vds::kMaxDistanceCells) --n;
+    return n;
+}
 
 // Milliseconds since `from`, and `from` moved to now.
 double lap(std::chrono::steady_clock::time_point& from) {
@@ -100,7 +108,10 @@ void bake(BakeArgs& a) {
     if (a.distance > 0) {
         progress("distance grid of " + std::to_string(a.distance) + " cells along the longest side, " +
                  vds::toString(a.distanceRule) + " rule");
-        sprite.distance = vds::bakeDistance(mesh, sprite.grid.box, a.distance, a.distanceRule);
+        sprite.distance.grid = vds::spriteDistanceGrid(sprite.grid.box, a.distance);
+        const vds::SignedDistance query(mesh, a.distanceRule, a.mesh);
+        sprite.distance.cells.resize(sprite.distance.grid.cellCount());
+        fillDistanceGrid(query, sprite.distance.grid, sprite.distance.cells.data(), {}, progress);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (a.verbose) std::fputs(timings.report().c_str(), stderr);
@@ -130,13 +141,18 @@ void addBake(CLI::App& app) {
     addEnum(*c, "--method", a->options.method,
             "auto: GL fragment lists on a GPU, the CPU baker on a software renderer or without GL; or lists, "
             "peel (depth peeling), cpu (exact ray casting)");
-    c->add_option("--distance", a->distance,
-                  "also store a signed distance grid of N cells along the longest side (exact distances, for "
-                  "vdsDistance in GLSL; format version 3)")
-        ->check(CLI::Range(4u, vds::kMaxDistanceResolution))
-        ->type_name("N");
+    const std::uint32_t most = maxDistanceResolution();
+    CLI::Option* distance =
+        c->add_option("--distance", a->distance,
+                      "also store a signed distance grid of N cells along the longest side, cubic cells (exact "
+                      "distances, for vdsDistance in GLSL; format version 3); at most " + std::to_string(most) +
+                          ", so that a cube's N^3 cells fit one attribute of the file")
+            ->transform(wholeNumber(4, most))
+            ->type_name("4.." + std::to_string(most))
+            ->default_str(""); // none unless given: 0 is no size
     addEnum(*c, "--distance-rule", a->distanceRule,
-            "the sign of the distance grid: parity, winding, or generalized-winding (open meshes too)");
+            "the sign of the distance grid: parity, winding, or generalized-winding (open meshes too)")
+        ->needs(distance);
     c->add_flag("--verbose", a->verbose,
                 "say which axis and bake method auto chose and why, and the time of each phase (validation, "
                 "upload, raster, scan, sort, read-back...)");

@@ -13,6 +13,7 @@
 #include <vds/voxel/representation.h>
 
 #include "cli.h"
+#include "outputs.h"
 
 namespace cli {
 
@@ -32,22 +33,6 @@ bool endsWith(const std::string& s, const std::string& tail) {
     return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-// "-": standard input or output.
-constexpr const char* kStdio = "-";
-
-std::vector<char> readStdin() {
-    std::vector<char> bytes;
-    char buffer[1 << 16];
-    std::size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, stdin)) > 0) bytes.insert(bytes.end(), buffer, buffer + n);
-    if (std::ferror(stdin)) throw vds::IoError("<stdin>: cannot read");
-    return bytes;
-}
-
-bool startsWith(const std::vector<char>& bytes, const char* magic, std::size_t size) {
-    return bytes.size() >= size && std::equal(magic, magic + size, bytes.begin());
-}
-
 // The first bytes of a file ("" where it cannot be read).
 std::string firstBytes(const std::string& path, std::size_t n) {
     std::ifstream in(path, std::ios::binary);
@@ -62,7 +47,6 @@ bool looksLikeSprite(const std::string& path) { return path != kStdio && firstBy
 
 // A .npy file (N x 3 float32 or float64) or what vds::loadPoints reads; from
 // stdin ("-") any of these, told apart by their first bytes.
-std::vector<glm::vec3> readPointsFile(const std::string& path);
 std::vector<glm::vec3> readPoints(const std::string& path) {
     try {
         return readPointsFile(path);
@@ -73,41 +57,19 @@ std::vector<glm::vec3> readPoints(const std::string& path) {
     }
 }
 
-std::vector<glm::vec3> readPointsFile(const std::string& path) {
-    if (path == kStdio) {
-        const std::vector<char> bytes = readStdin();
-        if (startsWith(bytes, "\x93NUMPY", 6)) return vds::npyPoints(vds::parseNpy(bytes.data(), bytes.size(), "<stdin>"), "<stdin>");
-        const bool ply = startsWith(bytes, "ply\n", 4) || startsWith(bytes, "ply\r\n", 5);
-        return vds::parsePoints(bytes.data(), bytes.size(), ply ? vds::PointFormat::Ply : vds::PointFormat::Text, "<stdin>");
-    }
-    if (endsWith(path, ".npy")) return vds::npyPoints(vds::readNpy(path), path);
-    return vds::loadPoints(path);
-}
-
-void writeStdout(const std::string& bytes) {
-    if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0)
-        throw vds::IoError("<stdout>: cannot write");
-}
-
-// Labels as a boolean .npy array, or one "0"/"1" line per point; to a file
-// (written atomically) or to stdout ("-"). `format` "auto": .npy by the name.
-void writeLabels(const std::string& path, const std::string& format, const std::vector<std::uint8_t>& labels) {
+// Labels as a boolean .npy array, or one "0"/"1" line per point, into the
+// claimed output (a file written atomically, or stdout for "-"). `format`
+// "auto": .npy by the name.
+void writeLabels(Outputs& outputs, std::size_t output, const std::string& path, const std::string& format,
+                 const std::vector<std::uint8_t>& labels) {
     const bool npy = format == "npy" || (format == "auto" && endsWith(path, ".npy"));
-    if (npy && path != kStdio) {
-        vds::writeNpy(path, "|b1", {labels.size()}, labels.data(), labels.size());
-        return;
-    }
     if (npy) {
-        writeStdout(vds::npyHeader("|b1", {labels.size()}) + std::string(labels.begin(), labels.end()));
+        outputs.write(output, vds::npyHeader("|b1", {labels.size()}), labels.data(), labels.size());
         return;
     }
     std::string text(labels.size() * 2, '\n');
     for (std::size_t i = 0; i < labels.size(); ++i) text[2 * i] = labels[i] ? '1' : '0';
-    if (path == kStdio) {
-        writeStdout(text);
-        return;
-    }
-    writeTextFile(path, text);
+    outputs.write(output, text, nullptr, 0);
 }
 
 // The old spellings (--exact, --certified, --with NAME, --gpu) as the
@@ -157,6 +119,8 @@ void checkMesh(const ClassifyArgs& a, const vds::TriangleMesh& mesh) {
 
 void classify(ClassifyArgs& a) {
     resolveMethod(a);
+    Outputs outputs;
+    const std::size_t output = outputs.claim("-o", a.output);
     const auto progress = progressPrinter(a.quiet);
     const std::string& pointsPath = a.files.back();
     const std::vector<glm::vec3> points = readPoints(pointsPath);
@@ -200,7 +164,8 @@ void classify(ClassifyArgs& a) {
     if (a.method == vds::Method::Certified)
         method += " (" + std::to_string(stats.exact) + " of " + std::to_string(points.size()) +
                   " points by the exact path)";
-    writeLabels(a.output, a.outputFormat, labels);
+    writeLabels(outputs, output, a.output, a.outputFormat, labels);
+    outputs.commit();
     std::size_t inside = 0;
     for (auto l : labels) inside += l;
     // With the labels on stdout, the summary goes to stderr.

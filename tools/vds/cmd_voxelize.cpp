@@ -21,24 +21,8 @@ struct VoxelizeArgs {
     std::string input, output;
     GridArgs grid;
     vds::ClassifyOptions options;
-    bool packed = false, verbose = false, quiet = false;
+    bool packed = false, verbose = false, quiet = false, allowOpen = false;
 };
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-/// "vds: labelled 32 of 256 x layers (12%) in 1.3 s": a line per slab once
-/// the sweep has run past a second (a quick one says nothing).
-void reportSweep(const std::function<void(const std::string&)>& progress, std::uint32_t done, std::uint32_t total,
-                 double seconds) {
-    constexpr double kQuietSeconds = 1.0;
-    if (seconds < kQuietSeconds || done == total) return;
-    char line[96];
-    std::snprintf(line, sizeof line, "labelled %u of %u x layers (%u%%) in %.1f s", done, total,
-                  unsigned(100.0 * done / total), seconds);
-    progress(line);
-}
 
 /// Reads the sprite INPUT names, warns where its answers are a surface's; its box.
 vds::Box loadSprite(const VoxelizeArgs& a, vds::Sprite& sprite) {
@@ -48,15 +32,12 @@ vds::Box loadSprite(const VoxelizeArgs& a, vds::Sprite& sprite) {
     return sprite.grid.box;
 }
 
-/// Validates the mesh INPUT names: refuses one with no volume, warns as the
-/// rule asks (it is answered anyway); its bounds.
+/// Validates the mesh INPUT names as distance and sdf do (`checkSignedMesh`):
+/// refuses one with no volume, and one whose inside the rule does not define
+/// unless --allow-open; its bounds.
 vds::Box checkedBounds(const VoxelizeArgs& a, const vds::TriangleMesh& mesh) {
-    const vds::MeshReport report = vds::validateMesh(mesh);
-    vds::requireUsable(report, a.input);
-    vds::requireVolume(report, a.input);
-    const std::string warning = vds::insideWarning(report, a.options.rule, meshFlags());
-    if (!warning.empty()) std::fprintf(stderr, "vds voxelize: warning: %s: %s\n", a.input.c_str(), warning.c_str());
-    return report.bounds;
+    checkSignedMesh(mesh, a.input, a.options.rule, a.allowOpen, "voxelize");
+    return vds::meshBounds(mesh);
 }
 
 /// The x layers labelled a call. --packed labels the grid a slab at a time
@@ -127,7 +108,7 @@ void voxelize(VoxelizeArgs& a) {
         label(slab == grid.dims.x ? grid : grid.slabX(i0, i1), slabCells);
         const std::size_t count = std::size_t(i1 - i0) * layer;
         for (std::size_t c = 0; c < count; ++c) inside += slabCells[c];
-        reportSweep(progress, i1, grid.dims.x, secondsSince(start));
+        reportSteps(progress, "labelled", i1, grid.dims.x, "x layers", secondsSince(start));
         if (a.packed) // numpy.packbits(cells, axis=-1): each z row packed on its own
             for (std::size_t r = 0; r < std::size_t(i1 - i0) * grid.dims.y; ++r)
                 vds::packLabels(slabCells + r * grid.dims.z, grid.dims.z,
@@ -157,13 +138,16 @@ void addVoxelize(CLI::App& app) {
         "--packed, a uint8 array of shape (NX, NY, ceil(NZ / 8)): each z row eight cells to a byte,\n"
         "first cell in the highest bit (numpy.packbits(cells, axis=-1); numpy.unpackbits(a, axis=-1,\n"
         "count=NZ) gives the cells back). From a mesh the labels are exact (equal to 'vds classify --exact' on\n"
-        "the cell centres); from a SPRITE.vds they are the sprite's answers.",
+        "the cell centres); from a SPRITE.vds they are the sprite's answers. A mesh whose inside the rule\n"
+        "does not define (an open mesh by parity or winding) is refused, as classify, distance and sdf\n"
+        "refuse it: --rule generalized-winding answers it, --allow-open counts crossings anyway.",
         voxelize);
     c->add_option("INPUT", a->input, "a mesh (OBJ, PLY, STL, OFF) or a sprite (.vds)")->required()->type_name("");
     c->add_option("-o,--output", a->output, "output .npy (written whole or not at all)")->required()->type_name("FILE");
     addGridOptions(*c, a->grid, "the grid's box instead of the input's bounds");
     addEnum(*c, "--rule", a->options.rule,
             "parity, non-zero winding, or the generalized winding number (open meshes and soups too)");
+    c->add_flag("--allow-open", a->allowOpen, "label an open mesh by crossing count anyway");
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
     c->add_flag("--packed", a->packed, "eight cells to a byte");
     c->add_flag("--verbose", a->verbose, "print the time of each phase");

@@ -103,49 +103,28 @@ void writeTextFile(const std::string& path, const std::string& text) {
     out.commit();
 }
 
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void reportSteps(const std::function<void(const std::string&)>& progress, const char* verb, std::size_t done,
+                 std::size_t total, const char* units, double seconds) {
+    constexpr double kQuietSeconds = 1.0;
+    if (seconds < kQuietSeconds || done == total) return;
+    char line[128];
+    std::snprintf(line, sizeof line, "%s %zu of %zu %s (%u%%) in %.1f s", verb, done, total, units,
+                  unsigned(100.0 * double(done) / double(total)), seconds);
+    progress(line);
+}
+
 std::function<void(const std::string&)> progressPrinter(bool quiet) {
     return [quiet](const std::string& what) {
         if (!quiet) std::fprintf(stderr, "vds: %s\n", what.c_str());
     };
 }
 
-namespace {
-
-// Levenshtein distance, for "did you mean".
-std::size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-        std::size_t diagonal = row[0];
-        row[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j) {
-            const std::size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-            diagonal = up;
-        }
-    }
-    return row[b.size()];
-}
-
-// The candidate nearest to `word`, if it is near enough to be a typo (at
-// most a third of its letters off, and at least one), else empty.
-std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
-    std::string best;
-    std::size_t bestDistance = std::max<std::size_t>(1, word.size() / 3) + 1;
-    for (const std::string& c : candidates) {
-        const std::size_t d = editDistance(word, c);
-        if (d < bestDistance) {
-            bestDistance = d;
-            best = c;
-        }
-    }
-    return best;
-}
-
-} // namespace
-
 std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates) {
-    const std::string best = nearest(word, candidates);
+    const std::string best = vds::nearestName(word, candidates);
     return best.empty() ? std::string() : " (did you mean '" + best + "'?)";
 }
 
@@ -173,7 +152,7 @@ std::string suggestion(const CLI::App& app, const std::vector<std::string>& unex
             for (const CLI::Option* o : chosen.front()->get_options())
                 for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
         }
-        const std::string best = nearest(word, names);
+        const std::string best = vds::nearestName(word, names);
         if (!best.empty()) return " (did you mean '" + best + "'?)";
     }
     return {};

@@ -388,7 +388,20 @@ TEST(Distance, BadInputGetsOneClearError) {
     TriangleMesh flat;
     flat.positions = {glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)};
     flat.triangles = {glm::uvec3(0, 1, 2)};
-    EXPECT_THROW(SignedDistance(flat, Rule::GeneralizedWinding), InvalidMesh);
+    // A sheet bounds no volume: distances to it, its closest points, no sign.
+    const SignedDistance sheet(flat, Rule::GeneralizedWinding);
+    EXPECT_FALSE(sheet.hasSign());
+    const glm::vec3 above(0.25f, 0.25f, 2.0f), beside(-3.0f, 0.0f, 4.0f);
+    double d[2];
+    const glm::vec3 both[2] = {above, beside};
+    sheet.unsignedDistance(PointsView(both, 2), d);
+    EXPECT_EQ(d[0], 2.0);
+    EXPECT_EQ(d[1], 5.0); // to the corner (0, 0, 0)
+    EXPECT_EQ(sheet.closest(above).point, glm::dvec3(0.25, 0.25, 0.0));
+    EXPECT_THROW(sheet.distance(above), InvalidMesh);
+    std::vector<float> sheetCells(8);
+    EXPECT_THROW(sheet.grid(Grid{{glm::vec3(-1.0f), glm::vec3(1.0f)}, glm::uvec3(2)}, sheetCells.data()), InvalidMesh);
+    EXPECT_THROW(sheet.classifier(), InvalidMesh);
     // An open mesh by parity: answered like the exact classifier (crossings as for a surface), not refused.
     const TriangleMesh cup = solids::sphereCup();
     const SignedDistance byParity(cup, Rule::Parity);

@@ -7,6 +7,8 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -83,10 +85,20 @@ void checkBatch(const PointsView& points, const DistanceOptions& options) {
 } // namespace
 
 struct SignedDistance::Impl {
-    Impl(MeshView mesh, Rule r) : rule(r), bvh(mesh), exact(mesh, Axis::Z) {}
+    Impl(MeshView mesh, Rule r, std::string flatWhy) : rule(r), bvh(mesh), flat(std::move(flatWhy)) {
+        if (flat.empty()) exact.emplace(mesh, Axis::Z);
+    }
     Rule rule;
     detail::Bvh bvh;
-    ExactClassifier exact;
+    std::optional<ExactClassifier> exact; ///< none for a flat mesh
+    std::string flat;                     ///< why a flat mesh has no sign, else ""
+
+    /// The classifier of the signs; a flat mesh has none: `InvalidMesh`.
+    const ExactClassifier& signs() const {
+        if (!exact)
+            throw InvalidMesh(flat + "; its unsigned distance and closest points are defined, a signed one is not");
+        return *exact;
+    }
 
     /// The nearest triangle within `maxDistance`, starting from `seed`'s
     /// distance when one is given.
@@ -122,11 +134,17 @@ struct SignedDistance::Impl {
 SignedDistance::SignedDistance(MeshView mesh, Rule rule, const std::string& meshName) {
     const MeshReport report = validateMesh(mesh);
     requireUsable(report, meshName);
-    requireVolume(report, meshName);
+    // A flat mesh (a sheet) bounds no volume: distances to it, no sign.
+    std::string flat;
+    try {
+        requireVolume(report, meshName);
+    } catch (const InvalidMesh& e) {
+        flat = e.what();
+    }
     if (mesh.triangleCount > kMaxTriangles)
         throw InvalidMesh(meshName + " has " + std::to_string(mesh.triangleCount) +
                           " triangles, more than a distance hierarchy holds (" + std::to_string(kMaxTriangles) + ")");
-    impl_ = std::make_unique<Impl>(mesh, rule);
+    impl_ = std::make_unique<Impl>(mesh, rule, std::move(flat));
 }
 
 SignedDistance::~SignedDistance() = default;
@@ -134,14 +152,17 @@ SignedDistance::SignedDistance(SignedDistance&&) noexcept = default;
 SignedDistance& SignedDistance::operator=(SignedDistance&&) noexcept = default;
 
 Rule SignedDistance::rule() const { return impl_->rule; }
-const ExactClassifier& SignedDistance::classifier() const { return impl_->exact; }
+const ExactClassifier& SignedDistance::classifier() const { return impl_->signs(); }
+bool SignedDistance::hasSign() const { return impl_->exact.has_value(); }
 std::size_t SignedDistance::triangleCount() const { return impl_->bvh.triangleCount(); }
 
-std::size_t SignedDistance::memoryBytes() const { return impl_->bvh.memoryBytes() + impl_->exact.memoryBytes(); }
+std::size_t SignedDistance::memoryBytes() const {
+    return impl_->bvh.memoryBytes() + (impl_->exact ? impl_->exact->memoryBytes() : 0);
+}
 
 std::string SignedDistance::summary() const {
     return "distance on " + std::to_string(triangleCount()) + " triangles, " + std::to_string(impl_->bvh.nodeCount()) +
-           " nodes, signed by " + toString(impl_->rule);
+           " nodes, " + (impl_->exact ? std::string("signed by ") + toString(impl_->rule) : std::string("unsigned (flat)"));
 }
 
 void SignedDistance::unsignedDistance(const PointsView& points, double* out, const DistanceOptions& options) const {
@@ -152,13 +173,14 @@ void SignedDistance::unsignedDistance(const PointsView& points, double* out, con
 }
 
 void SignedDistance::distance(const PointsView& points, double* out, const DistanceOptions& options) const {
+    const ExactClassifier& signs = impl_->signs();
     checkBatch(points, options);
     parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
         std::uint8_t inside[kChunkPoints];
         ClassifyOptions classify;
         classify.rule = impl_->rule;
         classify.threads = 1;
-        impl_->exact.classify(points.slice(begin, end - begin), inside, classify);
+        signs.classify(points.slice(begin, end - begin), inside, classify);
         for (std::size_t k = begin; k < end; ++k) {
             const double d = impl_->unsignedAt(points[k], options.maxDistance);
             out[k] = inside[k - begin] ? -d : d;
@@ -340,6 +362,7 @@ void SignedDistance::Impl::propagatedGrid(const Grid& grid, const std::uint8_t* 
 }
 
 void SignedDistance::grid(const Grid& grid, float* cells, const DistanceGridOptions& options) const {
+    const ExactClassifier& signs = impl_->signs();
     checkGrid(grid);
     if (!std::isfinite(options.band) || options.band < 0.0)
         throw InvalidArgument("the band's half-width must be a finite distance >= 0 (0: the full grid), not " +
@@ -348,7 +371,7 @@ void SignedDistance::grid(const Grid& grid, float* cells, const DistanceGridOpti
     ClassifyOptions classify;
     classify.rule = impl_->rule;
     classify.threads = options.threads;
-    impl_->exact.occupancy(grid, inside.data(), classify);
+    signs.occupancy(grid, inside.data(), classify);
     if (options.band == 0.0 && options.far == FarCells::Propagated) {
         impl_->propagatedGrid(grid, inside.data(), cells, options.threads);
         return;

@@ -16,8 +16,7 @@ namespace {
 constexpr float kPadCells = 2.0f;
 } // namespace
 
-SpriteDistance bakeDistance(const TriangleMesh& mesh, const Box& box, std::uint32_t resolution, Rule rule,
-                            unsigned threads) {
+Grid spriteDistanceGrid(const Box& box, std::uint32_t resolution) {
     if (resolution < 4 || resolution > kMaxDistanceResolution)
         throw InvalidArgument("distance resolution " + std::to_string(resolution) + " is out of range (4 to " +
                               std::to_string(kMaxDistanceResolution) + ")");
@@ -27,8 +26,13 @@ SpriteDistance bakeDistance(const TriangleMesh& mesh, const Box& box, std::uint3
     // `resolution` cells along the grown longest side, cubic as near as the
     // other sides allow (`cubicGrid`).
     const float cell = longest / (float(resolution) - 2.0f * kPadCells);
+    return cubicGrid({box.lo - kPadCells * cell, box.hi + kPadCells * cell}, resolution);
+}
+
+SpriteDistance bakeDistance(const TriangleMesh& mesh, const Box& box, std::uint32_t resolution, Rule rule,
+                            unsigned threads) {
     SpriteDistance out;
-    out.grid = cubicGrid({box.lo - kPadCells * cell, box.hi + kPadCells * cell}, resolution);
+    out.grid = spriteDistanceGrid(box, resolution);
     const SignedDistance exact(mesh, rule);
     out.cells.resize(out.grid.cellCount());
     DistanceGridOptions options;

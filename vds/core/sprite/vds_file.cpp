@@ -298,7 +298,7 @@ void checkWritable(const Sprite& sprite, const std::string& path) {
         if (!std::isfinite(p.x + p.y + p.z)) formatFail(path, "not written: a boundary edge is not finite");
     if (!sprite.boundaryKnown)
         formatFail(path, "not written: the sprite's boundary is unknown (read from a version-1 file of an open mesh)");
-    if (sprite.distance.cells.size() > std::size_t(std::numeric_limits<int>::max() / 4))
+    if (sprite.distance.cells.size() > kMaxDistanceCells)
         formatFail(path, "not written: the distance grid is too large for one attribute");
 }
 

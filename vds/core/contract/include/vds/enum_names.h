@@ -21,8 +21,14 @@ template <class E> struct EnumName {
 /// and `static constexpr const char* kind` (e.g. "axis", for messages).
 template <class E> struct EnumNames;
 
-/// Throws `InvalidArgument`: "unknown <kind> '<text>' (expected a, b or c)";
-/// `parseEnum`'s refusal, for callers that parse names of their own.
+/// The name among `names` nearest to `word` (fewest letters inserted,
+/// deleted or changed) where it is near enough to be a typo: at most a third
+/// of its letters off, and at least one; else "".
+std::string nearestName(std::string_view word, const std::vector<std::string>& names);
+
+/// Throws `InvalidArgument`: "unknown <kind> '<text>' (expected a, b or c)",
+/// and " (did you mean 'x'?)" where `nearestName` finds one; `parseEnum`'s
+/// refusal, for callers that parse names of their own.
 [[noreturn]] void throwUnknownName(const char* kind, std::string_view text, const std::vector<std::string>& names);
 
 /// Every name of `E`, in table order.

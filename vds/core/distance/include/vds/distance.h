@@ -122,8 +122,11 @@ public:
     /// Copies the triangles and builds the hierarchy (O(n log n); about 70
     /// bytes a triangle) and the exact classifier along z (about 100 more). Throws
     /// `InvalidMesh` (naming `meshName`) for a mesh that is empty, not
-    /// finite or has bad indices, or that is flat (it bounds no volume, so
-    /// no sign). Like `ExactClassifier`, any other mesh is answered by any
+    /// finite or has bad indices. A flat mesh (a sheet: it bounds no volume)
+    /// is built without the classifier: `unsignedDistance`, `closestPoints`
+    /// and `closest` answer it, while `distance`, `grid` and `classifier`
+    /// throw `InvalidMesh` saying why (`hasSign()` is false). Like
+    /// `ExactClassifier`, any other mesh is answered by any
     /// rule: on an open mesh parity and winding count crossings as for a
     /// surface, and only Rule::GeneralizedWinding means inside; callers that
     /// want to refuse it check `requireInsideDefined` first (the CLI does).
@@ -133,6 +136,8 @@ public:
     SignedDistance& operator=(SignedDistance&&) noexcept;
 
     Rule rule() const;
+    /// False for a flat mesh: distances to it, but no sign (see above).
+    bool hasSign() const;
     /// The classifier the signs come from.
     const ExactClassifier& classifier() const;
     std::size_t triangleCount() const;
@@ -190,5 +195,10 @@ ClosestPoint closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, co
 /// `kMaxDistanceResolution`, and as `SignedDistance` above does for the mesh.
 SpriteDistance bakeDistance(const TriangleMesh& mesh, const Box& box, std::uint32_t resolution, Rule rule,
                             unsigned threads = 0);
+
+/// The grid `bakeDistance` fills, without the distances: for callers that
+/// fill it themselves (a slab at a time, to report progress). Throws as
+/// `bakeDistance` does for the resolution and the box.
+Grid spriteDistanceGrid(const Box& box, std::uint32_t resolution);
 
 } // namespace vds

@@ -109,6 +109,9 @@ struct SpriteDistance {
 
 /// Largest cells along any side of a sprite's distance grid.
 constexpr std::uint32_t kMaxDistanceResolution = 1024;
+/// Largest cells of a sprite's distance grid in all: what one attribute of
+/// the file holds (2^31 - 1 bytes of floats), so that a 812^3 grid fits.
+constexpr std::size_t kMaxDistanceCells = std::size_t(0x7fffffff) / 4;
 
 struct Sprite;
 
