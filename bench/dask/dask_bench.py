@@ -109,12 +109,13 @@ def timed(label, cells, work, pids=()):
 
 
 def grid_of(V, n):
+    """(lo, hi, n^3 cells) around the mesh: a grid of any size for vds.dask."""
     lo, hi = V.min(0), V.max(0)
-    return vds.Grid.cubic(lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo), n)
+    return tuple(lo - 0.05 * (hi - lo)), tuple(hi + 0.05 * (hi - lo)), (n, n, n)
 
 
 def run_grid(args, V, F):
-    reference = grid_of(V, args.reference)
+    reference = vds.Grid(*grid_of(V, args.reference))
     rate = timed(f"in memory, vds.occupancy {args.reference}^3, {os.cpu_count()} threads", reference.cell_count,
                  lambda: vds.occupancy(V, F, reference))
     big = grid_of(V, args.dims)
@@ -124,24 +125,24 @@ def run_grid(args, V, F):
         pids = client.run(os.getpid).values()
         packed = vds.dask.occupancy((V, F), big, packed=True)
         dask_rate = timed(f"vds.dask packed {args.dims}^3 -> Zarr, {args.workers} workers ({packed.numblocks} blocks)",
-                          big.cell_count, lambda: packed.to_zarr(store, overwrite=True), pids)
+                          args.dims ** 3, lambda: packed.to_zarr(store, overwrite=True), pids)
     print(f"  ratio to the in-memory rate: {dask_rate / rate:.2f}")
     shutil.rmtree(store)
 
 
 def run_sdf(args, V, F):
     grid = grid_of(V, args.dims)
-    band = args.band_cells * float(np.max((np.array(grid.hi) - grid.lo) / grid.dims))
+    band = args.band_cells * float(np.max((np.array(grid[1]) - grid[0]) / args.dims))
     store = tempfile.mkdtemp(prefix="vds-sdf-", dir=args.scratch)
     if args.dims <= args.reference:
-        timed(f"in memory, vds.sdf {args.dims}^3 band {args.band_cells} cells", grid.cell_count,
-              lambda: vds.sdf(V, F, grid, band=band))
+        timed(f"in memory, vds.sdf {args.dims}^3 band {args.band_cells} cells", args.dims ** 3,
+              lambda: vds.sdf(V, F, vds.Grid(*grid), band=band))
     c, client = cluster(args.workers)
     with c, client:
         pids = client.run(os.getpid).values()
         sdf = vds.dask.sdf((V, F), grid, band=band)
         timed(f"vds.dask sdf {args.dims}^3 band {args.band_cells} cells -> Zarr, {args.workers} workers",
-              grid.cell_count, lambda: sdf.to_zarr(store, overwrite=True), pids)
+              args.dims ** 3, lambda: sdf.to_zarr(store, overwrite=True), pids)
     shutil.rmtree(store)
 
 
@@ -223,7 +224,7 @@ def run_scaling(args, V, F):
             vds.dask.classify((V, F), points[:1000]).sum().compute()
             r1 = timed(f"exact points, {workers} workers", n,
                        lambda: vds.dask.classify((V, F), points).sum().compute())
-            r2 = timed(f"occupancy {args.dims}^3 (sum), {workers} workers", grid.cell_count,
+            r2 = timed(f"occupancy {args.dims}^3 (sum), {workers} workers", args.dims ** 3,
                        lambda: vds.dask.occupancy((V, F), grid, packed=True).sum().compute())
         base.setdefault("points", r1)
         base.setdefault("grid", r2)
