@@ -18,8 +18,10 @@ from dask.highlevelgraph import HighLevelGraph
 from . import Grid, InvalidArgument
 from ._dask_ship import ship
 
-# Cells a block holds when no chunks are given: 16 MiB of one-byte labels.
+# Cells an occupancy block holds when no chunks are given: 16 MiB of one-byte labels.
 _BLOCK_CELLS = 1 << 24
+# Cells along each side of an SDF block when no chunks are given (8 MiB of float32).
+_SDF_BLOCK_SIDE = 128
 # SDF blocks this process filled without a distance per cell (tests read it).
 far_blocks = 0
 
@@ -65,14 +67,18 @@ def _whole_grid(grid):
     return lo, hi, dims, (0, 0, 0), dims
 
 
-def _block_chunks(shape, chunks):
+def _block_chunks(shape, chunks, columns):
     """dask's chunks of a grid of `shape`: as given (an int, three, or
-    dask's tuples of tuples), or blocks of about _BLOCK_CELLS cells, whole
-    columns along z (every sweep runs along z) and square in x and y."""
-    if chunks is None:
+    dask's tuples of tuples); else, with `columns`, blocks of about
+    _BLOCK_CELLS cells, whole columns along z (every sweep runs along z) and
+    square in x and y, or cubes of _SDF_BLOCK_SIDE cells (small enough that
+    most blocks of a band lie wholly outside it)."""
+    if chunks is None and columns:
         nz = min(shape[2], _BLOCK_CELLS)
         side = max(1, math.isqrt(_BLOCK_CELLS // nz))
         chunks = (min(shape[0], side), min(shape[1], side), nz)
+    elif chunks is None:
+        chunks = tuple(min(n, _SDF_BLOCK_SIDE) for n in shape)
     return da.core.normalize_chunks(chunks, shape=shape, dtype=np.uint8)
 
 
@@ -91,9 +97,9 @@ def _blocks_array(prefix, src, grid, chunks, block_function, dtype, out_chunks, 
     return da.Array(graph, name, out_chunks, dtype=dtype, meta=np.empty((0, 0, 0), dtype=dtype))
 
 
-def _prepared(grid, chunks, packed=False):
+def _prepared(grid, chunks, packed=False, columns=True):
     grid = _whole_grid(grid)
-    chunks = _block_chunks(grid[4], chunks)
+    chunks = _block_chunks(grid[4], chunks, columns)
     if packed and any(c % 8 for c in chunks[2][:-1]):
         raise InvalidArgument(f"packed blocks need z chunks of a multiple of 8 cells (a byte each), not {chunks[2]}")
     lo, hi, whole, base, _ = grid
@@ -169,8 +175,9 @@ def sdf(source, grid, band=0.0, chunks=None, rule="parity", threads=1):
     lazy float32 dask array of grid.shape, equal cell for cell to
     vds.sdf(V, F, grid, rule, band) (exact; negative inside by `rule`).
 
-    source: a mesh (V, F) or a mesh file's path. grid, chunks: as for
-        vds.dask.occupancy. band > 0: cells farther than band from the
+    source: a mesh (V, F) or a mesh file's path. grid: as for
+        vds.dask.occupancy. chunks: block shape; None: cubes of 128 cells.
+        band > 0: cells farther than band from the
         surface hold -band or +band, and a block wholly that far is filled
         without a distance per cell (one at its middle decides).
     """
@@ -179,6 +186,6 @@ def sdf(source, grid, band=0.0, chunks=None, rule="parity", threads=1):
     band = float(band)
     if not (math.isfinite(band) and band >= 0.0):
         raise InvalidArgument(f"the band's half-width must be a finite distance >= 0 (0: the full grid), not {band}")
-    grid, chunks = _prepared(grid, chunks)
+    grid, chunks = _prepared(grid, chunks, columns=False)
     block = functools.partial(_sdf_block, rule=rule, band=band, threads=threads)
     return _blocks_array("vds-sdf", src, grid, chunks, block, np.float32, chunks, (rule, band))
