@@ -10,14 +10,7 @@ import vds
 import vds.dask
 from conftest import box_mesh, gl_or_skip, icosphere, sphere_mesh
 
-distributed = pytest.importorskip("distributed")
-
-
-@pytest.fixture(scope="module")
-def client():
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                                  worker_dashboard_address=None) as cluster, distributed.Client(cluster) as c:
-        yield c
+pytest.importorskip("distributed")
 
 
 def worker_builds(client):
@@ -161,3 +154,14 @@ def test_shipped_sources_pickle_with_their_digest():
     assert back.digest == shipped.digest and len(back.digest) == 64
     assert all(np.array_equal(a, b) for a, b in zip(back.mesh(), (V, F)))
     assert vds._dask_ship.ship((V + 1, F), None).digest != shipped.digest
+
+
+def test_methods_a_source_cannot_answer_fail_at_the_call(sprite):
+    points = random_points(100, 50)
+    with pytest.raises(vds.InvalidArgument, match="unknown method 'fastest'"):
+        vds.dask.classify(sprite, points, method="fastest")
+    with pytest.raises(vds.InvalidArgument, match="not made from a sprite"):
+        vds.dask.classify(sprite, points, method="exact")
+    with pytest.raises(vds.InvalidArgument, match="answers rule parity, not 'winding'"):
+        vds.dask.occupancy(box_mesh((0, 0, 0), (1, 1, 1)), vds.Grid((0, 0, 0), (1, 1, 1), 8), method="solid",
+                           rule="winding")

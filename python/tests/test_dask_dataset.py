@@ -6,7 +6,7 @@ import vds
 import vds.dask
 from conftest import icosphere
 
-distributed = pytest.importorskip("distributed")
+pytest.importorskip("distributed")
 zarr = pytest.importorskip("zarr")
 
 
@@ -30,13 +30,6 @@ def meshes(tmp_path_factory):
         "garbage": folder / "garbage.obj",
         "missing": folder / "missing.obj",
     }
-
-
-@pytest.fixture(scope="module")
-def client():
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                                  worker_dashboard_address=None) as cluster, distributed.Client(cluster) as c:
-        yield c
 
 
 def check_group(group, path, rule, sigma):

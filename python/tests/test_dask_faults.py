@@ -10,7 +10,7 @@ import pytest
 
 import vds
 import vds.dask
-from conftest import sphere_mesh
+from conftest import local_cluster, sphere_mesh
 
 distributed = pytest.importorskip("distributed")
 zarr = pytest.importorskip("zarr")
@@ -26,8 +26,7 @@ def test_a_killed_worker_leaves_the_same_grid(tmp_path):
     store = str(tmp_path / "sdf.zarr")
     distances = vds.dask.sdf((V, F), grid, chunks=32)  # the full grid: every block a few tens of ms
     assert distances.numblocks == (4, 4, 4)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                                  worker_dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+    with local_cluster() as cluster, distributed.Client(cluster) as client:
         pids = client.run(os.getpid)
         future = client.compute(da.to_zarr(distances, store, compute=False))
         deadline = time.monotonic() + 60

@@ -9,14 +9,7 @@ import vds
 import vds.dask
 from conftest import icosphere, sphere_mesh
 
-distributed = pytest.importorskip("distributed")
-
-
-@pytest.fixture(scope="module")
-def client():
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                                  worker_dashboard_address=None) as cluster, distributed.Client(cluster) as c:
-        yield c
+pytest.importorskip("distributed")
 
 
 @pytest.fixture(scope="module")

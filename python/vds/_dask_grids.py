@@ -16,7 +16,7 @@ import numpy as np
 from dask.highlevelgraph import HighLevelGraph
 
 from . import Grid, InvalidArgument
-from ._dask_ship import ship
+from ._dask_ship import method_for, ship
 
 # Cells an occupancy block holds when no chunks are given: 16 MiB of one-byte labels.
 _BLOCK_CELLS = 1 << 24
@@ -130,8 +130,7 @@ def occupancy(source, grid, chunks=None, rule="parity", packed=False, method=Non
     the grid without holding it.
     """
     src = ship(source, rule)
-    if method is None:
-        method = "sprite" if src.kind == "sprite" else "exact"
+    method = method_for(src, method, rule)
     grid, chunks = _prepared(grid, chunks, packed)
     out_chunks = (chunks[0], chunks[1], tuple((c + 7) // 8 for c in chunks[2])) if packed else chunks
     block = functools.partial(_occupancy_block, method=method, resolution=resolution, rule=rule, packed=packed,

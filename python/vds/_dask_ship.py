@@ -18,7 +18,7 @@ import dask
 import numpy as np
 
 from . import Classifier, ExactClassifier, InvalidArgument, MeshWarning, SignedDistance, Sprite, from_bytes, load_mesh
-from . import validate_mesh
+from . import methods, validate_mesh
 
 # Per worker process: what was built, by (digest, what, arguments), at most
 # _CACHE_LIMIT of them (the least recently used dropped first), and how many
@@ -170,3 +170,20 @@ def ship(source, rule):
     elif rule is not None:
         local.contains(nothing, rule=rule)
     return shipped
+
+
+def method_for(shipped, method, rule):
+    """The method a classify or occupancy call runs: `method`, or "exact" for
+    a mesh and "sprite" for a sprite when None; one the source cannot make
+    or that cannot answer `rule` fails here, at the call."""
+    table = {m.name: m for m in methods()}
+    if method is None:
+        method = "sprite" if shipped.kind == "sprite" else "exact"
+    if method not in table:
+        raise InvalidArgument(f"unknown method {method!r}: one of {', '.join(table)}")
+    if shipped.kind == "sprite" and not table[method].from_sprite:
+        made = ", ".join(m for m in table if table[m].from_sprite)
+        raise InvalidArgument(f"method {method!r} is not made from a sprite (from a sprite: {made}); give the mesh")
+    if rule not in table[method].rules:
+        raise InvalidArgument(f"method {method!r} answers rule {' or '.join(table[method].rules)}, not {rule!r}")
+    return method

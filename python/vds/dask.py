@@ -32,7 +32,7 @@ import numpy as np
 from . import InvalidArgument
 from ._dask_dataset import dataset  # noqa: F401  (the public API)
 from ._dask_grids import occupancy, sdf  # noqa: F401  (the public API)
-from ._dask_ship import ship
+from ._dask_ship import method_for, ship
 
 __all__ = ["classify", "closest_points", "contains", "dataset", "occupancy", "sdf", "signed_distance",
            "winding_numbers"]
@@ -100,16 +100,16 @@ def classify(source, points, method=None, rule="parity", resolution=0, threads=1
         "sprite-gpu", the voxel methods...); None: "exact" for a mesh,
         "sprite" for a sprite. A sprite answers its from_sprite methods
         only; the GPU methods run on each worker's headless GL context.
-    rule: "parity", "winding" or "generalized-winding" (a method that
-        cannot answer it refuses it, when computed).
+    rule: "parity", "winding" or "generalized-winding". An unknown method,
+        one a sprite cannot make, or one that cannot answer the rule fails
+        at the call.
     resolution: as vds.Classifier's (0: the method's default).
     threads: CPU threads per chunk; 1 by default, since Dask runs chunks in
         parallel already (0: one per hardware thread).
     Labels equal vds.Classifier(source, method).classify(points, rule).
     """
     src = ship(source, rule)
-    if method is None:
-        method = "sprite" if src.kind == "sprite" else "exact"
+    method = method_for(src, method, rule)
     return _per_row(_labels_chunk, _points(points), src, bool, "vds-classify", method=method,
                     resolution=resolution, rule=rule, threads=threads)
 
