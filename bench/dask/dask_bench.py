@@ -172,6 +172,7 @@ def run_points(args, V, F):
     points = da.from_array(NpyRows(path), chunks=(args.chunk, 3), asarray=False)
     for name, source, method in (("sprite", sprite, "sprite"), ("exact", (V, F), "exact")):
         with dask.config.set(scheduler="sync"):  # one process, one chunk at a time
+            vds.dask.classify(source, points[:1000], method=method).sum().compute()  # warm, as the workers
             base = timed(f"{name}: one process, 1 thread a chunk", n,
                          lambda: vds.dask.classify(source, points, method=method).sum().compute())
         c, client = cluster(args.workers)
