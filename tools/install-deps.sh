@@ -12,7 +12,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev     # command lines, JSON reports
   python3-dev pybind11-dev python3-numpy python3-pytest   # the Python module vds and its tests
   python3-pip python3-venv                                # pip install . (pyproject.toml), its test
-  python3-dask python3-distributed                        # vds.dask: classification on a Dask cluster
+  python3-dask python3-distributed python3-zarr           # vds.dask: every question on a Dask cluster, grids into Zarr
   libglfw3-dev xvfb xauth              # the interactive viewer (samples/viewer) and its test under Xvfb
   libepoxy-dev                         # tests: vds headers after an application's GL loader
   libcgal-dev                          # tests: the exact predicates against CGAL's exact rationals

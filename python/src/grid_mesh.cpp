@@ -82,13 +82,52 @@ BoolArray meshOccupancy(const py::object& vertices, const py::object& faces, con
 
 // ---- grids -----------------------------------------------------------------
 
-vds::Grid makeGrid(const py::object& lo, const py::object& hi, const py::object& dims) {
+/// Three cell indices >= 0 (a block's first cell).
+glm::uvec3 firstFrom(const py::object& object) {
+    const auto bad = [&] {
+        throw vds::InvalidArgument("grid first must be three cell indices >= 0 (i, j, k), not " +
+                                   py::repr(object).cast<std::string>());
+    };
+    const py::object list = py::isinstance<py::array>(object) ? object.attr("tolist")() : object;
+    if (!py::isinstance<py::sequence>(list) || py::isinstance<py::str>(list) || py::len(list) != 3) bad();
+    const py::object index = py::module_::import("operator").attr("index");
+    glm::uvec3 first(0u);
+    for (int a = 0; a < 3; ++a) {
+        long long value = -1;
+        try {
+            value = index(list[py::int_(a)]).cast<long long>();
+        } catch (const std::exception&) { // not an integer, or beyond long long
+        }
+        if (value < 0 || value > 0xffffffffLL) bad();
+        first[a] = std::uint32_t(value);
+    }
+    return first;
+}
+
+/// Grid(lo, hi, dims) or, with `whole`, the block of `dims` cells from cell
+/// `first` of the grid of `whole` cells over [lo, hi].
+vds::Grid makeGrid(const py::object& lo, const py::object& hi, const py::object& dims, const py::object& first,
+                   const py::object& whole) {
     vds::Grid grid;
     grid.box.lo = vds::python::vec3From(lo, "lo");
     grid.box.hi = vds::python::vec3From(hi, "hi");
     grid.dims = vds::python::dimsFrom(dims);
+    if (!whole.is_none()) {
+        grid.whole = vds::python::dimsFrom(whole);
+        grid.first = firstFrom(first);
+    } else if (!first.is_none() && firstFrom(first) != glm::uvec3(0u)) {
+        throw vds::InvalidArgument("grid first needs whole: the cell counts of the grid the block is part of");
+    }
     vds::checkGrid(grid);
     return grid;
+}
+
+py::tuple dims3(const glm::uvec3& d) { return py::make_tuple(d.x, d.y, d.z); }
+
+/// A block's whole-grid cells, or None for a grid that is whole.
+py::object wholeOf(const vds::Grid& g) {
+    if (g.whole == glm::uvec3(0u)) return py::none();
+    return dims3(glm::uvec3(g.wholeCells(0), g.wholeCells(1), g.wholeCells(2)));
 }
 
 
@@ -114,8 +153,16 @@ Cell (i, j, k) has the centre lo + (i + 1/2, j + 1/2, k + 1/2) * (hi - lo) / dim
 evaluated in float64 and rounded to float32 (`cell_centres`). Occupancy
 arrays have the shape (nx, ny, nz), C order, indexed [i, j, k] (x slowest,
 z fastest), as the C++ `Grid::index`. Raises vds.InvalidArgument for a zero
-dimension, more than 2^34 cells, or a box that is empty or not finite.)doc")
-        .def(py::init(&makeGrid), py::arg("lo"), py::arg("hi"), py::arg("dims"))
+dimension, more than 2^34 cells, or a box that is empty or not finite.
+
+Grid(lo, hi, dims, first=(i, j, k), whole=(NX, NY, NZ)) is a block of a
+larger grid: its cell (a, b, c) is cell first + (a, b, c) of the grid of
+`whole` cells over [lo, hi], with that cell's centre exactly, so a grid is
+labelled block by block (vds.dask) with the labels of one call. Only the
+block's own cells count against the 2^34 limit; first + dims must lie
+within whole.)doc")
+        .def(py::init(&makeGrid), py::arg("lo"), py::arg("hi"), py::arg("dims"), py::kw_only(),
+             py::arg("first") = py::none(), py::arg("whole") = py::none())
         .def_static("cubic", [](const py::object& lo, const py::object& hi, const py::object& n) {
                  vds::Box box{vds::python::vec3From(lo, "lo"), vds::python::vec3From(hi, "hi")};
                  const std::uint32_t cells = vds::python::countOption(n, "n");
@@ -133,18 +180,27 @@ dimension, more than 2^34 cells, or a box that is empty or not finite.)doc")
         .def_property_readonly("shape", [](const vds::Grid& g) { return py::make_tuple(g.dims.x, g.dims.y, g.dims.z); },
                                "the shape of occupancy arrays: (nx, ny, nz)")
         .def_property_readonly("cell_count", &vds::Grid::cellCount)
+        .def_property_readonly("first", [](const vds::Grid& g) { return dims3(g.first); },
+                               "a block's first cell in its whole grid; (0, 0, 0) for a whole grid")
+        .def_property_readonly("whole", &wholeOf, "a block's whole grid's cells (NX, NY, NZ); None for a whole grid")
         .def("cell_centres", &cellCentres,
              "(nx, ny, nz, 3) float32: every cell's centre, as the library computes it (see the class doc).")
         .def(py::pickle(
-            [](const vds::Grid& g) { return py::make_tuple(tuple3(g.box.lo), tuple3(g.box.hi), py::make_tuple(g.dims.x, g.dims.y, g.dims.z)); },
+            [](const vds::Grid& g) {
+                return py::make_tuple(tuple3(g.box.lo), tuple3(g.box.hi), dims3(g.dims), dims3(g.first), wholeOf(g));
+            },
             [](const py::tuple& t) {
-                if (t.size() != 3) throw vds::InvalidArgument("not a pickled vds.Grid");
-                return makeGrid(t[0], t[1], t[2]);
+                // Three items: a grid pickled before blocks existed.
+                if (t.size() != 3 && t.size() != 5) throw vds::InvalidArgument("not a pickled vds.Grid");
+                return t.size() == 3 ? makeGrid(t[0], t[1], t[2], py::none(), py::none())
+                                     : makeGrid(t[0], t[1], t[2], t[3], t[4]);
             }))
         .def("__repr__", [](const vds::Grid& g) {
-            const auto t = [](const glm::vec3& v) { return py::repr(tuple3(v)).cast<std::string>(); };
-            return "vds.Grid(lo=" + t(g.box.lo) + ", hi=" + t(g.box.hi) + ", dims=(" + std::to_string(g.dims.x) + ", " +
-                   std::to_string(g.dims.y) + ", " + std::to_string(g.dims.z) + "))";
+            const auto t = [](const py::object& v) { return py::repr(v).cast<std::string>(); };
+            std::string block;
+            if (g.whole != glm::uvec3(0u)) block = ", first=" + t(dims3(g.first)) + ", whole=" + t(wholeOf(g));
+            return "vds.Grid(lo=" + t(tuple3(g.box.lo)) + ", hi=" + t(tuple3(g.box.hi)) + ", dims=" + t(dims3(g.dims)) +
+                   block + ")";
         });
 
 }

@@ -102,3 +102,18 @@ def convex_signed_distance(V, F, points):
     n /= np.linalg.norm(n, axis=1)[:, None]
     offsets = np.einsum("ij,ij->i", n, a)
     return (points @ n.T - offsets).max(axis=1)
+
+
+def local_cluster():
+    """A real distributed.LocalCluster of two worker processes, one thread each."""
+    distributed = pytest.importorskip("distributed")
+    return distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                    worker_dashboard_address=None)
+
+
+@pytest.fixture(scope="module")
+def client():
+    """A distributed.Client on local_cluster(), one per test module (vds.dask's tests)."""
+    distributed = pytest.importorskip("distributed")
+    with local_cluster() as cluster, distributed.Client(cluster) as c:
+        yield c
