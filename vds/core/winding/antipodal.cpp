@@ -13,7 +13,7 @@
 
 #include <glm/geometric.hpp>
 
-#include <vds/detail/position_weld.h>
+#include <vds/detail/weld.h>
 
 #include <vds/error.h>
 #include <vds/detail/parallel.h>

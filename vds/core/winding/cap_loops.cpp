@@ -9,7 +9,7 @@
 
 #include <vds/detail/antipodal.h>
 #include <vds/detail/caps_surface.h>
-#include <vds/detail/position_weld.h>
+#include <vds/detail/weld.h>
 
 namespace vds::detail {
 
