@@ -58,7 +58,8 @@
 //                 of threads may query one at once.
 //   Names         every enum has names (`EnumNames`, `EnumName`): `enumName`,
 //                 `enumNames`, `parseEnum` (unknown names throw through
-//                 `throwUnknownName`, listing the accepted ones); the CLI and
+//                 `throwUnknownName`, listing the accepted ones and the
+//                 `nearestName` a typo was near); the CLI and
 //                 Python use the same names. Per enum: `toString`,
 //                 `parseAxis`, `parseRule`, `parseBakeMethod`.
 //
@@ -241,7 +242,8 @@
 //     `closestPointOnTriangle(p, a, b, c)`: the one closest-point kernel.
 //   SpriteDistance bakeDistance(mesh, box, n, rule)         <vds/distance.h>
 //     the distance grid a sprite carries (`Sprite::distance`, file format 3,
-//     `vds bake --distance N`), for `vdsDistance` in GLSL (`GpuSprite::distance`).
+//     `vds bake --distance N`), for `vdsDistance` in GLSL (`GpuSprite::distance`);
+//     `spriteDistanceGrid(box, n)` its cells, for callers filling it in slabs.
 //
 // ---- 8. On the GPU (vds::gl) --------------------------------------------------
 //
