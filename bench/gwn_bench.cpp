@@ -243,7 +243,7 @@ void benchMesh(const std::string& name, const vds::TriangleMesh& mesh, const Gwn
     std::mt19937 rng(1);
     const std::vector<glm::vec3> points = uniformPoints(vds::meshBounds(mesh), set.points, rng);
     std::vector<double> w(points.size());
-    vds::parallelFor(0, points.size(), 256, [&](std::size_t begin, std::size_t end) {
+    vds::detail::parallelFor(0, points.size(), 256, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) w[k] = exact.generalizedWinding(points[k]);
     });
     if (!set.dumpDir.empty()) dump(set.dumpDir, name, mesh, points, w);

@@ -247,7 +247,7 @@ bool isCgal(const Method& m) { return m.name.rfind("CGAL", 0) == 0; }
 // Centres of the cells of x layers [i0, i1) of `grid`, in its order.
 void cellCentres(const vds::Grid& grid, std::uint32_t i0, std::uint32_t i1, glm::vec3* out, unsigned threads) {
     const std::size_t perLayer = std::size_t(grid.dims.y) * grid.dims.z;
-    vds::parallelFor(threads, i1 - i0, 1, [&](std::size_t begin, std::size_t end) {
+    vds::detail::parallelFor(threads, i1 - i0, 1, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i)
             for (std::uint32_t j = 0; j < grid.dims.y; ++j)
                 for (std::uint32_t k = 0; k < grid.dims.z; ++k)

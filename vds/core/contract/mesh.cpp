@@ -78,7 +78,7 @@ Indices weldByPosition(const glm::vec3* positions, std::size_t n, unsigned threa
     const detail::LargeArray<std::uint64_t> hashes = detail::largeArray<std::uint64_t>(n);
     std::vector<std::size_t> at((parts + 1) * chunks + 1, 0); // per part and chunk, its place in `order`
     std::vector<std::size_t> notFiniteIn(chunks, 0);
-    parallelFor(threads, n, kWeldChunk, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, n, kWeldChunk, [&](std::size_t begin, std::size_t end) {
         // Counted here, written once: neighbouring chunks' counts share cache lines.
         std::size_t count[kMaxWeldParts + 1] = {};
         for (std::size_t i = begin; i < end; ++i) {
@@ -94,14 +94,14 @@ Indices weldByPosition(const glm::vec3* positions, std::size_t n, unsigned threa
     notFinite = std::accumulate(notFiniteIn.begin(), notFiniteIn.end(), std::size_t(0));
     std::partial_sum(at.begin(), at.end(), at.begin());
     const detail::LargeArray<std::uint32_t> order = detail::largeArray<std::uint32_t>(n - notFinite);
-    parallelFor(threads, n, kWeldChunk, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, n, kWeldChunk, [&](std::size_t begin, std::size_t end) {
         const std::size_t chunk = begin / kWeldChunk;
         std::size_t next[kMaxWeldParts];
         for (std::size_t part = 0; part < parts; ++part) next[part] = at[part * chunks + chunk];
         for (std::size_t i = begin; i < end; ++i)
             if (finite(positions[i])) order[next[hashes[i] & (parts - 1)]++] = std::uint32_t(i);
     });
-    parallelFor(unsigned(parts), parts, 1, [&](std::size_t part, std::size_t) {
+    detail::parallelFor(unsigned(parts), parts, 1, [&](std::size_t part, std::size_t) {
         const std::size_t from = at[part * chunks], to = at[(part + 1) * chunks];
         int bits = 1;
         while ((std::size_t(1) << bits) < 2 * (to - from) + 2) ++bits;
@@ -229,7 +229,7 @@ std::pair<Index, Index> groupStarts(std::vector<detail::LargeVector<Index>>& edg
                                     std::size_t nv, unsigned threads) {
     const std::size_t chunks = (nv + kVerticesPerChunk - 1) / kVerticesPerChunk;
     std::vector<std::pair<Index, Index>> chunkStart(chunks + 1); // edges, corners
-    parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
+    detail::parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
         Index e = 0, t = 0;
         for (std::size_t v = c * kVerticesPerChunk, end = std::min(nv, v + kVerticesPerChunk); v < end; ++v)
             for (unsigned k = 0; k < threads; ++k) {
@@ -242,7 +242,7 @@ std::pair<Index, Index> groupStarts(std::vector<detail::LargeVector<Index>>& edg
         chunkStart[c + 1].first += chunkStart[c].first;
         chunkStart[c + 1].second += chunkStart[c].second;
     }
-    parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
+    detail::parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
         auto [e, t] = chunkStart[c];
         for (std::size_t v = c * kVerticesPerChunk, end = std::min(nv, v + kVerticesPerChunk); v < end; ++v)
             for (unsigned k = 0; k < threads; ++k) {
@@ -367,7 +367,7 @@ void countByEdges(MeshReport& r, MeshView mesh, const Indices& weld, unsigned th
     // The parts (union-find, serial) are found beside the first pass: task
     // 0, taken first, while the other threads count the shares; only the
     // groups' reading needs them.
-    parallelFor(threads, threads + 1, 1, [&](std::size_t task, std::size_t) {
+    detail::parallelFor(threads, threads + 1, 1, [&](std::size_t task, std::size_t) {
         if (task == 0) {
             part = connectedParts(mesh, weld);
             return;
@@ -398,13 +398,13 @@ void countByEdges(MeshReport& r, MeshView mesh, const Indices& weld, unsigned th
         partnersOut ? detail::largeArray<std::uint32_t>(std::size_t(edgeTotal)) : detail::LargeArray<std::uint32_t>();
     if (partnersOut) {
         partnersOut->resize(3 * nt); // unset: filled by the threads
-        parallelFor(threads, 3 * nt, kVerticesPerChunk * 16, [&](std::size_t begin, std::size_t end) {
+        detail::parallelFor(threads, 3 * nt, kVerticesPerChunk * 16, [&](std::size_t begin, std::size_t end) {
             std::fill(partnersOut->begin() + std::ptrdiff_t(begin), partnersOut->begin() + std::ptrdiff_t(end),
                       detail::kNoPartner);
         });
     }
     const Partners partners{owners.get(), partnersOut ? partnersOut->data() : nullptr};
-    parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
+    detail::parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
         placeItems(mesh, weld, shareOf(nt, threads, k), edgeAt[k].data(), cornerAt[k].data(), edges.get(), others.get(),
                    owners.get());
     });
@@ -413,7 +413,7 @@ void countByEdges(MeshReport& r, MeshView mesh, const Indices& weld, unsigned th
     cornerAt = {};
 
     std::vector<Found> groups((nv + kVerticesPerChunk - 1) / kVerticesPerChunk);
-    parallelFor(threads, nv, kVerticesPerChunk, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, nv, kVerticesPerChunk, [&](std::size_t begin, std::size_t end) {
         for (std::size_t v = begin; v < end; ++v)
             readGroup(v, edgeEnd, cornerEnd, edges.get(), others.get(), groups[begin / kVerticesPerChunk], part, openPart,
                       partners);
@@ -518,7 +518,7 @@ TriangleSums sumTriangles(MeshView mesh, const TriangleParts& partOf, const std:
     const std::size_t chunk = parts <= kChunkedParts ? kSumChunk : std::max<std::size_t>(1, nt);
     const std::size_t chunks = std::max<std::size_t>(1, (nt + chunk - 1) / chunk);
     std::vector<TriangleSums> found(chunks);
-    parallelFor(threads, nt, chunk, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, nt, chunk, [&](std::size_t begin, std::size_t end) {
         TriangleSums& f = found[begin / chunk];
         f.volume.assign(parts, 0.0);
         f.magnitude.assign(parts, 0.0);
@@ -621,7 +621,7 @@ std::size_t countInsideOutParts(MeshView mesh, const TriangleParts& partOf,
             angle[k] += detail::solidAngle(c[0] - probes[k], c[1] - probes[k], c[2] - probes[k]);
     }
     std::size_t count = 0;
-    for (double a : angle) count += std::lround(a / kFourPi) < 0;
+    for (double a : angle) count += std::lround(a / detail::kFourPi) < 0;
     return count;
 }
 

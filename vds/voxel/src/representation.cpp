@@ -53,7 +53,7 @@ Representation representationOf(Method method) {
 void Model::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
                            const ClassifyOptions& options) const {
     const char* base = reinterpret_cast<const char*>(xyz);
-    parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+    vds::detail::parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) {
             glm::vec3 p;
             std::memcpy(&p, base + k * strideBytes, sizeof p);

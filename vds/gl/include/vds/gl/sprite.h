@@ -42,7 +42,6 @@
 namespace vds {
 
 namespace detail {
-class CopyCrew;
 struct GpuSpriteAccess;
 } // namespace detail
 
@@ -259,7 +258,6 @@ private:
     std::array<Slot, 3> slots_;
     std::size_t capacity_ = 0;
     bool copied_ = false; // HostTransfer::Copied, Auto resolved
-    std::unique_ptr<detail::CopyCrew> crew_; // threads for the host copies, started at the first large one
 };
 
 } // namespace vds
