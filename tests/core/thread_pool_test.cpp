@@ -9,10 +9,15 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <cstdlib>
 #include <numeric>
 #include <stdexcept>
 #include <thread>
 #include <vector>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace vds::detail {
 namespace {
@@ -159,6 +164,37 @@ TEST(ThreadPool, AnOwnPoolRunsTheTaskOnTheCallerAndHelpers) {
     pool.run(2, [](void* t) { (*static_cast<decltype(task)*>(t))(); }, &task);
     EXPECT_EQ(runs.load(), 3u);
     EXPECT_EQ(pool.size(), 2u);
+}
+
+TEST(ThreadPool, AForkedChildStartsItsOwnThreadsAndExits) {
+    detail::parallelFor(3, 30, 1, [](std::size_t, std::size_t) {}); // the parent's threads exist
+    const pid_t child = fork();
+    ASSERT_NE(child, -1);
+    if (child == 0) {
+        // Three tasks that wait for each other need three threads here too;
+        // exit() then joins the child's own threads at static destruction.
+        std::atomic<unsigned> arrived{0};
+        Gauge gauge;
+        detail::parallelFor(3, 3, 1, [&](std::size_t, std::size_t) {
+            gauge.enter();
+            ++arrived;
+            awaitCount(arrived, 3);
+            gauge.leave();
+        });
+        std::exit(gauge.peak.load() == 3 ? 0 : 1);
+    }
+    int status = 0;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    pid_t done = 0;
+    while ((done = waitpid(child, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (done == 0) {
+        kill(child, SIGKILL);
+        waitpid(child, &status, 0);
+        FAIL() << "the forked child did not finish";
+    }
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0);
 }
 
 } // namespace

@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <new>
 #include <system_error>
+
+#include <pthread.h>
 
 namespace vds::detail {
 
@@ -27,7 +30,39 @@ struct ThreadPool::Job {
 ThreadPool* ThreadPool::shared() {
     if (sharedPoolGone.load(std::memory_order_acquire)) return nullptr;
     static ThreadPool pool;
+    static const int forkHandlers = pthread_atfork(&ThreadPool::beforeFork, &ThreadPool::afterForkInParent,
+                                                   &ThreadPool::afterForkInChild);
+    (void)forkHandlers;
     return &pool;
+}
+
+// fork() copies the memory of the pool but only the forking thread. Taking
+// the lock across it keeps the copy consistent; the child then forgets the
+// threads it does not have (never joined; the jobs they ran counted as
+// done) and starts its own when a call asks for them.
+void ThreadPool::beforeFork() {
+    if (ThreadPool* pool = shared()) pool->mutex_.lock();
+}
+
+void ThreadPool::afterForkInParent() {
+    if (ThreadPool* pool = shared()) pool->mutex_.unlock();
+}
+
+void ThreadPool::afterForkInChild() {
+    ThreadPool* pool = shared();
+    if (!pool) return;
+    // Their handles name no thread here (and the C library reuses their
+    // stacks): kept where nothing joins or detaches them.
+    static std::vector<std::thread>* const forgotten = new std::vector<std::thread>;
+    for (std::thread& t : pool->threads_) forgotten->push_back(std::move(t));
+    pool->threads_.clear();
+    pool->idle_ = 0;
+    for (Job* job : pool->jobs_) job->slots = job->running = 0;
+    // Made anew, not destroyed: they count as waiters the threads that are
+    // gone, and a signal to those would wake no thread here.
+    new (&pool->wake_) std::condition_variable;
+    new (&pool->finished_) std::condition_variable;
+    pool->mutex_.unlock();
 }
 
 unsigned ThreadPool::hardwareThreads() {

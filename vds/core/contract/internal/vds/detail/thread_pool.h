@@ -22,7 +22,9 @@ namespace vds::detail {
 /// in progress ask for, the pool starts more (kept too): a call gets the
 /// threads it asks for, as when each call started its own.
 ///
-/// Thread safe: any thread may call `run`, several at once.
+/// Thread safe: any thread may call `run`, several at once. A child made by
+/// fork() (which copies only the forking thread) gets a pool that has
+/// forgotten the parent's threads and starts its own.
 class ThreadPool {
 public:
     /// The process's pool, or null once static destruction has destroyed it
@@ -49,6 +51,9 @@ public:
 
 private:
     struct Job;
+    static void beforeFork();
+    static void afterForkInParent();
+    static void afterForkInChild();
     void serve();
     Job* openJob() const;
     void startThreads(unsigned count);
