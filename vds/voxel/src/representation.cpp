@@ -105,7 +105,7 @@ Model buildModel(const GlContext& gl, MeshView mesh, Representation representati
     const bool isSlicemap =
         representation == Representation::Slicemap || representation == Representation::SlicemapLocal;
     // Grid checks before any GL work, so bad arguments fail fast.
-    const VoxelGrid grid = makeVoxelGrid(box, options.resolution, isSlicemap ? ~std::uint64_t(0) : kMaxCells);
+    const VoxelGrid grid = makeVoxelGrid(box, options.resolution, isSlicemap ? ~std::uint64_t(0) : kMaxGridCells);
     const CurrentContext current(gl); // the caller's context is current again on return
     const std::uint64_t start = detail::nowNanoseconds();
     switch (representation) {
