@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One round of the GPU figures of docs/benchmarks.md ("The GPU at its limit"),
+# One round of the GPU figures of docs/benchmarks.md ("The GPU on an NVIDIA H200"),
 # for a machine lent a GPU for minutes: every table in one call, each with its
 # plain kernels of the same run, and the GPU's clocks logged beside them
 # (nvidia-smi, where there is one: a GL figure at half a CUDA one's rate with

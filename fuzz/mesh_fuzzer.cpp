@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 
 #include "fuzz_check.h"

@@ -18,6 +18,7 @@
 #include "arrays.h"
 
 #include <vds/all.h>
+#include <vds/mesh_check.h>
 
 #include "gl_thread.h"
 

@@ -14,6 +14,7 @@
 
 #include <vds/all.h>
 #include <vds/error.h>
+#include <vds/mesh_check.h>
 #include <vds/vds_file.h>
 
 #include "arrays.h"
@@ -233,7 +234,7 @@ private:
         if (fromMesh_) {
             warn(insideMessage(report_, name_, rule));
         } else if (spriteOpen_ && rule != vds::Rule::GeneralizedWinding) {
-            warn(vds::openSpriteMessage(spriteValidation_, rule));
+            warn(vds::openSpriteMessage(spriteValidation_, rule, pythonFlags()));
         }
     }
 

@@ -13,8 +13,10 @@
 
 #include <vds/distance.h>
 #include <vds/error.h>
+#include <vds/mesh_check.h>
 
 #include "arrays.h"
+#include "bindings.h"
 
 namespace vds::python {
 
@@ -29,8 +31,8 @@ void warnIfOpen(const MeshView& mesh, Rule rule) {
         report = validateMesh(mesh);
     }
     if (!report.usable()) return; // SignedDistance says why
-    std::string message = openMeshMessage(report, "", rule);
-    if (message.empty()) message = insideWarning(report, rule);
+    std::string message = openMeshMessage(report, "", rule, pythonFlags());
+    if (message.empty()) message = insideWarning(report, rule, pythonFlags());
     if (message.empty()) return;
     const py::object category = py::module_::import("vds._vds").attr("MeshWarning");
     if (PyErr_WarnEx(category.ptr(), message.c_str(), 2) < 0) throw py::error_already_set();

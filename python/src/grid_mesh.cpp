@@ -14,6 +14,7 @@
 
 #include <vds/all.h>
 #include <vds/error.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include <vds/vds_file.h>
 

@@ -31,6 +31,7 @@
 
 #include <vds/all.h>
 #include <vds/error.h>
+#include <vds/mesh_check.h>
 
 #include "arrays.h"
 #include "bindings.h"

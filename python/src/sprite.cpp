@@ -13,8 +13,8 @@
 #include <pybind11/pybind11.h>
 
 #include <vds/all.h>
-#include <vds/detail/aligned_axes.h>
 #include <vds/error.h>
+#include <vds/mesh_check.h>
 #include <vds/vds_file.h>
 
 #include <glm/mat4x4.hpp>
@@ -90,7 +90,7 @@ BoolArray spriteOccupancy(PySprite& sprite, const py::object& gridObject, const 
         return cells;
     }
     vds::checkGrid(grid);
-    if (vds::detail::sweepsByColumns(sprite.grid)) { // the condition of GpuOccupancy's column sweep
+    if (vds::sweepsByColumns(sprite.grid)) { // the condition of GpuOccupancy's column sweep
         glThread().run([&](GlState& s) {
             const vds::GpuSprite& copy = residentCopy(s, sprite);
             if (!s.occupancy) s.occupancy = std::make_unique<vds::GpuOccupancy>(*s.gl);

@@ -27,6 +27,7 @@
 #include <vds/exact.h>
 #include <vds/gl/objects.h>
 #include <vds/gl/sprite.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include <vds/gl/shader.h>
 #include <vds/voxel/gpu_grid.h>

@@ -20,7 +20,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include <vds/detail/atomic_file.h>
+#include <vds/atomic_file.h>
 #include <vds/error.h>
 #include <vds/eval/image.h>
 #include <vds/gl/context.h>

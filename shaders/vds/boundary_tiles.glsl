@@ -137,7 +137,7 @@ void vdsBoundaryTerms(VdsBoundary boundary, vec3 q[VDS_TERM_POINTS], bool live[V
         }
         if (count > 0) vdsSumEdgeTiles(first, count, q, sum);
     }
-    for (int k = 0; k < VDS_TERM_POINTS; ++k) term[k] = sum[k] / 12.566370614359172;
+    for (int k = 0; k < VDS_TERM_POINTS; ++k) term[k] = sum[k] / VDS_FOUR_PI;
 }
 
 #endif

@@ -51,6 +51,7 @@ layout(std430, binding = 3) readonly restrict buffer Offsets { uint offsets[]; }
 layout(std430, binding = 4) readonly restrict buffer Crossings { float crossings[]; };
 uniform ivec2 u_size; // the sprite's width and height in texels
 #define VDS_SIZE u_size
+#include "vds/columns.glsl"
 #else
 uniform sampler3D u_ldi;
 #define VDS_SIZE textureSize(u_ldi, 0).xy
@@ -69,14 +70,9 @@ int vdsCount(ivec2 column, bool inBox, float r, out int parity) {
     if (!inBox) return 0;
 #ifdef VDS_COLUMNS
     uint c = uint(column.y) * uint(u_size.x) + uint(column.x);
-    uint begin = offsets[c], end = offsets[c + 1u];
+    uint e = offsets[c];
     int winding = 0;
-    for (uint i = begin; i < end; ++i) {
-        float e = crossings[i];
-        if (!(abs(e) < r)) break; // sorted: nothing further is in front
-        parity ^= 1;
-        winding += floatBitsToInt(e) < 0 ? -1 : 1;
-    }
+    vdsWalkColumn(e, offsets[c + 1u], r, parity, winding);
     return winding;
 #else
     return vdsColumnWinding(u_ldi, column, r, parity);
@@ -109,13 +105,10 @@ void vdsCountColumns(ivec2 column[VDS_N], bool inBox[VDS_N], vec3 T[VDS_N], out 
         walking = false;
         for (uint k = 0u; k < uint(VDS_N); ++k) {
             if (next[k] >= end[k]) continue;
-            float e = crossings[next[k]];
-            if (!(abs(e) < T[k].z)) { // sorted: nothing further is in front
+            if (!vdsCountCrossing(crossings[next[k]], T[k].z, parity[k], winding[k])) { // the column's walk ends
                 end[k] = next[k];
                 continue;
             }
-            parity[k] ^= 1;
-            winding[k] += floatBitsToInt(e) < 0 ? -1 : 1;
             ++next[k];
             walking = walking || next[k] < end[k];
         }

@@ -11,8 +11,14 @@
 // bytes each (low byte first) that the host cleared to 0: each invocation
 // ORs in the words its inside cells touch, once per word.
 //
-// One program per rule (VDS_RULE_ID, vpt.glsl's VDS_RULE_*), chosen at
-// compile time. Rule::GeneralizedWinding on a sprite with boundary edges
+// One program per rule (VDS_RULE_ID, vpt.glsl's VDS_RULE_*) and sweep,
+// chosen at compile time: no code is kept alive by a uniform. Without the
+// boundary term, where the sweep axis is not the labels' fastest (a cell's
+// four bytes then lie in four columns, not along one), an invocation takes a
+// quad of columns that share their words, so that one atomic writes four
+// cells: the four columns follow v (VDS_SWEEP_QUADS_ALONG_V) or u
+// (VDS_SWEEP_QUADS_ALONG_U), whichever the labels' fastest axis is; with
+// neither, one column an invocation. Rule::GeneralizedWinding on a sprite with boundary edges
 // (VDS_BOUNDARY_TERM) adds, per cell, the boundary term at the cell's
 // texel-centre point (the point the CPU takes): the one rule whose labels
 // are not only compared floats, and O(boundary edges) a cell. There the
@@ -38,6 +44,7 @@ layout(std430, binding = 1) readonly restrict buffer Crossings { float crossings
 layout(std430, binding = 2) readonly restrict buffer Texels { int texels[]; }; // per grid column; -1: outside
 layout(std430, binding = 3) readonly restrict buffer Depths { float depths[]; }; // per slice, increasing
 layout(std430, binding = 4) restrict buffer Cells { uint cells[]; };
+#include "vds/columns.glsl"
 
 uniform uint u_columns;    // grid columns: dims[u] * dims[v]
 uniform uint u_dimV;       // column c is (c / dimV, c % dimV) along (u, v)
@@ -48,14 +55,9 @@ uniform uint u_firstSlice; // slices [first, end) lie in the sprite's depth rang
 uniform uint u_endSlice;
 uniform uint u_width;      // the sprite's width in texels: texel = t * width + s
 uniform uint u_dimU;       // grid columns along u
-#ifndef VDS_BOUNDARY_TERM
-// Where the sweep axis is not the labels' fastest (a cell's four bytes
-// then lie in four columns, not along one), an invocation takes a quad of
-// columns that share their words, so that one atomic writes four cells: the
-// four columns follow v (u_quadAlongV) or u, whichever the labels' fastest
-// axis is. 0: one column an invocation.
-uniform uint u_quads;      // quads along the quad axis; 0 for single columns
-uniform bool u_quadAlongV;
+#if defined(VDS_SWEEP_QUADS_ALONG_V) || defined(VDS_SWEEP_QUADS_ALONG_U)
+#define VDS_SWEEP_QUADS
+uniform uint u_quads;      // quads along the quad axis
 #endif
 #ifdef VDS_BOUNDARY_TERM
 uniform VdsBoundary u_boundary;
@@ -80,14 +82,6 @@ void vdsMark(uint index, inout uint word, inout uint bits) {
     bits |= 1u << (8u * (index & 3u));
 }
 
-// Counts the column's crossings in [e, last) that lie in front of `depth`
-// (each counts for the cells strictly behind it).
-void vdsPassCrossings(inout uint e, uint last, float depth, inout int parity, inout int winding) {
-    for (; e < last && abs(crossings[e]) < depth; ++e) {
-        parity ^= 1;
-        winding += floatBitsToInt(crossings[e]) < 0 ? -1 : 1;
-    }
-}
 
 // Walks grid column `column`'s cells (none where `live` is false, which
 // still takes every step for the workgroup's votes and tiles). With the
@@ -117,7 +111,7 @@ void vdsSweepColumn(uint column, bool live) {
 #endif
     for (uint k = u_firstSlice; k < u_endSlice; ++k) {
         float depth = depths[k];
-        vdsPassCrossings(e, last, depth, parity, winding);
+        vdsWalkColumn(e, last, depth, parity, winding);
 #ifdef VDS_BOUNDARY_TERM
         vec3 q[1] = vec3[1](live ? vdsColumnPoint(u_boundary, st, depth)
                                  : vdsBesidePoint(u_boundary, u_size, vec3(beside, depth)));
@@ -140,18 +134,17 @@ void vdsSweepColumn(uint column, bool live) {
     vdsFlush(word, bits);
 }
 
-#ifndef VDS_BOUNDARY_TERM
+#ifdef VDS_SWEEP_QUADS
 // The quad's column j (count 4, some past the grid's edge where its size is
 // not a multiple of 4): -1 where none.
 int vdsQuadColumn(uint quad, uint j) {
-    uint iu, iv;
-    if (u_quadAlongV) {
-        iu = quad / u_quads;
-        iv = 4u * (quad % u_quads) + j;
-    } else {
-        iv = quad % u_dimV;
-        iu = 4u * (quad / u_dimV) + j;
-    }
+#ifdef VDS_SWEEP_QUADS_ALONG_V
+    uint iu = quad / u_quads;
+    uint iv = 4u * (quad % u_quads) + j;
+#else
+    uint iv = quad % u_dimV;
+    uint iu = 4u * (quad / u_dimV) + j;
+#endif
     return iu < u_dimU && iv < u_dimV ? int(iu * u_dimV + iv) : -1;
 }
 
@@ -177,7 +170,7 @@ void vdsSweepQuad(uint quad) {
     for (uint k = u_firstSlice; k < u_endSlice; ++k) {
         float depth = depths[k];
         for (uint j = 0u; j < 4u; ++j) {
-            vdsPassCrossings(e[j], last[j], depth, parity[j], winding[j]);
+            vdsWalkColumn(e[j], last[j], depth, parity[j], winding[j]);
 #if VDS_RULE_ID == VDS_RULE_WINDING
             bool inside = live[j] && winding[j] != 0;
 #else
@@ -188,7 +181,9 @@ void vdsSweepQuad(uint quad) {
     }
     vdsFlush(word, bits);
 }
-#else
+#endif
+
+#ifdef VDS_BOUNDARY_TERM
 // The workgroup's columns as a square of 8 x 8 (u, v) (VDS_LOCAL_SIZE 64):
 // its cells at a slice lie within a few cells of one another, so a chain
 // or loop far from them all is taken whole by the vote more often than
@@ -210,13 +205,20 @@ void main() {
         vdsSweepColumn(live ? iu * u_dimV + iv : 0u, live);
     }
 #else
-    uint items = u_quads != 0u ? (u_quadAlongV ? u_dimU * u_quads : u_dimV * ((u_dimU + 3u) / 4u)) : u_columns;
+#if defined(VDS_SWEEP_QUADS_ALONG_V)
+    uint items = u_dimU * u_quads;
+#elif defined(VDS_SWEEP_QUADS_ALONG_U)
+    uint items = u_dimV * ((u_dimU + 3u) / 4u);
+#else
+    uint items = u_columns;
+#endif
     for (uint item = vdsWorkGroupIndex() * gl_WorkGroupSize.x + gl_LocalInvocationID.x; item < items;
          item = vdsNextIndex(item, items)) {
-        if (u_quads != 0u)
-            vdsSweepQuad(item);
-        else
-            vdsSweepColumn(item, true);
+#ifdef VDS_SWEEP_QUADS
+        vdsSweepQuad(item);
+#else
+        vdsSweepColumn(item, true);
+#endif
     }
 #endif
 }

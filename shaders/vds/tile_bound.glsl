@@ -130,8 +130,8 @@ bool vdsTileDecides(VdsBoundary boundary, VdsTileBound tile, float r, int round,
     barrier();
     vec2 sum = vec2(0.0);
     for (int k = 0; k < VDS_LOCAL_SIZE; ++k) sum += vdsTileShare[slot][k];
-    float term = sum.x / 12.566370614359172;
-    float delta = 1.01 * tile.radius * sum.y / 12.566370614359172 + VDS_EXACT_TOLERANCE +
+    float term = sum.x / VDS_FOUR_PI;
+    float delta = 1.01 * tile.radius * sum.y / VDS_FOUR_PI + VDS_EXACT_TOLERANCE +
                   VDS_TERM_ERROR * float(boundary.edgeCount);
     float w = float(winding) + term;
     bool decided = r < tile.crossDepth && abs(w - 0.5) > delta; // false where delta is not finite

@@ -64,6 +64,14 @@
 #define VDS_RULE_WINDING 1
 #define VDS_RULE_GENERALIZED_WINDING 2
 
+// The full solid angle, 4 pi: a winding number is a sum of solid angles over
+// it. The library defines it in every program it builds, from the C++
+// constant (vds::detail::kFourPi); this default serves a user's shader that
+// includes this file on its own.
+#ifndef VDS_FOUR_PI
+#define VDS_FOUR_PI 12.566370614359172
+#endif
+
 // P_S (world position of the LDI texture-space origin) and M_S (world ->
 // LDI texture space, linear part).
 struct VdsPlacement {
@@ -105,6 +113,18 @@ bool vdsColumnOf(vec3 T, ivec2 size, out ivec2 column) {
     return vdsColumnAcross(T, size, column);
 }
 
+// The one step of every column walk (this texture's, the compact columns'
+// of vds/columns.glsl): counts crossing `e` into `parity` and `winding`
+// (entering +1, leaving -1) where it lies strictly in front of depth r, and
+// returns false where it does not: a column is sorted front to back, so its
+// walk ends there.
+bool vdsCountCrossing(float e, float r, inout int parity, inout int winding) {
+    if (!(abs(e) < r)) return false;
+    parity ^= 1;
+    winding += floatBitsToInt(e) < 0 ? -1 : 1;
+    return true;
+}
+
 // Winding number of the crossings strictly in front of texture-space point T
 // (entering +1, leaving -1); `parity` receives their count modulo 2. Points
 // outside [0,1]^3 have no crossings in front.
@@ -119,9 +139,7 @@ int vdsColumnWinding(sampler3D ldi, ivec2 column, float r, out int parity) {
     int layers = textureSize(ldi, 0).z;
     for (int k = 0; k < layers; ++k) {
         float e = texelFetch(ldi, ivec3(column, k), 0).r;
-        if (!(abs(e) < r) || e == 1.0) break; // sorted: nothing further is in front
-        parity ^= 1;
-        winding += floatBitsToInt(e) < 0 ? -1 : 1;
+        if (e == 1.0 || !vdsCountCrossing(e, r, parity, winding)) break;
     }
     return winding;
 }
@@ -262,7 +280,7 @@ bool vdsNodeTaken(vec4 ball, float errorScale, vec3 q) {
 // The boundary term at q (the bake's frame, (s, t, r) order): the sum over
 // the edges of their solid angles, over 4 pi. With the chain tree
 // (GpuSprite::setBoundaryUniforms sets nodeCount; C++ caps_tree.h,
-// BoundaryCaps::chains, and boundary_loops.h for the records): a node's
+// BoundaryCaps::chains, and vds/gl/src/sprite pack_boundary.h for the records): a node's
 // edges run from P to Q, closed by its chord Q -> P into a fan in its
 // ball (whole loops have no chord). Where q's ray towards -r misses the
 // ball, the ray crosses no fan, so the node's edges' angles sum to the
@@ -277,7 +295,7 @@ bool vdsNodeTaken(vec4 ball, float errorScale, vec3 q) {
 // loads a node), then the expansions and the edges (chords among them)
 // are evaluated in two flat loops.
 float vdsBoundaryTerm(VdsBoundary boundary, vec3 q) {
-    if (boundary.nodeCount == 0) return vdsEdgePairs(0, boundary.edgeCount, q) / 12.566370614359172;
+    if (boundary.nodeCount == 0) return vdsEdgePairs(0, boundary.edgeCount, q) / VDS_FOUR_PI;
     int base = 2 * boundary.edgeCount;
     float sum = 0.0;
     int node = 0;
@@ -326,7 +344,7 @@ float vdsBoundaryTerm(VdsBoundary boundary, vec3 q) {
             }
         }
     }
-    return sum / 12.566370614359172;
+    return sum / VDS_FOUR_PI;
 }
 
 // The column's signed count `winding` at depth r plus the boundary term at

@@ -111,22 +111,23 @@ vec4 vdsSpriteRefractionColumn(sampler3D ldi, VdsPlacement placement, float dept
     precise float ft = floor(T.y * float(size.y));
     if (!(fs >= 0.0 && fs < float(size.x) && ft >= 0.0 && ft < float(size.y))) return vec4(0.0);
     ivec2 column = ivec2(fs, ft);
-    int winding = 0;
+    int winding = 0, parity = 0;
     float entry = 0.0, first = -1.0, last = 0.0;
     precise float t = 0.0;
     for (int k = 0; k < size.z; ++k) {
         float e = texelFetch(ldi, ivec3(column, k), 0).r;
-        if (e == 1.0) break; // the padding (an entering crossing at depth 1 bounds nothing)
+        int before = winding;
+        // The whole column (every crossing lies in front of depth 2), up to
+        // the padding (an entering crossing at depth 1 bounds nothing).
+        if (e == 1.0 || !vdsCountCrossing(e, 2.0, parity, winding)) break;
         float d = abs(e);
-        int next = winding + (floatBitsToInt(e) < 0 ? -1 : 1);
-        if (winding == 0 && next != 0) {
+        if (before == 0 && winding != 0) {
             entry = d;
             if (first < 0.0) first = d;
-        } else if (winding != 0 && next == 0) {
+        } else if (before != 0 && winding == 0) {
             t += d - entry;
             last = d;
         }
-        winding = next;
     }
     if (first < 0.0) return vec4(0.0);
     precise float front = depthLo + first * depthExtent;

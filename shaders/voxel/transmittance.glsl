@@ -91,17 +91,16 @@ float vdsSpriteThicknessInFront(sampler3D ldi, VdsPlacement placement, vec3 p) {
     if (!(fs >= 0.0 && fs < float(size.x) && ft >= 0.0 && ft < float(size.y))) return 0.0;
     ivec2 column = ivec2(fs, ft);
     float r = min(T.z, 1.0);
-    int winding = 0;
+    int winding = 0, parity = 0;
     float entry = 0.0;
     precise float t = 0.0;
     for (int k = 0; k < size.z; ++k) {
         float e = texelFetch(ldi, ivec3(column, k), 0).r;
+        int before = winding;
+        if (!vdsCountCrossing(e, r, parity, winding)) break; // sorted; the padding 1.0 stops too
         float d = abs(e);
-        if (!(d < r)) break; // sorted; the padding 1.0 stops too
-        int next = winding + (floatBitsToInt(e) < 0 ? -1 : 1);
-        if (winding == 0 && next != 0) entry = d;
-        else if (winding != 0 && next == 0) t += d - entry;
-        winding = next;
+        if (before == 0 && winding != 0) entry = d;
+        else if (before != 0 && winding == 0) t += d - entry;
     }
     if (winding != 0) t += r - entry;
     return t;

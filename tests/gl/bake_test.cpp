@@ -11,10 +11,11 @@
 #include <vds/all.h>
 #include <vds/bake.h>
 #include <vds/error.h>
+#include <vds/gl/bake.h>
 #include "solids.h"
 
 #include "../support/gl_fixture.h"
-#include "../support/points.h"
+#include "points.h"
 
 namespace vds {
 namespace {
@@ -27,8 +28,9 @@ Sprite bakeWith(GlContext& gl, const TriangleMesh& mesh, BakeMethod method, std:
     o.method = method;
     o.resolution = resolution;
     o.axis = axis;
-    o.maxListNodes = maxNodes;
-    return bake(gl, mesh, o);
+    GlBakeOptions glOptions;
+    glOptions.maxListNodes = maxNodes;
+    return bakeOnGl(gl, mesh, o, glOptions);
 }
 
 void expectIdentical(const Sprite& a, const Sprite& b) {

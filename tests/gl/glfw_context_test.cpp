@@ -12,7 +12,7 @@
 #include <vds/gl/sprite.h>
 #include <vds/sprite.h>
 
-#include "../support/solids.h"
+#include "solids.h"
 
 namespace {
 

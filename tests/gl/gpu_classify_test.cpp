@@ -15,7 +15,7 @@
 #include "solids.h"
 
 #include "../support/gl_fixture.h"
-#include "../support/points.h"
+#include "points.h"
 
 namespace vds {
 namespace {

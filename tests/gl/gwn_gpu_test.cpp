@@ -27,7 +27,7 @@
 
 #include "../support/gl_fixture.h"
 #include "../support/gwn_reference.h"
-#include "../support/points.h"
+#include "points.h"
 
 namespace vds {
 namespace {

@@ -2,12 +2,14 @@
 // own `#version`, includes inside comments and false `#if` branches left
 // out, `#line` kept, every layer's includes known from the start.
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include <vds/error.h>
+#include <vds/gl/objects.h>
 #include <vds/gl/shader.h>
 
 #include "../support/gl_fixture.h"
@@ -89,6 +91,34 @@ TEST_F(ShaderTest, EveryLayersIncludesResolveBeforeAnyOtherCall) {
                                    "#include \"voxel/solid.glsl\"\nuniform usamplerBuffer u_voxels;\nuniform VdsVoxelGrid u_g;\n"
                                    "layout(std430, binding = 0) buffer B { uint v; };\n"
                                    "layout(local_size_x = 1) in; void main() { v = vdsBitGridContains(u_voxels, u_g, vec3(0)) ? 1u : 0u; }\n"}}));
+}
+
+// One pi: every program the library builds gets VDS_FOUR_PI from the C++
+// constant, and the public include's default, for a user's shader built
+// elsewhere, is the same number.
+TEST_F(ShaderTest, FourPiReachesEveryProgramAndThePublicIncludesDefaultAgrees) {
+    const double fourPi = 4.0 * std::acos(-1.0);
+    const std::string source = "#include \"vds/vpt.glsl\"\n"
+                               "layout(std430, binding = 0) buffer B { float v; };\n"
+                               "layout(local_size_x = 1) in; void main() { v = VDS_FOUR_PI; }\n";
+    const Program program = buildProgram({{GL_COMPUTE_SHADER, "pi.comp", source}});
+    Buffer out = Buffer::create();
+    const float unset = 0.0f;
+    glNamedBufferStorage(out.id(), 4, &unset, 0);
+    glUseProgram(program.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.id());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    float v = 0.0f;
+    glGetNamedBufferSubData(out.id(), 0, 4, &v);
+    glUseProgram(0);
+    EXPECT_EQ(v, float(fourPi));
+
+    const std::string text = assembleShader({GL_COMPUTE_SHADER, "pi.comp", source}, "#version 430 core", "");
+    const std::string guard = "#ifndef VDS_FOUR_PI\n#define VDS_FOUR_PI ";
+    const std::size_t at = text.find(guard);
+    ASSERT_NE(at, std::string::npos);
+    EXPECT_EQ(std::stod(text.substr(at + guard.size())), fourPi);
 }
 
 } // namespace

@@ -12,7 +12,7 @@
 #include <vds/gl/styles.h>
 
 #include "../support/gl_fixture.h"
-#include "../support/solids.h"
+#include "solids.h"
 
 namespace vds {
 namespace {

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the build tree into a temporary prefix and builds tests/install
 # as an outside project against it:
-#   - no internal header (vds/detail, */detail/) is installed, and a source
-#     including every installed header compiles;
+#   - no internal header (vds/detail, */detail/) is installed, no installed
+#     header names a `detail` type or namespace, and a source including every
+#     installed header compiles;
 #   - a program linking vds::core alone bakes on the CPU, classifies, uses
 #     glm's r, g, b names (no GLM define of ours reaches it), and loads no GL
 #     or EGL library;
@@ -20,6 +21,11 @@ include="$work/prefix/include"
 internal=$(cd "$include" && find . -path '*detail*' -o -path '*internal*')
 if [ -n "$internal" ]; then
   echo "consumer_test: internal headers installed:" $internal >&2
+  exit 1
+fi
+naming=$(cd "$include" && grep -rlE '\bdetail::|namespace detail\b|::detail\b' vds || true)
+if [ -n "$naming" ]; then
+  echo "consumer_test: installed headers name detail types:" $naming >&2
   exit 1
 fi
 {

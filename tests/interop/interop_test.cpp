@@ -17,6 +17,7 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <vds/interop/openmesh.h>
+#include <vds/mesh_check.h>
 #endif
 
 #include "points.h"

@@ -16,6 +16,7 @@
 #include "cli_fixture.h"
 
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include <vds/vds_file.h>
 

@@ -9,7 +9,7 @@
 #include <vds/voxel/representation.h>
 
 #include "../support/gl_fixture.h"
-#include "../support/points.h"
+#include "points.h"
 
 namespace vds::voxel {
 namespace {

@@ -13,7 +13,7 @@
 #include <vds/voxel/slicemap.h>
 
 #include "../support/gl_fixture.h"
-#include "../support/points.h"
+#include "points.h"
 #include "voxel_test_util.h"
 
 namespace vds::voxel {

@@ -19,6 +19,7 @@
 #include <vds/enum_names.h>
 #include <vds/error.h>
 #include <vds/grid.h>
+#include <vds/mesh_check.h>
 #include <vds/sprite.h>
 
 namespace cli {
@@ -115,6 +116,13 @@ void writeTextFile(const std::string& path, const std::string& text);
 
 /// Prints "vds: <what>" progress lines to stderr, unless quiet.
 std::function<void(const std::string&)> progressPrinter(bool quiet);
+
+/// How this tool spells the flags the library's mesh messages name
+/// (<vds/mesh_check.h>): the generalized winding number's rule; `--allow-open`
+/// only where the command has it.
+inline vds::MeshFlags meshFlags(bool allowOpen = false) {
+    return {"--rule generalized-winding", allowOpen ? "--allow-open" : ""};
+}
 
 void addBake(CLI::App& app);
 void addClassify(CLI::App& app);

@@ -5,10 +5,9 @@
 #include <optional>
 
 #include <vds/all.h>
-#include <vds/distance.h>
 #include <vds/bake.h>
-#include <vds/detail/bake_common.h>
-#include <vds/detail/edge_partners.h>
+#include <vds/distance.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include <vds/vds_file.h>
 
@@ -57,13 +56,13 @@ void bake(BakeArgs& a) {
     before[0] = lap(at);
     // Validation finds what the axis count would find again (the edges'
     // partners, the facings): one grouping of the edges, not two.
-    vds::detail::MeshFinds finds;
-    const vds::MeshReport report = vds::detail::validateMesh(mesh, 0, finds);
+    const vds::MeshValidation validation(mesh);
+    const vds::MeshReport& report = validation.report();
     vds::requireUsable(report, a.mesh);
     vds::requireVolume(report, a.mesh);
     before[1] = lap(at);
     if (a.axis == "auto") {
-        const vds::AxisChoice choice = vds::detail::chooseViewAxis(mesh, report, a.options.resolution, 0, finds);
+        const vds::AxisChoice choice = vds::chooseViewAxis(mesh, validation, a.options.resolution);
         a.options.axis = choice.axis;
         before[2] = lap(at);
         if (a.verbose) std::fprintf(stderr, "%s: the fewest layers\n", choice.summary().c_str());

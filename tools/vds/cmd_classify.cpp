@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <vds/all.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 #include <vds/vds_file.h>
@@ -147,7 +148,7 @@ void checkMesh(const ClassifyArgs& a, const vds::TriangleMesh& mesh) {
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, a.mesh);
     vds::requireVolume(report, a.mesh);
-    const vds::MeshFlags flags{"--rule generalized-winding", "--allow-open"};
+    const vds::MeshFlags flags = meshFlags(true);
     if (!a.allowOpen && !vds::methodInfo(a.method).needsClosedMesh)
         vds::requireInsideDefined(report, a.mesh, a.options.rule, flags);
     const std::string warning = vds::insideWarning(report, a.options.rule, flags);
@@ -183,7 +184,7 @@ void classify(ClassifyArgs& a) {
         // The generalized winding number answers open meshes: no warning then.
         if (sprite.status != vds::SolidStatus::Closed && a.options.rule != vds::Rule::GeneralizedWinding)
             std::fprintf(stderr, "vds classify: warning: %s\n",
-                         vds::openSpriteMessage(sprite.validation, a.options.rule).c_str());
+                         vds::openSpriteMessage(sprite.validation, a.options.rule, meshFlags()).c_str());
         classifier = vds::makeClassifier(std::move(sprite), a.method);
     }
     progress("built " + classifier->summary());

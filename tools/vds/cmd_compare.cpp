@@ -19,6 +19,7 @@ void compare(CompareArgs& a) {
     a.options.progress = progressPrinter(a.quiet);
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
     a.options.meshName = mesh.name;
+    a.options.meshFlags = meshFlags();
     const vds::eval::CompareResult result = vds::eval::compare(mesh, a.options);
     std::fputs(result.table().c_str(), stdout);
     for (const auto& [path, text] : {std::pair{a.json, result.json()}, std::pair{a.chart, errorChart(result)}})

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <vds/distance.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 
@@ -73,8 +74,8 @@ void checkSignedMesh(const vds::TriangleMesh& mesh, const std::string& name, vds
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, name);
     vds::requireVolume(report, name);
-    if (!allowOpen) vds::requireInsideDefined(report, name, rule);
-    const std::string warning = vds::insideWarning(report, rule);
+    if (!allowOpen) vds::requireInsideDefined(report, name, rule, meshFlags());
+    const std::string warning = vds::insideWarning(report, rule, meshFlags());
     if (!warning.empty()) std::fprintf(stderr, "vds %s: warning: %s: %s\n", command, name.c_str(), warning.c_str());
 }
 

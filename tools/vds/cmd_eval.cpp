@@ -1,6 +1,7 @@
 #include <cstdio>
 
 #include <vds/eval/accuracy.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 
 #include "cli.h"
@@ -18,8 +19,8 @@ struct EvalArgs {
 void eval(EvalArgs& a) {
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
     const vds::MeshReport report = vds::validateMesh(mesh);
-    vds::requireInsideDefined(report, a.mesh, a.options.rule);
-    const std::string warning = vds::insideWarning(report, a.options.rule);
+    vds::requireInsideDefined(report, a.mesh, a.options.rule, meshFlags());
+    const std::string warning = vds::insideWarning(report, a.options.rule, meshFlags());
     if (!warning.empty()) std::fprintf(stderr, "vds eval: warning: %s: %s\n", a.mesh.c_str(), warning.c_str());
     const vds::eval::EvalReport r = vds::eval::evaluate(mesh, a.options, nullptr, progressPrinter(a.quiet));
 

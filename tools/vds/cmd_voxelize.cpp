@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <vds/exact.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 #include <vds/occupancy.h>
@@ -43,7 +44,7 @@ void reportSweep(const std::function<void(const std::string&)>& progress, std::u
 vds::Box loadSprite(const VoxelizeArgs& a, vds::Sprite& sprite) {
     sprite = vds::readSprite(a.input);
     if (sprite.status != vds::SolidStatus::Closed && a.options.rule != vds::Rule::GeneralizedWinding)
-        std::fprintf(stderr, "vds voxelize: warning: %s\n", vds::openSpriteMessage(sprite.validation, a.options.rule).c_str());
+        std::fprintf(stderr, "vds voxelize: warning: %s\n", vds::openSpriteMessage(sprite.validation, a.options.rule, meshFlags()).c_str());
     return sprite.grid.box;
 }
 
@@ -53,7 +54,7 @@ vds::Box checkedBounds(const VoxelizeArgs& a, const vds::TriangleMesh& mesh) {
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireUsable(report, a.input);
     vds::requireVolume(report, a.input);
-    const std::string warning = vds::insideWarning(report, a.options.rule);
+    const std::string warning = vds::insideWarning(report, a.options.rule, meshFlags());
     if (!warning.empty()) std::fprintf(stderr, "vds voxelize: warning: %s: %s\n", a.input.c_str(), warning.c_str());
     return report.bounds;
 }

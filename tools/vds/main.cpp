@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include <vds/detail/atomic_file.h>
+#include <vds/atomic_file.h>
 #include <vds/error.h>
 #include <vds/sprite.h>
 

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include <vds/error.h>
+#include <vds/mesh_check.h>
 
 namespace vds {
 

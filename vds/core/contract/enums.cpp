@@ -6,14 +6,12 @@
 
 namespace vds {
 
-namespace detail {
 void throwUnknownName(const char* kind, std::string_view text, const std::vector<std::string>& names) {
     std::string expected;
     for (std::size_t k = 0; k < names.size(); ++k)
         expected += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
     throw InvalidArgument("unknown " + std::string(kind) + " '" + std::string(text) + "' (expected " + expected + ")");
 }
-} // namespace detail
 
 Axis parseAxis(const std::string& s) { return parseEnum<Axis>(s); }
 Rule parseRule(const std::string& s) { return parseEnum<Rule>(s); }

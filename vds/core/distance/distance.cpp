@@ -13,6 +13,7 @@
 
 #include <vds/detail/parallel.h>
 #include <vds/error.h>
+#include <vds/mesh_check.h>
 
 #include <vds/detail/bvh.h>
 #include <vds/detail/triangle_distance.h>

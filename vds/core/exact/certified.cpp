@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <vds/error.h>
+#include <vds/mesh_check.h>
 #include <vds/detail/parallel.h>
 
 #include <vds/detail/projected_mesh.h>

@@ -16,6 +16,7 @@
 // GWN. The solid angle is Van Oosterom & Strackee's formula in double.
 #include <vds/exact.h>
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 
 #include <algorithm>
 #include <cassert>
@@ -28,7 +29,6 @@
 
 #include <glm/geometric.hpp>
 
-#include <vds/detail/exact_access.h>
 #include <vds/detail/parallel.h>
 
 #include <vds/detail/antipodal.h>
@@ -112,9 +112,9 @@ bool ExactClassifier::contains(const glm::vec3& p, Rule rule) const {
     return impl_->contains(p, rule);
 }
 
-bool detail::ExactAccess::containsBruteForce(const ExactClassifier& exact, const glm::vec3& p, Rule rule) {
-    assert(exact.impl_ && "use of a moved-from ExactClassifier");
-    const ExactClassifier::Impl& impl = *exact.impl_;
+bool ExactClassifier::containsByEveryTriangle(const glm::vec3& p, Rule rule) const {
+    assert(impl_ && "use of a moved-from ExactClassifier");
+    const Impl& impl = *impl_;
     const int w = impl.windingBruteForce(p);
     if (rule == Rule::GeneralizedWinding && !impl.boundary.empty())
         return detail::generalizedWindingInside(double(w) + impl.boundaryTerm(p));

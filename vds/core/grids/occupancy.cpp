@@ -18,6 +18,7 @@
 #include <vector>
 
 #include <vds/error.h>
+#include <vds/mesh_check.h>
 #include <vds/detail/aligned_axes.h>
 #include <vds/detail/parallel.h>
 #include <vds/detail/pi.h>

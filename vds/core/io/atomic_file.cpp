@@ -1,4 +1,4 @@
-#include <vds/detail/atomic_file.h>
+#include <vds/atomic_file.h>
 
 #include <atomic>
 #include <cerrno>

@@ -13,7 +13,7 @@
 #include <limits>
 #include <system_error>
 
-#include <vds/detail/atomic_file.h>
+#include <vds/atomic_file.h>
 #include <vds/error.h>
 
 namespace vds {

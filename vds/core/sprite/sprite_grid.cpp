@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include <vds/error.h>
 #include <vds/grid.h>
 
+#include <vds/detail/aligned_axes.h>
 #include <vds/detail/vpt.h>
 
 namespace vds {
@@ -42,6 +44,11 @@ SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution) {
     g.matrix[p.y][1] = float(1.0 / (g.height * texel));
     g.matrix[p.z][2] = float(1.0 / er);
     return g;
+}
+
+bool sweepsByColumns(const SpriteGrid& grid) {
+    const std::optional<glm::ivec3> axes = detail::alignedAxes(grid);
+    return axes && grid.matrix[(*axes)[2]][2] > 0.0f;
 }
 
 } // namespace vds

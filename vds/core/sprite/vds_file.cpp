@@ -8,7 +8,7 @@
 // content's fault (FormatError).
 #include <vds/vds_file.h>
 
-#include <vds/detail/atomic_file.h>
+#include <vds/atomic_file.h>
 
 #include <vds/detail/file_bytes.h>
 #include <vds/detail/vds_checksum.h>

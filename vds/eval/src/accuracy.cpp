@@ -24,6 +24,7 @@
 #include <vds/exact.h>
 #include <vds/gl/context.h>
 #include <vds/eval/image.h>
+#include <vds/mesh_check.h>
 #include <vds/vds_file.h>
 
 namespace vds::eval {

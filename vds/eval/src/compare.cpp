@@ -19,6 +19,7 @@
 #include <vds/bake.h>
 #include <vds/error.h>
 #include <vds/exact.h>
+#include <vds/mesh_check.h>
 #include <vds/sprite.h>
 #include <vds/voxel/representation.h>
 
@@ -348,7 +349,8 @@ void requireComparable(const MeshReport& validation, const CompareOptions& optio
     requireVolume(validation, options.meshName);
     // An open mesh is told by the parity rule (the weaker), a closed one by the winding rule.
     requireInsideDefined(validation, options.meshName,
-                         gwn ? Rule::GeneralizedWinding : validation.closed() ? Rule::Winding : Rule::Parity);
+                         gwn ? Rule::GeneralizedWinding : validation.closed() ? Rule::Winding : Rule::Parity,
+                         options.meshFlags);
     if (options.resolutions.empty()) throw InvalidArgument("compare needs at least one resolution");
     for (std::uint32_t r : options.resolutions)
         if (r == 0 || r > kMaxCompareResolution)

@@ -10,7 +10,7 @@
 
 #include <png.h>
 
-#include <vds/detail/atomic_file.h>
+#include <vds/atomic_file.h>
 #include <vds/error.h>
 
 namespace vds::eval {

@@ -4,12 +4,12 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
-#include "gl_util.h"
+#include "raster.h"
 #include "slicemap_texture.h"
 
-namespace vds::voxel::detail {
+namespace vds::voxel {
 
-GpuCaster::GpuCaster(const char* who) : stamp_(vds::detail::ContextStamp::current(who)) {}
+GpuCaster::GpuCaster(const char* who) : stamp_(ContextStamp::current(who)) {}
 
 void GpuCaster::upload(const Slicemap& map) {
     slicemap_ = GpuSlicemap(map);
@@ -27,7 +27,7 @@ void GpuCaster::upload(const VoxelGrid& grid, GLenum internalFormat, GLenum form
     volume_ = Texture::create(GL_TEXTURE_3D);
     glTextureStorage3D(volume_.id(), 1, internalFormat, GLsizei(grid.size.x), GLsizei(grid.size.y),
                        GLsizei(grid.size.z));
-    nearestFiltering(volume_);
+    detail::nearestFiltering(volume_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTextureSubImage3D(volume_.id(), 0, 0, 0, 0, GLsizei(grid.size.x), GLsizei(grid.size.y), GLsizei(grid.size.z),
                         format, GL_FLOAT, texels);
@@ -44,7 +44,7 @@ void GpuCaster::setSpriteUniforms(GLuint program) const { sprite_.setUniforms(pr
 void GpuCaster::setVolumeUniforms(GLuint program, const char* sampler) const {
     glBindTextureUnit(0, volume_.id());
     glUniform1i(glGetUniformLocation(program, sampler), 0);
-    setGridUniform(program, "u_grid", grid_);
+    detail::setGridUniform(program, "u_grid", grid_);
 }
 
-} // namespace vds::voxel::detail
+} // namespace vds::voxel

@@ -4,7 +4,9 @@
 
 #include <vds/error.h>
 
-#include "gl_util.h"
+#include <vds/gl/detail/buffers.h>
+
+#include "raster.h"
 #include "slicemap_texture.h"
 
 namespace vds::voxel {
@@ -18,9 +20,9 @@ void setGrid(GLuint program, const std::string& name, const VoxelGrid& grid) {
 GpuBitGrid::GpuBitGrid(const GlContext& gl, const BitGrid& grid) : GpuBitGrid((CurrentContext(gl), grid)) {}
 
 GpuBitGrid::GpuBitGrid(const BitGrid& grid)
-    : stamp_(vds::detail::ContextStamp::current("GpuBitGrid")), grid_(grid.grid),
+    : stamp_(ContextStamp::current("GpuBitGrid")), grid_(grid.grid),
       bytes_(grid.words.size() * sizeof(std::uint32_t)) {
-    detail::requireStorageSize(bytes_, "the voxel words");
+    vds::detail::requireStorageSize(bytes_, GlLimits::query().maxStorageBlockBytes, "the voxel words");
     GLint maxTexels = 0; // the usamplerBuffer's limit, one word a texel
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
     if (grid.words.size() > std::size_t(maxTexels))
@@ -44,7 +46,7 @@ void GpuBitGrid::setUniforms(GLuint program, const std::string& sampler, const s
 GpuSlicemap::GpuSlicemap(const GlContext& gl, const Slicemap& map) : GpuSlicemap((CurrentContext(gl), map)) {}
 
 GpuSlicemap::GpuSlicemap(const Slicemap& map)
-    : stamp_(vds::detail::ContextStamp::current("GpuSlicemap")), grid_(map.grid),
+    : stamp_(ContextStamp::current("GpuSlicemap")), grid_(map.grid),
       backLayer_(std::int32_t(map.renderTargets)) {
     detail::SlicemapTextures t = detail::uploadSlicemap(map);
     maps_ = std::move(t.maps);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include <vds/error.h>
+#include <vds/mesh_check.h>
 #include <vds/sprite.h>
 
 namespace vds::voxel {

@@ -16,7 +16,9 @@
 #include <vds/voxel/gpu_grid.h>
 #include <vds/voxel/solid.h>
 
-#include "gl_util.h"
+#include <vds/gl/detail/dispatch.h>
+
+#include "plane_targets.h"
 
 namespace vds::voxel {
 
@@ -186,7 +188,7 @@ void GpuModelClassifier::classifyFloats(const float* xyz, std::size_t count, std
         }
         glNamedBufferSubData(pointBuffer.id(), 0, GLsizeiptr(n * sizeof(glm::vec3)), points);
         glProgramUniform1ui(id, glGetUniformLocation(id, "u_count"), GLuint(n));
-        detail::dispatchLinear(n, 256);
+        vds::detail::dispatchItems(n, 256);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glGetNamedBufferSubData(labelBuffer.id(), 0, GLsizeiptr(n * sizeof(GLuint)), out.data());
         for (std::size_t k = 0; k < n; ++k) labels[begin + k] = std::uint8_t(out[k]);

@@ -15,7 +15,7 @@
 #include <vds/error.h>
 #include <vds/gl/shader.h>
 
-#include "gl_util.h"
+#include "raster.h"
 
 namespace vds::voxel {
 
@@ -263,7 +263,7 @@ Slicemap buildSlicemap(const GlContext& gl, MeshView mesh, const Box& box, std::
     const bool onePass = fitsOnePass(map);
     const std::uint32_t targets = map.renderTargets, outputs = onePass ? 2 * targets : targets;
 
-    const detail::MeshBuffers buffers(mesh);
+    const detail::MeshBuffers buffers(gl, mesh);
     RangeMaps ranges;
     if (options.slicing == Slicing::Local) ranges = renderRanges(gl, buffers, map, viewport);
 

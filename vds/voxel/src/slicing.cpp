@@ -14,8 +14,9 @@
 
 #include <vds/error.h>
 #include <vds/gl/shader.h>
+#include <vds/mesh_check.h>
 
-#include "gl_util.h"
+#include "raster.h"
 
 namespace vds::voxel {
 
@@ -89,7 +90,7 @@ SlicedVoxels voxelizeSlices(const GlContext& gl, MeshView mesh, const VoxelGrid&
     detail::setGridUniform(program.id(), "u_grid", grid);
     glProgramUniform1f(program.id(), glGetUniformLocation(program.id(), "u_viewport"), float(viewport));
     glProgramUniform1f(program.id(), glGetUniformLocation(program.id(), "u_padding"), options.slabPadding);
-    const detail::MeshBuffers buffers(mesh);
+    const detail::MeshBuffers buffers(gl, mesh);
     result.instances = (grid.size.z + perInstance - 1) / perInstance;
     {
         const detail::RasterState state(grid, viewport);

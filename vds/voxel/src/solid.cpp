@@ -8,7 +8,10 @@
 #include <vds/error.h>
 #include <vds/gl/shader.h>
 
-#include "gl_util.h"
+#include <vds/gl/detail/buffers.h>
+#include <vds/gl/detail/dispatch.h>
+
+#include "raster.h"
 
 namespace vds::voxel {
 
@@ -54,7 +57,7 @@ void computeFlips(const GlContext& gl, const detail::MeshBuffers& mesh, const Vo
     mesh.bindStorage();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, voxels.id());
     glUseProgram(flip.id());
-    detail::dispatchLinear(mesh.triangleCount(), 64);
+    vds::detail::dispatchItems(mesh.triangleCount(), 64);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glProgramUniform3i(propagate.id(), glGetUniformLocation(propagate.id(), "u_size"), GLint(grid.size.x),
                        GLint(grid.size.y), GLint(grid.size.z));
@@ -71,8 +74,8 @@ BitGrid voxelizeSolid(const GlContext& gl, MeshView mesh, const VoxelGrid& grid,
     requireClosed(mesh, "mesh");
     const CurrentContext current(gl); // the caller's context is current again on return
     BitGrid result = makeBitGrid(grid);
-    const Buffer voxels = detail::zeroedBuffer(result.memoryBytes(), "the solid voxel grid");
-    const detail::MeshBuffers buffers(mesh);
+    const Buffer voxels = vds::detail::zeroedBuffer(result.memoryBytes(), gl.limits().maxStorageBlockBytes, "the solid voxel grid");
+    const detail::MeshBuffers buffers(gl, mesh);
     if (method == SolidMethod::Raster)
         rasterize(gl, buffers, grid, voxels);
     else

@@ -8,8 +8,12 @@
 
 #include <vds/error.h>
 #include <vds/gl/shader.h>
+#include <vds/mesh_check.h>
 
-#include "gl_util.h"
+#include <vds/gl/detail/buffers.h>
+#include <vds/gl/detail/dispatch.h>
+
+#include "raster.h"
 
 namespace vds::voxel {
 
@@ -20,15 +24,15 @@ BitGrid voxelizeSurface(const GlContext& gl, MeshView mesh, const VoxelGrid& gri
         return buildProgram({{GL_COMPUTE_SHADER, "voxel/surface.comp", ""}});
     });
     BitGrid result = makeBitGrid(grid);
-    const Buffer voxels = detail::zeroedBuffer(result.memoryBytes(), "the surface voxel grid");
-    const detail::MeshBuffers buffers(mesh);
+    const Buffer voxels = vds::detail::zeroedBuffer(result.memoryBytes(), gl.limits().maxStorageBlockBytes, "the surface voxel grid");
+    const detail::MeshBuffers buffers(gl, mesh);
     detail::setGridUniform(program.id(), "u_grid", grid);
     glProgramUniform1ui(program.id(), glGetUniformLocation(program.id(), "u_triangleCount"),
                         GLuint(mesh.triangleCount));
     buffers.bindStorage();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, voxels.id());
     glUseProgram(program.id());
-    detail::dispatchLinear(mesh.triangleCount, 64);
+    vds::detail::dispatchItems(mesh.triangleCount, 64);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     glUseProgram(0);
     glGetNamedBufferSubData(voxels.id(), 0, GLsizeiptr(result.memoryBytes()), result.words.data());

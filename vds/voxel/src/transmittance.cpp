@@ -17,7 +17,9 @@
 #include <vds/error.h>
 #include <vds/detail/parallel.h>
 
-#include "gl_util.h"
+#include <vds/gl/shader.h>
+
+#include "plane_targets.h"
 
 namespace vds::voxel {
 

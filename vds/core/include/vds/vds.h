@@ -76,8 +76,8 @@
 //     an OpenMesh mesh, viewed in place where the layout is vds's own and
 //     copied otherwise (<vds/interop/adapted_mesh.h>); header-only, bring
 //     your own Eigen or OpenMesh. Python takes numpy arrays.
-//   MeshReport validateMesh(mesh)
-//     the one account of a mesh: boundary, non-manifold, odd and flipped
+//   MeshReport validateMesh(mesh)                      <vds/mesh_check.h>
+//     (the report itself: <vds/mesh.h>) the one account of a mesh: boundary, non-manifold, odd and flipped
 //     edges, inside-out parts, the generalized winding number's boundary
 //     (`windingBoundaryText(n)` its words), degenerate triangles, non-finite
 //     vertices, bad indices; `closed()` says whether the mesh bounds a solid
@@ -95,6 +95,8 @@
 //     caller has, named only where it has them);
 //     `flat()` / `requireVolume(report, name)` the one for a flat sheet,
 //     which bounds no volume (bake, classify, voxelize, compare refuse it).
+//   MeshValidation(mesh)   validation that keeps what it found beside its
+//     `report()`, for `chooseViewAxis(mesh, validation, resolution)`.
 //   Box meshBounds(mesh)    the axis-aligned bounds.
 //   loadPoints(path) / parsePoints(data, size, PointFormat, name)
 //     points from text, PLY vertices or .npy.
@@ -155,10 +157,11 @@
 //     without GL: `chooseBakeMethod([gl,] &why)`),
 //     progress callback, timings. Unusable meshes throw InvalidMesh; open or
 //     non-manifold ones are baked and marked `SolidStatus::Open`.
-//   Sprite bakeOnGl(gl, mesh, options)                     <vds/gl/bake.h>
+//   Sprite bakeOnGl(gl, mesh, options[, glOptions])        <vds/gl/bake.h>
 //     the GL methods (Lists: fragment lists; Peel: depth peeling) on the
 //     caller's context; the same layers as the CPU baker up to the
-//     rasterizer's sub-texel snapping.
+//     rasterizer's sub-texel snapping. GlBakeOptions: the GL bakers' own
+//     knobs (maxListNodes, the fragment lists' node pool).
 //   chooseViewAxisOnGl(gl, mesh, resolution)  the auto axis counted in the
 //                        GL bakers' own raster on a GPU.  <vds/gl/bake.h>
 //   Baker(mesh, options)  a deforming mesh: validated once, then
@@ -189,7 +192,8 @@
 //   bool Sprite::contains(p, rule)   one point; points outside the sprite's
 //     box are outside. Errors lie within about half a texel diagonal of the
 //     surface (docs/accuracy.md). Sprite::transform(mat4) moves it without
-//     baking again.
+//     baking again; `sweepsByColumns(sprite.grid)` says whether grids are
+//     still swept through it column by column (the fast occupancy path).
 //   classify(sprite, PointsView, labels, ClassifyOptions, SpriteQueryOptions)
 //     the engine: batches on threads; the same answers as `contains`.
 //     QueryLayout::Auto builds a 16-byte-a-column table for large batches;
@@ -211,6 +215,9 @@
 //   occupancy(classifier, grid, cells, options)  any method.
 //   readNpy / parseNpy / npyPoints / npyHeader / writeNpy / NpyArray:
 //     numpy .npy in and out                                <vds/npy.h>
+//   AtomicFile(target): every output is written to a temporary file beside
+//     its target and renamed over it by `commit()`, so a failed run leaves
+//     the old file or none, never half of one.           <vds/atomic_file.h>
 //
 // ---- 7. Exact answers ---------------------------------------------------------
 //
@@ -246,10 +253,13 @@
 //                        library's own, `GlContext()` (NVIDIA's EGL device,
 //                        Mesa's llvmpipe without a GPU); GlUnavailable with
 //                        the reasons when none can be had. `glAvailable()`
-//                        is the cheap probe, `glUsable()` says whether a
-//                        context is current, GlInfo names the renderer,
+//                        is the cheap probe, GlInfo names the renderer,
+//                        GlLimits what GL allows there (asked once a context),
 //                        `checkGl(what)` turns a GL error into GlError.
-//                        CurrentContext scopes restore the caller's context.
+//                        CurrentContext scopes restore the caller's context
+//                        (a NativeContext: the EGL or GLX handles); a
+//                        ContextStamp is what a GL object remembers of its
+//                        context and thread.
 //                        The rules (how a context is passed, what is
 //                        restored) head <vds/gl/context.h>.
 //   GlObject (Buffer, Texture, Framebuffer, VertexArray, Query, Shader,
@@ -280,7 +290,7 @@
 //   uploadDistanceTexture(grid, cells)  a signed distance grid as a 3D
 //                        texture for `vdsDistance` in vpt.glsl (within half
 //                        a cell's diagonal of the exact distance). <vds/gl/distance.h>
-//   GpuBake bakeToGpu(gl, mesh, options, parts)  a GpuSprite straight from
+//   GpuBake bakeToGpu(gl, mesh, options, parts[, glOptions])  a GpuSprite straight from
 //                        the fragment-list bake, nothing read back. <vds/gl/bake.h>
 //   setStyleUniforms(program, solids, StyleOptions)  the uniforms of
 //                        shaders/vds/styles.glsl (clip, lens and styles bound
@@ -317,7 +327,7 @@
 //     refraction (RefractionMethod, RefractionView, RefractionParameters,
 //     RefractionImage, refractionColour, refractOnCpu, refractExactly,
 //     GpuRefractionCaster, renderRefraction)        <vds/voxel/refraction.h>;
-//     both casters upload through one base, detail::GpuCaster
+//     both casters upload through one base, voxel::GpuCaster
 //     (a GpuSlicemap, a sprite's texture or a 3D texture) <vds/voxel/caster.h>
 //
 // ---- 10. Measuring (vds::eval) ------------------------------------------------
@@ -335,6 +345,7 @@
 //   once the process exits.
 #pragma once
 
+#include <vds/atomic_file.h>
 #include <vds/axis.h>
 #include <vds/bake.h>
 #include <vds/certified.h>
@@ -345,6 +356,7 @@
 #include <vds/exact.h>
 #include <vds/grid.h>
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 #include <vds/occupancy.h>

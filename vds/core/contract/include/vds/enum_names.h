@@ -21,10 +21,9 @@ template <class E> struct EnumName {
 /// and `static constexpr const char* kind` (e.g. "axis", for messages).
 template <class E> struct EnumNames;
 
-namespace detail {
-/// Throws `InvalidArgument`: "unknown <kind> '<text>' (expected a, b or c)".
+/// Throws `InvalidArgument`: "unknown <kind> '<text>' (expected a, b or c)";
+/// `parseEnum`'s refusal, for callers that parse names of their own.
 [[noreturn]] void throwUnknownName(const char* kind, std::string_view text, const std::vector<std::string>& names);
-} // namespace detail
 
 /// Every name of `E`, in table order.
 template <class E> std::vector<std::string> enumNames() {
@@ -37,7 +36,7 @@ template <class E> std::vector<std::string> enumNames() {
 template <class E> E parseEnum(std::string_view text) {
     for (const auto& entry : EnumNames<E>::table)
         if (text == entry.name) return entry.value;
-    detail::throwUnknownName(EnumNames<E>::kind, text, enumNames<E>());
+    throwUnknownName(EnumNames<E>::kind, text, enumNames<E>());
 }
 
 /// The name of `value` ("?" for a value outside the table).

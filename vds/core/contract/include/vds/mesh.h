@@ -1,4 +1,5 @@
-// vds: triangle meshes as plain data, and their validation.
+// vds: triangle meshes as plain data, and the report of their validation
+// (validation itself and its messages: <vds/mesh_check.h>).
 //
 // The core of the library takes triangles as a view over caller-owned arrays;
 // `TriangleMesh` is the owning form the loaders (<vds/mesh_io.h>) and tests
@@ -13,8 +14,6 @@
 #include <glm/vec3.hpp>
 
 namespace vds {
-
-enum class Rule : std::uint8_t; // how crossings decide inside; defined in <vds/sprite.h>
 
 /// An owning indexed triangle mesh. Triangles are counter-clockwise seen from
 /// outside (outward normals by the right-hand rule), indices into `positions`.
@@ -122,61 +121,9 @@ struct MeshReport {
     std::string summary() const;
 };
 
-/// Validates a mesh. Time linear in the vertex and triangle counts (but for
-/// vertices of very high valence); memory about 50 bytes per triangle and
-/// 20 + 8 per thread per vertex. Runs on up to `threads` threads (0: one per
-/// hardware thread), at most 8, one more per 64k triangles. Thread-safe;
-/// never throws for bad geometry (it counts it), only for allocation failure.
-MeshReport validateMesh(MeshView mesh, unsigned threads = 0);
-
-/// Throws `InvalidMesh` with a one-line reason if `report` is not `usable()`.
-void requireUsable(const MeshReport& report, const std::string& meshName);
-
-/// How a caller spells the flags its messages name: asking for the
-/// generalized winding number, and answering a mesh that bounds no solid
-/// anyway. Empty: the caller has no such flag, and no message names one.
-struct MeshFlags {
-    std::string generalizedWinding = "--rule generalized-winding";
-    std::string allowOpen; ///< e.g. "--allow-open" (vds classify); empty: answering anyway is not offered
-};
-
-/// Throws `InvalidMesh` unless the mesh is usable and `rule` defines inside
-/// for it (see `MeshReport`): `closed()` for `Rule::Parity`, `oriented()`
-/// for `Rule::Winding`, any usable mesh for `Rule::GeneralizedWinding`. The
-/// one-line message is `openMeshMessage`'s.
-void requireInsideDefined(const MeshReport& report, const std::string& meshName, Rule rule,
-                          const MeshFlags& flags = {});
-/// The one wording (CLI, Python, C++) for a mesh whose inside `rule` does
-/// not define (open; or inconsistently oriented, for the winding rule):
-/// what the mesh is, the rule that answers for it (generalized-winding),
-/// and, where `flags.allowOpen` names a flag, what answering anyway gives.
-/// Empty where `rule` defines inside.
-std::string openMeshMessage(const MeshReport& report, const std::string& meshName, Rule rule,
-                            const MeshFlags& flags = {});
-/// The same for a sprite baked from such a mesh (its `Sprite::validation`
-/// summary), asked by `rule`; empty for Rule::GeneralizedWinding.
-std::string openSpriteMessage(const std::string& validation, Rule rule, const MeshFlags& flags = {});
-/// The one wording for a closed but mis-oriented mesh (`misoriented()`):
-/// what is wrong, what each rule answers (parity and winding count
-/// crossings, the generalized winding number sees an inside-out part as
-/// outside) and the fix. Empty for any other mesh.
-std::string misorientedMessage(const MeshReport& report, const std::string& meshName);
-/// Throws `InvalidMesh` with the one wording for a flat mesh (`flat()`):
-/// it bounds no volume, what can still be asked of it. Every command that
-/// needs a volume (bake, classify, voxelize, compare) calls it first.
-void requireVolume(const MeshReport& report, const std::string& meshName);
-
-/// What a caller should warn about in a mesh asked by `rule`: where `rule`
-/// does not define inside (a caller answering anyway), `openMeshMessage`'s
-/// text; else non-manifold edges (named with their count) and a closed
-/// mesh's mis-orientation (`misorientedMessage`). Empty when there is
-/// nothing to say.
-std::string insideWarning(const MeshReport& report, Rule rule, const MeshFlags& flags = {});
-
 /// "24 edges in the generalized winding number's boundary": the words for
 /// `MeshReport::windingBoundaryEdges` wherever that count is shown.
 std::string windingBoundaryText(std::size_t edges);
-
 
 /// Bounding box of the vertices referenced by triangles.
 Box meshBounds(MeshView mesh);

@@ -29,10 +29,6 @@
 
 namespace vds {
 
-namespace detail {
-struct ExactAccess;
-} // namespace detail
-
 /// Exact classifier over a copy of a mesh's triangles, with an acceleration
 /// structure over their projections along `axis` (a uniform grid; about 100
 /// bytes per triangle). Construction is O(n log n); queries are thread safe.
@@ -73,6 +69,10 @@ public:
     std::size_t boundaryEdgeCount() const;
     /// Parity (odd crossings), non-zero winding, or generalized winding > 1/2.
     bool contains(const glm::vec3& p, Rule rule = Rule::Parity) const;
+    /// The same answer as `contains`, by testing every triangle (no
+    /// acceleration structure, O(triangles) a point): the reference the
+    /// accelerated path is held to, for tests and benchmarks.
+    bool containsByEveryTriangle(const glm::vec3& p, Rule rule = Rule::Parity) const;
     /// Batches go through `Classifier::classify` (<vds/classify.h>); every
     /// rule is answered.
     Method method() const override { return Method::Exact; }
@@ -86,7 +86,6 @@ protected:
     void sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const override;
 
 private:
-    friend struct detail::ExactAccess;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -67,6 +67,14 @@ constexpr std::uint32_t kMaxResolution = 16384;
 /// above `kMaxResolution`, or a box with no extent across or along the view.
 SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution);
 
+/// True when a regular grid can be swept through the sprite column by
+/// column (the occupancy sweeps, CPU and GPU, take that path): each texture
+/// axis follows one world axis (the sprite was moved, scaled, mirrored or
+/// turned by quarter turns since the bake, not rotated by other angles) and
+/// depth grows along the world axis r follows, so a column's cells meet its
+/// crossings in order. Otherwise the sweeps ask each cell centre.
+bool sweepsByColumns(const SpriteGrid& grid);
+
 /// Encoding of one stored crossing: depth in [0,1], sign bit set when the ray
 /// leaves the solid there (the surface faced away from the viewer). -0.0 is a
 /// leaving crossing at depth 0. GLSL reads the same bits.

@@ -45,6 +45,7 @@
 #include <vds/classify.h>
 #include <vds/gl/context.h>
 #include <vds/mesh.h>
+#include <vds/mesh_check.h>
 #include <vds/sprite.h>
 
 namespace vds::eval {
@@ -68,6 +69,7 @@ struct CompareOptions {
     unsigned threads = 0;                             ///< CPU threads for queries, 0: one per hardware thread
     std::string meshName;                             ///< recorded in the result
     std::function<void(const std::string&)> progress; ///< called with what is being done
+    MeshFlags meshFlags; ///< the caller's flags, named by the refusal of a mesh (<vds/mesh_check.h>)
 };
 
 struct CompareRow {

@@ -18,6 +18,15 @@
 
 namespace vds {
 
+/// The GL bakers' own knobs, beside the `BakeOptions` every baker takes
+/// (the CPU baker has no use for them).
+struct GlBakeOptions {
+    /// Fragment lists: limit of the node pool, which holds the crossings past
+    /// the first two of each column; 0 = as many as one GL buffer may hold.
+    /// When a pass needs more, the image is baked in row bands.
+    std::uint64_t maxListNodes = 0;
+};
+
 /// The baker `BakeMethod::Auto` means on `gl`: Lists on a GPU, Cpu on a
 /// software renderer (llvmpipe, softpipe, SwiftShader), where a one-shot
 /// CPU bake is faster. `why`, if given, gets one line saying which and why.
@@ -42,7 +51,7 @@ AxisChoice chooseViewAxisOnGl(const GlContext& gl, MeshView mesh, std::uint32_t 
 /// call (the caller's current context is current again on return); the
 /// Cpu method runs `bakeCpu`. Validates the mesh and throws like `bakeCpu`;
 /// `GlError`/`OutOfMemory` from GL.
-Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options);
+Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options, const GlBakeOptions& glOptions = {});
 
 /// A sprite baked into GL, with what a host `Sprite` would say about it.
 struct GpuBake {
@@ -63,6 +72,6 @@ struct GpuBake {
 /// `options.timings` if set; `BakePhase::TextureFill` is the compute pass that
 /// fills the 3D texture (for Peel and Cpu: the upload).
 GpuBake bakeToGpu(const GlContext& gl, MeshView mesh, const BakeOptions& options,
-                  GpuSpriteParts parts = GpuSpriteParts::Both);
+                  GpuSpriteParts parts = GpuSpriteParts::Both, const GlBakeOptions& glOptions = {});
 
 } // namespace vds

@@ -36,7 +36,7 @@ protected:
     void classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
                         const ClassifyOptions& options) const override;
     /// The GPU column sweep when the sprite's axes are aligned with the
-    /// grid's (detail::sweepsByColumns), else cell centres.
+    /// grid's (`sweepsByColumns`, <vds/sprite.h>), else cell centres.
     void sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const override;
 
 private:

@@ -47,6 +47,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -64,6 +65,16 @@ struct GlInfo {
     int minor = 0;
     /// "#version 450 core" or "#version 430 core", whichever the context takes.
     std::string glslVersionLine() const;
+};
+
+/// What GL allows on a context, as the library's calls need it.
+struct GlLimits {
+    /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the most bytes one shader storage
+    /// block, and so one bound buffer range, may hold.
+    std::uint64_t maxStorageBlockBytes = 0;
+    /// The limits of the context current on the calling thread, asked of GL
+    /// (a `GlContext` asks once and keeps them: `GlContext::limits()`).
+    static GlLimits query();
 };
 
 /// A GL context: the library's own headless EGL context, or the
@@ -98,6 +109,8 @@ public:
     /// context is current".
     void requireCurrent(const char* what) const;
     const GlInfo& info() const;
+    /// What GL allows on this context, queried once when it was made or adopted.
+    const GlLimits& limits() const;
 
     /// A program built once per context and kept: `make` runs on first use.
     /// This context must be current (throws `GlError` otherwise): a program
@@ -121,8 +134,9 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-namespace detail {
-/// Which context is current on the calling thread, as its API names it.
+/// Which context is current on the calling thread, as its API names it
+/// (EGL or GLX handles, opaque here): what `CurrentContext` saves and
+/// restores, and what `ContextStamp` remembers.
 struct NativeContext {
     enum class Api : unsigned char { None, Egl, Glx } api = Api::None;
     void* display = nullptr;
@@ -130,14 +144,18 @@ struct NativeContext {
     unsigned long glxDraw = 0, glxRead = 0; ///< GLX drawables (XIDs)
     void* eglDraw = nullptr;
     void* eglRead = nullptr;
+    /// The context current on the calling thread (`Api::None` where none is).
     static NativeContext current() noexcept;
-    /// Makes this context current again (or, for None, releases the current one).
+    /// Makes this context current again (or, for None, releases the current
+    /// one); false where the API refuses.
     bool makeCurrent() const noexcept;
+    /// The same context, whatever its drawables.
     bool same(const NativeContext& o) const noexcept { return api == o.api && context == o.context; }
 };
 
 /// What a GL object remembers of where it was made: the context and the
-/// thread. `check` throws a one-line `GlError` naming `what` when no
+/// thread (`GpuSprite`, the classifiers and the voxel uploads keep one).
+/// `check` throws a one-line `GlError` naming `what` when no
 /// context is current, another context is, or the calling thread is
 /// another one where the object's context is not current.
 class ContextStamp {
@@ -156,7 +174,6 @@ private:
     NativeContext native_;
     std::size_t thread_ = 0;
 };
-} // namespace detail
 
 /// A scope that restores, when it ends, whichever context was current on the
 /// calling thread when it began (or none), of any API. Given a context, it
@@ -171,7 +188,7 @@ public:
     CurrentContext& operator=(const CurrentContext&) = delete;
 
 private:
-    detail::NativeContext saved_;
+    NativeContext saved_;
 };
 
 /// Cheap, non-throwing probe (the answer is computed once per process): can a
@@ -182,11 +199,5 @@ bool glAvailable(std::string* reason = nullptr);
 /// GL_OUT_OF_MEMORY was among the codes, else `GlError`; the message names
 /// `what` and every code reported, in order.
 void checkGl(const char* what);
-
-namespace detail {
-/// False once the process has begun to exit (see the lifetime rules above):
-/// GL objects and contexts then skip their GL and EGL calls.
-bool glUsable() noexcept;
-} // namespace detail
 
 } // namespace vds

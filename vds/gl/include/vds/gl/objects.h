@@ -44,7 +44,9 @@ private:
     GLuint id_ = 0;
 };
 
-namespace detail {
+/// How `GlObject` makes and deletes each kind of GL name: `create` throws
+/// `GlError` when GL gives none; `destroy` does nothing once the process has
+/// begun to exit (see <vds/gl/context.h>).
 struct BufferTraits { static GLuint create(); static void destroy(GLuint) noexcept; };
 struct TextureTraits { static GLuint create(GLenum target); static void destroy(GLuint) noexcept; };
 struct FramebufferTraits { static GLuint create(); static void destroy(GLuint) noexcept; };
@@ -52,15 +54,14 @@ struct VertexArrayTraits { static GLuint create(); static void destroy(GLuint) n
 struct QueryTraits { static GLuint create(GLenum target); static void destroy(GLuint) noexcept; };
 struct ShaderTraits { static GLuint create(GLenum type); static void destroy(GLuint) noexcept; };
 struct ProgramTraits { static GLuint create(); static void destroy(GLuint) noexcept; };
-} // namespace detail
 
-using Buffer = GlObject<detail::BufferTraits>;           ///< create()
-using Texture = GlObject<detail::TextureTraits>;         ///< create(GL_TEXTURE_3D, ...)
-using Framebuffer = GlObject<detail::FramebufferTraits>; ///< create()
-using VertexArray = GlObject<detail::VertexArrayTraits>; ///< create()
-using Query = GlObject<detail::QueryTraits>;             ///< create(GL_SAMPLES_PASSED, ...)
-using Shader = GlObject<detail::ShaderTraits>;           ///< create(GL_VERTEX_SHADER, ...)
-using Program = GlObject<detail::ProgramTraits>;         ///< create(); see <vds/gl/shader.h>
+using Buffer = GlObject<BufferTraits>;           ///< create()
+using Texture = GlObject<TextureTraits>;         ///< create(GL_TEXTURE_3D, ...)
+using Framebuffer = GlObject<FramebufferTraits>; ///< create()
+using VertexArray = GlObject<VertexArrayTraits>; ///< create()
+using Query = GlObject<QueryTraits>;             ///< create(GL_SAMPLES_PASSED, ...)
+using Shader = GlObject<ShaderTraits>;           ///< create(GL_VERTEX_SHADER, ...)
+using Program = GlObject<ProgramTraits>;         ///< create(); see <vds/gl/shader.h>
 
 /// A GL fence sync object (a GLsync, not a GLuint name, hence its own type),
 /// move-only like the others: `insert()` puts one in the command stream and

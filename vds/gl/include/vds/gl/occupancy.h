@@ -65,8 +65,11 @@ public:
 private:
     void sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells, const ClassifyOptions& options);
     const GlContext* gl_ = nullptr;
-    detail::ContextStamp stamp_;
-    const Program& program(Rule rule) const;
+    ContextStamp stamp_;
+    /// occupancy.comp's program of a rule and a sweep: single columns, or
+    /// quads of columns along v or u (VDS_SWEEP_QUADS_ALONG_V / _U).
+    enum class Sweep : std::uint8_t { Columns, QuadsAlongV, QuadsAlongU };
+    const Program& program(Rule rule, Sweep sweep) const;
     std::uint64_t maxBlock_ = 0;
 };
 

@@ -66,7 +66,8 @@ std::string assembleShader(const ShaderStage& stage, const std::string& versionL
 
 /// Compiles and links a program from stages on the current context. Throws
 /// `GlError` with the log (file names restored) on failure.
-/// `defines` is inserted after `#version`, e.g. "#define VDS_MAX_LAYERS 64\n".
+/// `defines` is inserted after `#version`, e.g. "#define VDS_MAX_LAYERS 64\n",
+/// after the library's own constants (VDS_FOUR_PI, from the C++ value).
 Program buildProgram(const std::vector<ShaderStage>& stages, const std::string& defines = "");
 
 } // namespace vds

@@ -41,10 +41,6 @@
 
 namespace vds {
 
-namespace detail {
-struct GpuSpriteAccess;
-} // namespace detail
-
 /// Which forms of a sprite a `GpuSprite` keeps in GL.
 enum class GpuSpriteParts : std::uint8_t {
     Both,        ///< the texture and the columns (the default)
@@ -63,6 +59,17 @@ public:
     /// Uploads `sprite` to the context current on the calling thread, of any
     /// origin. Throws `GlError` "no GL context current" when there is none.
     explicit GpuSprite(const Sprite& sprite, GpuSpriteParts parts = GpuSpriteParts::Both);
+    /// A sprite of GL objects made elsewhere in the context current on the
+    /// calling thread (`bakeToGpu` builds its sprites so), which it takes
+    /// over: the 3D texture and the columns, laid out as `texture()`,
+    /// `offsets()` and `crossings()` say (either form may be empty),
+    /// `crossingCount` crossings, `size` as `size()`, placed as `grid` says;
+    /// the baked mesh's `status` and boundary edges (as
+    /// `Sprite::boundaryEdges`, uploaded here). Throws `GlError` "no GL
+    /// context current" when there is none.
+    static GpuSprite adopt(Texture texture, Buffer offsets, Buffer crossings, std::uint64_t crossingCount,
+                           glm::uvec3 size, const SpriteGrid& grid, SolidStatus status,
+                           const std::vector<glm::vec3>& boundaryEdges);
     ~GpuSprite();
     GpuSprite(GpuSprite&&) noexcept = default;
     GpuSprite& operator=(GpuSprite&&) noexcept;
@@ -137,10 +144,9 @@ public:
                              GLuint unit) const;
 
 private:
-    friend struct detail::GpuSpriteAccess;
     void upload(const Sprite& sprite, GpuSpriteParts parts);
     void releaseIfForeign() noexcept;
-    detail::ContextStamp context_;
+    ContextStamp context_;
     Texture texture_;
     Buffer offsets_;
     Buffer crossings_;
@@ -249,7 +255,7 @@ private:
     void enter(const char* what) const;
 
     const GlContext* gl_ = nullptr;
-    detail::ContextStamp stamp_;
+    ContextStamp stamp_;
     std::size_t batch_ = std::size_t(1) << 22;
     std::uint64_t maxBlock_ = 0;
     std::size_t maxDispatch_ = 0;

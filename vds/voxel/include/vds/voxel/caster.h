@@ -2,7 +2,7 @@
 // <vds/voxel/refraction.h>; transmittance, <vds/voxel/transmittance.h>)
 // share: a solid uploaded as the one representation their fragment shader
 // reads — a slicemap pair, a sprite's LDI texture or a 3D texture of cells —
-// and the uniforms that bind it. Not used on its own.
+// and the uniforms that bind it: a public base, made only by them.
 #pragma once
 
 #include <cstddef>
@@ -15,7 +15,7 @@
 #include <vds/voxel/grid.h>
 #include <vds/voxel/slicemap.h>
 
-namespace vds::voxel::detail {
+namespace vds::voxel {
 
 /// The base of `GpuRefractionCaster` and `GpuTransmittanceCaster`: it
 /// belongs to the context current when it was made. Move-only.
@@ -48,7 +48,7 @@ protected:
     void setVolumeUniforms(GLuint program, const char* sampler) const;
 
 private:
-    vds::detail::ContextStamp stamp_;
+    ContextStamp stamp_;
     GpuSlicemap slicemap_;
     GpuSprite sprite_;
     Texture volume_;
@@ -56,4 +56,4 @@ private:
     std::size_t gpuBytes_ = 0;
 };
 
-} // namespace vds::voxel::detail
+} // namespace vds::voxel

@@ -41,7 +41,7 @@ public:
     void setUniforms(GLuint program, const std::string& sampler, const std::string& grid, GLuint unit) const;
 
 private:
-    vds::detail::ContextStamp stamp_;
+    ContextStamp stamp_;
     Buffer words_;
     Texture texture_;
     VoxelGrid grid_;
@@ -74,7 +74,7 @@ public:
                        GLuint unit) const;
 
 private:
-    vds::detail::ContextStamp stamp_;
+    ContextStamp stamp_;
     Texture maps_, ranges_;
     VoxelGrid grid_;
     std::int32_t backLayer_ = 0;

@@ -111,7 +111,7 @@ RefractionImage refractExactly(MeshView viewSpaceMesh, const RefractionView& vie
 /// the context (and thread) it was made in: the constructors taking a
 /// `GlContext` make it current for the call, the others use the current
 /// one (of any origin). `render*` refuses a caster of another context.
-class GpuRefractionCaster : public detail::GpuCaster {
+class GpuRefractionCaster : public GpuCaster {
 public:
     explicit GpuRefractionCaster(const Slicemap& map); ///< local slicing only (`InvalidArgument`)
     explicit GpuRefractionCaster(const Sprite& sprite); ///< Axis::Z only (`InvalidArgument`)

@@ -142,7 +142,7 @@ TransmittanceImage transmittanceOnCpu(const ReceiverPlane& plane, const LightFra
 /// the context (and thread) it was made in: the constructors taking a
 /// `GlContext` make it current for the call, the others use the current
 /// one (of any origin). `render*` refuses a caster of another context.
-class GpuTransmittanceCaster : public detail::GpuCaster {
+class GpuTransmittanceCaster : public GpuCaster {
 public:
     /// Uploads a slicemap pair (uniform or local): RGBA32UI array texture,
     /// plus an RGBA32F range texture for local slicing.

@@ -1,6 +1,7 @@
 // vds internal: pi, once, for the solid angles of the winding number, the
-// mesh check's inside-out parts
-// anything else in the library that measures angles.
+// mesh check's inside-out parts, the occupancy sweep's boundary term and
+// anything else in the library that measures angles (GLSL gets it as a
+// define from here).
 #pragma once
 
 namespace vds::detail {

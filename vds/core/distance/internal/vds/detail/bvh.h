@@ -6,8 +6,9 @@
 // bins on each axis), then collapsed to four children a node (the child
 // with the largest surface opened first) and laid out depth first, so a
 // node's first child follows it in memory. A node holds its four
-// children's boxes as structure of arrays (one 128-byte, two-cache-line
-// record), so one query tests the four box distances in one SIMD step.
+// children's boxes, their oriented slabs and references as structure of
+// arrays (one 192-byte, three-cache-line record), so one query tests the
+// four box distances in one SIMD step.
 #pragma once
 
 #include <cstddef>
@@ -41,6 +42,7 @@ struct alignas(64) BvhNode {
     /// last, up to the next multiple, are empty).
     std::int32_t child[4];
 };
+static_assert(sizeof(BvhNode) == 192, "a node is three cache lines, as the header says");
 constexpr std::int32_t kEmptyChild = INT32_MIN;
 /// Bits of a leaf reference that hold its triangle count less one.
 constexpr int kLeafBits = 3;

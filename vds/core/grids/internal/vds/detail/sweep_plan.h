@@ -1,10 +1,10 @@
 // vds internal: the one plan of a sprite's occupancy sweep, consumed by the
-// CPU sweep (occupancy.cpp) and the GPU sweep (gl/src/gpu_occupancy.cpp,
+// CPU sweep (occupancy.cpp) and the GPU sweep (gl/src/grids/occupancy.cpp,
 // shaders/vds/occupancy.comp), so the two give the same labels by
 // construction.
 //
 // With a sprite whose texture s, t and r each follow one world axis (depth
-// growing along the world axis `a` r follows: detail::sweepsByColumns), a grid column along `a` falls in one
+// growing along the world axis `a` r follows: sweepsByColumns), a grid column along `a` falls in one
 // texel column, and a cell's texture depth depends on its slice alone:
 // one depth per slice, shared by every column, increasing; cells with
 // depth outside [0, 1] are outside.

@@ -1,6 +1,6 @@
 // vds internal: "is the sprite axis-aligned?", asked in one place by the
 // CPU sprite's fast path (sprite.cpp), the occupancy sweep's plan
-// (occupancy.cpp, detail::planSweep) and the GPU sprite's classifier.
+// (occupancy.cpp, detail::planSweep) and `sweepsByColumns` (<vds/sprite.h>).
 #pragma once
 
 #include <optional>
@@ -28,15 +28,6 @@ inline std::optional<glm::ivec3> alignedAxes(const SpriteGrid& grid) {
         }
     if (columns != 7u) return std::nullopt;
     return axes;
-}
-
-/// True when a grid can be swept through the sprite column by column
-/// (detail::planSweep): its axes are aligned and depth grows along the
-/// world axis r follows, so a column's slices meet its crossings in order.
-/// A sprite mirrored along that axis is aligned but not swept.
-inline bool sweepsByColumns(const SpriteGrid& grid) {
-    const std::optional<glm::ivec3> axes = alignedAxes(grid);
-    return axes && grid.matrix[(*axes)[2]][2] > 0.0f;
 }
 
 } // namespace vds::detail

@@ -1,0 +1,38 @@
+// vds::gl internal: what every GL bake runs before and around its baker
+// (bake_setup.cpp): the one validation, timed on the bake's clock, with the
+// axis count beside it; the bake of a validated mesh by the method chosen.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <vds/bake.h>
+#include <vds/detail/bake_common.h>
+#include <vds/gl/bake.h>
+#include <vds/gl/context.h>
+#include <vds/gl/detail/phase_clock.h>
+#include <vds/gl/mesh.h>
+
+namespace vds::detail {
+
+/// Runs `BakePhase::Validation`: validates the mesh (throws `InvalidMesh`)
+/// and makes the grid, as every baker does; `BakePhase::Axis` where the
+/// options name no axis. A count on the GPU uploads the mesh, which the bake
+/// then draws (`drawn`).
+struct ValidatedMesh {
+    MeshReport report;
+    SpriteGrid grid;
+    std::optional<GpuMesh> drawn;
+};
+ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock);
+
+/// `bakeOnGl` on a mesh validated before (`setup`), with a method chosen
+/// (not Auto). Phases timed on `options.timings`; the caller holds the clock.
+/// `uploaded`: the mesh already in GL (the axis count's), or null.
+Sprite bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options,
+                const GlBakeOptions& glOptions, const GpuMesh* uploaded = nullptr);
+
+/// Calls options.progress, if set.
+void report(const BakeOptions& options, const std::string& what);
+
+} // namespace vds::detail
