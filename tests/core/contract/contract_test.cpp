@@ -60,7 +60,9 @@ TEST(MethodTable, EveryMethodIsNamedOnceInOrderAndItsFormsPair) {
         EXPECT_EQ(parseEnum<Method>(info.name), info.method);
         EXPECT_TRUE(names.insert(info.name).second) << info.name;
         EXPECT_FALSE(cpuForm(info.method) != info.method && methodInfo(cpuForm(info.method)).gpu) << info.name;
-        if (info.gpu && info.builtIn()) EXPECT_EQ(gpuForm(cpuForm(info.method)), info.method) << info.name;
+        if (info.gpu && info.builtIn()) {
+            EXPECT_EQ(gpuForm(cpuForm(info.method)), info.method) << info.name;
+        }
     }
     EXPECT_EQ(cpuForm(Method::SpriteGpu), Method::Sprite);
     EXPECT_EQ(gpuForm(Method::Solid), Method::SolidGpu);
