@@ -24,10 +24,7 @@
 // the sprite's caps (by a call on one point; the bake not counted); the
 // first call ("all") counts the cells of the range grid the points land in.
 // Occupancy: `--dims` cubed cells of the padded box by the mesh sweep, its
-// labels checked against the exact classifier at the cell centres. Last,
-// how the sprite's caps answer: their coarse grid's cells by kind once the
-// points have landed (ranges of the boundary term, of the whole winding
-// number, of -w_caps; plans), which only speed depends on.
+// labels checked against the exact classifier at the cell centres.
 //
 // `--dump DIR` writes, for each mesh, NAME.obj (its positions and triangles
 // as measured), NAME.points (the points, little-endian float32 x y z) and
@@ -41,6 +38,7 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -53,11 +51,8 @@
 #include <vds/mesh_io.h>
 #include <vds/occupancy.h>
 #include <vds/sprite.h>
-#include <vds/detail/parallel.h>
 
 #include "solids.h"
-#include <vds/detail/vpt.h>
-#include <vds/detail/caps_tree.h>
 
 namespace {
 
@@ -65,6 +60,19 @@ using Clock = std::chrono::steady_clock;
 constexpr double kPi = glm::pi<double>(); // for the generated spheres
 
 double seconds(Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); }
+
+// body(k) for every k < count, on all cores (the yardstick's values: not
+// timed).
+template <class Body>
+void forEachOnAllCores(std::size_t count, const Body& body) {
+    const std::size_t threads = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> crew;
+    for (std::size_t t = 0; t < threads; ++t)
+        crew.emplace_back([&, t] {
+            for (std::size_t k = t * count / threads; k < (t + 1) * count / threads; ++k) body(k);
+        });
+    for (std::thread& thread : crew) thread.join();
+}
 
 std::vector<glm::vec3> uniformPoints(const vds::Box& box, std::size_t n, std::mt19937& rng) {
     const glm::vec3 pad = 0.1f * (box.hi - box.lo);
@@ -243,9 +251,7 @@ void benchMesh(const std::string& name, const vds::TriangleMesh& mesh, const Gwn
     std::mt19937 rng(1);
     const std::vector<glm::vec3> points = uniformPoints(vds::meshBounds(mesh), set.points, rng);
     std::vector<double> w(points.size());
-    vds::detail::parallelFor(0, points.size(), 256, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) w[k] = exact.generalizedWinding(points[k]);
-    });
+    forEachOnAllCores(points.size(), [&](std::size_t k) { w[k] = exact.generalizedWinding(points[k]); });
     if (!set.dumpDir.empty()) dump(set.dumpDir, name, mesh, points, w);
     std::vector<std::vector<glm::vec3>> bands(kBandCount);
     std::size_t counts[kBandCount] = {};
@@ -265,15 +271,6 @@ void benchMesh(const std::string& name, const vds::TriangleMesh& mesh, const Gwn
     o.resolution = set.resolution;
     const vds::SpriteClassifier sprite(vds::bakeCpu(mesh, o));
     rows.push_back(spriteRow(name, set, points, w, bands, sprite));
-    // How the sprite's caps answer: their coarse grid's cells by kind once
-    // the uniform points have landed in them (the same caps built again,
-    // untimed). A matter of speed, not of labels, so reported here rather
-    // than asserted by the tests.
-    const vds::detail::BoundaryCapsCache spriteCaps;
-    std::vector<std::uint8_t> landed(points.size());
-    vds::detail::classifySpriteFloats(sprite.sprite(), spriteCaps, {}, &points[0].x, points.size(), sizeof(glm::vec3),
-                                      landed.data(), gwn);
-    const vds::detail::BoundaryCaps::RangedCells ranged = spriteCaps.get(sprite.sprite(), set.threads).rangedCells();
     // (A sprite's labels may differ from the yardstick's within a texel of
     // the surface: its points sit at texel centres.)
     for (const Row& r : rows) {
@@ -285,9 +282,6 @@ void benchMesh(const std::string& name, const vds::TriangleMesh& mesh, const Gwn
     occupancyRow(name, mesh, set, exact, edges);
     std::printf("| %s | | points per band | | | %zu | | %zu | %zu | %zu | %zu |\n", name.c_str(), points.size(),
                 counts[0], counts[1], counts[2], counts[3]);
-    std::printf("| %s | | sprite caps' coarse cells: by range (boundary %zu, winding %zu of which closed %zu, "
-                "capped %zu), planned %zu | | | | | | | | |\n",
-                name.c_str(), ranged.boundary, ranged.winding, ranged.closed, ranged.capped, ranged.planned);
     std::fflush(stdout);
 }
 

@@ -1,4 +1,4 @@
-// The boundary term's capped loops (vds/core/winding/caps_tree.h) against the
+// The boundary term's capped loops (<vds/detail/boundary_caps.h>) against the
 // per-edge sum (antipodal.h), the independent exact form: the expansion's
 // error bound, the drift bound along a move (what the occupancy sweep's runs
 // rest on), the margin of decide() and its cost beside a large loop, how
@@ -24,7 +24,7 @@
 #include <vds/sprite.h>
 
 #include <vds/detail/antipodal.h>
-#include <vds/detail/caps_tree.h>
+#include <vds/detail/boundary_caps.h>
 #include <vds/detail/projected_mesh.h>
 #include "solids.h"
 

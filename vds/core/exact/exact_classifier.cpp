@@ -32,7 +32,7 @@
 #include <vds/detail/parallel.h>
 
 #include <vds/detail/antipodal.h>
-#include <vds/detail/caps_tree.h>
+#include <vds/detail/boundary_caps.h>
 #include <vds/detail/projected_mesh.h>
 
 namespace vds {
@@ -65,7 +65,7 @@ struct ExactClassifier::Impl : detail::ProjectedMesh {
     /// The triangles, for the caps' ranges of the whole winding number.
     detail::ProjectedSurface surface;
     /// The boundary's capped loops: labels equal to the per-edge sum's,
-    /// without summing every edge for most points (caps_tree.h).
+    /// without summing every edge for most points (boundary_caps.h).
     std::optional<detail::BoundaryCaps> caps;
 
     double boundaryTerm(const glm::vec3& p) const {

@@ -25,7 +25,7 @@
 #include <vds/detail/sweep_plan.h>
 #include <vds/detail/tree_walk.h>
 
-#include <vds/detail/caps_tree.h>
+#include <vds/detail/boundary_caps.h>
 #include <vds/detail/sprite_winding.h>
 #include <vds/detail/antipodal.h>
 #include <vds/detail/projected_mesh.h>
@@ -63,7 +63,7 @@ std::vector<float> centres(const Grid& grid, int axis) {
 // rule; columns with such an edge are labelled cell by cell instead, and so
 // are runs whose ends the column passes almost over an edge (see `at`).
 //
-// With the boundary's chain tree (caps_tree.h), a node whose ball the
+// With the boundary's chain tree (boundary_caps.h), a node whose ball the
 // column passes beside (at every depth, so its fan's crossing count is 0)
 // stands for its edges by its chord, an edge like the others, and its fan,
 // taken by expansion: F(z), within the expansions' bounds E of the fans'
@@ -112,7 +112,7 @@ public:
                 // solid angle moves by at most 2 area / e^3 a unit of depth
                 // (the gradient of n . (x - q) / |x - q|^3 has norm at most
                 // 2 / |x - q|^3).
-                const double bound = detail::BoundaryCaps::firstOrderBound(n, n.radius * (1.0 + 1e-12) + e);
+                const double bound = detail::firstOrderBound(n, n.radius * (1.0 + 1e-12) + e);
                 const double drift = 2.0 * n.area / (e * e * e) / kFourPi;
                 if (bound <= kFarBound && drift * height <= kFarDrift) {
                     far_.push_back(&n);
@@ -158,7 +158,7 @@ public:
         if (!product(ups_, z, up) || !product(downs_, z, down)) return false;
         double fans = 0.0;
         const glm::dvec3 q(x_, y_, z);
-        for (const detail::BoundaryCaps::Node* n : far_) fans += detail::BoundaryCaps::firstOrderSolidAngle(*n, q);
+        for (const detail::BoundaryCaps::Node* n : far_) fans += detail::firstOrderSolidAngle(*n, q);
         // Each edge adds 2 atan2(det, den); over 4 pi.
         split.up = (up[0].angle() + up[1].angle()) / (2.0 * kPi);
         split.down = -(down[0].angle() + down[1].angle()) / (2.0 * kPi);
@@ -413,7 +413,8 @@ void detail::occupancyOfSprite(const Sprite& sprite, const BoundaryCapsCache& ca
 }
 
 void SpriteClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
-    detail::occupancyOfSprite(sprite_, caps_, grid, cells, options);
+    const detail::BoundaryCapsCache callCaps; // a moved-from classifier's: this call's alone
+    detail::occupancyOfSprite(sprite_, *(caps_ ? &caps_->cache : &callCaps), grid, cells, options);
 }
 
 void occupancy(MeshView mesh, const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) {

@@ -261,7 +261,26 @@ void classify(const Sprite& sprite, const PointsView& points, std::uint8_t* labe
 }
 
 SpriteClassifier::SpriteClassifier(Sprite sprite, const SpriteQueryOptions& query)
-    : sprite_(std::move(sprite)), query_(query) {}
+    : sprite_(std::move(sprite)), query_(query), caps_(std::make_unique<Caps>()) {}
+
+SpriteClassifier::SpriteClassifier(const SpriteClassifier& other)
+    : Classifier(other), sprite_(other.sprite_), query_(other.query_), caps_(std::make_unique<Caps>()) {}
+
+SpriteClassifier::SpriteClassifier(SpriteClassifier&& other) noexcept = default;
+
+SpriteClassifier& SpriteClassifier::operator=(const SpriteClassifier& other) {
+    if (this != &other) {
+        Classifier::operator=(other);
+        sprite_ = other.sprite_;
+        query_ = other.query_;
+        caps_ = std::make_unique<Caps>();
+    }
+    return *this;
+}
+
+SpriteClassifier& SpriteClassifier::operator=(SpriteClassifier&& other) noexcept = default;
+
+SpriteClassifier::~SpriteClassifier() = default;
 
 std::size_t SpriteClassifier::memoryBytes() const {
     return sprite_.memoryBytes() + sprite_.boundaryEdges.size() * sizeof(glm::vec3);
@@ -274,7 +293,9 @@ std::string SpriteClassifier::summary() const {
 
 void SpriteClassifier::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes,
                                       std::uint8_t* labels, const ClassifyOptions& options) const {
-    detail::classifySpriteFloats(sprite_, caps_, query_, xyz, count, strideBytes, labels, options);
+    const detail::BoundaryCapsCache callCaps; // a moved-from classifier's: this call's alone
+    detail::classifySpriteFloats(sprite_, *(caps_ ? &caps_->cache : &callCaps), query_, xyz, count, strideBytes, labels,
+                                 options);
 }
 
 namespace {

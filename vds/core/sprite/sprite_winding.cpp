@@ -1,7 +1,7 @@
 // vds: the generalized winding number of a sprite (the Antipodal split,
 // Martens, Trettner & Bessmeltsev, SIGGRAPH 2026): the integer term counted
 // in the sprite's columns, the boundary term by the boundary's caps
-// (winding/caps_tree.h) or the per-edge sum (winding/antipodal.h).
+// (winding/boundary_caps.h) or the per-edge sum (winding/antipodal.h).
 #include <vds/detail/sprite_winding.h>
 
 #include <algorithm>
@@ -17,7 +17,7 @@
 
 #include <vds/detail/vpt.h>
 #include <vds/detail/antipodal.h>
-#include <vds/detail/caps_tree.h>
+#include <vds/detail/boundary_caps.h>
 
 namespace vds::detail {
 

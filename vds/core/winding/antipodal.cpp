@@ -13,6 +13,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <vds/detail/position_weld.h>
+
 #include <vds/error.h>
 #include <vds/detail/parallel.h>
 #include <vds/detail/pi.h>
@@ -20,58 +22,9 @@
 
 namespace vds::detail {
 
-namespace {
-
-// Welds the positions equal by value (as a map keyed by (x, y, z) would:
-// -0 and +0 alike): each vertex's id, ids numbered in the order of their
-// first vertex, and each id's position (its first vertex's). By sorting
-// and counting, not trees of nodes: a bunny-sized scan (35k vertices, 208k
-// edge uses) took 45 ms in std::maps on this machine.
-std::vector<std::uint32_t> weldPositions(MeshView mesh, std::vector<glm::vec3>& where) {
-    const std::size_t n = mesh.positionCount;
-    // A position's key: its coordinates' bits, -0 made +0 (x + 0 is +0 for
-    // x = -0 and x itself otherwise), so that equal keys are equal values.
-    struct Key {
-        std::uint64_t xy;
-        std::uint32_t z, vertex;
-    };
-    const auto bits = [](float f) {
-        f += 0.0f;
-        std::uint32_t u;
-        std::memcpy(&u, &f, 4);
-        return u;
-    };
-    std::vector<Key> keys(n);
-    for (std::size_t v = 0; v < n; ++v) {
-        const glm::vec3 p = mesh.positions[v];
-        keys[v] = {std::uint64_t(bits(p.x)) << 32 | bits(p.y), bits(p.z), std::uint32_t(v)};
-    }
-    std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
-        return a.xy != b.xy ? a.xy < b.xy : a.z != b.z ? a.z < b.z : a.vertex < b.vertex;
-    });
-    // Each run of equal keys starts at its smallest vertex (the sort's tie order).
-    std::vector<std::uint32_t> first(n), runFirsts;
-    for (std::size_t k = 0; k < n; ++k) {
-        if (k == 0 || keys[k].xy != keys[k - 1].xy || keys[k].z != keys[k - 1].z) runFirsts.push_back(keys[k].vertex);
-        first[keys[k].vertex] = runFirsts.back();
-    }
-    std::sort(runFirsts.begin(), runFirsts.end()); // ids in the order of first occurrence
-    std::vector<std::uint32_t> idOfFirst(n, 0);
-    where.resize(runFirsts.size());
-    for (std::size_t r = 0; r < runFirsts.size(); ++r) {
-        where[r] = mesh.positions[runFirsts[r]];
-        idOfFirst[runFirsts[r]] = std::uint32_t(r);
-    }
-    std::vector<std::uint32_t> id(n);
-    for (std::size_t v = 0; v < n; ++v) id[v] = idOfFirst[first[v]];
-    return id;
-}
-
-} // namespace
-
 std::vector<glm::vec3> boundaryEdges(MeshView mesh) {
     std::vector<glm::vec3> where;
-    const std::vector<std::uint32_t> id = weldPositions(mesh, where);
+    const std::vector<std::uint32_t> id = weldPositions(mesh.positions, mesh.positionCount, where);
     // Each edge's uses by its lower id (a counting sort), as (higher id,
     // +1 for low->high or -1 for high->low); a vertex's few uses sorted by
     // the higher id, the net use of each edge is one run's sum, in the order

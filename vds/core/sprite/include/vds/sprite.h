@@ -11,10 +11,10 @@
 // faced the viewer there (the ray enters the solid) or not (it leaves).
 #pragma once
 
-#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -145,42 +145,6 @@ struct SpriteQueryOptions {
     BoundaryEvaluation boundary = BoundaryEvaluation::Caps;
 };
 
-namespace detail {
-class BoundaryCaps;
-/// A sprite's derived data for Rule::GeneralizedWinding (its boundary loops
-/// and their caps), built from `Sprite::boundaryEdges` on first use, thread
-/// safe; held by `SpriteClassifier`, not by the plain-data `Sprite`. A copy
-/// or an assignment starts empty, a move takes it along.
-class BoundaryCapsCache {
-public:
-    BoundaryCapsCache() noexcept = default;
-    BoundaryCapsCache(const BoundaryCapsCache&) noexcept {}
-    BoundaryCapsCache(BoundaryCapsCache&& other) noexcept : caps_(other.caps_.exchange(nullptr)) {}
-    BoundaryCapsCache& operator=(const BoundaryCapsCache& other) noexcept {
-        if (this != &other) reset();
-        return *this;
-    }
-    BoundaryCapsCache& operator=(BoundaryCapsCache&& other) noexcept {
-        if (this != &other) {
-            reset();
-            caps_.store(other.caps_.exchange(nullptr));
-        }
-        return *this;
-    }
-    ~BoundaryCapsCache() { reset(); }
-    void reset() noexcept;
-    /// The caps of the sprite's boundary edges for the integer term along
-    /// its axis, built by the first caller, with the sprite's box as the
-    /// domain of their grid of bounds and its columns telling the cells
-    /// over which their count is one integer, found on `threads` threads
-    /// (0: all cores).
-    const BoundaryCaps& get(const Sprite& sprite, unsigned threads = 1) const;
-
-private:
-    mutable std::atomic<const BoundaryCaps*> caps_{nullptr};
-};
-} // namespace detail
-
 /// A volumetric depth sprite held in host memory.
 ///
 /// The LDI is stored compressed-row style: column c = j * width + i holds
@@ -287,6 +251,13 @@ void classify(const Sprite& sprite, const PointsView& points, std::uint8_t* labe
 class SpriteClassifier final : public Classifier {
 public:
     explicit SpriteClassifier(Sprite sprite, const SpriteQueryOptions& query = {});
+    /// A copy holds the same sprite and options; its caps start unbuilt.
+    SpriteClassifier(const SpriteClassifier& other);
+    /// The caps move along; the moved-from classifier's queries build their own.
+    SpriteClassifier(SpriteClassifier&& other) noexcept;
+    SpriteClassifier& operator=(const SpriteClassifier& other);
+    SpriteClassifier& operator=(SpriteClassifier&& other) noexcept;
+    ~SpriteClassifier() override;
     const Sprite& sprite() const { return sprite_; }
     const SpriteQueryOptions& query() const { return query_; }
     Method method() const override { return Method::Sprite; }
@@ -299,9 +270,12 @@ protected:
     void sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const override;
 
 private:
+    /// The sprite's boundary loops and caps for Rule::GeneralizedWinding,
+    /// built by the first such query, thread safe (internal).
+    struct Caps;
     Sprite sprite_;
     SpriteQueryOptions query_;
-    detail::BoundaryCapsCache caps_;
+    std::unique_ptr<Caps> caps_; ///< null only in a moved-from classifier
 };
 
 } // namespace vds

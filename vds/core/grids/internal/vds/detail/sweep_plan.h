@@ -51,6 +51,8 @@ struct SweepPlan {
 /// says which world axis depth follows). Texels computed on `threads`.
 SweepPlan planSweep(const SpriteGrid& sprite, const Grid& grid, unsigned threads);
 
+class BoundaryCapsCache; // <vds/detail/sprite_winding.h>
+
 /// `occupancy(sprite, ...)` (<vds/occupancy.h>) with a sprite's caps cache:
 /// its `SpriteClassifier`'s, or the call's.
 void occupancyOfSprite(const Sprite& sprite, const BoundaryCapsCache& caps, const Grid& grid, std::uint8_t* cells,

@@ -12,6 +12,8 @@
 
 namespace vds::detail {
 
+class BoundaryCapsCache; // <vds/detail/sprite_winding.h>
+
 /// The sprite's batch on packed or strided float points (`classify` and
 /// `SpriteClassifier` share it): see `classify` in <vds/sprite.h>. `caps`
 /// holds the sprite's caps for Rule::GeneralizedWinding, built by the first

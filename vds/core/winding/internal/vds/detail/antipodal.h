@@ -1,7 +1,7 @@
 // vds internal: the boundary term of the Antipodal split of the generalized
 // winding number (Martens, Trettner & Bessmeltsev 2026), shared by the exact
 // classifier, sprites and the voxelizers (the per-edge sum: the reference;
-// caps_tree.h makes it fast).
+// boundary_caps.h makes it fast).
 //
 // GWN(q) = integer term + boundary term. The integer term is the signed
 // count of surface crossings on the ray from q towards -axis (what a

@@ -1,5 +1,5 @@
 // vds internal: the winding engine's trees as other layers see them
-// (BoundaryCaps builds them, winding/caps_tree.h): their nodes, the error
+// (CapsValueTree and ChainLabels build them): their nodes, the error
 // factor of a node's expansion, and a boundary's chain tree by value, for
 // the GPU's packing of it (vds/gl).
 #pragma once
@@ -55,12 +55,12 @@ struct CapsNode {
 /// angle f(P -> Q) less the fan's solid angle, which the expansion
 /// takes: the fan hugs the chain (a lune, not a cap across the loop).
 /// Node's moments are its fan's, about `centre` (the ball's centre);
-/// a leaf's `first`, `count` are edges of BoundaryCaps::loopEdges().
+/// a leaf's `first`, `count` are edges of CapLoops::loopEdges().
 struct ChainNode : CapsNode {
     static constexpr std::uint32_t kNoLoop = 0xffffffffu; ///< `loop` of a node that is not one whole loop
     glm::dvec3 from, to; ///< the chord P -> Q (none for whole loops)
     bool chord;
-    /// One whole loop: its index in BoundaryCaps::loops(); else (a group
+    /// One whole loop: its index in CapLoops::loops(); else (a group
     /// of loops, or part of one) kNoLoop.
     std::uint32_t loop;
     /// Every edge under the node: [edgeFirst, edgeFirst + edgeCount)
@@ -78,7 +78,7 @@ struct ChainTree {
     std::vector<ChainNode> nodes;
 };
 
-/// The chain tree BoundaryCaps builds over `edgeCount` edges (edge k from
+/// The chain tree ChainLabels builds over `edgeCount` edges (edge k from
 /// edges[2k] to edges[2k+1]) for the integer term's ray along -`axis`.
 ChainTree chainTreeOf(const glm::vec3* edges, std::size_t edgeCount, Axis axis);
 

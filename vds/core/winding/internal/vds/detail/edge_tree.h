@@ -22,7 +22,7 @@ struct CapLoop {
     std::uint32_t count = 0;       ///< its edges
 };
 
-/// How far the boundary term B (caps_tree.h) may drift from B(q) along a
+/// How far the boundary term B (boundary_caps.h) may drift from B(q) along a
 /// move from q parallel to the axis. Along such a line B is continuous off
 /// the boundary curve G (where it passes a cap, w_caps and C_caps jump together; across the
 /// curtain below G, which such a line does not cross, C_caps alone

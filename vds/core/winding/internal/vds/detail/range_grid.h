@@ -1,7 +1,7 @@
-// vds internal: a grid of bounds of the winding engine (BoundaryCaps): a
+// vds internal: a grid of bounds of the winding engine (BoundRanges): a
 // box of cells, each with a state and, once a query lands in it, a range
 // of the boundary term or of the whole winding number over it, or a plan.
-// What each state means for a label: range_grid.cpp.
+// What each state means for a label: boundary_caps.h.
 #pragma once
 
 #include <atomic>
@@ -16,8 +16,8 @@
 
 namespace vds::detail {
 
-/// What a cell of BoundaryCaps' grids of bounds holds (how a label uses
-/// it: the list at the top of range_grid.cpp).
+/// What a cell of the grids of bounds holds (how a label uses it: the list
+/// in boundary_caps.h).
 enum class CellState : std::uint8_t {
     Unvisited,     ///< no query has landed in it yet
     BoundaryRange, ///< a range of B (clear of the boundary's sweep): the query adds its integer term
@@ -54,10 +54,15 @@ struct CellsBall {
     double half;
 };
 
-/// The grid of bounds `inside` answers from first: cells of the
-/// domain's box, their state (CellState) and range, filled on a
-/// query's first visit (one thread fills a cell; the others go on by
-/// the tree meanwhile).
+/// A grid of bounds: cells of a box and what is known of each before any
+/// query (built once, by BoundRanges), then a cache of what queries found:
+/// each cell's state (CellState) and range or plan, filled on a query's
+/// first visit (one thread fills a cell; the others go on by the tree
+/// meanwhile). The cache is `mutable`: a filled cell changes no label
+/// (every range, plan and bound answers only where it keeps clear of 1/2
+/// by more than its error), only how fast the label comes; states are
+/// atomic, and a cell's other fields are written before its state is
+/// published (release) and read after it is seen (acquire).
 struct RangeGrid {
     /// The cell q lies in; false outside the grid (or before its cells are
     /// allocated).
@@ -66,11 +71,11 @@ struct RangeGrid {
     /// point, as queries are) and a radius holding every point of those
     /// cells, widened against the rounding of a point's cell index.
     CellsBall ballOf(const glm::uvec3& first, const glm::uvec3& last) const;
-    /// Its cells' states (all Unvisited), answers, ranges and plans.
-    void allocate();
+    /// The cache's cells: states (all Unvisited), answers, ranges and plans.
+    void allocate() const;
     std::size_t cellCount() const { return std::size_t(dims.x) * dims.y * dims.z; }
 
-
+    // ---- known before any query
     Box box;
     glm::uvec3 dims{0};
     glm::dvec3 size{0.0};
@@ -86,33 +91,35 @@ struct RangeGrid {
     /// CellWindings' closed counts: in the sweep, where the caps keep
     /// out of a cell, n - w_caps is the whole winding number.
     std::vector<std::int32_t> closedWinding;
-    mutable std::atomic<std::size_t> closedCells{0}; ///< WindingRange by closedWinding
-    /// A planned cell's near nodes (whole loops, or groups of them),
-    /// then the loops they hold, ascending: nearCount[cell] of the
-    /// first, nearLoops[cell] of the second.
-    std::unique_ptr<std::unique_ptr<std::uint32_t[]>[]> near;
-    std::unique_ptr<std::uint32_t[]> nearCount, nearLoops;
-    /// A planned cell's score of queries the plan did not decide, less
-    /// those it did: past a few, the cell goes back to NoRange (most of
-    /// its queries lie close to 1/2).
-    std::unique_ptr<std::atomic<std::uint8_t>[]> planMisses;
     /// Per column of cells along the axis: the lowest height along the
     /// axis of a boundary edge whose projection's box meets the
     /// column's (+inf: none), so the cells wholly below it are clear
     /// of the curve and its sweep.
     std::vector<double> lowestEdge;
-    std::unique_ptr<std::atomic<CellState>[]> state;
+    glm::uvec3 blockDims{0}; ///< the coarse grid's blocks of 2 x 2 x 2 cells
+
+    // ---- the cache, filled by queries
+    mutable std::unique_ptr<std::atomic<CellState>[]> state;
     /// A WindingRange cell's answer (set before the state is published).
-    std::unique_ptr<CellVerdict[]> alone;
-    std::unique_ptr<double[]> lo, hi;
+    mutable std::unique_ptr<CellVerdict[]> alone;
+    mutable std::unique_ptr<double[]> lo, hi;
+    mutable std::atomic<std::size_t> closedCells{0}; ///< WindingRange by closedWinding
+    /// A planned cell's near nodes (whole loops, or groups of them),
+    /// then the loops they hold, ascending: nearCount[cell] of the
+    /// first, nearLoops[cell] of the second.
+    mutable std::unique_ptr<std::unique_ptr<std::uint32_t[]>[]> near;
+    mutable std::unique_ptr<std::uint32_t[]> nearCount, nearLoops;
+    /// A planned cell's score of queries the plan did not decide, less
+    /// those it did: past a few, the cell goes back to NoRange (most of
+    /// its queries lie close to 1/2).
+    mutable std::unique_ptr<std::atomic<std::uint8_t>[]> planMisses;
     /// The coarse grid's: queries that found no range in the cell
-    /// (NoRange and Planned), up to a bound (range_grid.cpp); from then on they ask the
-    /// fine grid's cell.
-    std::unique_ptr<std::atomic<std::uint16_t>[]> visits;
+    /// (NoRange and Planned), up to a bound (bound_ranges.cpp); from then
+    /// on they ask the fine grid's cell.
+    mutable std::unique_ptr<std::atomic<std::uint16_t>[]> visits;
     /// The coarse grid's: per block of 2 x 2 x 2 cells, 1 once a cell
-    /// of it tried the block's range (blockRange).
-    std::unique_ptr<std::atomic<std::uint8_t>[]> blockTried;
-    glm::uvec3 blockDims{0};
+    /// of it tried the block's range (BoundRanges::blockRange).
+    mutable std::unique_ptr<std::atomic<std::uint8_t>[]> blockTried;
 };
 
 // Inline: asked once a query (a sprite's batch asks insideAlone of every point).

@@ -1,6 +1,16 @@
-// vds: the chain tree labels refine (BoundaryCaps::decide): its build, a
-// node taken by its chord and expansion, and the decide-or-refine loop.
-#include <vds/detail/caps_tree.h>
+// vds: the chain tree labels refine (chain_labels.h): its build, a node
+// taken by its chord and expansion, and the decide-or-refine loop.
+//
+// The tree: over the loops (each node's surface the loops' fans, no
+// chord), then within a loop over halves of its edges. A chain of edges
+// running from P to Q, closed by its chord Q -> P, bounds the fan (g, b, a)
+// over its edges a -> b and the chord, g the mean of its vertices; the fan
+// lies in the node's ball. Where q's ray towards -axis misses the ball, the
+// chain's per-edge angles sum to the chord's angle f(P -> Q)
+// (edgeSolidAngle, exact) less the fan's solid angle, which the expansion
+// takes (boundary_caps.h). Leaves sum their edges' angles as the per-edge
+// sum does.
+#include <vds/detail/chain_labels.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +19,6 @@
 #include <glm/geometric.hpp>
 
 #include <vds/detail/antipodal.h>
-#include <vds/detail/caps_math.h>
 #include <vds/detail/tree_walk.h>
 
 namespace vds::detail {
@@ -24,7 +33,7 @@ constexpr double kMaxTakenBound = 0.25;
 /// Labels refine by the expansion to second order once the value lies
 /// within this of the threshold (decide()); farther out, first order
 /// (tuning: docs/benchmarks.md).
-constexpr double kFineBelow = 0.1;
+constexpr double kSecondOrderBelow = 0.1;
 /// decide() opens, a round at a time, the taken nodes whose bound is at
 /// least this fraction of the largest: the fewest rounds for the nodes
 /// opened (tuning: docs/benchmarks.md).
@@ -34,55 +43,25 @@ constexpr double kOpenFraction = 0.5;
 /// needed) passes the budget: it bounds the work a point near 1/2 may
 /// spend on the tree before the per-edge sum (tuning: docs/benchmarks.md).
 constexpr double kGiveUp = 1.5;
-} // namespace
-
-// ------------------------------------------------------------ labels
-//
-// The tree labels refine: over the loops (each node's surface the loops'
-// fans, no chord), then within a loop over halves of its edges. A chain of
-// edges running from P to Q, closed by its chord Q -> P, bounds the fan
-// (g, b, a) over its edges a -> b and the chord, g the mean of its
-// vertices; the fan lies in the node's ball. Where q's ray towards -axis
-// misses the ball, the ray crosses no fan, so by the caps' identity (B of a
-// closed loop = its cap's crossing count less its cap's winding number,
-// caps_tree.h) the chain's per-edge angles sum to the chord's angle
-// f(P -> Q) (edgeSolidAngle, exact) less the fan's solid angle, which the
-// expansion takes. A chain's fan is a thin lune along the boundary, not a
-// cap across the loop: points near a large opening, where the caps' fans
-// all meet, are decided by a few chains of the loop near them, the rest of
-// the loop by chords. Leaves sum their edges' angles as the per-edge sum
-// does.
-
-namespace {
 /// Most edges a chain leaf holds.
 constexpr std::uint32_t kLeafEdges = 4;
 } // namespace
 
-namespace {
-/// A chain node's fan: its moments about the node's centre.
-void setFan(BoundaryCaps::Node& node, const Moments& m) {
-    node.vectorArea = m.vectorArea;
-    node.moment = m.moment;
-    node.quadrupole = m.quadrupole;
-    node.area = m.area;
-    node.errorScale = 3.0 * m.second / kFourPi;
-}
-} // namespace
-
-void BoundaryCaps::buildChains() {
-    std::vector<std::uint32_t> order(loops_.size());
+ChainLabels::ChainLabels(const CapLoops& loops) : loops_(loops) {
+    if (!loops.capped()) return;
+    std::vector<std::uint32_t> order(loops.loops().size());
     for (std::uint32_t l = 0; l < order.size(); ++l) order[l] = l;
-    chains_.reserve(2 * (edges_.size() / 2) / 2 + 2 * loops_.size() + 2);
+    chains_.reserve(2 * loops.edgeCount() / 2 + 2 * loops.loops().size() + 2);
     buildChainGroup(order, 0, std::uint32_t(order.size()));
 }
 
-std::uint32_t BoundaryCaps::buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first,
+std::uint32_t ChainLabels::buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first,
                                             std::uint32_t last) {
     if (last - first == 1) {
-        const CapLoop& loop = loops_[loops[first]];
+        const CapLoop& loop = loops_.loops()[loops[first]];
         const std::uint32_t treeFirst = std::uint32_t(chainEdges_.size() / 2);
-        chainEdges_.insert(chainEdges_.end(), loopEdges_.begin() + 2 * std::ptrdiff_t(loop.first),
-                          loopEdges_.begin() + 2 * std::ptrdiff_t(loop.first + loop.count));
+        chainEdges_.insert(chainEdges_.end(), loops_.loopEdges().begin() + 2 * std::ptrdiff_t(loop.first),
+                          loops_.loopEdges().begin() + 2 * std::ptrdiff_t(loop.first + loop.count));
         return buildChain(loops[first], loop.first, loop.count, treeFirst);
     }
     const std::uint32_t index = std::uint32_t(chains_.size());
@@ -92,11 +71,11 @@ std::uint32_t BoundaryCaps::buildChainGroup(std::vector<std::uint32_t>& loops, s
     glm::dvec3 clo = lo, chi = hi;
     std::vector<std::array<glm::dvec3, 3>> tris;
     for (std::uint32_t l = first; l < last; ++l) {
-        const CapLoop& loop = loops_[loops[l]];
+        const CapLoop& loop = loops_.loops()[loops[l]];
         clo = glm::min(clo, loop.centroid);
         chi = glm::max(chi, loop.centroid);
         for (std::uint32_t k = loop.first; k < loop.first + loop.count; ++k) {
-            const glm::dvec3 a(loopEdges_[2 * k]), b(loopEdges_[2 * k + 1]);
+            const glm::dvec3 a(loops_.loopEdges()[2 * k]), b(loops_.loopEdges()[2 * k + 1]);
             lo = glm::min(lo, a);
             hi = glm::max(hi, a);
             tris.push_back({loop.centroid, b, a});
@@ -108,15 +87,15 @@ std::uint32_t BoundaryCaps::buildChainGroup(std::vector<std::uint32_t>& loops, s
     // may lie off a flat loop's hull), so the fans too.
     for (const auto& t : tris)
         node.radius = std::max({node.radius, glm::length(t[0] - node.centre), glm::length(t[2] - node.centre)});
-    setFan(node, momentsOf(tris, 0, tris.size(), node.centre));
-    finish(node);
+    setMoments(node, momentsOf(tris, 0, tris.size(), node.centre));
+    finishNode(node);
     node.chord = false;
-    node.loop = kNoLoop;
+    node.loop = ChainNode::kNoLoop;
     const glm::dvec3 extent = chi - clo;
     const int split = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
     const std::uint32_t middle = first + (last - first) / 2;
     std::nth_element(loops.begin() + first, loops.begin() + middle, loops.begin() + last,
-                     [&](std::uint32_t x, std::uint32_t y) { return loops_[x].centroid[split] < loops_[y].centroid[split]; });
+                     [&](std::uint32_t x, std::uint32_t y) { return loops_.loops()[x].centroid[split] < loops_.loops()[y].centroid[split]; });
     node.left = buildChainGroup(loops, first, middle);
     node.right = buildChainGroup(loops, middle, last);
     node.edgeFirst = treeFirst;
@@ -125,34 +104,34 @@ std::uint32_t BoundaryCaps::buildChainGroup(std::vector<std::uint32_t>& loops, s
     return index;
 }
 
-std::uint32_t BoundaryCaps::buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count,
+std::uint32_t ChainLabels::buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count,
                                        std::uint32_t treeFirst) {
     const std::uint32_t index = std::uint32_t(chains_.size());
     chains_.emplace_back();
     ChainNode node{};
-    const bool whole = count == loops_[loop].count;
+    const bool whole = count == loops_.loops()[loop].count;
     glm::dvec3 apex(0.0);
     if (whole) {
-        apex = loops_[loop].centroid;
+        apex = loops_.loops()[loop].centroid;
     } else {
-        for (std::uint32_t k = first; k < first + count; ++k) apex += glm::dvec3(loopEdges_[2 * k]);
-        apex += glm::dvec3(loopEdges_[2 * (first + count - 1) + 1]);
+        for (std::uint32_t k = first; k < first + count; ++k) apex += glm::dvec3(loops_.loopEdges()[2 * k]);
+        apex += glm::dvec3(loops_.loopEdges()[2 * (first + count - 1) + 1]);
         apex /= double(count + 1);
     }
     std::vector<std::array<glm::dvec3, 3>> tris;
     for (std::uint32_t k = first; k < first + count; ++k) {
-        const glm::dvec3 a(loopEdges_[2 * k]), b(loopEdges_[2 * k + 1]);
+        const glm::dvec3 a(loops_.loopEdges()[2 * k]), b(loops_.loopEdges()[2 * k + 1]);
         tris.push_back({apex, b, a});
         node.radius = std::max({node.radius, glm::length(a - apex), glm::length(b - apex)});
     }
-    node.from = glm::dvec3(loopEdges_[2 * first]);
-    node.to = glm::dvec3(loopEdges_[2 * (first + count - 1) + 1]);
+    node.from = glm::dvec3(loops_.loopEdges()[2 * first]);
+    node.to = glm::dvec3(loops_.loopEdges()[2 * (first + count - 1) + 1]);
     node.chord = !whole;
-    node.loop = whole ? loop : kNoLoop;
+    node.loop = whole ? loop : ChainNode::kNoLoop;
     if (node.chord) tris.push_back({apex, node.from, node.to}); // the chord Q -> P closes the chain
     node.centre = apex;
-    setFan(node, momentsOf(tris, 0, tris.size(), apex));
-    finish(node);
+    setMoments(node, momentsOf(tris, 0, tris.size(), apex));
+    finishNode(node);
     node.edgeFirst = treeFirst;
     node.edgeCount = count;
     if (count <= kLeafEdges) {
@@ -168,8 +147,9 @@ std::uint32_t BoundaryCaps::buildChain(std::uint32_t loop, std::uint32_t first, 
     return index;
 }
 
-bool BoundaryCaps::takeNode(const ChainNode& n, const glm::dvec3& p, bool fine, double& bound, double& value) const {
-    const int a = axisIndex_, s = (a + 1) % 3, t = (a + 2) % 3;
+bool ChainLabels::takeNode(const ChainNode& n, const glm::dvec3& p, bool secondOrder, double& bound,
+                           double& value) const {
+    const int a = loops_.axisIndex(), s = (a + 1) % 3, t = (a + 2) % 3;
     const glm::dvec3 y = n.centre - p;
     const double d2 = glm::dot(y, y);
     const double reach = n.radius * (1.0 + 1e-12);
@@ -177,23 +157,23 @@ bool BoundaryCaps::takeNode(const ChainNode& n, const glm::dvec3& p, bool fine, 
     const bool misses = y[s] * y[s] + y[t] * y[t] > reach * reach || p[a] < n.centre[a] - reach;
     if (!misses || !(d2 > reach * reach)) return false;
     const double d = std::sqrt(d2), e = d - reach;
-    bound = fine ? n.errorScale * remainderFactor(d, e, reach) : n.errorScale * firstOrderFactor(d, e);
+    bound = secondOrder ? n.errorScale * remainderFactor(d, e, reach) : n.errorScale * firstOrderFactor(d, e);
     if (!(bound <= kMaxTakenBound)) return false;
-    value = fine ? -expansion(n, y, d2, d) : -firstOrderTerm(n.vectorArea, n.moment, n.trace, y, d2, d);
+    value = secondOrder ? -secondOrderTerm(n, y, d2, d) : -firstOrderTerm(n, y, d2, d);
     if (n.chord) value += edgeSolidAngle(a, n.from, n.to, p);
     return true;
 }
 
-bool BoundaryCaps::firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount,
-                            double farLo, double farHi, Estimate& out) const {
+bool ChainLabels::firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount,
+                            double farLo, double farHi, CapsEstimate& out) const {
     const glm::dvec3 p(q);
-    const int a = axisIndex_;
+    const int a = loops_.axisIndex();
     double angles = 0.0, bound = 0.5 * (farHi - farLo), work = 0.0;
     EdgeAngles leafSum;
     bool leaves = false;
     for (std::size_t r = 0; r < rootCount; ++r) {
         // refine()'s open() on a root, its first step: the same tests and
-        // terms (not `fine`: the first cut is first order).
+        // terms (first order, as the first cut is).
         const ChainNode& n = chains_[roots[r]];
         double b, value;
         if (takeNode(n, p, false, b, value)) {
@@ -215,28 +195,28 @@ bool BoundaryCaps::firstCut(int winding, const glm::vec3& q, const std::uint32_t
     return true;
 }
 
-BoundaryCaps::Estimate BoundaryCaps::decide(int winding, const glm::vec3& q, double margin) const {
-    if (!closed_) return {exact(winding, q), 0.0};
+CapsEstimate ChainLabels::decide(int winding, const glm::vec3& q, double margin) const {
+    if (!loops_.closed()) return {loops_.exact(winding, q), 0.0};
     if (chains_.empty()) return {double(winding), 0.0};
     const std::uint32_t root = 0;
-    Estimate out;
+    CapsEstimate out;
     if (refine(winding, q, margin, &root, 1, 0.0, 0.0, out)) return out;
-    return {exact(winding, q), 0.0, out.work + double(edges_.size() / 2)};
+    return {loops_.exact(winding, q), 0.0, out.work + double(loops_.edgeCount())};
 }
 
 /// refine()'s running state: the cut of the chain tree taken so far, its
 /// per-edge angles' sum (in radians: of the taken nodes, and of the
 /// leaves' edges as the per-edge sum takes them, EdgeAngles: one atan2
 /// when a label is tried, not one an edge) and its summed bounds.
-struct BoundaryCaps::Refinement {
+struct ChainLabels::Refinement {
     struct Taken {
         double bound;
         double value; ///< the node's edges' angles by its chord and expansion
         std::uint32_t node;
     };
-    Refinement(const BoundaryCaps& of, const glm::vec3& q, double farHalfWidth, std::vector<Taken>& takenNodes,
+    Refinement(const ChainLabels& of, const glm::vec3& q, double farHalfWidth, std::vector<Taken>& takenNodes,
                std::vector<Taken>& openingNodes)
-        : caps(of), p(q), axis(of.axisIndex_), farBound(farHalfWidth), budget(double(of.edges_.size() / 2)),
+        : tree(of), p(q), axis(of.loops_.axisIndex()), farBound(farHalfWidth), budget(double(of.loops_.edgeCount())),
           bound(farHalfWidth), taken(takenNodes), opening(openingNodes) {}
 
     /// Opens the subtree at `index`: nodes q's ray misses and far enough by
@@ -246,9 +226,9 @@ struct BoundaryCaps::Refinement {
     bool open(std::uint32_t index, bool expand) {
         return walkTree(index, [&](std::uint32_t i, TreeStack& stack) {
             if (work > budget) return false;
-            const ChainNode& n = caps.chains_[i];
+            const ChainNode& n = tree.chains_[i];
             double b, value;
-            if (!(expand && i == index) && caps.takeNode(n, p, fine, b, value)) {
+            if (!(expand && i == index) && tree.takeNode(n, p, secondOrder, b, value)) {
                 work += n.chord ? 2.0 : 1.0;
                 angles += value;
                 bound += b;
@@ -261,7 +241,7 @@ struct BoundaryCaps::Refinement {
                 return true;
             }
             work += double(n.edgeCount);
-            leafSum.add(&caps.chainEdges_[2 * std::size_t(n.edgeFirst)], n.edgeCount, axis, p);
+            leafSum.add(&tree.chainEdges_[2 * std::size_t(n.edgeFirst)], n.edgeCount, axis, p);
             leavesChanged = true;
             return true;
         });
@@ -270,13 +250,13 @@ struct BoundaryCaps::Refinement {
     /// Rounds of opening until the value, less (1/2 + tie) by `offset`,
     /// lies farther than `margin` times the bound from the threshold (then
     /// `out` and true), or no round can get it there.
-    bool decide(double offset, double margin, Estimate& out);
+    bool decide(double offset, double margin, CapsEstimate& out);
     /// Opens every taken node whose bound is at least kOpenFraction of the
     /// largest, adding to `moved` how far that may move the value; false
     /// once the work exceeds the budget.
     bool openRound(double& moved);
 
-    const BoundaryCaps& caps;
+    const ChainLabels& tree;
     const glm::dvec3 p;
     const int axis;
     /// What stands for the loops not in `roots`: half the width of the
@@ -288,7 +268,7 @@ struct BoundaryCaps::Refinement {
     double work = 0.0;
     double angles = 0.0, bound;
     EdgeAngles leafSum;
-    bool fine = false;
+    bool secondOrder = false;
     /// The leaves' angle, taken again (an atan2) only after edges were
     /// summed.
     bool leavesChanged = false;
@@ -297,7 +277,7 @@ struct BoundaryCaps::Refinement {
     std::vector<Taken>& opening;
 };
 
-bool BoundaryCaps::Refinement::decide(double offset, double margin, Estimate& out) {
+bool ChainLabels::Refinement::decide(double offset, double margin, CapsEstimate& out) {
     // The value is found (the leaves' atan2) only where it may decide:
     // opening a node of bound b moves the value by at most b plus the
     // bounds its children add (the node's edges lie within b of its
@@ -338,13 +318,13 @@ bool BoundaryCaps::Refinement::decide(double offset, double margin, Estimate& ou
         // Close to the threshold, the nodes opened from here are taken
         // to second order (their bound about R / D of the first
         // order's, for about twice the work; bulk points stop at the
-        // first cut; kFineBelow).
-        fine = std::fabs(value) < kFineBelow;
+        // first cut; kSecondOrderBelow).
+        secondOrder = std::fabs(value) < kSecondOrderBelow;
         if (!openRound(moved)) return false;
     }
 }
 
-bool BoundaryCaps::Refinement::openRound(double& moved) {
+bool ChainLabels::Refinement::openRound(double& moved) {
     double largest = 0.0;
     for (const Taken& tk : taken) largest = std::max(largest, tk.bound);
     const double least = kOpenFraction * largest;
@@ -365,7 +345,7 @@ bool BoundaryCaps::Refinement::openRound(double& moved) {
     const double before = bound;
     bool more = true;
     for (std::size_t k = 0; k < opening.size() && more; ++k) {
-        const ChainNode& n = caps.chains_[opening[k].node];
+        const ChainNode& n = tree.chains_[opening[k].node];
         if (n.count == 0) more = open(n.left, false) && open(n.right, false);
         else more = open(opening[k].node, true); // a leaf: summed exactly
     }
@@ -374,8 +354,8 @@ bool BoundaryCaps::Refinement::openRound(double& moved) {
     return true;
 }
 
-bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const std::uint32_t* roots,
-                          std::size_t rootCount, double farLo, double farHi, Estimate& out) const {
+bool ChainLabels::refine(int winding, const glm::vec3& q, double margin, const std::uint32_t* roots,
+                          std::size_t rootCount, double farLo, double farHi, CapsEstimate& out) const {
     thread_local std::vector<Refinement::Taken> taken, opening;
     taken.clear();
     // Decide-or-refine: start from the coarsest cut whose nodes each err by
@@ -394,12 +374,17 @@ bool BoundaryCaps::refine(int winding, const glm::vec3& q, double margin, const 
     return false;
 }
 
+std::size_t ChainLabels::memoryBytes() const {
+    return chains_.capacity() * sizeof(chains_[0]) + chainEdges_.capacity() * sizeof(chainEdges_[0]);
+}
+
 ChainTree chainTreeOf(const glm::vec3* edges, std::size_t edgeCount, Axis axis) {
-    const BoundaryCaps caps(edges, edgeCount, axis);
+    const CapLoops loops(edges, edgeCount, axis);
+    const ChainLabels labels(loops);
     ChainTree tree;
-    tree.closed = caps.closed();
-    tree.loopEdges = caps.loopEdges();
-    tree.nodes = caps.chains();
+    tree.closed = loops.closed();
+    tree.loopEdges = loops.loopEdges();
+    tree.nodes = labels.chains();
     return tree;
 }
 

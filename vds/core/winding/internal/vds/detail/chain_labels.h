@@ -1,0 +1,68 @@
+// vds internal: the chain tree labels refine (boundary_caps.h says why a
+// chain's edges sum to its chord's angle less its fan's): its build, a node
+// taken by its chord and expansion, and the decide-or-refine loop.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include <vds/detail/cap_loops.h>
+#include <vds/detail/caps_math.h>
+#include <vds/detail/chain_tree.h>
+
+namespace vds::detail {
+
+/// The chain tree over `loops` (kept by reference: it must outlive this)
+/// and the labels it decides. Built once, then thread safe.
+class ChainLabels {
+public:
+    explicit ChainLabels(const CapLoops& loops);
+    /// [0] is the root; empty where the caps are no mesh.
+    const std::vector<ChainNode>& chains() const { return chains_; }
+
+    /// `winding + B(q)` within `bound` of the per-edge sum's value, refined
+    /// until it lies farther than `margin` (>= 1) times its bound from 1/2
+    /// (plus the tie), or the per-edge sum's value with bound 0 where the
+    /// tree does not get there: its side of the threshold is the per-edge
+    /// sum's label, and with margin > 1 the rest of that distance is left
+    /// for neighbours (Reach).
+    CapsEstimate decide(int winding, const glm::vec3& q, double margin) const;
+    /// The decide-or-refine of decide(), from the chain nodes `roots`
+    /// (whole loops, or the root) with `farCrossings` + [farLo, farHi]
+    /// standing for the rest; false where it runs out of nodes with the
+    /// far range left (planned) or of budget.
+    bool refine(int winding, const glm::vec3& q, double margin, const std::uint32_t* roots, std::size_t rootCount,
+                double farLo, double farHi, CapsEstimate& out) const;
+    /// refine()'s first round over chain nodes `roots`, each taken by its
+    /// first-order term or its edges summed (as refine's first cut takes
+    /// them, in the same order: the same value and bound), in one pass with
+    /// no stack; true where that decides (then `out` is refine's answer),
+    /// false where it does not or a root would be split.
+    bool firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount, double farLo,
+                  double farHi, CapsEstimate& out) const;
+    std::size_t memoryBytes() const;
+
+private:
+    struct Refinement; ///< refine()'s running state (chain_labels.cpp)
+
+    std::uint32_t buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first, std::uint32_t last);
+    std::uint32_t buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count, std::uint32_t treeFirst);
+    /// refine()'s step on one chain node at p: where q's ray misses its
+    /// ball and its bound (first order, or the remainder where
+    /// `secondOrder`) is at most kMaxTakenBound, that bound and its edges'
+    /// angle (its chord's less its fan's, by the expansion); false where it
+    /// must be opened.
+    inline bool takeNode(const ChainNode& n, const glm::dvec3& p, bool secondOrder, double& bound,
+                         double& value) const;
+
+    const CapLoops& loops_;
+    std::vector<ChainNode> chains_;
+    /// The loops' edges with the loops in the chain tree's order, so that
+    /// every chain node's edges lie together (ChainNode::edgeFirst).
+    std::vector<glm::vec3> chainEdges_;
+};
+
+} // namespace vds::detail
