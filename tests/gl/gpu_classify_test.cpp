@@ -172,7 +172,7 @@ TEST_F(GpuClassifyTest, HostArraysInManyBatchesMatchCpp) {
         }
 }
 
-// Blocks of MiBs (points and labels) are copied by the classifier's copy
+// Blocks of MiBs (points and labels) are copied on the library's pool
 // threads, kept from one batch and one call to the next.
 TEST_F(GpuClassifyTest, LargeHostArraysMatchCppCallAfterCall) {
     const auto torus = solids::torus({0, 0, 0}, 1.0f, 0.45f, 64);

@@ -24,6 +24,35 @@ TEST(VoxelGridTest, CubicCellsWithTheResolutionAlongTheLongestSide) {
     EXPECT_EQ(h.zWords(), 2u);
 }
 
+TEST(VoxelGridTest, SizedAsEveryCubicGridWithItsOwnCellCentres) {
+    // The cells of a few boxes as before the sizing was shared: the counts
+    // of `vds::cubicGrid`, the centres origin + (i + 0.5) * cellSize in float
+    // (an ulp from the Grid's for boxes not in powers of two).
+    struct Case {
+        Box box;
+        std::uint32_t n;
+        glm::uvec3 size;
+        glm::vec3 first, last;
+    };
+    const Case cases[] = {
+        {{{0, 0, 0}, {1, 1, 3}}, 40, {14, 14, 40}, glm::vec3(0.03750000149011612f),
+         {1.0125000476837158f, 1.0125000476837158f, 2.9625000953674316f}},
+        {{{-0.3f, 0.7f, 0.1f}, {0.9f, 1.1f, 2.5f}}, 10, {5, 2, 10},
+         {-0.18000000715255737f, 0.8199999928474426f, 0.2199999988079071f},
+         {0.7800000309944153f, 1.059999942779541f, 2.380000114440918f}},
+        {{{-1, -2, -0.5f}, {3, 1, 1.5f}}, 7, {7, 6, 4},
+         {-0.7142857313156128f, -1.7142857313156128f, -0.2142857015132904f},
+         {2.7142858505249023f, 1.142857313156128f, 1.5f}},
+    };
+    for (const Case& c : cases) {
+        const VoxelGrid g = makeVoxelGrid(c.box, c.n);
+        EXPECT_EQ(g.size, c.size) << c.n;
+        EXPECT_EQ(g.size, cubicGrid(c.box, c.n).dims) << c.n;
+        EXPECT_EQ(g.cellCentre(0, 0, 0), c.first) << c.n;
+        EXPECT_EQ(g.cellCentre(c.size.x - 1, c.size.y - 1, c.size.z - 1), c.last) << c.n;
+    }
+}
+
 TEST(VoxelGridTest, PointsMapToTheCellHoldingThem) {
     const VoxelGrid g = makeVoxelGrid({{0, 0, 0}, {2, 2, 2}}, 8);
     glm::uvec3 c;

@@ -160,7 +160,7 @@ Sprite detail::bakeCpu(const BakeSetup& setup, MeshView mesh, const BakeOptions&
            std::to_string(threads) + " threads");
     std::vector<std::uint32_t> offsets(std::size_t(width) * height + 1, 0);
     std::vector<std::vector<float>> rows(height);
-    parallelFor(threads, height, 1, [&](std::size_t row, std::size_t) {
+    detail::parallelFor(threads, height, 1, [&](std::size_t row, std::size_t) {
         std::vector<Crossing> column;
         for (std::uint32_t i = 0; i < width; ++i)
             offsets[row * width + i + 1] = caster.cast(i, std::uint32_t(row), column, rows[row]);

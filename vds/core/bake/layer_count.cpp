@@ -440,18 +440,18 @@ LargeVector<std::uint32_t> edgePartners(MeshView mesh, unsigned threads) {
         }
     };
     std::vector<std::uint32_t> start(nv + 1, 0);
-    parallelFor(ranges, ranges, 1, [&](std::size_t r, std::size_t) {
+    detail::parallelFor(ranges, ranges, 1, [&](std::size_t r, std::size_t) {
         forRange(r, [&](std::uint32_t m, std::uint32_t, std::uint32_t) { ++start[m + 1]; });
     });
     for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
     std::vector<std::uint64_t> items(start[nv]); ///< higher vertex << 32 | half-edge
     std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    parallelFor(ranges, ranges, 1, [&](std::size_t r, std::size_t) {
+    detail::parallelFor(ranges, ranges, 1, [&](std::size_t r, std::size_t) {
         forRange(r, [&](std::uint32_t m, std::uint32_t other, std::uint32_t h) {
             items[next[m]++] = (std::uint64_t(other) << 32) | h;
         });
     });
-    parallelFor(threads, nv, kChunk, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, nv, kChunk, [&](std::size_t begin, std::size_t end) {
         for (std::size_t v = begin; v < end; ++v) {
             std::uint64_t* group = items.data() + start[v];
             const std::size_t n = start[v + 1] - start[v];
@@ -478,7 +478,7 @@ LargeVector<std::uint8_t> facings(MeshView mesh, const std::vector<glm::ivec3>& 
                                   const LargeVector<std::uint8_t>& found) {
     const bool given = found.size() == mesh.triangleCount;
     LargeVector<std::uint8_t> facing = given ? found : LargeVector<std::uint8_t>(mesh.triangleCount, 0);
-    parallelFor(threads, mesh.triangleCount, kChunk, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, mesh.triangleCount, kChunk, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) {
             // Given: eight triangles a word, skipped where no pair of bits is
             // kFacesUndecided (both set).
@@ -555,7 +555,7 @@ struct VertexRows {
     VertexRows(MeshView mesh, const Centres& t, int coordinate, unsigned threads)
         : at(t.size(), 0), before(t.size() + 1, 0) {
         std::vector<std::atomic<std::uint8_t>> marks(t.size());
-        parallelFor(threads, mesh.positionCount, kChunk, [&](std::size_t begin, std::size_t end) {
+        detail::parallelFor(threads, mesh.positionCount, kChunk, [&](std::size_t begin, std::size_t end) {
             for (std::size_t v = begin; v < end; ++v) {
                 const float x = mesh.positions[v][coordinate];
                 for (std::ptrdiff_t j = t.first(x); j < t.n && t[j] == double(x); ++j) // equal centres: each row
@@ -593,7 +593,7 @@ std::vector<std::vector<std::uint32_t>> listTriangles(const Mesh3& m, const Axes
     const MeshView mesh = m.mesh;
     const std::size_t chunks = (mesh.triangleCount + kChunk - 1) / kChunk, bands = axes.bands;
     std::vector<std::vector<std::uint32_t>> lists(chunks * 3 * bands);
-    parallelFor(threads, mesh.triangleCount, kChunk, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, mesh.triangleCount, kChunk, [&](std::size_t begin, std::size_t end) {
         const std::size_t chunk = begin / kChunk;
         for (std::size_t k = begin; k < end; ++k) {
             const unsigned cancel = m.cancelling(k);
@@ -651,9 +651,9 @@ std::array<LayerCount, 3> countLayers(MeshView mesh, const std::array<SpriteGrid
     const std::size_t bands = axes.bands, tasks = 3 * bands, chunks = lists.size() / tasks;
     std::vector<std::pair<std::int32_t, std::int64_t>> found(tasks);
     std::atomic<std::size_t> next{0};
-    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-    const unsigned workers = unsigned(std::min<std::size_t>(threads ? threads : hardware, tasks));
-    parallelFor(workers, workers, 1, [&](std::size_t, std::size_t) {
+    const unsigned hardware = detail::ThreadPool::hardwareThreads();
+    const unsigned bandThreads = unsigned(std::min<std::size_t>(threads ? threads : hardware, tasks));
+    detail::parallelFor(bandThreads, bandThreads, 1, [&](std::size_t, std::size_t) {
         Band band(axes.bandRows, width);
         for (std::size_t task; (task = next.fetch_add(1)) < tasks;) {
             const std::size_t a = task / bands, b = task % bands;

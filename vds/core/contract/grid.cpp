@@ -1,5 +1,5 @@
-// vds: the one grid of cells (<vds/grid.h>): its cell centres, checks and
-// the cubic grid over a box.
+// vds: the one grid of cells (<vds/grid.h>): its cell centres, checks, the
+// one sizing of cubic grids and the cubic grid over a box.
 #include <vds/grid.h>
 
 #include <algorithm>
@@ -34,17 +34,27 @@ void checkGrid(const Grid& grid) {
             throw InvalidArgument("occupancy grid box is empty or not finite");
 }
 
+glm::uvec3 cubicCells(const glm::vec3& extent, std::uint32_t n) {
+    const double longest = std::max({double(extent.x), double(extent.y), double(extent.z)});
+    glm::uvec3 cells(1u);
+    if (!(longest > 0.0)) return cells;
+    const double cell = longest / n;
+    for (int a = 0; a < 3; ++a) {
+        const double fit = std::ceil(double(extent[a]) / cell); // NaN for a NaN extent: 1 cell
+        cells[a] = double(extent[a]) == longest || fit >= double(n) ? n : fit >= 1.0 ? std::uint32_t(fit) : 1u;
+    }
+    return cells;
+}
+
 Grid cubicGrid(const Box& box, std::uint32_t n) {
     Grid grid;
     grid.box = box;
     const glm::vec3 size = box.hi - box.lo;
     const float longest = std::max({size.x, size.y, size.z});
-    for (int a = 0; a < 3; ++a) {
-        const double cells = longest > 0.0f ? std::ceil(double(n) * double(size[a]) / double(longest) - 1e-9) : 1.0;
-        grid.dims[a] = std::uint32_t(std::clamp(cells, 1.0, double(n)));
-        // The box grows to whole cells so that cells stay cubic.
+    grid.dims = cubicCells(size, n);
+    // The box grows to whole cells so that cells stay cubic.
+    for (int a = 0; a < 3; ++a)
         grid.box.hi[a] = float(double(box.lo[a]) + double(grid.dims[a]) * double(longest) / double(n));
-    }
     return grid;
 }
 

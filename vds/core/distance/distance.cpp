@@ -167,7 +167,7 @@ std::string SignedDistance::summary() const {
 
 void SignedDistance::unsignedDistance(const PointsView& points, double* out, const DistanceOptions& options) const {
     checkBatch(points, options);
-    parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) out[k] = impl_->unsignedAt(points[k], options.maxDistance);
     });
 }
@@ -175,7 +175,7 @@ void SignedDistance::unsignedDistance(const PointsView& points, double* out, con
 void SignedDistance::distance(const PointsView& points, double* out, const DistanceOptions& options) const {
     const ExactClassifier& signs = impl_->signs();
     checkBatch(points, options);
-    parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
         std::uint8_t inside[kChunkPoints];
         ClassifyOptions classify;
         classify.rule = impl_->rule;
@@ -190,7 +190,7 @@ void SignedDistance::distance(const PointsView& points, double* out, const Dista
 
 void SignedDistance::closestPoints(const PointsView& points, ClosestPoint* out, const DistanceOptions& options) const {
     checkBatch(points, options);
-    parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) out[k] = impl_->closestAt(points[k], options.maxDistance);
     });
 }
@@ -252,7 +252,7 @@ void SignedDistance::Impl::fillBrick(const Grid& grid, const Brick& brick, doubl
 std::vector<detail::NearestState> SignedDistance::Impl::latticeTriangles(const Grid& grid, const Lattice& lattice,
                                                                          unsigned threads) const {
     std::vector<detail::NearestState> nearestOf(lattice.size());
-    parallelFor(threads, std::size_t(lattice.count.x) * lattice.count.y, 8, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, std::size_t(lattice.count.x) * lattice.count.y, 8, [&](std::size_t begin, std::size_t end) {
         for (std::size_t column = begin; column < end; ++column) {
             const std::uint32_t mx = std::uint32_t(column / lattice.count.y), my = std::uint32_t(column % lattice.count.y);
             std::uint32_t seed = kNoTriangle;
@@ -352,7 +352,7 @@ void SignedDistance::Impl::propagatedGrid(const Grid& grid, const std::uint8_t* 
     const std::vector<detail::NearestState> nearestOf = latticeTriangles(grid, lattice, threads);
     // One brick from each lattice cell to the next (the last: itself alone).
     const glm::uvec3 bricks = lattice.count;
-    parallelFor(threads, lattice.size(), 16, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, lattice.size(), 16, [&](std::size_t begin, std::size_t end) {
         for (std::size_t b = begin; b < end; ++b) {
             const glm::uvec3 m(std::uint32_t(b / (std::size_t(bricks.y) * bricks.z)), std::uint32_t(b / bricks.z % bricks.y),
                                std::uint32_t(b % bricks.z));
@@ -379,7 +379,7 @@ void SignedDistance::grid(const Grid& grid, float* cells, const DistanceGridOpti
     const std::uint32_t side = options.band > 0.0 ? kBrick : kFullGridBrick;
     const glm::uvec3 bricks = (grid.dims + glm::uvec3(side - 1)) / side;
     const std::size_t count = std::size_t(bricks.x) * bricks.y * bricks.z;
-    parallelFor(options.threads, count, 4, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(options.threads, count, 4, [&](std::size_t begin, std::size_t end) {
         std::vector<detail::BvhNode> leaves;
         for (std::size_t b = begin; b < end; ++b) {
             const glm::uvec3 at(std::uint32_t(b / (std::size_t(bricks.y) * bricks.z)),

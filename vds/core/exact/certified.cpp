@@ -199,7 +199,7 @@ void CertifiedClassifier::Impl::build(MeshView mesh, unsigned threads) {
     // Each row's bands and windings, then joined.
     std::vector<std::vector<Band>> rowBands(f.height);
     std::vector<std::vector<std::uint32_t>> rowCounts(f.height);
-    parallelFor(threads, f.height, 1, [&](std::size_t jBegin, std::size_t jEnd) {
+    detail::parallelFor(threads, f.height, 1, [&](std::size_t jBegin, std::size_t jEnd) {
         std::vector<std::vector<Interval>> columns(f.width);
         ColumnScratch scratch;
         for (std::size_t j = jBegin; j < jEnd; ++j) {
@@ -363,7 +363,7 @@ void CertifiedClassifier::classifyFloats(const float* xyz, std::size_t count, st
     std::atomic<std::size_t> exactCount{0};
     // As the sprite's batches: locate a batch of points and prefetch their
     // offsets, then their bands, then decide; misses overlap.
-    parallelFor(options.threads, count, std::size_t(1) << 14, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(options.threads, count, std::size_t(1) << 14, [&](std::size_t begin, std::size_t end) {
         constexpr std::size_t kBatch = 32;
         std::ptrdiff_t where[kBatch];
         float depth[kBatch];

@@ -148,7 +148,7 @@ void ExactClassifier::classifyFloats(const float* xyz, std::size_t count, std::s
     const Impl& impl = *impl_;
     const char* base = reinterpret_cast<const char*>(xyz);
     if (options.rule == Rule::GeneralizedWinding && !impl.boundary.empty()) {
-        parallelFor(options.threads, count, 4096, [&](std::size_t begin, std::size_t end) {
+        detail::parallelFor(options.threads, count, 4096, [&](std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) {
                 glm::vec3 p;
                 std::memcpy(&p, base + k * strideBytes, sizeof p);
@@ -160,7 +160,7 @@ void ExactClassifier::classifyFloats(const float* xyz, std::size_t count, std::s
     // In batches, so that the cache misses of many points overlap: locate a
     // batch and prefetch each point's cell offsets, then read them and
     // prefetch the cell's entries, then count crossings.
-    parallelFor(options.threads, count, 4096, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(options.threads, count, 4096, [&](std::size_t begin, std::size_t end) {
         constexpr std::size_t kBatch = 16;
         float q[kBatch][3];
         detail::CellGrid::Found found[kBatch];

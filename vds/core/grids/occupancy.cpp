@@ -321,7 +321,7 @@ detail::SweepPlan detail::planSweep(const SpriteGrid& sg, const Grid& grid, unsi
     plan.endSlice = std::uint32_t(std::upper_bound(plan.depth.begin(), plan.depth.end(), 1.0f) - plan.depth.begin());
     plan.texels.assign(plan.columns, -1);
     if (plan.firstSlice >= plan.endSlice) return plan;
-    parallelFor(threads, plan.columns, 4096, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, plan.columns, 4096, [&](std::size_t begin, std::size_t end) {
         for (std::size_t column = begin; column < end; ++column) {
             glm::vec3 world;
             world[plan.u] = acrossU[column / grid.dims[plan.v]];
@@ -353,7 +353,7 @@ void detail::occupancyOfSprite(const Sprite& sprite, const BoundaryCapsCache& ca
         const std::uint32_t n = grid.dims[a];
         const std::size_t step = a == 2 ? 1 : a == 1 ? grid.dims.z : std::size_t(grid.dims.y) * grid.dims.z;
         const BoundaryCaps* built = boundaryTerm ? &caps.get(sprite, options.threads) : nullptr;
-        parallelFor(options.threads, std::size_t(grid.dims[u]) * grid.dims[v], 64, [&](std::size_t begin, std::size_t end) {
+        detail::parallelFor(options.threads, std::size_t(grid.dims[u]) * grid.dims[v], 64, [&](std::size_t begin, std::size_t end) {
             std::vector<glm::vec3> points(n);
             std::vector<std::uint8_t> labels(n);
             for (std::size_t column = begin; column < end; ++column) {
@@ -379,7 +379,7 @@ void detail::occupancyOfSprite(const Sprite& sprite, const BoundaryCapsCache& ca
     const std::uint32_t n = plan.n, firstValid = plan.firstSlice, endValid = plan.endSlice;
     const std::vector<float>& depth = plan.depth;
     const float* crossings = sprite.crossings.data();
-    parallelFor(options.threads, plan.columns, 64, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(options.threads, plan.columns, 64, [&](std::size_t begin, std::size_t end) {
         for (std::size_t column = begin; column < end; ++column) {
             const glm::uvec3 c = plan.firstCell(column, grid);
             std::uint8_t* out = cells + grid.index(c.x, c.y, c.z);
@@ -684,7 +684,7 @@ void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::v
     const std::vector<float> xs = centres(grid, 0), ys = centres(grid, 1), zs = centres(grid, 2);
     const std::uint32_t n = grid.dims.z;
     const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
-    parallelFor(options.threads, columns, 256, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(options.threads, columns, 256, [&](std::size_t begin, std::size_t end) {
         ColumnSweep sweep(projected, edges, zs, caps ? &*caps : nullptr, options, way);
         std::size_t local = 0;
         for (std::size_t column = begin; column < end; ++column, ++local)

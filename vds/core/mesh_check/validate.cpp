@@ -127,7 +127,7 @@ std::pair<Index, Index> groupStarts(std::vector<detail::LargeVector<Index>>& edg
                                     std::size_t nv, unsigned threads) {
     const std::size_t chunks = (nv + kVerticesPerChunk - 1) / kVerticesPerChunk;
     std::vector<std::pair<Index, Index>> chunkStart(chunks + 1); // edges, corners
-    parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
+    detail::parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
         Index e = 0, t = 0;
         for (std::size_t v = c * kVerticesPerChunk, end = std::min(nv, v + kVerticesPerChunk); v < end; ++v)
             for (unsigned k = 0; k < threads; ++k) {
@@ -140,7 +140,7 @@ std::pair<Index, Index> groupStarts(std::vector<detail::LargeVector<Index>>& edg
         chunkStart[c + 1].first += chunkStart[c].first;
         chunkStart[c + 1].second += chunkStart[c].second;
     }
-    parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
+    detail::parallelFor(threads, chunks, 1, [&](std::size_t c, std::size_t) {
         auto [e, t] = chunkStart[c];
         for (std::size_t v = c * kVerticesPerChunk, end = std::min(nv, v + kVerticesPerChunk); v < end; ++v)
             for (unsigned k = 0; k < threads; ++k) {
@@ -265,7 +265,7 @@ void countByEdges(MeshReport& r, MeshView mesh, const Indices& weld, unsigned th
     // The parts (union-find, serial) are found beside the first pass: task
     // 0, taken first, while the other threads count the shares; only the
     // groups' reading needs them.
-    parallelFor(threads, threads + 1, 1, [&](std::size_t task, std::size_t) {
+    detail::parallelFor(threads, threads + 1, 1, [&](std::size_t task, std::size_t) {
         if (task == 0) {
             part = connectedParts(mesh, weld);
             return;
@@ -296,13 +296,13 @@ void countByEdges(MeshReport& r, MeshView mesh, const Indices& weld, unsigned th
         partnersOut ? detail::largeArray<std::uint32_t>(std::size_t(edgeTotal)) : detail::LargeArray<std::uint32_t>();
     if (partnersOut) {
         partnersOut->resize(3 * nt); // unset: filled by the threads
-        parallelFor(threads, 3 * nt, kVerticesPerChunk * 16, [&](std::size_t begin, std::size_t end) {
+        detail::parallelFor(threads, 3 * nt, kVerticesPerChunk * 16, [&](std::size_t begin, std::size_t end) {
             std::fill(partnersOut->begin() + std::ptrdiff_t(begin), partnersOut->begin() + std::ptrdiff_t(end),
                       detail::kNoPartner);
         });
     }
     const Partners partners{owners.get(), partnersOut ? partnersOut->data() : nullptr};
-    parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
+    detail::parallelFor(threads, threads, 1, [&](std::size_t k, std::size_t) {
         placeItems(mesh, weld, shareOf(nt, threads, k), edgeAt[k].data(), cornerAt[k].data(), edges.get(), others.get(),
                    owners.get());
     });
@@ -311,7 +311,7 @@ void countByEdges(MeshReport& r, MeshView mesh, const Indices& weld, unsigned th
     cornerAt = {};
 
     std::vector<Found> groups((nv + kVerticesPerChunk - 1) / kVerticesPerChunk);
-    parallelFor(threads, nv, kVerticesPerChunk, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, nv, kVerticesPerChunk, [&](std::size_t begin, std::size_t end) {
         for (std::size_t v = begin; v < end; ++v)
             readGroup(v, edgeEnd, cornerEnd, edges.get(), others.get(), groups[begin / kVerticesPerChunk], part, openPart,
                       partners);
@@ -416,7 +416,7 @@ TriangleSums sumTriangles(MeshView mesh, const TriangleParts& partOf, const std:
     const std::size_t chunk = parts <= kChunkedParts ? kSumChunk : std::max<std::size_t>(1, nt);
     const std::size_t chunks = std::max<std::size_t>(1, (nt + chunk - 1) / chunk);
     std::vector<TriangleSums> found(chunks);
-    parallelFor(threads, nt, chunk, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, nt, chunk, [&](std::size_t begin, std::size_t end) {
         TriangleSums& f = found[begin / chunk];
         f.volume.assign(parts, 0.0);
         f.magnitude.assign(parts, 0.0);

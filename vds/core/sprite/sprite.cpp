@@ -125,7 +125,7 @@ PackedTable::PackedTable(const Sprite& sprite, unsigned threads) {
 #endif
     float* table = table_.get();
     const unsigned width = width_;
-    parallelFor(threads, columns, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads, columns, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
         for (std::size_t c = begin; c < end; ++c) {
             const std::uint32_t first = sprite.offsets[c], n = sprite.offsets[c + 1] - first;
             float* record = table + c * width;
@@ -312,7 +312,7 @@ void classifyByTable(const Sprite& sprite, const detail::PackedTable& table, con
                         : AxisAligned<Axis::X>::applies(grid, x) ? 2
                         : AxisAligned<Axis::Y>::applies(grid, y) ? 3
                                                                  : 0;
-    parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
         const auto run = [&](const auto& where) {
             classifyPacked(sprite, table, where, xyz, strideBytes, labels, options.rule, begin, end);
         };
@@ -330,7 +330,7 @@ void classifyByTable(const Sprite& sprite, const detail::PackedTable& table, con
 void classifyByOffsets(const Sprite& sprite, const char* xyz, std::size_t count, std::size_t strideBytes,
                        std::uint8_t* labels, const ClassifyOptions& options) {
     const SpriteGrid& grid = sprite.grid;
-    parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
         constexpr std::size_t kBatch = 32;
         const std::uint32_t* offsets = sprite.offsets.data();
         const float* crossings = sprite.crossings.data();

@@ -8,6 +8,7 @@
 #include <string>
 
 #include <vds/error.h>
+#include <vds/grid.h>
 
 #include <vds/detail/aligned_axes.h>
 #include <vds/detail/vpt.h>
@@ -33,12 +34,9 @@ SpriteGrid makeGrid(const Box& box, Axis axis, std::uint32_t resolution) {
     g.box = box;
     g.axis = axis;
     const double texel = across / resolution;
-    auto count = [&](double e) {
-        if (e == across) return resolution;
-        return std::max<std::uint32_t>(1, std::min<std::uint32_t>(resolution, std::uint32_t(std::ceil(e / texel))));
-    };
-    g.width = count(es);
-    g.height = count(et);
+    const glm::uvec3 texels = cubicCells(glm::vec3(ext[p.x], ext[p.y], 0.0f), resolution);
+    g.width = texels.x;
+    g.height = texels.y;
     g.texelSize = float(texel);
     g.position = box.lo;
     g.matrix = glm::mat3(0.0f);

@@ -523,7 +523,7 @@ void SpriteColumns::constantWindings(const CellLattice& cells, const ProjectedMe
                                      std::vector<std::int32_t>& windings, std::vector<std::int32_t>& closed) const {
     if (!Layers::fit(sprite_.grid, cells, axisPermutation(sprite_.grid.axis))) return;
     const ColumnWindingsPass pass(sprite_, cells, caps, windings, closed);
-    parallelFor(threads_, pass.footprints(), 8, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(threads_, pass.footprints(), 8, [&](std::size_t begin, std::size_t end) {
         for (std::size_t f = begin; f < end; ++f) pass.footprint(f);
     });
 }
@@ -652,7 +652,7 @@ private:
 void classifyGeneralizedWinding(const Sprite& sprite, const BoundaryCaps* caps, const float* xyz, std::size_t count,
                                 std::size_t strideBytes, std::uint8_t* labels, const ClassifyOptions& options) {
     const ColumnPoints place(sprite.grid);
-    parallelFor(options.threads, count, 1024, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(options.threads, count, 1024, [&](std::size_t begin, std::size_t end) {
         BatchedLabels(sprite, caps, place, reinterpret_cast<const char*>(xyz), strideBytes, labels).run(begin, end);
     });
 }

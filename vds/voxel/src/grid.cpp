@@ -56,11 +56,7 @@ VoxelGrid makeVoxelGrid(const Box& box, std::uint32_t resolution, std::uint64_t 
     g.origin = box.lo;
     g.cellSize = float(cell);
     g.scale = glm::vec3(float(resolution / longest));
-    for (int a = 0; a < 3; ++a) {
-        const double e = ext[a];
-        g.size[a] =
-            e == longest ? resolution : std::clamp<std::uint32_t>(std::uint32_t(std::ceil(e / cell)), 1u, resolution);
-    }
+    g.size = cubicCells(ext, resolution);
     if (std::uint64_t(g.size.x) * g.size.y * g.size.z > maxCells)
         throw InvalidArgument("a " + std::to_string(g.size.x) + "x" + std::to_string(g.size.y) + "x" +
                               std::to_string(g.size.z) + " voxel grid has more than " + std::to_string(maxCells) +

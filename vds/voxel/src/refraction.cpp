@@ -112,7 +112,7 @@ RefractionImage trace(const RefractionView& view, const RefractionParameters& pa
     image.height = view.height;
     image.hits.resize(std::size_t(view.width) * view.height);
     image.rgba.resize(image.hits.size() * 4);
-    parallelFor(0, view.height, 1, [&](std::size_t rowBegin, std::size_t rowEnd) {
+    vds::detail::parallelFor(0, view.height, 1, [&](std::size_t rowBegin, std::size_t rowEnd) {
         for (std::size_t j = rowBegin; j < rowEnd; ++j)
             for (std::uint32_t i = 0; i < view.width; ++i) {
                 const std::size_t k = j * view.width + i;

@@ -55,7 +55,7 @@ Representation representationOf(Method method) {
 void Model::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,
                            const ClassifyOptions& options) const {
     const char* base = reinterpret_cast<const char*>(xyz);
-    parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+    vds::detail::parallelFor(options.threads, count, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) {
             glm::vec3 p;
             std::memcpy(&p, base + k * strideBytes, sizeof p);
@@ -107,7 +107,7 @@ Model buildModel(const GlContext& gl, MeshView mesh, Representation representati
     const bool isSlicemap =
         representation == Representation::Slicemap || representation == Representation::SlicemapLocal;
     // Grid checks before any GL work, so bad arguments fail fast.
-    const VoxelGrid grid = makeVoxelGrid(box, options.resolution, isSlicemap ? ~std::uint64_t(0) : kMaxCells);
+    const VoxelGrid grid = makeVoxelGrid(box, options.resolution, isSlicemap ? ~std::uint64_t(0) : kMaxGridCells);
     const CurrentContext current(gl); // the caller's context is current again on return
     const std::uint64_t start = detail::nowNanoseconds();
     switch (representation) {

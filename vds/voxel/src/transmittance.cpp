@@ -184,7 +184,7 @@ TransmittanceImage transmittanceOnCpu(const ReceiverPlane& plane, const LightFra
     const std::size_t n = std::size_t(plane.width) * plane.height;
     image.quantity.resize(n);
     image.transmittance.resize(n);
-    parallelFor(0, plane.height, 1, [&](std::size_t rowBegin, std::size_t rowEnd) {
+    vds::detail::parallelFor(0, plane.height, 1, [&](std::size_t rowBegin, std::size_t rowEnd) {
         for (std::size_t j = rowBegin; j < rowEnd; ++j)
             for (std::uint32_t i = 0; i < plane.width; ++i) {
                 const double q = quantityAt(frame.toLightSpace(plane.point(i, std::uint32_t(j))));

@@ -206,8 +206,9 @@
 //
 //   Grid{box, dims}; cell (i, j, k) centre lo + (i+1/2, j+1/2, k+1/2)
 //     * (hi - lo) / dims, labels in C order [i][j][k]       <vds/grid.h>
-//     `cubicGrid(box, n)`, `checkGrid(grid)`, `packLabels(cells, count, bits)`
-//     (eight cells a byte, numpy's packbits order).
+//     `cubicGrid(box, n)` (sized by `cubicCells(extent, n)`, as voxel grids
+//     and a sprite's texels are), `checkGrid(grid)` (at most `kMaxGridCells`),
+//     `packLabels(cells, count, bits)` (eight cells a byte, numpy's packbits order).
 //   occupancy(mesh, grid, cells, options)     exact labels by one sweep per
 //     column, equal to the exact classifier on every cell centre.
 //   occupancy(sprite, grid, cells, options)   the sprite's labels, one walk

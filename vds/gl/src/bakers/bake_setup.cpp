@@ -30,7 +30,7 @@ std::optional<Box> drawableBox(MeshView mesh) {
     const std::size_t chunks = (std::max(nv, nt) + kBoxChunk - 1) / kBoxChunk;
     std::vector<Box> boxes(chunks, Box{mesh.positions[0], mesh.positions[0]});
     std::vector<std::uint8_t> bad(chunks, 0);
-    parallelFor(0, std::max(nv, nt), kBoxChunk, [&](std::size_t begin, std::size_t end) {
+    detail::parallelFor(0, std::max(nv, nt), kBoxChunk, [&](std::size_t begin, std::size_t end) {
         Box& box = boxes[begin / kBoxChunk];
         bool wrong = false;
         for (std::size_t i = begin; i < std::min(end, nv); ++i) {

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cassert>
 #include <cstring>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -21,7 +20,7 @@
 #include <vds/gl/detail/dispatch.h>
 #include <vds/gl/detail/pack_boundary.h>
 
-#include "copy_crew.h" // beside its source until the library's one thread pool replaces it
+#include <vds/detail/parallel.h>
 
 namespace vds {
 
@@ -220,9 +219,9 @@ constexpr std::uint32_t kLocalSize = 256;
 
 std::size_t labelBytes(std::size_t points) { return (points + 3) / 4 * 4; }
 
-// Below this a block is copied on the calling thread: waking the crew costs
-// more than it saves.
-constexpr std::size_t kCrewBytes = std::size_t(2) << 20;
+// Below this a block is copied on the calling thread: waking the pool's
+// threads costs more than it saves.
+constexpr std::size_t kThreadedCopyBytes = std::size_t(2) << 20;
 
 // The program of one form and rule (classify.comp): the generalized winding
 // number's boundary term is compiled into its own program only.
@@ -238,11 +237,6 @@ const Program& classifierProgram(const GlContext& gl, bool columns, Rule rule) {
 }
 
 } // namespace
-
-// The copy crew, under the name the header gives it.
-struct GpuClassifier::HostCopies : detail::CopyCrew {
-    using CopyCrew::CopyCrew;
-};
 
 GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints, HostTransfer transfer)
     : gl_(&gl), batch_(batchPoints) {
@@ -275,7 +269,7 @@ GpuClassifier::~GpuClassifier() {
 
 GpuClassifier::GpuClassifier(GpuClassifier&& o) noexcept
     : gl_(std::exchange(o.gl_, nullptr)), stamp_(o.stamp_), batch_(o.batch_), maxBlock_(o.maxBlock_), maxDispatch_(o.maxDispatch_), slots_(std::move(o.slots_)),
-      capacity_(std::exchange(o.capacity_, 0)), copied_(o.copied_), crew_(std::move(o.crew_)) {}
+      capacity_(std::exchange(o.capacity_, 0)), copied_(o.copied_) {}
 
 GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
     if (this != &o) {
@@ -287,7 +281,6 @@ GpuClassifier& GpuClassifier::operator=(GpuClassifier&& o) noexcept {
         capacity_ = std::exchange(o.capacity_, 0);
         batch_ = o.batch_;
         copied_ = o.copied_;
-        crew_ = std::move(o.crew_);
     }
     return *this;
 }
@@ -385,16 +378,18 @@ void GpuClassifier::finish(Slot& slot, std::uint8_t* labels) {
     slot.count = 0;
 }
 
-// A host block of a batch copied on the crew (started at the first large
-// copy and kept: a core's memcpy is slower than the bus the points then
-// cross, a PCIe 5 x16 link's 50 GB/s).
+// A host block of a batch copied on the library's threads, up to 16, one
+// equal slice each: a core's memcpy is slower than the bus the points then
+// cross, a PCIe 5 x16 link's 50 GB/s.
 void GpuClassifier::copy(void* dst, const void* src, std::size_t bytes) {
-    if (bytes < kCrewBytes) {
+    if (bytes < kThreadedCopyBytes) {
         std::memcpy(dst, src, bytes);
         return;
     }
-    if (!crew_) crew_ = std::make_unique<HostCopies>(std::min(16u, std::max(1u, std::thread::hardware_concurrency())));
-    crew_->copy(dst, src, bytes);
+    const unsigned threads = std::min(16u, detail::ThreadPool::hardwareThreads());
+    detail::parallelFor(threads, bytes, (bytes + threads - 1) / threads, [&](std::size_t begin, std::size_t end) {
+        std::memcpy(static_cast<char*>(dst) + begin, static_cast<const char*>(src) + begin, end - begin);
+    });
 }
 
 // The staged batch classified, its labels back in the slot's staging

@@ -50,15 +50,26 @@ struct Grid {
     }
 };
 
-/// Largest cell count accepted: 2^34 (16 GiB of labels).
+/// Largest cell count of any grid the library makes or fills (occupancy,
+/// distance and voxel grids): 2^34, 16 GiB of labels or 2 GiB of bits.
 constexpr std::uint64_t kMaxGridCells = std::uint64_t(1) << 34;
 
 /// Throws `InvalidArgument` for a zero dimension, more than
 /// `kMaxGridCells` cells, or a box that is empty or not finite.
 void checkGrid(const Grid& grid);
 
+/// Cells along x, y and z when `n` cubic cells span the longest side of a
+/// box of `extent` (mesh units): n along that side, and ceil(e / cell)
+/// along the others, at least 1 and at most n, with cell = longest / n,
+/// in double. 1 along every axis where the longest is not positive. The
+/// one sizing of the library's cubic grids: `cubicGrid`, the voxel grids
+/// (`vds::voxel::makeVoxelGrid`) and a sprite's texels (`makeGrid`, with a
+/// 0 extent along the view axis).
+glm::uvec3 cubicCells(const glm::vec3& extent, std::uint32_t n);
+
 /// A grid of `n` cells along the longest side of `box` and as many cubic
-/// cells as fit along the others (at least 1), over the same box.
+/// cells as fit along the others (`cubicCells`), over the box grown to
+/// whole cells along those others.
 Grid cubicGrid(const Box& box, std::uint32_t n);
 
 /// Packs one-byte labels into bits, eight cells a byte, the first cell in the

@@ -264,8 +264,6 @@ private:
     std::array<Slot, 3> slots_;
     std::size_t capacity_ = 0;
     bool copied_ = false; // HostTransfer::Copied, Auto resolved
-    struct HostCopies; // threads for the host copies, started at the first large one
-    std::unique_ptr<HostCopies> crew_;
 };
 
 } // namespace vds

@@ -2,8 +2,8 @@
 // and the packed bit grid the binary voxelizations fill.
 //
 // Cells are cubes of `cellSize` mesh units, `resolution` of them along the
-// longest side of a box (the others rounded up, as `vds::makeGrid` does), the
-// grid starting at the box's low corner. A mesh point p has cell coordinates
+// longest side of a box (the others rounded up: `vds::cubicCells`, the one
+// sizing of every cubic grid), the grid starting at the box's low corner. A mesh point p has cell coordinates
 // v = (p - origin) * scale (componentwise); cell (i, j, k) holds the v in
 // [i, i+1) x [j, j+1) x [k, k+1) and its centre is at v = (i, j, k) + 0.5.
 // The GLSL includes under shaders/voxel/ compute v with the same operations
@@ -21,6 +21,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <vds/grid.h>
 #include <vds/mesh.h>
 
 namespace vds::voxel {
@@ -63,15 +64,11 @@ struct VoxelGrid {
     Box box() const;
 };
 
-/// Largest number of cells a voxel grid may have by default (2^34: 2 GiB as
-/// bits).
-constexpr std::uint64_t kMaxCells = std::uint64_t(1) << 34;
-
 /// Cubic cells over `box`, `resolution` along its longest side. Throws
 /// `InvalidArgument` for a resolution of 0 or above `vds::kMaxResolution`, a
 /// box that is not finite or has no extent along some axis, or more than
 /// `maxCells` cells (a slicemap, which keeps only the columns, passes no limit).
-VoxelGrid makeVoxelGrid(const Box& box, std::uint32_t resolution, std::uint64_t maxCells = kMaxCells);
+VoxelGrid makeVoxelGrid(const Box& box, std::uint32_t resolution, std::uint64_t maxCells = kMaxGridCells);
 
 /// A binary voxelization: one bit per cell, in the layout described above.
 struct BitGrid {

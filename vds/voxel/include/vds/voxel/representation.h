@@ -11,7 +11,7 @@
 //  - Solid:         solid voxels by rasterization, per-fragment XOR (<vds/voxel/solid.h>)
 //  - SolidCompute:  solid voxels in compute, flip + prefix XOR   (<vds/voxel/solid.h>)
 // All are laid over the mesh's bounding box with cubic cells, `resolution`
-// of them along the box's longest side (like vds::makeGrid for a sprite's
+// of them along the box's longest side (vds::cubicCells, as for a sprite's
 // texels); slicemaps get the box depth in cells as slices, rounded up to a
 // multiple of 32 and capped at 1024.
 #pragma once

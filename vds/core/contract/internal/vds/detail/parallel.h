@@ -1,4 +1,5 @@
-// vds: splitting a batch over threads, the one way the library does it.
+// vds: splitting a batch over threads, the one way the library does it, on
+// the library's one pool (<vds/detail/thread_pool.h>).
 #pragma once
 
 #include <algorithm>
@@ -6,24 +7,30 @@
 #include <cstddef>
 #include <exception>
 #include <mutex>
-#include <system_error>
-#include <thread>
-#include <vector>
 
-namespace vds {
+#include <vds/detail/thread_pool.h>
 
-/// Runs body(begin, end) over [0, count) in chunks on `threads` threads (0:
-/// one per hardware thread), the calling thread included. Rethrows the first
-/// exception a chunk threw.
+namespace vds::detail {
+
+/// Runs body(begin, end) over [0, count) in chunks of `chunk` on at most
+/// `threads` threads at once (0: one per hardware thread), the calling
+/// thread included; the others are the pool's. Rethrows the first exception
+/// a chunk threw (the chunks not yet started are then skipped). `body` may
+/// itself call parallelFor.
 template <class Body>
 void parallelFor(unsigned threads, std::size_t count, std::size_t chunk, const Body& body) {
-    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+    if (threads == 0) threads = ThreadPool::hardwareThreads();
     const std::size_t chunks = (count + chunk - 1) / chunk;
     threads = unsigned(std::min<std::size_t>(threads, chunks));
+    ThreadPool* const pool = ThreadPool::shared();
+    if (threads <= 1 || !pool) {
+        for (std::size_t c = 0; c < chunks; ++c) body(c * chunk, std::min(count, (c + 1) * chunk));
+        return;
+    }
     std::atomic<std::size_t> next{0};
     std::exception_ptr error;
     std::mutex errorMutex;
-    const auto work = [&] {
+    auto work = [&] {
         try {
             for (std::size_t c; (c = next.fetch_add(1)) < chunks;) body(c * chunk, std::min(count, (c + 1) * chunk));
         } catch (...) {
@@ -32,15 +39,8 @@ void parallelFor(unsigned threads, std::size_t count, std::size_t chunk, const B
             next = chunks;
         }
     };
-    std::vector<std::thread> pool;
-    try {
-        for (unsigned k = 1; k < threads; ++k) pool.emplace_back(work);
-    } catch (const std::system_error&) {
-        // Fewer threads than asked: the ones started and this one do the work.
-    }
-    work();
-    for (auto& t : pool) t.join();
+    pool->run(threads - 1, [](void* w) { (*static_cast<decltype(work)*>(w))(); }, &work);
     if (error) std::rethrow_exception(error);
 }
 
-} // namespace vds
+} // namespace vds::detail
