@@ -18,6 +18,8 @@
 
 #include <vds/gl/detail/dispatch.h>
 
+#include "closed.h"
+
 #include "plane_targets.h"
 
 namespace vds::voxel {
@@ -102,7 +104,7 @@ std::string Model::summary() const {
 }
 
 Model buildModel(const GlContext& gl, MeshView mesh, Representation representation, const ModelOptions& options) {
-    requireClosed(mesh, "mesh");
+    requireClosed(mesh, "mesh"); // once: the builders below take the mesh as checked
     const Box box = meshBounds(mesh);
     const bool isSlicemap =
         representation == Representation::Slicemap || representation == Representation::SlicemapLocal;
@@ -116,12 +118,12 @@ Model buildModel(const GlContext& gl, MeshView mesh, Representation representati
         SlicemapOptions o;
         o.slicing = representation == Representation::Slicemap ? Slicing::Uniform : Slicing::Local;
         o.slices = options.slices;
-        Slicemap map = buildSlicemap(gl, mesh, box, options.resolution, o);
+        Slicemap map = detail::sliceClosed(gl, mesh, box, options.resolution, o);
         return Model(representation, std::move(map), detail::secondsSince(start));
     }
     case Representation::Solid:
     case Representation::SolidCompute: {
-        BitGrid bits = voxelizeSolid(
+        BitGrid bits = detail::voxelizeClosed(
             gl, mesh, grid, representation == Representation::Solid ? SolidMethod::Raster : SolidMethod::Compute);
         return Model(representation, std::move(bits), detail::secondsSince(start));
     }

@@ -15,6 +15,7 @@
 #include <vds/error.h>
 #include <vds/gl/shader.h>
 
+#include "closed.h"
 #include "raster.h"
 
 namespace vds::voxel {
@@ -252,6 +253,13 @@ void readSlices(const Texture& layers, Slicemap& map) {
 Slicemap buildSlicemap(const GlContext& gl, MeshView mesh, const Box& box, std::uint32_t resolution,
                        const SlicemapOptions& options) {
     requireClosed(mesh, "mesh");
+    return detail::sliceClosed(gl, mesh, box, resolution, options);
+}
+
+namespace detail {
+
+Slicemap sliceClosed(const GlContext& gl, MeshView mesh, const Box& box, std::uint32_t resolution,
+                     const SlicemapOptions& options) {
     const std::uint32_t slices = options.slices ? options.slices : defaultSlices(box, resolution);
     if (slices % 32 != 0 || slices < 32 || slices > kMaxSlices)
         throw InvalidArgument("slicemap slices " + std::to_string(slices) + " must be a multiple of 32 in [32, " +
@@ -290,5 +298,7 @@ Slicemap buildSlicemap(const GlContext& gl, MeshView mesh, const Box& box, std::
     readSlices(layers, map);
     return map;
 }
+
+} // namespace detail
 
 } // namespace vds::voxel

@@ -11,6 +11,7 @@
 #include <vds/gl/detail/buffers.h>
 #include <vds/gl/detail/dispatch.h>
 
+#include "closed.h"
 #include "raster.h"
 
 namespace vds::voxel {
@@ -72,6 +73,12 @@ void computeFlips(const GlContext& gl, const detail::MeshBuffers& mesh, const Vo
 
 BitGrid voxelizeSolid(const GlContext& gl, MeshView mesh, const VoxelGrid& grid, SolidMethod method) {
     requireClosed(mesh, "mesh");
+    return detail::voxelizeClosed(gl, mesh, grid, method);
+}
+
+namespace detail {
+
+BitGrid voxelizeClosed(const GlContext& gl, MeshView mesh, const VoxelGrid& grid, SolidMethod method) {
     const CurrentContext current(gl); // the caller's context is current again on return
     BitGrid result = makeBitGrid(grid);
     const Buffer voxels = vds::detail::zeroedBuffer(result.memoryBytes(), gl.limits().maxStorageBlockBytes, "the solid voxel grid");
@@ -84,5 +91,7 @@ BitGrid voxelizeSolid(const GlContext& gl, MeshView mesh, const VoxelGrid& grid,
     checkGl("reading the solid voxel grid");
     return result;
 }
+
+} // namespace detail
 
 } // namespace vds::voxel

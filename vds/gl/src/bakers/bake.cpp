@@ -82,7 +82,7 @@ void joinBands(const SpriteGrid& grid, std::vector<GpuBand>& bands, std::uint64_
 GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlBakeOptions& glOptions, const GlContext& gl,
                        GpuSpriteParts parts) {
     GlPhaseClock clock(options.timings);
-    const detail::ValidatedMesh v = detail::validateForBake(gl, mesh, options, clock);
+    const detail::ValidatedMesh v = detail::prepareGlBake(gl, mesh, options, clock);
     detail::ListsBake lists(gl, v.grid, options, glOptions, clock, true);
     std::vector<GpuBand> bands;
     lists.run(mesh, [&](GpuBand& band) { bands.push_back(std::move(band)); }, v.drawn ? &*v.drawn : nullptr);
@@ -127,23 +127,20 @@ BakeMethod chooseBakeMethod(const GlContext& gl, std::string* why) {
 }
 
 Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options, const GlBakeOptions& glOptions) {
-    if (options.method == BakeMethod::Auto) {
-        BakeOptions chosen = options;
-        chosen.method = chooseBakeMethod(gl);
-        return bakeOnGl(gl, mesh, chosen, glOptions);
-    }
-    if (options.method == BakeMethod::Cpu) return bakeCpu(mesh, options);
-    const detail::BakeClock clock(options.timings);
+    BakeOptions chosen = options;
+    if (chosen.method == BakeMethod::Auto) chosen.method = chooseBakeMethod(gl);
+    if (chosen.method == BakeMethod::Cpu) return bakeCpu(mesh, chosen);
+    const detail::BakeClock clock(chosen.timings);
     // Validated as bakeToGpu validates: where the GPU counts the axis, while it counts.
     detail::ValidatedMesh v;
     {
         const CurrentContext current(gl);
-        detail::GlPhaseClock phases(options.timings);
-        v = detail::validateForBake(gl, mesh, options, phases);
+        detail::GlPhaseClock phases(chosen.timings);
+        v = detail::prepareGlBake(gl, mesh, chosen, phases);
         phases.collect();
     }
     // The axis count's upload (if any) is drawn again by the bake.
-    return detail::bakeOnGl(gl, {v.report, v.grid}, mesh, options, glOptions, v.drawn ? &*v.drawn : nullptr);
+    return detail::bakePrepared(gl, {v.report, v.grid}, mesh, chosen, glOptions, v.drawn ? &*v.drawn : nullptr);
 }
 
 GpuBake bakeToGpu(const GlContext& gl, MeshView mesh, const BakeOptions& options, GpuSpriteParts parts,

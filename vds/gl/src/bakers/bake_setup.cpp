@@ -51,7 +51,7 @@ std::optional<Box> drawableBox(MeshView mesh) {
     return all;
 }
 
-// validateForBake where the GPU counts the axis: the count is issued first,
+// prepareGlBake where the GPU counts the axis: the count is issued first,
 // in the box of the positions, and validation runs on the host while the GPU
 // draws; the count is read back after (recounted in validation's bounds
 // where they differ). False where the mesh cannot be drawn before
@@ -88,7 +88,7 @@ bool countBesideValidation(const GlContext& gl, MeshView mesh, const BakeOptions
 // The one validation of every baker (detail::prepareBake), timed on the GL
 // bake's clock: the axis count on the GPU's timer where it runs there, and
 // then beside validation.
-ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
+ValidatedMesh prepareGlBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock) {
     ValidatedMesh out;
     Axis axis = options.axis.value_or(Axis::Z);
     const bool gpuCount = !options.axis && countsOnGpu(gl);
@@ -118,7 +118,7 @@ void report(const BakeOptions& options, const std::string& what) {
 
 namespace vds {
 
-Sprite detail::bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options,
+Sprite detail::bakePrepared(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options,
                         const GlBakeOptions& glOptions, const GpuMesh* uploaded) {
     if (options.method == BakeMethod::Cpu) return bakeCpu(setup, mesh, options);
     std::vector<std::uint32_t> offsets;

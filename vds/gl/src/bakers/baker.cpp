@@ -86,7 +86,7 @@ Sprite Baker::rebake() {
         setup.grid = makeGrid(box, *options_.axis, options_.resolution);
     }
     if (!gl_) return detail::bakeCpu(setup, mesh_, options_);
-    return detail::bakeOnGl(*gl_, setup, mesh_, options_, {});
+    return detail::bakePrepared(*gl_, setup, mesh_, options_, {});
 }
 
 } // namespace vds

@@ -24,12 +24,12 @@ struct ValidatedMesh {
     SpriteGrid grid;
     std::optional<GpuMesh> drawn;
 };
-ValidatedMesh validateForBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock);
+ValidatedMesh prepareGlBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock);
 
-/// `bakeOnGl` on a mesh validated before (`setup`), with a method chosen
+/// `bakeOnGl` on a mesh prepared before (`setup`), with a method chosen
 /// (not Auto). Phases timed on `options.timings`; the caller holds the clock.
 /// `uploaded`: the mesh already in GL (the axis count's), or null.
-Sprite bakeOnGl(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options,
+Sprite bakePrepared(const GlContext& gl, const BakeSetup& setup, MeshView mesh, const BakeOptions& options,
                 const GlBakeOptions& glOptions, const GpuMesh* uploaded = nullptr);
 
 /// Calls options.progress, if set.
