@@ -82,8 +82,9 @@ void resolveMethod(ClassifyArgs& a) {
     if (!a.with.empty()) a.method = a.with == "vds" ? vds::Method::Sprite : vds::parseEnum<vds::Method>(a.with);
     if (a.gpu) {
         const vds::Method gpu = vds::gpuForm(a.method);
-        if (gpu == a.method && !vds::methodInfo(a.method).gpu)
-            throw CLI::ValidationError(std::string("--gpu: method '") + vds::enumName(a.method) + "' has no GPU form");
+        const vds::MethodInfo& named = vds::methodInfo(a.method);
+        if (gpu == a.method && !named.gpu)
+            throw CLI::ValidationError(std::string("--gpu: method '") + named.name + "' has no GPU form");
         a.method = gpu;
     }
     const vds::MethodInfo& info = vds::methodInfo(a.method);
@@ -96,12 +97,10 @@ void resolveMethod(ClassifyArgs& a) {
         throw CLI::ValidationError(std::string("method '") + info.name + "' is built from a mesh: give --mesh MESH");
     if (!fromMesh && a.resolution != 0)
         throw CLI::ValidationError("--resolution needs --mesh (a sprite file has its own)");
-    if (!vds::answers(a.method, a.options.rule)) {
-        try {
-            vds::requireRule(a.method, a.options.rule);
-        } catch (const vds::InvalidArgument& e) {
-            throw CLI::ValidationError(e.what());
-        }
+    try {
+        vds::requireRule(a.method, a.options.rule);
+    } catch (const vds::InvalidArgument& e) {
+        throw CLI::ValidationError(e.what());
     }
 }
 
@@ -171,7 +170,7 @@ void classify(ClassifyArgs& a) {
     // With the labels on stdout, the summary goes to stderr.
     std::fprintf(a.output == kStdio ? stderr : stdout,
                  "wrote %s: %zu points, %zu inside, %s, %s rule, classified in %.3f s\n", a.output.c_str(),
-                 points.size(), inside, method.c_str(), vds::toString(a.options.rule), seconds);
+                 points.size(), inside, method.c_str(), vds::enumName(a.options.rule), seconds);
 }
 
 } // namespace

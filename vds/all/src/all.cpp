@@ -53,9 +53,10 @@ private:
     std::unique_ptr<Classifier> inner_;
 };
 
-std::unique_ptr<Classifier> makeCore(MeshView mesh, Method method, const MethodOptions& options) {
+// The methods of vds_core; a sprite baked on `gl` where given, else on the CPU.
+std::unique_ptr<Classifier> makeCore(const GlContext* gl, MeshView mesh, Method method, const MethodOptions& options) {
     switch (method) {
-    case Method::Sprite: return std::make_unique<SpriteClassifier>(bakeFor(nullptr, mesh, method, options));
+    case Method::Sprite: return std::make_unique<SpriteClassifier>(bakeFor(gl, mesh, method, options));
     case Method::Exact: return std::make_unique<ExactClassifier>(mesh, options.axis.value_or(Axis::Z));
     case Method::Certified: {
         CertifiedOptions o;
@@ -87,8 +88,7 @@ std::unique_ptr<Classifier> makeClassifier(const GlContext& gl, MeshView mesh, M
                                            const MethodOptions& options) {
     refuseCustom(method);
     requireVolumeOf(mesh, options);
-    if (method == Method::Sprite) return std::make_unique<SpriteClassifier>(bakeFor(&gl, mesh, method, options));
-    if (auto core = makeCore(mesh, method, options)) return core;
+    if (auto core = makeCore(&gl, mesh, method, options)) return core;
     if (method == Method::SpriteGpu)
         return std::make_unique<GpuSpriteClassifier>(gl, bakeFor(&gl, mesh, method, options));
     voxel::ModelOptions o;
@@ -104,7 +104,7 @@ std::unique_ptr<Classifier> makeClassifier(MeshView mesh, Method method, const M
     requireVolumeOf(mesh, options);
     const bool needsGl = methodInfo(method).layer != Layer::Core ||
                          (method == Method::Sprite && options.bakeMethod != BakeMethod::Cpu);
-    if (!needsGl) return makeCore(mesh, method, options);
+    if (!needsGl) return makeCore(nullptr, mesh, method, options);
     // Build on a private context; CPU lookups (the voxel models) keep no GL.
     if (!methodInfo(method).gpu) {
         const CurrentContext restore;

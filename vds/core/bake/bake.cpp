@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <optional>
+#include <vector>
 
 #include <vds/error.h>
 #include <vds/mesh_check.h>
@@ -18,6 +20,44 @@ namespace vds {
 
 namespace detail {
 
+namespace {
+
+// Triangles a chunk of `drawableBox`.
+constexpr std::size_t kBoxChunk = std::size_t(1) << 16;
+
+// The box of every position, where every index is in range and every
+// coordinate finite (the mesh can be drawn before validation: a count beside
+// it starts there); nullopt otherwise. Validation's bounds (of the used
+// vertices) equal it unless an unused vertex lies outside.
+std::optional<Box> drawableBox(MeshView mesh) {
+    const std::size_t nv = mesh.positionCount, nt = mesh.triangleCount;
+    if (nv == 0 || nt == 0) return std::nullopt;
+    const std::size_t chunks = (std::max(nv, nt) + kBoxChunk - 1) / kBoxChunk;
+    std::vector<Box> boxes(chunks, Box{mesh.positions[0], mesh.positions[0]});
+    std::vector<std::uint8_t> bad(chunks, 0);
+    parallelFor(0, std::max(nv, nt), kBoxChunk, [&](std::size_t begin, std::size_t end) {
+        Box& box = boxes[begin / kBoxChunk];
+        bool wrong = false;
+        for (std::size_t i = begin; i < std::min(end, nv); ++i) {
+            const glm::vec3 p = mesh.positions[i];
+            wrong |= !(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+            box.lo = glm::min(box.lo, p);
+            box.hi = glm::max(box.hi, p);
+        }
+        for (std::size_t t = begin; t < std::min(end, nt); ++t) {
+            const glm::uvec3 tri = mesh.triangles[t];
+            wrong |= tri.x >= nv || tri.y >= nv || tri.z >= nv;
+        }
+        bad[begin / kBoxChunk] = wrong;
+    });
+    if (std::find(bad.begin(), bad.end(), 1) != bad.end()) return std::nullopt;
+    Box all = boxes[0];
+    for (const Box& b : boxes) all.lo = glm::min(all.lo, b.lo), all.hi = glm::max(all.hi, b.hi);
+    return all;
+}
+
+} // namespace
+
 MeshReport validateForBake(MeshView mesh, const BakeOptions& options, MeshFinds* finds) {
     const HostPhase phase(options.timings, BakePhase::Validation);
     MeshReport report = finds ? validateMesh(mesh, 0, *finds) : validateMesh(mesh);
@@ -26,20 +66,25 @@ MeshReport validateForBake(MeshView mesh, const BakeOptions& options, MeshFinds*
     return report;
 }
 
-Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const AxisCounter& count,
-              const MeshFinds& finds) {
+Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const MeshFinds& finds) {
     if (options.axis) return *options.axis;
     const HostPhase phase(options.timings, BakePhase::Axis);
-    const std::optional<AxisChoice> counted = count ? count(report) : std::nullopt;
-    return counted ? counted->axis : chooseViewAxis(mesh, report, options.resolution, 0, finds).axis;
+    return chooseViewAxis(mesh, report, options.resolution, 0, finds).axis;
 }
 
-BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count) {
+BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, AxisCountBeside* beside) {
     BakeSetup setup;
+    // A count beside validation starts first. Where the mesh cannot be drawn
+    // before validation (an index out of range, a coordinate not finite,
+    // nothing to draw), validation throws before it would be needed.
+    const std::optional<Box> drawn = beside && !options.axis ? drawableBox(mesh) : std::nullopt;
+    if (drawn) beside->start(*drawn);
     // Validation finds the edges' partners and the facings where the CPU will count the axis.
     MeshFinds finds;
-    setup.report = validateForBake(mesh, options, options.axis || count ? nullptr : &finds);
-    setup.grid = makeGrid(setup.report.bounds, bakeAxis(mesh, setup.report, options, count, finds), options.resolution);
+    setup.report = validateForBake(mesh, options, options.axis || drawn ? nullptr : &finds);
+    const std::optional<AxisChoice> counted = drawn ? beside->finish(setup.report) : std::nullopt;
+    const Axis axis = counted ? counted->axis : bakeAxis(mesh, setup.report, options, finds);
+    setup.grid = makeGrid(setup.report.bounds, axis, options.resolution);
     return setup;
 }
 

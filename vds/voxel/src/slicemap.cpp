@@ -89,9 +89,18 @@ bool slicemapInside(const std::uint32_t* front, const std::uint32_t* back, std::
     return false; // nothing in front
 }
 
+namespace {
+
+// The slices of `defaultSlices` over cubic `columns`: their cells along z,
+// rounded up to whole words.
+std::uint32_t slicesOver(const VoxelGrid& columns) {
+    return std::min<std::uint32_t>((columns.size.z + 31u) / 32u * 32u, kMaxSlices);
+}
+
+} // namespace
+
 std::uint32_t defaultSlices(const Box& box, std::uint32_t resolution) {
-    const VoxelGrid cells = makeVoxelGrid(box, resolution, ~std::uint64_t(0));
-    return std::min<std::uint32_t>((cells.size.z + 31u) / 32u * 32u, kMaxSlices);
+    return slicesOver(makeVoxelGrid(box, resolution, ~std::uint64_t(0)));
 }
 
 namespace {
@@ -166,12 +175,13 @@ RangeMaps renderRanges(const GlContext& gl, const detail::MeshBuffers& mesh, Sli
     return maps;
 }
 
-// The slicemap's grid for `slices` slices along z: columns as
-// makeVoxelGrid's, 32 slices a word, four words a render target.
-Slicemap emptySlicemap(const Box& box, std::uint32_t resolution, std::uint32_t slices, Slicing slicing) {
+// The slicemap's grid: `columns` (makeVoxelGrid's cubic cells over `box`)
+// with `slices` along z in their place, 32 slices a word, four words a
+// render target; nothing drawn yet.
+Slicemap emptySlicemap(const VoxelGrid& columns, const Box& box, std::uint32_t slices, Slicing slicing) {
     Slicemap map;
     map.slicing = slicing;
-    map.grid = makeVoxelGrid(box, resolution, ~std::uint64_t(0));
+    map.grid = columns;
     map.grid.size.z = slices;
     map.grid.scale.z = float(double(slices) / (double(box.hi.z) - double(box.lo.z)));
     map.words = slices / 32;
@@ -260,12 +270,14 @@ namespace detail {
 
 Slicemap sliceClosed(const GlContext& gl, MeshView mesh, const Box& box, std::uint32_t resolution,
                      const SlicemapOptions& options) {
-    const std::uint32_t slices = options.slices ? options.slices : defaultSlices(box, resolution);
+    // The cubic columns (no cell limit: a slicemap keeps only the columns); its slices replace their z.
+    const VoxelGrid columns = makeVoxelGrid(box, resolution, ~std::uint64_t(0));
+    const std::uint32_t slices = options.slices ? options.slices : slicesOver(columns);
     if (slices % 32 != 0 || slices < 32 || slices > kMaxSlices)
         throw InvalidArgument("slicemap slices " + std::to_string(slices) + " must be a multiple of 32 in [32, " +
                               std::to_string(kMaxSlices) + "]");
     const CurrentContext current(gl); // the caller's context is current again on return
-    Slicemap map = emptySlicemap(box, resolution, slices, options.slicing);
+    Slicemap map = emptySlicemap(columns, box, slices, options.slicing);
     const VoxelGrid& grid = map.grid;
     const std::uint32_t viewport = detail::rasterViewport(grid);
     const bool onePass = fitsOnePass(map);

@@ -83,30 +83,30 @@ GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlBakeOp
                        GpuSpriteParts parts) {
     GlPhaseClock clock(options.timings);
     const detail::ValidatedMesh v = detail::prepareGlBake(gl, mesh, options, clock);
-    detail::ListsBake lists(gl, v.grid, options, glOptions, clock, true);
+    detail::ListsBake lists(gl, v.setup.grid, options, glOptions, clock, true);
     std::vector<GpuBand> bands;
     lists.run(mesh, [&](GpuBand& band) { bands.push_back(std::move(band)); }, v.drawn ? &*v.drawn : nullptr);
 
     GpuBake out;
-    out.grid = v.grid;
+    out.grid = v.setup.grid;
     out.crossings = lists.crossings();
     out.depthComplexity = lists.depthComplexity();
-    out.status = solidStatus(v.report); // as bakeCpu marks it
-    out.validation = v.report.summary();
+    out.status = solidStatus(v.setup.report); // as bakeCpu marks it
+    out.validation = v.setup.report.summary();
     Texture texture;
     if (parts != GpuSpriteParts::ColumnsOnly) {
         const GlPhaseClock::Scope phase(clock, BakePhase::TextureFill);
-        texture = fillTexture(gl, v.grid, bands, out.depthComplexity);
+        texture = fillTexture(gl, v.setup.grid, bands, out.depthComplexity);
     }
     Buffer offsets, crossings;
-    if (parts != GpuSpriteParts::TextureOnly) joinBands(v.grid, bands, out.crossings, offsets, crossings);
-    const glm::uvec3 size{v.grid.width, v.grid.height, std::max<std::uint32_t>(1, out.depthComplexity)};
+    if (parts != GpuSpriteParts::TextureOnly) joinBands(v.setup.grid, bands, out.crossings, offsets, crossings);
+    const glm::uvec3 size{v.setup.grid.width, v.setup.grid.height, std::max<std::uint32_t>(1, out.depthComplexity)};
     {
         // The GpuSprite: an open mesh's boundary edges found and packed with their chain tree.
         const GlPhaseClock::Scope phase(clock, BakePhase::Assembly, false);
         out.sprite = GpuSprite::adopt(std::move(texture), std::move(offsets), std::move(crossings),
-                                                   out.crossings, size, v.grid, out.status,
-                                                   v.report.oriented() ? std::vector<glm::vec3>{}
+                                                   out.crossings, size, v.setup.grid, out.status,
+                                                   v.setup.report.oriented() ? std::vector<glm::vec3>{}
                                                                        : meshBoundaryEdges(mesh)); // as bakeCpu keeps them
     }
     clock.collect();
@@ -118,7 +118,7 @@ GpuBake bakeListsToGpu(MeshView mesh, const BakeOptions& options, const GlBakeOp
 
 BakeMethod chooseBakeMethod(const GlContext& gl, std::string* why) {
     const std::string& renderer = gl.info().renderer;
-    const bool software = detail::softwareRenderer(gl);
+    const bool software = gl.info().software;
     if (why)
         *why = software ? "bake method auto: cpu, because GL here is the software renderer " + renderer +
                               " (the CPU baker is faster for a one-shot bake there)"
@@ -140,7 +140,7 @@ Sprite bakeOnGl(const GlContext& gl, MeshView mesh, const BakeOptions& options, 
         phases.collect();
     }
     // The axis count's upload (if any) is drawn again by the bake.
-    return detail::bakePrepared(gl, {v.report, v.grid}, mesh, chosen, glOptions, v.drawn ? &*v.drawn : nullptr);
+    return detail::bakePrepared(gl, v.setup, mesh, chosen, glOptions, v.drawn ? &*v.drawn : nullptr);
 }
 
 GpuBake bakeToGpu(const GlContext& gl, MeshView mesh, const BakeOptions& options, GpuSpriteParts parts,

@@ -46,10 +46,11 @@ Baker::Baker(TriangleMesh mesh, BakeOptions options) : mesh_(std::move(mesh)), o
 void Baker::validate() {
     BakeOptions first = options_;
     first.timings = nullptr;
-    // The GL bakers count the layers in their own raster on a GPU.
-    const bool glCount = gl_ && options_.method != BakeMethod::Cpu;
-    const detail::BakeSetup setup =
-        detail::prepareBake(mesh_, first, glCount ? detail::axisCounter(*gl_, mesh_, first) : detail::AxisCounter{});
+    // The GL bakers count the layers in their own raster, on a GPU beside validation.
+    detail::GlPhaseClock untimed(nullptr);
+    const detail::BakeSetup setup = gl_ && options_.method != BakeMethod::Cpu
+                                        ? detail::prepareGlBake(*gl_, mesh_, first, untimed).setup
+                                        : detail::prepareBake(mesh_, first);
     report_ = setup.report;
     options_.axis = setup.grid.axis;
     std::vector<bool> named(mesh_.positions.size(), false);

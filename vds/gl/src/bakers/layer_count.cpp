@@ -150,18 +150,7 @@ bool countsOnGpu(const GlContext& gl) {
     const char* place = std::getenv("VDS_AXIS_COUNT");
     if (place && std::string(place) == "gpu") return true;
     if (place && std::string(place) == "cpu") return false;
-    return !softwareRenderer(gl);
-}
-
-AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options, std::optional<GpuMesh>* keep) {
-    if (!countsOnGpu(gl)) return {};
-    return [&gl, mesh, resolution = options.resolution, keep](const MeshReport& report) {
-        const CurrentContext current(gl);
-        std::optional<GpuMesh> local;
-        std::optional<GpuMesh>& drawn = keep ? *keep : local;
-        drawn.emplace(mesh);
-        return countLayersOnGl(gl, *drawn, report.bounds, resolution);
-    };
+    return !gl.info().software;
 }
 
 } // namespace vds::detail

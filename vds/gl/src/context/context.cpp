@@ -250,6 +250,7 @@ struct GlContext::Impl {
         info.version = str(GL_VERSION);
         glGetIntegerv(GL_MAJOR_VERSION, &info.major);
         glGetIntegerv(GL_MINOR_VERSION, &info.minor);
+        info.software = detail::isSoftwareRenderer(info);
         limits = GlLimits::query();
     }
 
@@ -566,9 +567,9 @@ void checkGl(const char* what) {
 namespace detail {
 bool glUsable() noexcept { return !gExiting; }
 
-bool softwareRenderer(const GlContext& gl) {
-    const std::string& renderer = gl.info().renderer;
-    return gl.info().platform.find("software") != std::string::npos || renderer.find("llvmpipe") != std::string::npos ||
+bool isSoftwareRenderer(const GlInfo& info) {
+    const std::string& renderer = info.renderer;
+    return info.platform.find("software") != std::string::npos || renderer.find("llvmpipe") != std::string::npos ||
            renderer.find("softpipe") != std::string::npos || renderer.find("SwiftShader") != std::string::npos;
 }
 } // namespace detail

@@ -241,7 +241,7 @@ const Program& classifierProgram(const GlContext& gl, bool columns, Rule rule) {
 GpuClassifier::GpuClassifier(const GlContext& gl, std::size_t batchPoints, HostTransfer transfer)
     : gl_(&gl), batch_(batchPoints) {
     const CurrentContext current(gl);
-    copied_ = transfer == HostTransfer::Copied || (transfer == HostTransfer::Auto && !detail::softwareRenderer(gl));
+    copied_ = transfer == HostTransfer::Copied || (transfer == HostTransfer::Auto && !gl.info().software);
     stamp_ = ContextStamp::current("GpuClassifier");
     classifierProgram(gl, true, Rule::Parity); // a shader error shows at construction, not at the first call
     maxBlock_ = gl.limits().maxStorageBlockBytes;

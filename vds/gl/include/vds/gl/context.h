@@ -63,6 +63,9 @@ struct GlInfo {
     std::string version;  ///< GL_VERSION
     int major = 0;
     int minor = 0;
+    /// GL runs on the CPU (llvmpipe, softpipe, SwiftShader, a software EGL
+    /// device): where the library picks its CPU paths over GL's.
+    bool software = false;
     /// "#version 450 core" or "#version 430 core", whichever the context takes.
     std::string glslVersionLine() const;
 };

@@ -55,26 +55,33 @@ private:
     std::chrono::steady_clock::time_point start_;
 };
 
-/// Counts the layers along each axis another way than the CPU's
-/// `chooseViewAxis` (the GL bakers: in their own raster on a GPU), given
-/// the validated mesh's report; nullopt: not here, count on the CPU.
-using AxisCounter = std::function<std::optional<AxisChoice>(const MeshReport&)>;
-
 /// Validates the mesh (throws `InvalidMesh` if unusable); timed as
 /// `BakePhase::Validation`. With `finds`, also what the CPU's axis count
 /// would find again (<vds/detail/edge_partners.h>).
 MeshReport validateForBake(MeshView mesh, const BakeOptions& options, MeshFinds* finds = nullptr);
-/// `options.axis`, or the axis of the fewest layers (`count`, or the CPU's
-/// `chooseViewAxis`, given what validation found for it, if anything),
-/// timed as `BakePhase::Axis`.
-Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const AxisCounter& count = {},
-              const MeshFinds& finds = MeshFinds());
+/// `options.axis`, or the axis of the fewest layers by the CPU's
+/// `chooseViewAxis`, given what validation found for it, timed as
+/// `BakePhase::Axis`.
+Axis bakeAxis(MeshView mesh, const MeshReport& report, const BakeOptions& options, const MeshFinds& finds);
 /// `chooseViewAxis(mesh, report, ...)` given what validation found for it
 /// (empty: the count pairs the edges and finds the facings itself).
 AxisChoice chooseViewAxis(MeshView mesh, const MeshReport& report, std::uint32_t resolution, unsigned threads,
                           const MeshFinds& finds);
-/// Both, and the grid along the axis.
-BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, const AxisCounter& count = {});
+/// An axis count that runs beside validation, in a baker's own raster (the
+/// GL bakers' on a GPU: <vds/gl/detail/bake_setup.h>). `start` is called
+/// before validation with the box of the positions, where the mesh can be
+/// drawn before it is validated; `finish` after it, with the report: the
+/// choice, or nullopt to count on the CPU after all.
+class AxisCountBeside {
+public:
+    virtual ~AxisCountBeside() = default;
+    virtual void start(const Box& positions) = 0;
+    virtual std::optional<AxisChoice> finish(const MeshReport& report) = 0;
+};
+
+/// Every baker's preparation: validation, the axis (`options.axis`, else
+/// `beside`'s count where given, else the CPU's), and the grid along it.
+BakeSetup prepareBake(MeshView mesh, const BakeOptions& options, AxisCountBeside* beside = nullptr);
 
 /// Sets `choice.axis` to the axis of the fewest layers, ties to fewer
 /// crossings, then z, x, y (the rule of `chooseViewAxis`).

@@ -15,13 +15,13 @@
 
 namespace vds::detail {
 
-/// Runs `BakePhase::Validation`: validates the mesh (throws `InvalidMesh`)
-/// and makes the grid, as every baker does; `BakePhase::Axis` where the
-/// options name no axis. A count on the GPU uploads the mesh, which the bake
-/// then draws (`drawn`).
+/// A mesh prepared for a GL bake: `prepareBake`'s report and grid (runs
+/// `BakePhase::Validation`, and `BakePhase::Axis` where the options name no
+/// axis; throws `InvalidMesh`). Where the GPU counts the axis it counts
+/// beside validation, and the mesh it uploaded is kept for the bake to draw
+/// (`drawn`).
 struct ValidatedMesh {
-    MeshReport report;
-    SpriteGrid grid;
+    BakeSetup setup;
     std::optional<GpuMesh> drawn;
 };
 ValidatedMesh prepareGlBake(const GlContext& gl, MeshView mesh, const BakeOptions& options, GlPhaseClock& clock);

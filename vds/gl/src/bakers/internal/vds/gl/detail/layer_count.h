@@ -51,11 +51,5 @@ private:
 /// variable VDS_AXIS_COUNT (`gpu` or `cpu`) overrides it, to compare the two
 /// (the tests count on llvmpipe's GPU path so).
 bool countsOnGpu(const GlContext& gl);
-/// The GL bakers' axis count for `prepareBake`: `countLayersOnGl` where
-/// `countsOnGpu`; none (the CPU's) otherwise.
-/// Holds `gl` and `mesh` by reference; where `keep` is given, the mesh the
-/// count uploads stays there for the bake to draw.
-AxisCounter axisCounter(const GlContext& gl, MeshView mesh, const BakeOptions& options,
-                        std::optional<GpuMesh>* keep = nullptr);
 
 } // namespace vds::detail

@@ -10,7 +10,8 @@ namespace vds::detail {
 /// <vds/gl/context.h>): GL objects and contexts then skip their GL and EGL calls.
 bool glUsable() noexcept;
 
-/// True on llvmpipe, softpipe, SwiftShader and software platforms.
-bool softwareRenderer(const GlContext& gl);
+/// True on llvmpipe, softpipe, SwiftShader and software platforms: how
+/// `GlInfo::software` is read when a context is made or adopted.
+bool isSoftwareRenderer(const GlInfo& info);
 
 } // namespace vds::detail
