@@ -18,7 +18,8 @@
 
 #include <vds/gl/detail/dispatch.h>
 
-#include "closed.h"
+#include "detail/slicemap.h"
+#include "detail/solid.h"
 
 #include "plane_targets.h"
 

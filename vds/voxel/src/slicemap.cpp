@@ -15,7 +15,7 @@
 #include <vds/error.h>
 #include <vds/gl/shader.h>
 
-#include "closed.h"
+#include "detail/slicemap.h"
 #include "raster.h"
 
 namespace vds::voxel {

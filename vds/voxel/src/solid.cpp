@@ -11,7 +11,7 @@
 #include <vds/gl/detail/buffers.h>
 #include <vds/gl/detail/dispatch.h>
 
-#include "closed.h"
+#include "detail/solid.h"
 #include "raster.h"
 
 namespace vds::voxel {
