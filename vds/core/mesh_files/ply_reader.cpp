@@ -72,52 +72,28 @@ struct Element {
 
 constexpr std::size_t kNone = ~std::size_t(0);
 
-class PlyReader {
+// The header: its encoding, its elements and properties, and where the
+// vertex positions and face indices are, checked against the file's size
+// before the data is read.
+class PlyHeader {
 public:
-    PlyReader(const char* data, std::size_t size, const std::string& name)
-        : data_(data), size_(size), text_(data, size), name_(name) {}
-
-    TriangleMesh read() {
-        readHeader();
+    PlyHeader(TextScanner& text, const std::string& name, std::size_t size) : text_(text), name_(name), size_(size) {
+        readLines();
         findVertexAndFace();
         checkDeclaredSizes();
-        mesh_.positions.reserve(vertexCount_);
-        if (face_ != kNone) mesh_.triangles.reserve(elements_[face_].count);
-        position_ = text_.offset();
-        const bool lineByLine = encoding_ == Encoding::Ascii && onePerLine();
-        for (std::size_t e = 0; e < elements_.size(); ++e) {
-            const Element& element = elements_[e];
-            if (element.properties.empty()) continue; // nothing to read, however many
-            const std::uint64_t fast = e == vertex_ ? fastVertices(element) : e == face_ ? fastFaces(element) : 0;
-            for (std::uint64_t i = fast; i < element.count; ++i) {
-                if (e == vertex_)
-                    vertex(element);
-                else if (e == face_)
-                    face(element, i);
-                else
-                    for (const Property& p : element.properties) skip(p, element, i);
-                if (lineByLine) readPastRestOfLine();
-            }
-        }
-        if (encoding_ == Encoding::Ascii) {
-            std::string_view token;
-            if (text_.nextToken(token))
-                failAtLine(name_, text_.line(), "data after the last element the header declares");
-        } else if (position_ != size_) {
-            const std::size_t extra = size_ - position_;
-            failAtByte(name_, position_,
-                       std::to_string(extra) + (extra == 1 ? " byte" : " bytes") +
-                           " after the last element the header declares");
-        }
-        return std::move(mesh_);
     }
+
+    Encoding encoding = Encoding::Ascii;
+    std::vector<Element> elements;
+    std::size_t vertex = kNone, face = kNone;   ///< the elements
+    std::size_t xyz[3] = {kNone, kNone, kNone}; ///< the vertex's properties
+    std::size_t indices = kNone;                ///< the face's index list
+    std::uint64_t vertexCount = 0;
 
 private:
     [[noreturn]] void failHeader(const std::string& what) const { failAtLine(name_, text_.line(), what); }
 
-    // ------------------------------------------------------------ header
-
-    void readHeader() {
+    void readLines() {
         std::string_view line;
         std::string_view magic;
         if (!text_.nextLine(line) || !Tokens(line).next(magic) || magic != "ply" || Tokens(line).count() != 1)
@@ -141,11 +117,11 @@ private:
             if (keyword == "format") {
                 if (haveFormat) failHeader("a second format line");
                 if (a == "ascii")
-                    encoding_ = Encoding::Ascii;
+                    encoding = Encoding::Ascii;
                 else if (a == "binary_little_endian")
-                    encoding_ = Encoding::LittleEndian;
+                    encoding = Encoding::LittleEndian;
                 else if (a == "binary_big_endian")
-                    encoding_ = Encoding::BigEndian;
+                    encoding = Encoding::BigEndian;
                 else
                     failHeader("unknown format " + quoted(a) + " (ascii, binary_little_endian or binary_big_endian)");
                 if (b != "1.0" || !c.empty()) failHeader("expected 'format " + std::string(a) + " 1.0'");
@@ -156,11 +132,11 @@ private:
                 const NumberStatus status = parseNumber(b, count);
                 if (status != NumberStatus::Ok) failHeader("element count " + numberProblem(status, b, "an integer"));
                 if (count < 0) failHeader("element count " + quoted(b) + " is negative");
-                for (const Element& e : elements_)
+                for (const Element& e : elements)
                     if (e.name == a) failHeader("a second element " + quoted(a));
-                elements_.push_back({std::string(a), std::uint64_t(count), {}, text_.line()});
+                elements.push_back({std::string(a), std::uint64_t(count), {}, text_.line()});
             } else if (keyword == "property") {
-                if (elements_.empty()) failHeader("a property before any element");
+                if (elements.empty()) failHeader("a property before any element");
                 Property p;
                 if (a == "list") {
                     if (d.empty() || tokens.count() != 0)
@@ -175,9 +151,9 @@ private:
                     p.type = scalarType(a);
                     p.name = std::string(b);
                 }
-                for (const Property& q : elements_.back().properties)
+                for (const Property& q : elements.back().properties)
                     if (q.name == p.name) failHeader("a second property " + quoted(p.name) + " in one element");
-                elements_.back().properties.push_back(std::move(p));
+                elements.back().properties.push_back(std::move(p));
             } else {
                 failHeader(quoted(keyword) + " is not a PLY header keyword");
             }
@@ -198,32 +174,32 @@ private:
     }
 
     void findVertexAndFace() {
-        for (std::size_t e = 0; e < elements_.size(); ++e) {
-            const Element& element = elements_[e];
-            if (element.name == "vertex") vertex_ = e;
-            if (element.name == "face") face_ = e;
+        for (std::size_t e = 0; e < elements.size(); ++e) {
+            const Element& element = elements[e];
+            if (element.name == "vertex") vertex = e;
+            if (element.name == "face") face = e;
             if (element.name == "tristrips" && element.count > 0)
                 failAtLine(name_, element.line, "triangle strips ('tristrips') are not supported");
         }
-        if (vertex_ != kNone) {
-            const Element& v = elements_[vertex_];
-            xyz_[0] = findProperty(v, "x");
-            xyz_[1] = findProperty(v, "y");
-            xyz_[2] = findProperty(v, "z");
-            for (std::size_t k : xyz_)
+        if (vertex != kNone) {
+            const Element& v = elements[vertex];
+            xyz[0] = findProperty(v, "x");
+            xyz[1] = findProperty(v, "y");
+            xyz[2] = findProperty(v, "z");
+            for (std::size_t k : xyz)
                 if (v.count > 0 && (k == kNone || v.properties[k].list))
                     failAtLine(name_, v.line, "the vertex element needs scalar properties x, y and z");
             if (v.count > std::numeric_limits<std::uint32_t>::max())
                 failAtLine(name_, v.line, "more than 2^32 - 1 vertices declared");
-            vertexCount_ = v.count;
+            vertexCount = v.count;
         }
-        if (face_ != kNone) {
-            const Element& f = elements_[face_];
-            indices_ = findProperty(f, "vertex_indices");
-            if (indices_ == kNone) indices_ = findProperty(f, "vertex_index");
-            if (f.count > 0 && (indices_ == kNone || !f.properties[indices_].list))
+        if (face != kNone) {
+            const Element& f = elements[face];
+            indices = findProperty(f, "vertex_indices");
+            if (indices == kNone) indices = findProperty(f, "vertex_index");
+            if (f.count > 0 && (indices == kNone || !f.properties[indices].list))
                 failAtLine(name_, f.line, "the face element needs a list property vertex_indices");
-            if (indices_ != kNone && !isInteger(f.properties[indices_].type))
+            if (indices != kNone && !isInteger(f.properties[indices].type))
                 failAtLine(name_, f.line, "vertex indices must be of an integer type");
         }
     }
@@ -232,10 +208,10 @@ private:
     /// even a face's index list, may be empty.
     std::uint64_t minimumBytes(std::size_t e) const {
         std::uint64_t bytes = 0;
-        const auto& properties = elements_[e].properties;
+        const auto& properties = elements[e].properties;
         for (std::size_t k = 0; k < properties.size(); ++k) {
             const Property& p = properties[k];
-            if (encoding_ == Encoding::Ascii) // a digit and a separator per number
+            if (encoding == Encoding::Ascii) // a digit and a separator per number
                 bytes += 2;
             else
                 bytes += p.list ? bytesOf(p.countType) : bytesOf(p.type);
@@ -245,11 +221,11 @@ private:
 
     void checkDeclaredSizes() const {
         const std::uint64_t after = size_ - text_.offset();
-        std::uint64_t room = after + (encoding_ == Encoding::Ascii ? 1 : 0); // the last number needs no separator
-        for (std::size_t e = 0; e < elements_.size(); ++e) {
+        std::uint64_t room = after + (encoding == Encoding::Ascii ? 1 : 0); // the last number needs no separator
+        for (std::size_t e = 0; e < elements.size(); ++e) {
             const std::uint64_t each = minimumBytes(e);
             if (each == 0) continue;
-            const Element& element = elements_[e];
+            const Element& element = elements[e];
             if (element.count > room / each) {
                 // What was compared: this element's least size against what is left for it.
                 const std::uint64_t before = after - std::min(after, room);
@@ -268,12 +244,57 @@ private:
         }
     }
 
+    TextScanner& text_;
+    const std::string& name_;
+    std::size_t size_;
+};
+
+class PlyReader {
+public:
+    PlyReader(const char* data, std::size_t size, const std::string& name)
+        : data_(data), size_(size), text_(data, size), name_(name) {}
+
+    TriangleMesh read() {
+        mesh_.positions.reserve(header_.vertexCount);
+        if (header_.face != kNone) mesh_.triangles.reserve(header_.elements[header_.face].count);
+        position_ = text_.offset();
+        const bool lineByLine = header_.encoding == Encoding::Ascii && onePerLine();
+        for (std::size_t e = 0; e < header_.elements.size(); ++e) {
+            const Element& element = header_.elements[e];
+            if (element.properties.empty()) continue; // nothing to read, however many
+            const std::uint64_t fast = e == header_.vertex ? fastVertices(element)
+                                       : e == header_.face ? fastFaces(element)
+                                                           : 0;
+            for (std::uint64_t i = fast; i < element.count; ++i) {
+                if (e == header_.vertex)
+                    vertex(element);
+                else if (e == header_.face)
+                    face(element, i);
+                else
+                    for (const Property& p : element.properties) skip(p, element, i);
+                if (lineByLine) readPastRestOfLine();
+            }
+        }
+        if (header_.encoding == Encoding::Ascii) {
+            std::string_view token;
+            if (text_.nextToken(token))
+                failAtLine(name_, text_.line(), "data after the last element the header declares");
+        } else if (position_ != size_) {
+            const std::size_t extra = size_ - position_;
+            failAtByte(name_, position_,
+                       std::to_string(extra) + (extra == 1 ? " byte" : " bytes") +
+                           " after the last element the header declares");
+        }
+        return std::move(mesh_);
+    }
+
+private:
     // ------------------------------------------------------------ data
 
     /// One scalar of type `s`. Every PLY type fits a double exactly. Ascii
     /// floats that are not finite numbers are NaN, or refused if `strict`.
     double scalar(Scalar s, const Element& e, std::uint64_t i, bool strict = false) {
-        if (encoding_ == Encoding::Ascii) return asciiScalar(s, e, i, strict);
+        if (header_.encoding == Encoding::Ascii) return asciiScalar(s, e, i, strict);
         const std::size_t n = bytesOf(s);
         if (size_ - position_ < n)
             failAtByte(name_, position_,
@@ -288,7 +309,7 @@ private:
         unsigned char b[8];
         const std::size_t n = bytesOf(s);
         std::memcpy(b, at, n);
-        if (encoding_ == Encoding::BigEndian)
+        if (header_.encoding == Encoding::BigEndian)
             for (std::size_t k = 0; k < n / 2; ++k) std::swap(b[k], b[n - 1 - k]);
         switch (s) {
         case Scalar::Int8: return double(std::int8_t(b[0]));
@@ -340,7 +361,7 @@ private:
 
     /// Where the last value was read: a line of ascii, a byte of binary data.
     [[noreturn]] void failData(const std::string& what) const {
-        if (encoding_ == Encoding::Ascii) failAtLine(name_, text_.line(), what);
+        if (header_.encoding == Encoding::Ascii) failAtLine(name_, text_.line(), what);
         failAtByte(name_, valueAt_, what);
     }
 
@@ -353,7 +374,7 @@ private:
                 skip(p, e, i);
                 continue;
             }
-            const bool coordinate = k == xyz_[0] || k == xyz_[1] || k == xyz_[2];
+            const bool coordinate = k == header_.xyz[0] || k == header_.xyz[1] || k == header_.xyz[2];
             const double v = scalar(p.type, e, i, coordinate);
             if (!coordinate) continue;
             if (!(std::fabs(v) <= double(std::numeric_limits<float>::max()))) {
@@ -362,7 +383,7 @@ private:
                 failData("vertex " + std::to_string(i) + ": coordinate " + p.name + " = " + text +
                          (std::isfinite(v) ? " is out of range for a 32-bit float" : " is not finite"));
             }
-            xyz[k == xyz_[0] ? 0 : k == xyz_[1] ? 1 : 2] = float(v);
+            xyz[k == header_.xyz[0] ? 0 : k == header_.xyz[1] ? 1 : 2] = float(v);
         }
         mesh_.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
     }
@@ -370,13 +391,13 @@ private:
     void face(const Element& e, std::uint64_t i) {
         for (std::size_t k = 0; k < e.properties.size(); ++k) {
             const Property& p = e.properties[k];
-            if (k != indices_) {
+            if (k != header_.indices) {
                 skip(p, e, i);
                 continue;
             }
             const std::uint64_t n = listLength(p, e, i);
             corners_.clear();
-            const bool binary = encoding_ != Encoding::Ascii; // listLength checked that the n indices are there
+            const bool binary = header_.encoding != Encoding::Ascii; // listLength checked that the n indices are there
             const std::size_t size = bytesOf(p.type);
             for (std::uint64_t c = 0; c < n; ++c) {
                 double index;
@@ -387,9 +408,9 @@ private:
                 } else {
                     index = scalar(p.type, e, i);
                 }
-                if (!(index >= 0.0 && index < double(vertexCount_)))
+                if (!(index >= 0.0 && index < double(header_.vertexCount)))
                     failData("face " + std::to_string(i) + ": vertex index " + std::to_string(std::int64_t(index)) +
-                             " is out of range (" + std::to_string(vertexCount_) + " vertices)");
+                             " is out of range (" + std::to_string(header_.vertexCount) + " vertices)");
                 corners_.push_back(std::uint32_t(index));
             }
             appendFan(mesh_, corners_);
@@ -402,7 +423,7 @@ private:
     /// up to its line's end, are read past: some writers (VCG, MeshLab's
     /// library) put more on a face's line than its header declares.
     bool onePerLine() const {
-        for (const Element& e : elements_) {
+        for (const Element& e : header_.elements) {
             if (e.count == 0 || e.properties.empty()) continue;
             for (const Property& p : e.properties)
                 if (p.list) return false;
@@ -441,11 +462,11 @@ private:
     }
 
     std::uint64_t fastVertices(const Element& e) {
-        if (encoding_ != Encoding::LittleEndian || !littleEndianHost()) return 0;
+        if (header_.encoding != Encoding::LittleEndian || !littleEndianHost()) return 0;
         for (const Property& p : e.properties)
             if (p.list || p.type != Scalar::Float32) return 0;
         const std::size_t stride = 4 * e.properties.size();
-        const std::size_t at[3] = {4 * xyz_[0], 4 * xyz_[1], 4 * xyz_[2]};
+        const std::size_t at[3] = {4 * header_.xyz[0], 4 * header_.xyz[1], 4 * header_.xyz[2]};
         std::uint64_t i = 0;
         for (; i < e.count && size_ - position_ >= stride; ++i) {
             float xyz[3];
@@ -458,7 +479,7 @@ private:
     }
 
     std::uint64_t fastFaces(const Element& e) {
-        if (encoding_ != Encoding::LittleEndian || !littleEndianHost() || e.properties.size() != 1) return 0;
+        if (header_.encoding != Encoding::LittleEndian || !littleEndianHost() || e.properties.size() != 1) return 0;
         const Property& p = e.properties[0];
         if (p.countType != Scalar::UInt8 || (p.type != Scalar::Int32 && p.type != Scalar::UInt32)) return 0;
         std::uint64_t i = 0;
@@ -470,7 +491,7 @@ private:
             bool inRange = true;
             for (std::size_t c = 0; c < n; ++c) {
                 std::memcpy(&corners_[c], at + 4 * c, 4); // int or uint: negative ones are out of range as uint
-                inRange &= corners_[c] < vertexCount_;
+                inRange &= corners_[c] < header_.vertexCount;
             }
             if (!inRange) break;
             position_ += 1 + 4 * n;
@@ -485,7 +506,7 @@ private:
         const double n = scalar(p.countType, e, i);
         if (n < 0.0) failData(e.name + " " + std::to_string(i) + ": negative list length");
         const std::uint64_t length = std::uint64_t(n);
-        if (encoding_ != Encoding::Ascii && length > (size_ - position_) / bytesOf(p.type))
+        if (header_.encoding != Encoding::Ascii && length > (size_ - position_) / bytesOf(p.type))
             failData(e.name + " " + std::to_string(i) + ": a list of " + std::to_string(length) +
                      " items runs past the end of the file");
         return length;
@@ -497,7 +518,7 @@ private:
             return;
         }
         const std::uint64_t n = listLength(p, e, i);
-        if (encoding_ != Encoding::Ascii) {
+        if (header_.encoding != Encoding::Ascii) {
             position_ += n * bytesOf(p.type);
             return;
         }
@@ -508,12 +529,7 @@ private:
     std::size_t size_;
     TextScanner text_;
     const std::string& name_;
-    Encoding encoding_ = Encoding::Ascii;
-    std::vector<Element> elements_;
-    std::size_t vertex_ = kNone, face_ = kNone;
-    std::size_t xyz_[3] = {kNone, kNone, kNone};
-    std::size_t indices_ = kNone;
-    std::uint64_t vertexCount_ = 0;
+    PlyHeader header_{text_, name_, size_};
     std::size_t position_ = 0; ///< of binary data
     std::size_t valueAt_ = 0;  ///< where the last binary value began
     TriangleMesh mesh_;
