@@ -153,6 +153,11 @@ TEST_F(ForeignContext, AnAdoptedContextBakesUploadsAndClassifiesLikeTheCpu) {
     EXPECT_FALSE(gl.owned());
     EXPECT_TRUE(gl.isCurrent());
     EXPECT_EQ(gl.info().platform, "adopted EGL");
+    // Read from the renderer's own name when adopted, as when made.
+    const std::string& renderer = gl.info().renderer;
+    EXPECT_EQ(gl.info().software, renderer.find("llvmpipe") != std::string::npos ||
+                                      renderer.find("softpipe") != std::string::npos)
+        << renderer;
     const auto torus = solids::torus({0.5f, 0.5f, 0.5f}, 0.6f, 0.25f, 48);
     BakeOptions o;
     o.resolution = 64;
