@@ -5,6 +5,7 @@
 // hierarchy is built and while distances are computed.
 #include "distance.h"
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -52,6 +53,15 @@ bool flagOption(const py::object& value, const char* what) {
     return value.cast<bool>();
 }
 
+/// `max_distance`: None (no bound) or a positive number.
+double maxDistanceOption(const py::object& value) {
+    if (value.is_none()) return std::numeric_limits<double>::infinity();
+    const double bound = realOption(value, "max_distance");
+    if (!(bound > 0.0))
+        throw InvalidArgument("max_distance must be positive (None: no bound), not " + std::to_string(bound));
+    return bound;
+}
+
 class PySignedDistance {
 public:
     PySignedDistance(const py::object& vertices, const py::object& faces, const py::object& rule) {
@@ -69,9 +79,11 @@ public:
         return py::make_tuple(arrays[0], arrays[1], rule());
     }
 
-    py::array_t<double> distance(const py::object& points, const py::object& threads, bool isSigned) const {
+    py::array_t<double> distance(const py::object& points, const py::object& threads, const py::object& maxDistance,
+                                 bool isSigned) const {
         DistanceOptions options;
         options.threads = threadCount(threads);
+        options.maxDistance = maxDistanceOption(maxDistance);
         Points p = viewPoints(points);
         py::array_t<double> out(py::ssize_t(p.count));
         double* d = out.mutable_data();
@@ -82,9 +94,12 @@ public:
         return out;
     }
 
-    py::tuple closest(const py::object& points, const py::object& threads) const {
+    py::tuple closest(const py::object& points, const py::object& threads, const py::object& maxDistance,
+                      const py::object& featuresObject) const {
         DistanceOptions options;
         options.threads = threadCount(threads);
+        options.maxDistance = maxDistanceOption(maxDistance);
+        const bool features = flagOption(featuresObject, "features");
         Points p = viewPoints(points);
         std::vector<ClosestPoint> closest(p.count);
         {
@@ -92,15 +107,20 @@ public:
             p.prepare(false);
             distance_->closestPoints(p.points, closest.data(), options);
         }
-        py::array_t<double> xyz({py::ssize_t(p.count), py::ssize_t(3)});
-        py::array_t<double> d(py::ssize_t(p.count));
-        py::array_t<std::uint32_t> triangles(py::ssize_t(p.count));
+        const auto n = py::ssize_t(p.count);
+        py::array_t<double> xyz({n, py::ssize_t(3)});
+        py::array_t<double> d(n);
+        py::array_t<std::uint32_t> triangles(n);
+        py::array_t<std::uint8_t> feature(n), index(n);
         double* x = xyz.mutable_data();
         for (std::size_t k = 0; k < closest.size(); ++k) {
             for (int a = 0; a < 3; ++a) x[3 * k + a] = closest[k].point[a];
             d.mutable_data()[k] = closest[k].distance;
             triangles.mutable_data()[k] = closest[k].triangle;
+            feature.mutable_data()[k] = std::uint8_t(closest[k].feature);
+            index.mutable_data()[k] = closest[k].index;
         }
+        if (features) return py::make_tuple(xyz, d, triangles, feature, index);
         return py::make_tuple(xyz, d, triangles);
     }
 
@@ -153,15 +173,23 @@ number). Pickles as (V, F, rule), rebuilt where it is unpickled, so it goes
 to Dask workers and multiprocessing pools.)doc")
         .def(py::init<const py::object&, const py::object&, const py::object&>(), py::arg("V"), py::arg("F"),
              py::arg("rule") = "parity")
-        .def("distance", [](const PySignedDistance& s, const py::object& p, const py::object& t) {
-                 return s.distance(p, t, true);
-             }, py::arg("points"), py::arg("threads") = 0, "(N,) float64 signed distances, negative inside.")
-        .def("unsigned_distance", [](const PySignedDistance& s, const py::object& p, const py::object& t) {
-                 return s.distance(p, t, false);
-             }, py::arg("points"), py::arg("threads") = 0, "(N,) float64 distances to the surface.")
+        .def("distance", [](const PySignedDistance& s, const py::object& p, const py::object& t,
+                            const py::object& bound) { return s.distance(p, t, bound, true); },
+             py::arg("points"), py::arg("threads") = 0, py::arg("max_distance") = py::none(),
+             "(N,) float64 signed distances, negative inside. max_distance: search no farther; a point farther "
+             "from every triangle gets +-max_distance (signed by its label), cheaper far from the surface.")
+        .def("unsigned_distance", [](const PySignedDistance& s, const py::object& p, const py::object& t,
+                                     const py::object& bound) { return s.distance(p, t, bound, false); },
+             py::arg("points"), py::arg("threads") = 0, py::arg("max_distance") = py::none(),
+             "(N,) float64 distances to the surface; max_distance as for distance().")
         .def("closest_points", &PySignedDistance::closest, py::arg("points"), py::arg("threads") = 0,
+             py::arg("max_distance") = py::none(), py::arg("features") = false,
              "(points (N, 3) float64, distances (N,) float64, triangles (N,) uint32): each point's nearest "
-             "point of the surface, its unsigned distance, and the index into F of the triangle it lies on.")
+             "point of the surface, its unsigned distance, and the index into F of the triangle it lies on. "
+             "max_distance: search no farther; a point farther from every triangle gets distance max_distance "
+             "and triangle vds.NO_TRIANGLE (its point is meaningless). features=True adds (features (N,) uint8, "
+             "indices (N,) uint8): where on its triangle the point lies, vds.FEATURES[f] ('face', 'edge', "
+             "'vertex'), and which edge (from corner i to corner (i + 1) % 3) or corner.")
         .def("sdf", &PySignedDistance::grid, py::arg("grid"), py::arg("band") = 0.0, py::arg("propagated") = false,
              py::arg("threads") = 0,
              "float32 array of grid.shape: the signed distance of every cell centre (grid.cell_centres()); "
@@ -177,17 +205,25 @@ to Dask workers and multiprocessing pools.)doc")
         .def("__repr__", [](const PySignedDistance& s) { return "<vds.SignedDistance: " + s.summary() + ">"; });
 
     m.def("signed_distance", [](const py::object& v, const py::object& f, const py::object& points,
-                                const py::object& rule, const py::object& threads) {
-              return PySignedDistance(v, f, rule).distance(points, threads, true);
+                                const py::object& rule, const py::object& threads, const py::object& maxDistance) {
+              return PySignedDistance(v, f, rule).distance(points, threads, maxDistance, true);
           }, py::arg("V"), py::arg("F"), py::arg("points"), py::arg("rule") = "parity", py::arg("threads") = 0,
+          py::arg("max_distance") = py::none(),
           "Signed distances of points (N, 3) to the mesh (V, F): (N,) float64, negative exactly where the "
           "exact classifier of `rule` says inside. Builds a SignedDistance for the call: keep one to ask many times.");
     m.def("closest_points", [](const py::object& v, const py::object& f, const py::object& points,
-                               const py::object& threads) {
-              return PySignedDistance(v, f, py::str("generalized-winding")).closest(points, threads);
+                               const py::object& threads, const py::object& maxDistance, const py::object& features) {
+              const PySignedDistance any(v, f, py::str("generalized-winding"));
+              return any.closest(points, threads, maxDistance, features);
           }, py::arg("V"), py::arg("F"), py::arg("points"), py::arg("threads") = 0,
+          py::arg("max_distance") = py::none(), py::arg("features") = false,
           "(points (N, 3) float64, distances (N,) float64, triangles (N,) uint32): the nearest point of the "
-          "surface (V, F) to each point, its distance and its triangle. Any usable mesh, a flat one (a sheet) too.");
+          "surface (V, F) to each point, its distance and its triangle. Any usable mesh, a flat one (a sheet) too. "
+          "max_distance and features as for SignedDistance.closest_points.");
+    m.attr("NO_TRIANGLE") = py::int_(kNoTriangle);
+    py::tuple features(3);
+    for (const auto& entry : EnumNames<Feature>::table) features[std::size_t(entry.value)] = py::str(entry.name);
+    m.attr("FEATURES") = features;
     m.def("sdf", [](const py::object& v, const py::object& f, const py::object& grid, const py::object& rule,
                     const py::object& band, const py::object& propagated, const py::object& threads) {
               return PySignedDistance(v, f, rule).grid(grid, band, propagated, threads);

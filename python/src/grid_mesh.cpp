@@ -179,6 +179,13 @@ within whole.)doc")
                                "(nx, ny, nz)")
         .def_property_readonly("shape", [](const vds::Grid& g) { return py::make_tuple(g.dims.x, g.dims.y, g.dims.z); },
                                "the shape of occupancy arrays: (nx, ny, nz)")
+        .def_property_readonly("spacing", [](const vds::Grid& g) {
+                 const auto step = [&](int a) {
+                     return (double(g.box.hi[a]) - double(g.box.lo[a])) / double(g.wholeCells(a));
+                 };
+                 return py::make_tuple(step(0), step(1), step(2));
+             }, "(dx, dy, dz) float64: the cells' edges, (hi - lo) / cells of the whole grid; cell [i, j, k]'s centre "
+                "is lo + (first + (i, j, k) + 1/2) * spacing, rounded to float32")
         .def_property_readonly("cell_count", &vds::Grid::cellCount)
         .def_property_readonly("first", [](const vds::Grid& g) { return dims3(g.first); },
                                "a block's first cell in its whole grid; (0, 0, 0) for a whole grid")

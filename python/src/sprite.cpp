@@ -124,9 +124,32 @@ py::array_t<double> spriteWinding(const PySprite& sprite, const py::object& poin
 }
 
 /// vds.bake: the mesh's warning (as `vds bake` prints it), then the bake.
+/// Refuses a distance grid of `cells` along the longest side of `box` that
+/// one attribute of a .vds file cannot hold (as `vds bake --distance`).
+void requireDistanceFits(const vds::Box& box, std::uint32_t cells) {
+    const vds::Grid grid = vds::spriteDistanceGrid(box, cells);
+    if (grid.cellCount() > vds::kMaxDistanceCells)
+        throw vds::InvalidArgument("a distance grid of " + std::to_string(grid.dims.x) + " x " +
+                                   std::to_string(grid.dims.y) + " x " + std::to_string(grid.dims.z) +
+                                   " cells is more than a sprite file holds (" +
+                                   std::to_string(vds::kMaxDistanceCells) + "); lower distance");
+}
+
+/// The sprite's signed distance grid of `cells` along its box's longest
+/// side, by `rule`, as `vds bake --distance` stores it. Without the GIL.
+void addDistance(vds::Sprite& sprite, MeshView mesh, std::uint32_t cells, vds::Rule rule) {
+    sprite.distance.grid = vds::spriteDistanceGrid(sprite.grid.box, cells);
+    const vds::SignedDistance query(mesh, rule, sprite.sourceName);
+    sprite.distance.cells.resize(sprite.distance.grid.cellCount());
+    query.grid(sprite.distance.grid, sprite.distance.cells.data(), {});
+}
+
 std::shared_ptr<PySprite> bakeMesh(const py::object& vertices, const py::object& faces, const py::object& resolution,
                                    const py::object& axisObject, const py::object& methodObject,
-                                   const std::string& name) {
+                                   const std::string& name, const py::object& distanceObject,
+                                   const py::object& distanceRuleObject) {
+    const std::uint32_t distance = vds::python::countOption(distanceObject, "distance");
+    const vds::Rule distanceRule = vds::parseRule(textOption(distanceRuleObject, "distance_rule"));
     const std::string axis = textOption(axisObject, "axis"), method = textOption(methodObject, "method");
     const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
     vds::BakeOptions options;
@@ -141,15 +164,28 @@ std::shared_ptr<PySprite> bakeMesh(const py::object& vertices, const py::object&
         report = vds::validateMesh(mesh.view);
     }
     vds::requireUsable(report, name);
+    if (distance != 0) requireDistanceFits(report.bounds, distance); // before the bake
     warn(insideMessage(report, name, vds::Rule::Parity));
     py::gil_scoped_release released;
     if (autoAxis) options.axis = vds::chooseViewAxis(mesh.view, options.resolution).axis;
     // Auto: the CPU baker where no GL can be had; on a context, the GL layer's choice.
     if (options.method == vds::BakeMethod::Auto && !vds::glAvailable()) options.method = vds::BakeMethod::Cpu;
-    if (options.method == vds::BakeMethod::Cpu) return wrap(vds::bakeCpu(mesh.view, options));
     vds::Sprite sprite;
-    glThread().run([&](GlState& s) { sprite = vds::bake(s.context(), mesh.view, options); });
+    if (options.method == vds::BakeMethod::Cpu)
+        sprite = vds::bakeCpu(mesh.view, options);
+    else
+        glThread().run([&](GlState& s) { sprite = vds::bake(s.context(), mesh.view, options); });
+    if (distance != 0) addDistance(sprite, mesh.view, distance, distanceRule);
     return wrap(std::move(sprite));
+}
+
+/// Sprite.distance: None, or (values, grid).
+py::object spriteDistance(const PySprite& sprite) {
+    if (sprite.distance.empty()) return py::none();
+    const vds::Grid& g = sprite.distance.grid;
+    py::array_t<float> values({py::ssize_t(g.dims.x), py::ssize_t(g.dims.y), py::ssize_t(g.dims.z)});
+    std::memcpy(values.mutable_data(), sprite.distance.cells.data(), sprite.distance.cells.size() * sizeof(float));
+    return py::make_tuple(values, py::cast(g));
 }
 
 
@@ -266,6 +302,11 @@ void defineSpriteProperties(SpriteClass& sprite) {
         .def_property_readonly("source_name", [](const PySprite& s) { return s.sourceName; },
                                "the mesh's name given to the bake (`name`; the file's name for `vds bake`), \"\" if none")
         .def_property_readonly("memory_bytes", &vds::Sprite::memoryBytes, "bytes of host memory the layers take")
+        .def_property_readonly("distance", &spriteDistance,
+                               "the signed distance grid baked with the sprite (bake(distance=N), vds bake "
+                               "--distance N): (values, grid), values float32 of grid.shape, [i, j, k] the signed "
+                               "distance of grid cell (i, j, k)'s centre (grid.lo, grid.spacing; negative inside); "
+                               "None without one")
         .def("__repr__", [](const PySprite& s) {
             return "<vds.Sprite " + std::to_string(s.width()) + "x" + std::to_string(s.height()) + ", " +
                    std::to_string(s.depthComplexity) + " layers, axis " + vds::toString(s.grid.axis) + ", " +
@@ -279,7 +320,8 @@ void defineSpriteProperties(SpriteClass& sprite) {
 /// The functions that make a Sprite: bake, read, from_bytes.
 void bindSpriteMakers(py::module_& m) {
     m.def("bake", &bakeMesh, py::arg("V"), py::arg("F"), py::arg("resolution") = 1024, py::arg("axis") = "auto",
-          py::arg("method") = "auto", py::arg("name") = "", R"doc(
+          py::arg("method") = "auto", py::arg("name") = "", py::arg("distance") = 0,
+          py::arg("distance_rule") = "parity", R"doc(
 Bakes a triangle mesh into a Sprite.
 
 V: (n, 3) float32/float64 vertex positions (mesh units; kept as float32).
@@ -292,6 +334,12 @@ method: "auto" (the default: GL fragment lists on a GPU, the CPU baker on a
     software renderer or without GL), "lists" (GL fragment lists), "peel"
     (GL depth peeling) or "cpu" (exact ray casting, no GL).
 name: the mesh's name, in messages and recorded in the sprite.
+distance: also store a signed distance grid of this many cubic cells along
+    the box's longest side (4..1024, and at most 2^29 cells in all: 812 for
+    a cube; 0, the default: none), checked before the bake; exact distances
+    signed by distance_rule ("parity", "winding" or "generalized-winding"),
+    as `vds bake --distance N`: Sprite.distance, written with the sprite
+    (format version 3), and vdsDistance in GLSL.
 Raises vds.InvalidMesh for an unusable mesh (empty, non-finite, bad
 indices); an open mesh is baked with status "open", a closed but
 mis-oriented one with status "mis-oriented", each with a vds.MeshWarning. GL methods raise vds.GlUnavailable where no GL

@@ -240,3 +240,74 @@ def test_a_flat_mesh_has_unsigned_distances_and_closest_points_but_no_sign():
         sheet.distance(P)
     with pytest.raises(vds.InvalidMesh, match="flat"):
         sheet.sdf(vds.Grid((-1, -1, -1), (1, 1, 1), 2))
+
+
+def test_max_distance_bounds_the_search_and_marks_what_it_did_not_reach():
+    V, F = box_mesh((0, 0, 0), (1, 1, 1))
+    P = np.array([[0.5, 0.5, 1.05], [0.5, 0.5, 5.0], [0.5, 0.5, 0.4], [9.0, 0.5, 0.5]], np.float32)
+    query = vds.SignedDistance(V, F)
+    unbounded = query.distance(P)
+    bounded = query.distance(P, max_distance=1.0)
+    near = np.abs(unbounded) <= 1.0
+    assert near.tolist() == [True, False, True, False]
+    np.testing.assert_array_equal(bounded[near], unbounded[near])
+    np.testing.assert_array_equal(bounded[~near], [1.0, 1.0])  # outside: +max_distance
+    np.testing.assert_array_equal(query.unsigned_distance(P, max_distance=1.0), np.abs(bounded))
+    np.testing.assert_array_equal(vds.signed_distance(V, F, P, max_distance=1.0), bounded)
+    Q, d, T = query.closest_points(P, max_distance=1.0)
+    Q0, d0, T0 = query.closest_points(P)
+    np.testing.assert_array_equal(T[near], T0[near])
+    np.testing.assert_array_equal(Q[near], Q0[near])
+    assert (T[~near] == vds.NO_TRIANGLE).all() and (d[~near] == 1.0).all()
+    with pytest.raises(vds.InvalidArgument, match="max_distance must be positive"):
+        query.distance(P, max_distance=0)
+    with pytest.raises(vds.DTypeError, match="max_distance must be a number"):
+        query.distance(P, max_distance="far")
+
+
+def test_closest_points_name_the_face_edge_or_corner_they_lie_on():
+    V, F = box_mesh((0, 0, 0), (1, 1, 1))
+    V = V.astype(np.float64)
+    P = np.array([[0.25, 0.5, 2.0], [0.5, -1.0, -1.0], [-1.0, -2.0, -3.0]], np.float32)
+    Q, d, T, feature, index = vds.closest_points(V, F, P, features=True)
+    assert vds.FEATURES == ("face", "edge", "vertex")
+    assert [vds.FEATURES[f] for f in feature] == ["face", "edge", "vertex"]
+    np.testing.assert_array_equal(Q, [[0.25, 0.5, 1.0], [0.5, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    tri = F[T]
+    # The edge from corner i to corner (i + 1) % 3 holds its closest point.
+    a, b = V[tri[1, index[1]]], V[tri[1, (index[1] + 1) % 3]]
+    assert np.linalg.norm(np.cross(b - a, Q[1] - a)) == 0 and {a[0], b[0]} == {0.0, 1.0}
+    np.testing.assert_array_equal(V[tri[2, index[2]]], Q[2])  # the corner itself
+    assert index[0] == 0
+    assert len(vds.closest_points(V, F, P)) == 3  # without features: as before
+    with pytest.raises(vds.DTypeError, match="features must be True or False"):
+        vds.closest_points(V, F, P, features="yes")
+
+
+def test_a_grid_carries_its_spacing_and_its_centres_follow_it():
+    grid = vds.Grid((0, 0, 0), (1, 2, 3), (2, 4, 5))
+    assert grid.spacing == (0.5, 0.5, 0.6)  # (hi - lo) / dims, in double
+    centres = grid.cell_centres()
+    lo, step = np.array(grid.lo), np.array(grid.spacing)
+    for i, j, k in [(0, 0, 0), (1, 3, 4), (1, 2, 0)]:
+        np.testing.assert_array_equal(centres[i, j, k], (lo + (np.array([i, j, k]) + 0.5) * step).astype(np.float32))
+    block = vds.Grid((0, 0, 0), (1, 2, 3), (1, 4, 5), first=(1, 0, 0), whole=(2, 4, 5))
+    assert block.spacing == grid.spacing
+    np.testing.assert_array_equal(block.cell_centres()[0], centres[1])
+
+
+def test_bake_stores_a_distance_grid_the_sprite_keeps_and_writes():
+    V, F = sphere_mesh(segments=32, rings=16)
+    sprite = vds.bake(V, F, resolution=64, method="cpu", distance=16)
+    values, grid = sprite.distance
+    assert values.dtype == np.float32 and values.shape == grid.shape and max(grid.dims) == 16
+    np.testing.assert_array_equal(values, vds.sdf(V, F, grid, rule="parity"))
+    again, again_grid = vds.from_bytes(sprite.to_bytes()).distance
+    np.testing.assert_array_equal(again, values)
+    assert (again_grid.lo, again_grid.hi, again_grid.dims) == (grid.lo, grid.hi, grid.dims)
+    assert vds.bake(V, F, resolution=64, method="cpu").distance is None
+    by_gwn, _ = vds.bake(V, F, resolution=32, method="cpu", distance=8, distance_rule="generalized-winding").distance
+    np.testing.assert_array_equal(np.signbit(by_gwn), np.signbit(vds.sdf(V, F, _, rule="generalized-winding")))
+    for bad, why in ((2, "out of range"), (5000, "out of range"), (1000, "more than a sprite file holds")):
+        with pytest.raises(vds.InvalidArgument, match=why):
+            vds.bake(V, F, resolution=32, method="cpu", distance=bad)

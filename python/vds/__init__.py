@@ -44,6 +44,7 @@ from ._vds import (  # noqa: F401  (the public API)
     DTypeError,
     Error,
     ExactClassifier,
+    FEATURES,
     FormatError,
     GlError,
     GlUnavailable,
@@ -52,6 +53,7 @@ from ._vds import (  # noqa: F401  (the public API)
     InvalidMesh,
     IoError,
     MeshWarning,
+    NO_TRIANGLE,
     OutOfMemory,
     SignedDistance,
     Sprite,
@@ -74,8 +76,8 @@ from ._vds import (  # noqa: F401  (the public API)
 )
 
 __all__ = [
-    "Classifier", "DTypeError", "Error", "ExactClassifier", "FormatError", "GlError", "GlUnavailable", "Grid",
-    "InvalidArgument", "InvalidMesh", "IoError", "MeshWarning", "MethodInfo", "OutOfMemory", "SignedDistance", "Sprite", "bake",
+    "Classifier", "DTypeError", "Error", "ExactClassifier", "FEATURES", "FormatError", "GlError", "GlUnavailable", "Grid",
+    "InvalidArgument", "InvalidMesh", "IoError", "MeshWarning", "MethodInfo", "NO_TRIANGLE", "OutOfMemory", "SignedDistance", "Sprite", "bake",
     "closest_points", "exact_contains", "from_bytes", "gl_available", "gl_unavailable_reason", "load_mesh", "methods",
     "occupancy", "read", "sdf", "signed_distance", "validate_mesh",
     "winding_numbers",
