@@ -24,19 +24,19 @@ Slicing parseSlicing(const std::string& s) { return parseEnum<Slicing>(s); }
 const char* toString(Slicing s) { return enumName(s); }
 
 bool Slicemap::frontBit(std::uint32_t x, std::uint32_t y, std::uint32_t s) const {
-    return (front[(std::size_t(y) * grid.size.x + x) * words + (s >> 5)] >> (s & 31u)) & 1u;
+    return (front[(std::size_t(y) * grid.dims.x + x) * words + (s >> 5)] >> (s & 31u)) & 1u;
 }
 
 bool Slicemap::backBit(std::uint32_t x, std::uint32_t y, std::uint32_t s) const {
-    return (back[(std::size_t(y) * grid.size.x + x) * words + (s >> 5)] >> (s & 31u)) & 1u;
+    return (back[(std::size_t(y) * grid.dims.x + x) * words + (s >> 5)] >> (s & 31u)) & 1u;
 }
 
 bool Slicemap::locate(const glm::vec3& p, std::uint32_t& column, std::uint32_t& slice) const {
     const glm::vec3 v = grid.toCells(p);
     const float fx = std::floor(v.x), fy = std::floor(v.y);
-    if (!(fx >= 0.0f && fx < float(grid.size.x) && fy >= 0.0f && fy < float(grid.size.y))) return false;
-    const std::uint32_t c = std::uint32_t(fy) * grid.size.x + std::uint32_t(fx);
-    float near = 0.0f, far = float(grid.size.z), perDepth = 1.0f;
+    if (!(fx >= 0.0f && fx < float(grid.dims.x) && fy >= 0.0f && fy < float(grid.dims.y))) return false;
+    const std::uint32_t c = std::uint32_t(fy) * grid.dims.x + std::uint32_t(fx);
+    float near = 0.0f, far = float(grid.dims.z), perDepth = 1.0f;
     if (slicing == Slicing::Local) {
         near = nearDepth[c];
         far = farDepth[c];
@@ -45,7 +45,7 @@ bool Slicemap::locate(const glm::vec3& p, std::uint32_t& column, std::uint32_t& 
     if (!(v.z >= near && v.z <= far)) return false;
     const float s = std::floor((v.z - near) * perDepth);
     column = c;
-    slice = std::min(std::uint32_t(s), grid.size.z - 1);
+    slice = std::min(std::uint32_t(s), grid.dims.z - 1);
     return true;
 }
 
@@ -56,13 +56,13 @@ bool Slicemap::contains(const glm::vec3& p) const {
 }
 
 std::size_t Slicemap::memoryBytes() const {
-    const std::size_t columns = std::size_t(grid.size.x) * grid.size.y;
+    const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
     return (front.size() + back.size()) * sizeof(std::uint32_t) +
            (slicing == Slicing::Local ? columns * 3 * sizeof(float) : 0);
 }
 
 std::size_t Slicemap::gpuBytes() const {
-    const std::size_t columns = std::size_t(grid.size.x) * grid.size.y;
+    const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
     return columns * 2 * renderTargets * 16 + (slicing == Slicing::Local ? columns * 16 : 0);
 }
 
@@ -90,8 +90,8 @@ bool slicemapInside(const std::uint32_t* front, const std::uint32_t* back, std::
 }
 
 std::uint32_t defaultSlices(const Box& box, std::uint32_t resolution) {
-    const VoxelGrid cells = makeVoxelGrid(box, resolution, ~std::uint64_t(0));
-    return std::min<std::uint32_t>((cells.size.z + 31u) / 32u * 32u, kMaxSlices);
+    const VoxelGrid cells = makeVoxelGrid(box, resolution);
+    return std::min<std::uint32_t>((cells.dims.z + 31u) / 32u * 32u, kMaxSlices);
 }
 
 namespace {
@@ -99,9 +99,9 @@ namespace {
 Texture makeTexture(GLenum target, GLenum format, const VoxelGrid& grid, GLsizei layers, const char* what) {
     Texture t = Texture::create(target);
     if (target == GL_TEXTURE_2D_ARRAY)
-        glTextureStorage3D(t.id(), 1, format, GLsizei(grid.size.x), GLsizei(grid.size.y), layers);
+        glTextureStorage3D(t.id(), 1, format, GLsizei(grid.dims.x), GLsizei(grid.dims.y), layers);
     else
-        glTextureStorage2D(t.id(), 1, format, GLsizei(grid.size.x), GLsizei(grid.size.y));
+        glTextureStorage2D(t.id(), 1, format, GLsizei(grid.dims.x), GLsizei(grid.dims.y));
     glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     if (glGetError() == GL_OUT_OF_MEMORY) throw OutOfMemory(std::string("GL cannot allocate ") + what);
@@ -152,7 +152,7 @@ RangeMaps renderRanges(const GlContext& gl, const detail::MeshBuffers& mesh, Sli
         glBlendEquationi(1, GL_MAX);
         mesh.draw();
     }
-    const std::size_t columns = std::size_t(grid.size.x) * grid.size.y;
+    const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
     map.nearDepth.resize(columns);
     map.farDepth.resize(columns);
     glGetTextureImage(near.id(), 0, GL_RED, GL_FLOAT, GLsizei(columns * sizeof(float)), map.nearDepth.data());
@@ -161,19 +161,17 @@ RangeMaps renderRanges(const GlContext& gl, const detail::MeshBuffers& mesh, Sli
     map.slicesPerDepth.resize(columns);
     for (std::size_t c = 0; c < columns; ++c)
         map.slicesPerDepth[c] =
-            map.farDepth[c] > map.nearDepth[c] ? float(grid.size.z) / (map.farDepth[c] - map.nearDepth[c]) : 0.0f;
+            map.farDepth[c] > map.nearDepth[c] ? float(grid.dims.z) / (map.farDepth[c] - map.nearDepth[c]) : 0.0f;
     map.passes += 1;
     return maps;
 }
 
-// The slicemap's grid for `slices` slices along z: columns as
-// makeVoxelGrid's, 32 slices a word, four words a render target.
+// The slicemap's grid for `slices` slices along z (makeSlicemapGrid), 32
+// slices a word, four words a render target.
 Slicemap emptySlicemap(const Box& box, std::uint32_t resolution, std::uint32_t slices, Slicing slicing) {
     Slicemap map;
     map.slicing = slicing;
-    map.grid = makeVoxelGrid(box, resolution, ~std::uint64_t(0));
-    map.grid.size.z = slices;
-    map.grid.scale.z = float(double(slices) / (double(box.hi.z) - double(box.lo.z)));
+    map.grid = makeSlicemapGrid(box, resolution, slices);
     map.words = slices / 32;
     map.renderTargets = (map.words + 3) / 4;
     return map;
@@ -186,13 +184,13 @@ bool fitsOnePass(const Slicemap& map) {
     glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
     glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &maxAttachments);
     const std::uint32_t maxTargets = std::uint32_t(std::min(maxDrawBuffers, maxAttachments));
-    const std::uint32_t targets = map.renderTargets, slices = map.grid.size.z;
+    const std::uint32_t targets = map.renderTargets, slices = map.grid.dims.z;
     if (targets > maxTargets)
         throw InvalidArgument(std::to_string(slices) + " slices need " + std::to_string(targets) +
                               " render targets, more than GL allows here (" + std::to_string(maxTargets) + ")");
-    const std::size_t columns = std::size_t(map.grid.size.x) * map.grid.size.y;
+    const std::size_t columns = std::size_t(map.grid.dims.x) * map.grid.dims.y;
     if (columns * 2 * targets * 16 > std::size_t(std::numeric_limits<GLsizei>::max()))
-        throw OutOfMemory("a slicemap of " + std::to_string(map.grid.size.x) + "x" + std::to_string(map.grid.size.y) +
+        throw OutOfMemory("a slicemap of " + std::to_string(map.grid.dims.x) + "x" + std::to_string(map.grid.dims.y) +
                           "x" + std::to_string(slices) + " needs more than 2 GiB; lower the resolution");
     return 2 * targets <= maxTargets;
 }
@@ -232,7 +230,7 @@ void drawSlices(const detail::MeshBuffers& buffers, const Program& program, cons
 
 // Layer-major texels (RGBA words) -> per-column words of each map.
 void readSlices(const Texture& layers, Slicemap& map) {
-    const std::size_t columns = std::size_t(map.grid.size.x) * map.grid.size.y;
+    const std::size_t columns = std::size_t(map.grid.dims.x) * map.grid.dims.y;
     const std::uint32_t targets = map.renderTargets;
     std::vector<std::uint32_t> texels(columns * 4 * 2 * targets);
     glGetTextureImage(layers.id(), 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, GLsizei(texels.size() * sizeof(std::uint32_t)),
