@@ -37,7 +37,8 @@ TEST(VoxelGridTest, IsTheCubicGridWithItsLattice) {
         std::uint32_t n;
         glm::uvec3 dims;
     };
-    const Case cases[] = {{kOddBoxes[0], 40, {14, 14, 40}}, {kOddBoxes[1], 10, {5, 2, 10}}, {kOddBoxes[2], 7, {7, 6, 4}}};
+    const Case cases[] = {
+        {kOddBoxes[0], 40, {14, 14, 40}}, {kOddBoxes[1], 10, {5, 2, 10}}, {kOddBoxes[2], 7, {7, 6, 4}}};
     for (const Case& c : cases) {
         const VoxelGrid g = makeVoxelGrid(c.box, c.n);
         const Grid cubic = cubicGrid(c.box, c.n);
