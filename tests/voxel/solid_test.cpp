@@ -14,6 +14,7 @@
 #include <vds/voxel/representation.h>
 #include <vds/voxel/slicemap.h>
 #include <vds/voxel/solid.h>
+#include <vds/voxel/surface.h>
 
 #include "../support/gl_fixture.h"
 #include "voxel_test_util.h"
@@ -121,6 +122,10 @@ TEST_F(SolidTest, BadInputIsRejectedWithAClearError) {
     EXPECT_THROW(buildModel(gl(), sphere.mesh, Representation::SolidCompute, {0}), InvalidArgument);
     EXPECT_THROW(buildModel(gl(), sphere.mesh, Representation::Solid, {100000}), InvalidArgument);
     EXPECT_THROW(buildModel(gl(), sphere.mesh, Representation::Solid, {kMaxResolution}), InvalidArgument);
+    // A grid of 2^42 cells can be made, but no voxelizer fills it (kMaxGridCells).
+    const VoxelGrid huge = makeVoxelGrid(meshBounds(sphere.mesh), kMaxResolution);
+    EXPECT_THROW(voxelizeSolid(gl(), sphere.mesh, huge, SolidMethod::Compute), InvalidArgument);
+    EXPECT_THROW(voxelizeSurface(gl(), sphere.mesh, huge), InvalidArgument);
     EXPECT_THROW(parseSolidMethod("xor"), InvalidArgument);
 }
 
