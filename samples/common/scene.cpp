@@ -97,8 +97,8 @@ std::vector<glm::vec3> vertexNormals(const TriangleMesh& mesh) {
 // Voxel resolution whose GPU bytes come closest to `budget` without passing it.
 std::uint32_t equalMemoryResolution(const Box& box, voxel::Representation representation, std::size_t budget) {
     const auto bytes = [&](std::uint32_t r) {
-        const voxel::VoxelGrid g = voxel::makeVoxelGrid(box, r, ~std::uint64_t(0));
-        const std::size_t columns = std::size_t(g.size.x) * g.size.y;
+        const voxel::VoxelGrid g = voxel::makeVoxelGrid(box, r);
+        const std::size_t columns = std::size_t(g.dims.x) * g.dims.y;
         if (representation == voxel::Representation::Solid) return g.wordCount() * 4;
         const std::uint32_t targets = (voxel::defaultSlices(box, r) + 127u) / 128u;
         return columns * 2 * targets * 16 + (representation == voxel::Representation::SlicemapLocal ? columns * 16 : 0);

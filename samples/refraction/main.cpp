@@ -104,7 +104,7 @@ int run(const Options& o) {
         SlicemapOptions so;
         so.slicing = Slicing::Local;
         const Slicemap map = buildSlicemap(gl, mesh, box, o.resolution, so);
-        built = "local slicemap pair " + std::to_string(map.grid.size.x) + "x" + std::to_string(map.grid.size.y) + "x" +
+        built = "local slicemap pair " + std::to_string(map.grid.dims.x) + "x" + std::to_string(map.grid.dims.y) + "x" +
                 std::to_string(map.slices()) + ", built in " + std::to_string(millisecondsSince(start)) + " ms";
         image = renderRefraction(gl, GpuRefractionCaster(map), view, params);
     } else if (o.method == "sprite") {
@@ -120,8 +120,8 @@ int run(const Options& o) {
         image = renderRefraction(gl, GpuRefractionCaster(sprite), view, params);
     } else if (o.method == "voxels") {
         const SlicedVoxels voxels = voxelizeSlices(gl, mesh, makeVoxelGrid(box, o.resolution));
-        built = "voxels " + std::to_string(voxels.grid.size.x) + "x" + std::to_string(voxels.grid.size.y) + "x" +
-                std::to_string(voxels.grid.size.z) + ", built in " + std::to_string(millisecondsSince(start)) + " ms";
+        built = "voxels " + std::to_string(voxels.grid.dims.x) + "x" + std::to_string(voxels.grid.dims.y) + "x" +
+                std::to_string(voxels.grid.dims.z) + ", built in " + std::to_string(millisecondsSince(start)) + " ms";
         image = renderRefraction(gl, GpuRefractionCaster(voxels), view, params);
     } else {
         image = refractExactly(mesh, view, params);

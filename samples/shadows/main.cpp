@@ -118,7 +118,7 @@ int run(const Options& o) {
         const double buildMs = millisecondsSince(start);
         const GpuTransmittanceCaster caster(map);
         image = renderTransmittance(gl, caster, frame, plane, params);
-        built = std::to_string(map.grid.size.x) + "x" + std::to_string(map.grid.size.y) + "x" +
+        built = std::to_string(map.grid.dims.x) + "x" + std::to_string(map.grid.dims.y) + "x" +
                 std::to_string(map.slices()) + " slicemap pair, " + std::to_string(caster.gpuBytes() / 1024) +
                 " KiB, built in " + std::to_string(buildMs) + " ms";
     } else if (o.method == "absorption") {
@@ -128,8 +128,8 @@ int run(const Options& o) {
         const double buildMs = millisecondsSince(start);
         const GpuTransmittanceCaster caster(voxels);
         image = renderTransmittance(gl, caster, frame, plane, params);
-        built = std::to_string(voxels.grid.size.x) + "x" + std::to_string(voxels.grid.size.y) + "x" +
-                std::to_string(voxels.grid.size.z) + " voxels, " + std::to_string(caster.gpuBytes() / 1024) +
+        built = std::to_string(voxels.grid.dims.x) + "x" + std::to_string(voxels.grid.dims.y) + "x" +
+                std::to_string(voxels.grid.dims.z) + " voxels, " + std::to_string(caster.gpuBytes() / 1024) +
                 " KiB, built in " + std::to_string(buildMs) + " ms";
     } else if (o.method == "sprite") {
         vds::BakeOptions bo;

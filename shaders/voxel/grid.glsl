@@ -1,8 +1,9 @@
 // voxel/grid.glsl: the cell grids of vds::voxel (see <vds/voxel/grid.h>).
 //
-// A mesh point p has cell coordinates v = (p - origin) * scale; cell
-// (i, j, k) holds v in [i, i+1) x [j, j+1) x [k, k+1). Bit grids pack 32
-// cells along z into a word, then x, then y (Schwarz 2012, figure 2.4).
+// A mesh point p has cell coordinates v = (p - origin) * scale, origin
+// being the VoxelGrid's box.lo and size its dims; cell (i, j, k) holds v in
+// [i, i+1) x [j, j+1) x [k, k+1). Bit grids pack 32 cells along z into a
+// word, then x, then y (Schwarz 2012, figure 2.4).
 // Written with `precise` in the same order as the C++ (compiled without
 // fused multiply-adds), so both map a point to the same cell.
 #ifndef VDS_VOXEL_GRID_GLSL

@@ -20,15 +20,16 @@ class GlslLookupTest : public vds::test::GlTest {};
 // grid's cell planes and slice planes (where floor() decides).
 std::vector<glm::vec3> probePoints(const Model& model) {
     const VoxelGrid& g = model.slicemap() ? model.slicemap()->grid : model.solid()->grid;
-    const Box box = g.box();
+    const Box box = g.box;
     std::vector<glm::vec3> points = vds::test::randomPoints(box, 60000, 0.05f, 11);
     const glm::vec3 size = box.hi - box.lo;
-    for (std::uint32_t i = 0; i <= g.size.x; i += 3)
-        for (std::uint32_t j = 0; j <= g.size.y; j += 3)
+    const float cell = g.cellSize();
+    for (std::uint32_t i = 0; i <= g.dims.x; i += 3)
+        for (std::uint32_t j = 0; j <= g.dims.y; j += 3)
             for (std::uint32_t k = 0; k <= 64; ++k) {
-                const float x = g.origin.x + float(i) * g.cellSize, y = g.origin.y + float(j) * g.cellSize;
+                const float x = box.lo.x + float(i) * cell, y = box.lo.y + float(j) * cell;
                 points.emplace_back(x, y, box.lo.z + size.z * float(k) / 64.0f);
-                points.emplace_back(x + 0.5f * g.cellSize, y + 0.5f * g.cellSize, box.lo.z + size.z * float(k) / 64.0f);
+                points.emplace_back(x + 0.5f * cell, y + 0.5f * cell, box.lo.z + size.z * float(k) / 64.0f);
             }
     return points;
 }

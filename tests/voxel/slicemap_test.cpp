@@ -74,10 +74,10 @@ TEST_F(SlicemapTest, SliceSIsBitSMod32OfWordSDiv32FrontAndBackApart) {
     EXPECT_EQ(map.words, 8u);
     EXPECT_EQ(map.renderTargets, 2u); // 128 slices per RGBA32UI target
     EXPECT_EQ(map.passes, 1u);        // 2 x 2 targets fit in one pass
-    EXPECT_EQ(map.grid.size.x, 32u);
-    for (std::uint32_t y = 0; y < map.grid.size.y; ++y)
-        for (std::uint32_t x = 0; x < map.grid.size.x; ++x) {
-            const std::size_t c = (std::size_t(y) * map.grid.size.x + x) * map.words;
+    EXPECT_EQ(map.grid.dims.x, 32u);
+    for (std::uint32_t y = 0; y < map.grid.dims.y; ++y)
+        for (std::uint32_t x = 0; x < map.grid.dims.x; ++x) {
+            const std::size_t c = (std::size_t(y) * map.grid.dims.x + x) * map.words;
             std::uint32_t front[8] = {}, back[8] = {};
             front[0] = 1u;                         // slice 0: the bottom face at depth 0
             back[64 / 32] = 1u;                    // slice 64: the top of the lower box at 1/4
@@ -125,12 +125,12 @@ TEST_F(SlicemapTest, LocalSlicingRangesAreEachColumnsNearestAndFarthestCrossing)
     bake.method = BakeMethod::Cpu;
     bake.resolution = 48;
     const Sprite sprite = vds::bake(torus.mesh, bake); // the same columns, exact crossings
-    ASSERT_EQ(sprite.width(), map.grid.size.x);
-    ASSERT_EQ(sprite.height(), map.grid.size.y);
+    ASSERT_EQ(sprite.width(), map.grid.dims.x);
+    ASSERT_EQ(sprite.height(), map.grid.dims.y);
     std::size_t covered = 0, coverageDiffers = 0;
-    for (std::uint32_t y = 0; y < map.grid.size.y; ++y)
-        for (std::uint32_t x = 0; x < map.grid.size.x; ++x) {
-            const std::size_t c = std::size_t(y) * map.grid.size.x + x;
+    for (std::uint32_t y = 0; y < map.grid.dims.y; ++y)
+        for (std::uint32_t x = 0; x < map.grid.dims.x; ++x) {
+            const std::size_t c = std::size_t(y) * map.grid.dims.x + x;
             const std::uint32_t begin = sprite.offsets[c], end = sprite.offsets[c + 1];
             const bool empty = map.nearDepth[c] > map.farDepth[c];
             if ((begin == end) != empty) {
@@ -148,15 +148,15 @@ TEST_F(SlicemapTest, LocalSlicingRangesAreEachColumnsNearestAndFarthestCrossing)
             EXPECT_TRUE(map.frontBit(x, y, 0)) << x << "," << y;
             EXPECT_TRUE(map.backBit(x, y, map.slices() - 1)) << x << "," << y;
         }
-    EXPECT_GT(covered, map.grid.size.x * map.grid.size.y / 3);
+    EXPECT_GT(covered, map.grid.dims.x * map.grid.dims.y / 3);
     EXPECT_LT(coverageDiffers, 5u);
 }
 
 // Points farther from the surface than a slice and half a column diagonal
 // (plus the tessellation error) are classified as the analytic solid.
 void expectFarPointsRight(const Slicemap& map, const solids::Solid& solid, float sliceThickness) {
-    const float margin = sliceThickness + 0.75f * map.grid.cellSize + solid.tessellationError;
-    const auto points = vds::test::randomPoints(map.grid.box(), 20000, 0.1f, 3);
+    const float margin = sliceThickness + 0.75f * map.grid.cellSize() + solid.tessellationError;
+    const auto points = vds::test::randomPoints(map.grid.box, 20000, 0.1f, 3);
     std::size_t checked = 0, wrong = 0;
     for (const auto& p : points) {
         const float d = solid.distance(p);

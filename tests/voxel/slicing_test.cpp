@@ -40,8 +40,8 @@ Expected expectedFragments(const TriangleMesh& mesh, const VoxelGrid& grid) {
         const glm::dvec3 n = glm::cross(b - a, c - a);
         if (n.z == 0.0) continue;
         if (n.z < 0.0) std::swap(b, c); // counter-clockwise in xy
-        for (std::uint32_t y = 0; y < grid.size.y; ++y)
-            for (std::uint32_t x = 0; x < grid.size.x; ++x) {
+        for (std::uint32_t y = 0; y < grid.dims.y; ++y)
+            for (std::uint32_t x = 0; x < grid.dims.x; ++x) {
                 const glm::dvec2 q(x + 0.5, y + 0.5);
                 const auto edge = [&](const glm::dvec3& p, const glm::dvec3& r) {
                     return (r.x - p.x) * (q.y - p.y) - (r.y - p.y) * (q.x - p.x);
@@ -54,8 +54,8 @@ Expected expectedFragments(const TriangleMesh& mesh, const VoxelGrid& grid) {
                 const double wa = edge(b, c), wb = edge(c, a), wc = edge(a, b);
                 const double z = (wa * a.z + wb * b.z + wc * c.z) / (wa + wb + wc);
                 const int k = int(std::floor(z));
-                if (k < 0 || k >= int(grid.size.z)) continue;
-                const std::size_t i = (std::size_t(k) * grid.size.y + y) * grid.size.x + x;
+                if (k < 0 || k >= int(grid.dims.z)) continue;
+                const std::size_t i = (std::size_t(k) * grid.dims.y + y) * grid.dims.x + x;
                 ++e.count[i];
                 e.normal[i] += glm::normalize(n);
             }
@@ -99,9 +99,9 @@ TEST_F(SlicingTest, EveryVoxelCountsTheTrianglesCrossingItsColumnCentreInItsSlab
             const SlicedVoxels v = voxelizeSlices(gl(), solid->mesh, grid);
             const Expected e = expectedFragments(solid->mesh, grid);
             std::size_t fragments = 0, differing = 0;
-            for (std::uint32_t z = 0; z < grid.size.z; ++z)
-                for (std::uint32_t y = 0; y < grid.size.y; ++y)
-                    for (std::uint32_t x = 0; x < grid.size.x; ++x) {
+            for (std::uint32_t z = 0; z < grid.dims.z; ++z)
+                for (std::uint32_t y = 0; y < grid.dims.y; ++y)
+                    for (std::uint32_t x = 0; x < grid.dims.x; ++x) {
                         const std::size_t i = v.index(x, y, z);
                         fragments += e.count[i];
                         if (v.fragments(x, y, z) != e.count[i]) {
@@ -141,7 +141,7 @@ TEST_F(SlicingTest, BadArgumentsAreRejected) {
     options.slabPadding = 1.5f;
     EXPECT_THROW(voxelizeSlices(gl(), sphere.mesh, makeVoxelGrid(meshBounds(sphere.mesh), 8), options),
                  InvalidArgument);
-    EXPECT_THROW(voxelizeSlices(gl(), sphere.mesh, makeVoxelGrid(meshBounds(sphere.mesh), 4096, ~std::uint64_t(0))),
+    EXPECT_THROW(voxelizeSlices(gl(), sphere.mesh, makeVoxelGrid(meshBounds(sphere.mesh), 4096)),
                  InvalidArgument);
     EXPECT_THROW(voxelizeSlices(gl(), TriangleMesh{}, makeVoxelGrid(meshBounds(sphere.mesh), 8)), InvalidMesh);
 }

@@ -14,6 +14,7 @@
 #include <vds/voxel/representation.h>
 #include <vds/voxel/slicemap.h>
 #include <vds/voxel/solid.h>
+#include <vds/voxel/surface.h>
 
 #include "../support/gl_fixture.h"
 #include "voxel_test_util.h"
@@ -26,7 +27,7 @@ class SolidTest : public vds::test::GlTest {};
 // Cells where the voxel grid differs from `expected(centre)`.
 template <class Expected> std::vector<glm::uvec3> differences(const BitGrid& bits, const Expected& expected) {
     std::vector<glm::uvec3> out;
-    const glm::uvec3 n = bits.grid.size;
+    const glm::uvec3 n = bits.grid.dims;
     for (std::uint32_t z = 0; z < n.z; ++z)
         for (std::uint32_t y = 0; y < n.y; ++y)
             for (std::uint32_t x = 0; x < n.x; ++x)
@@ -35,7 +36,7 @@ template <class Expected> std::vector<glm::uvec3> differences(const BitGrid& bit
 }
 
 void expectIdentical(const BitGrid& a, const BitGrid& b, const std::string& what) {
-    ASSERT_EQ(a.grid.size, b.grid.size) << what;
+    ASSERT_EQ(a.grid.dims, b.grid.dims) << what;
     std::size_t differing = 0;
     for (std::size_t w = 0; w < a.words.size(); ++w) differing += a.words[w] != b.words[w];
     EXPECT_EQ(differing, 0u) << what << ": words differ between raster and compute";
@@ -121,6 +122,10 @@ TEST_F(SolidTest, BadInputIsRejectedWithAClearError) {
     EXPECT_THROW(buildModel(gl(), sphere.mesh, Representation::SolidCompute, {0}), InvalidArgument);
     EXPECT_THROW(buildModel(gl(), sphere.mesh, Representation::Solid, {100000}), InvalidArgument);
     EXPECT_THROW(buildModel(gl(), sphere.mesh, Representation::Solid, {kMaxResolution}), InvalidArgument);
+    // A grid of 2^42 cells can be made, but no voxelizer fills it (kMaxGridCells).
+    const VoxelGrid huge = makeVoxelGrid(meshBounds(sphere.mesh), kMaxResolution);
+    EXPECT_THROW(voxelizeSolid(gl(), sphere.mesh, huge, SolidMethod::Compute), InvalidArgument);
+    EXPECT_THROW(voxelizeSurface(gl(), sphere.mesh, huge), InvalidArgument);
     EXPECT_THROW(parseSolidMethod("xor"), InvalidArgument);
 }
 
@@ -150,13 +155,13 @@ TEST_F(SolidTest, ModelsAnswerPointQueriesLikeTheirGrid) {
     const Model model = buildModel(gl(), torus.mesh, parseRepresentation("solid-compute"), {40});
     ASSERT_NE(model.solid(), nullptr);
     EXPECT_EQ(model.slicemap(), nullptr);
-    EXPECT_EQ(model.cells(), model.solid()->grid.size);
+    EXPECT_EQ(model.cells(), model.solid()->grid.dims);
     EXPECT_EQ(model.memoryBytes(), model.solid()->words.size() * 4);
     EXPECT_GE(model.buildSeconds(), 0.0);
     const VoxelGrid& g = model.solid()->grid;
-    for (std::uint32_t x = 0; x < g.size.x; x += 3)
-        EXPECT_EQ(model.contains(g.cellCentre(x, g.size.y / 2, g.size.z / 2)),
-                  model.solid()->test(x, g.size.y / 2, g.size.z / 2));
+    for (std::uint32_t x = 0; x < g.dims.x; x += 3)
+        EXPECT_EQ(model.contains(g.cellCentre(x, g.dims.y / 2, g.dims.z / 2)),
+                  model.solid()->test(x, g.dims.y / 2, g.dims.z / 2));
     EXPECT_FALSE(model.contains({0, 0, 0}));    // the hole
     EXPECT_TRUE(model.contains({1.0f, 0, 0}));  // in the tube
     EXPECT_FALSE(model.contains({5.0f, 0, 0})); // outside the grid

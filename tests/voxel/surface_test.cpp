@@ -68,7 +68,7 @@ BitGrid bruteForce(const TriangleMesh& mesh, const VoxelGrid& grid) {
         for (int a = 0; a < 3; ++a) {
             const Int lo = std::min({v[0][a], v[1][a], v[2][a]}), hi = std::max({v[0][a], v[1][a], v[2][a]});
             first[a] = std::max(0, int((lo - 1) / 256) - 1); // a superset of the touched range
-            last[a] = std::min(int(grid.size[a]) - 1, int(hi / 256) + 1);
+            last[a] = std::min(int(grid.dims[a]) - 1, int(hi / 256) + 1);
         }
         for (int z = first[2]; z <= last[2]; ++z)
             for (int y = first[1]; y <= last[1]; ++y)
@@ -83,9 +83,9 @@ BitGrid bruteForce(const TriangleMesh& mesh, const VoxelGrid& grid) {
 
 void expectEqual(const BitGrid& gpu, const BitGrid& cpu, const char* what) {
     std::size_t missing = 0, extra = 0;
-    for (std::uint32_t z = 0; z < gpu.grid.size.z; ++z)
-        for (std::uint32_t y = 0; y < gpu.grid.size.y; ++y)
-            for (std::uint32_t x = 0; x < gpu.grid.size.x; ++x) {
+    for (std::uint32_t z = 0; z < gpu.grid.dims.z; ++z)
+        for (std::uint32_t y = 0; y < gpu.grid.dims.y; ++y)
+            for (std::uint32_t x = 0; x < gpu.grid.dims.x; ++x) {
                 missing += cpu.test(x, y, z) && !gpu.test(x, y, z);
                 extra += !cpu.test(x, y, z) && gpu.test(x, y, z);
             }

@@ -22,16 +22,16 @@ glm::vec3 Grid::cellCentre(std::uint32_t i, std::uint32_t j, std::uint32_t k) co
 
 void checkGrid(const Grid& grid) {
     if (grid.dims.x == 0 || grid.dims.y == 0 || grid.dims.z == 0)
-        throw InvalidArgument("occupancy grid has a zero dimension");
+        throw InvalidArgument("grid has a zero dimension");
     if (std::uint64_t(grid.dims.x) * grid.dims.y * grid.dims.z > kMaxGridCells)
-        throw InvalidArgument("occupancy grid of " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) +
+        throw InvalidArgument("grid of " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) +
                               "x" + std::to_string(grid.dims.z) + " cells is too large (at most 2^34 cells)");
     for (int a = 0; a < 3; ++a)
         if (grid.whole[a] && std::uint64_t(grid.first[a]) + grid.dims[a] > grid.whole[a])
-            throw InvalidArgument("occupancy grid slab reaches past its whole grid");
+            throw InvalidArgument("grid slab reaches past its whole grid");
     for (int a = 0; a < 3; ++a)
         if (!(std::isfinite(grid.box.lo[a]) && std::isfinite(grid.box.hi[a]) && grid.box.lo[a] < grid.box.hi[a]))
-            throw InvalidArgument("occupancy grid box is empty or not finite");
+            throw InvalidArgument("grid box is empty or not finite");
 }
 
 glm::uvec3 cubicCells(const glm::vec3& extent, std::uint32_t n) {

@@ -25,11 +25,11 @@ void GpuCaster::upload(const VoxelGrid& grid, GLenum internalFormat, GLenum form
                        std::size_t bytes, const char* what) {
     grid_ = grid;
     volume_ = Texture::create(GL_TEXTURE_3D);
-    glTextureStorage3D(volume_.id(), 1, internalFormat, GLsizei(grid.size.x), GLsizei(grid.size.y),
-                       GLsizei(grid.size.z));
+    glTextureStorage3D(volume_.id(), 1, internalFormat, GLsizei(grid.dims.x), GLsizei(grid.dims.y),
+                       GLsizei(grid.dims.z));
     detail::nearestFiltering(volume_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage3D(volume_.id(), 0, 0, 0, 0, GLsizei(grid.size.x), GLsizei(grid.size.y), GLsizei(grid.size.z),
+    glTextureSubImage3D(volume_.id(), 0, 0, 0, 0, GLsizei(grid.dims.x), GLsizei(grid.dims.y), GLsizei(grid.dims.z),
                         format, GL_FLOAT, texels);
     gpuBytes_ = bytes;
     checkGl(what);

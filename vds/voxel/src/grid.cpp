@@ -15,7 +15,7 @@ namespace vds::voxel {
 float snapToSubcells(float v) { return std::floor(v * kSubcells + 0.5f) / kSubcells; }
 
 glm::vec3 VoxelGrid::toCells(const glm::vec3& p) const {
-    const glm::vec3 d(p.x - origin.x, p.y - origin.y, p.z - origin.z);
+    const glm::vec3 d(p.x - box.lo.x, p.y - box.lo.y, p.z - box.lo.z);
     return {d.x * scale.x, d.y * scale.y, d.z * scale.z};
 }
 
@@ -23,24 +23,14 @@ bool VoxelGrid::cellOf(const glm::vec3& p, glm::uvec3& cell) const {
     const glm::vec3 v = toCells(p);
     const float f[3] = {std::floor(v.x), std::floor(v.y), std::floor(v.z)};
     for (int a = 0; a < 3; ++a)
-        if (!(f[a] >= 0.0f && f[a] < float(size[a]))) return false;
+        if (!(f[a] >= 0.0f && f[a] < float(dims[a]))) return false;
     cell = glm::uvec3(std::uint32_t(f[0]), std::uint32_t(f[1]), std::uint32_t(f[2]));
     return true;
 }
 
-glm::vec3 VoxelGrid::cellCentre(std::uint32_t i, std::uint32_t j, std::uint32_t k) const {
-    return {origin.x + (float(i) + 0.5f) * cellSize, origin.y + (float(j) + 0.5f) * cellSize,
-            origin.z + (float(k) + 0.5f) * cellSize};
-}
+float VoxelGrid::cellSize() const { return float(1.0 / double(scale.x)); }
 
-Box VoxelGrid::box() const {
-    Box b;
-    b.lo = origin;
-    for (int a = 0; a < 3; ++a) b.hi[a] = origin[a] + float(size[a]) / scale[a];
-    return b;
-}
-
-VoxelGrid makeVoxelGrid(const Box& box, std::uint32_t resolution, std::uint64_t maxCells) {
+VoxelGrid makeVoxelGrid(const Box& box, std::uint32_t resolution) {
     if (resolution == 0 || resolution > kMaxResolution)
         throw InvalidArgument("resolution " + std::to_string(resolution) + " is out of range (1 to " +
                               std::to_string(kMaxResolution) + ")");
@@ -50,17 +40,22 @@ VoxelGrid makeVoxelGrid(const Box& box, std::uint32_t resolution, std::uint64_t 
         if (!std::isfinite(box.lo[a]) || !std::isfinite(box.hi[a])) throw InvalidArgument("box is not finite");
         if (!(ext[a] > 0.0f)) throw InvalidArgument(std::string("box has no extent along ") + names[a]);
     }
-    const double longest = std::max({double(ext.x), double(ext.y), double(ext.z)});
-    const double cell = longest / resolution;
     VoxelGrid g;
-    g.origin = box.lo;
-    g.cellSize = float(cell);
+    static_cast<Grid&>(g) = cubicGrid(box, resolution);
+    const double longest = std::max({double(ext.x), double(ext.y), double(ext.z)});
     g.scale = glm::vec3(float(resolution / longest));
-    g.size = cubicCells(ext, resolution);
-    if (std::uint64_t(g.size.x) * g.size.y * g.size.z > maxCells)
-        throw InvalidArgument("a " + std::to_string(g.size.x) + "x" + std::to_string(g.size.y) + "x" +
-                              std::to_string(g.size.z) + " voxel grid has more than " + std::to_string(maxCells) +
-                              " cells; lower the resolution");
+    return g;
+}
+
+VoxelGrid makeSlicemapGrid(const Box& box, std::uint32_t resolution, std::uint32_t slices) {
+    return slicemapGridOver(makeVoxelGrid(box, resolution), box, slices);
+}
+
+VoxelGrid slicemapGridOver(const VoxelGrid& columns, const Box& box, std::uint32_t slices) {
+    VoxelGrid g = columns;
+    g.dims.z = slices;
+    g.box.hi.z = box.hi.z;
+    g.scale.z = float(double(slices) / (double(box.hi.z) - double(box.lo.z)));
     return g;
 }
 
@@ -82,6 +77,7 @@ std::size_t BitGrid::count() const {
 }
 
 BitGrid makeBitGrid(const VoxelGrid& grid) {
+    checkGrid(grid); // at most kMaxGridCells cells, as every grid the library fills
     BitGrid b;
     b.grid = grid;
     try {

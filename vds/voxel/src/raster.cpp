@@ -22,19 +22,19 @@ MeshView checkedForStorage(const GlContext& gl, MeshView mesh) {
 MeshBuffers::MeshBuffers(const GlContext& gl, MeshView mesh) : GpuMesh(checkedForStorage(gl, mesh)) {}
 
 void setGridUniform(GLuint program, const std::string& name, const VoxelGrid& grid) {
-    glProgramUniform3fv(program, glGetUniformLocation(program, (name + ".origin").c_str()), 1, &grid.origin[0]);
+    glProgramUniform3fv(program, glGetUniformLocation(program, (name + ".origin").c_str()), 1, &grid.box.lo[0]);
     glProgramUniform3fv(program, glGetUniformLocation(program, (name + ".scale").c_str()), 1, &grid.scale[0]);
-    glProgramUniform3i(program, glGetUniformLocation(program, (name + ".size").c_str()), GLint(grid.size.x),
-                       GLint(grid.size.y), GLint(grid.size.z));
+    glProgramUniform3i(program, glGetUniformLocation(program, (name + ".size").c_str()), GLint(grid.dims.x),
+                       GLint(grid.dims.y), GLint(grid.dims.z));
 }
 
 std::uint32_t rasterViewport(const VoxelGrid& grid) {
     std::uint32_t side = 1;
-    while (side < std::max(grid.size.x, grid.size.y)) side *= 2;
+    while (side < std::max(grid.dims.x, grid.dims.y)) side *= 2;
     GLint dims[2] = {0, 0};
     glGetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
     if (side > std::uint32_t(std::min(dims[0], dims[1])))
-        throw InvalidArgument("a " + std::to_string(grid.size.x) + "x" + std::to_string(grid.size.y) +
+        throw InvalidArgument("a " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) +
                               " column grid needs a " + std::to_string(side) +
                               " pixel viewport, more than GL allows here; lower the resolution");
     return side;
@@ -43,7 +43,7 @@ std::uint32_t rasterViewport(const VoxelGrid& grid) {
 RasterState::RasterState(const VoxelGrid& grid, std::uint32_t viewport) {
     glViewport(0, 0, GLsizei(viewport), GLsizei(viewport));
     glEnable(GL_SCISSOR_TEST);
-    glScissor(0, 0, GLsizei(grid.size.x), GLsizei(grid.size.y));
+    glScissor(0, 0, GLsizei(grid.dims.x), GLsizei(grid.dims.y));
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);

@@ -149,15 +149,15 @@ int innerSlices(const std::uint32_t* front, const std::uint32_t* back, std::uint
 
 glm::vec4 slicemapColumn(const Slicemap& map, const glm::vec2& xy) {
     const VoxelGrid& g = map.grid;
-    const glm::vec3 v = g.toCells({xy, g.origin.z});
+    const glm::vec3 v = g.toCells({xy, g.box.lo.z});
     const float fx = std::floor(v.x), fy = std::floor(v.y);
-    if (!(fx >= 0.0f && fx < float(g.size.x) && fy >= 0.0f && fy < float(g.size.y))) return glm::vec4(0.0f);
-    const std::size_t c = std::size_t(fy) * g.size.x + std::size_t(fx);
+    if (!(fx >= 0.0f && fx < float(g.dims.x) && fy >= 0.0f && fy < float(g.dims.y))) return glm::vec4(0.0f);
+    const std::size_t c = std::size_t(fy) * g.dims.x + std::size_t(fx);
     const float near = map.nearDepth[c], far = map.farDepth[c], perDepth = map.slicesPerDepth[c];
     if (!(near <= far)) return glm::vec4(0.0f);
     const int inner = innerSlices(&map.front[c * map.words], &map.back[c * map.words], map.words);
-    const float front = g.origin.z + near / g.scale.z;
-    const float back = g.origin.z + far / g.scale.z;
+    const float front = g.box.lo.z + near / g.scale.z;
+    const float back = g.box.lo.z + far / g.scale.z;
     const float sliceLength = perDepth > 0.0f ? 1.0f / (perDepth * g.scale.z) : 0.0f;
     return {front, back, float(inner) * sliceLength, 1.0f};
 }
@@ -192,7 +192,7 @@ glm::vec4 spriteColumn(const Sprite& sprite, const glm::vec2& xy) {
 glm::vec4 voxelMarch(const SlicedVoxels& voxels, const glm::vec2& xy, const RefractionView& view,
                      const RefractionParameters& r) {
     const VoxelGrid& g = voxels.grid;
-    glm::vec3 p(xy, std::max(view.startZ, g.origin.z));
+    glm::vec3 p(xy, std::max(view.startZ, g.box.lo.z));
     glm::vec3 d(0, 0, 1);
     const float step = 0.5f / g.scale.x;
     bool inside = false;
@@ -200,8 +200,8 @@ glm::vec4 voxelMarch(const SlicedVoxels& voxels, const glm::vec2& xy, const Refr
     for (std::uint32_t s = 0; s < r.maxSteps; ++s) {
         const glm::vec3 v = g.toCells(p);
         const glm::vec3 f(std::floor(v.x), std::floor(v.y), std::floor(v.z));
-        if (!(f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f && f.x < float(g.size.x) && f.y < float(g.size.y) &&
-              f.z < float(g.size.z)))
+        if (!(f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f && f.x < float(g.dims.x) && f.y < float(g.dims.y) &&
+              f.z < float(g.dims.z)))
             return toBackground(p, d, insideLength, view.backgroundZ);
         const glm::vec4 voxel = voxels.voxels[voxels.index(std::uint32_t(f.x), std::uint32_t(f.y), std::uint32_t(f.z))];
         const float len = glm::length(glm::vec3(voxel));
@@ -241,7 +241,7 @@ glm::vec3 refractionColour(const glm::vec4& hit, const RefractionParameters& r) 
 RefractionImage refractOnCpu(const Slicemap& map, const RefractionView& view, const RefractionParameters& parameters) {
     if (map.slicing != Slicing::Local) throw InvalidArgument("two-surface refraction needs a locally sliced slicemap");
     return trace(view, parameters, [&](const glm::vec2& xy) {
-        return twoSurface([&](const glm::vec2& q) { return slicemapColumn(map, q); }, xy, map.grid.cellSize, view,
+        return twoSurface([&](const glm::vec2& q) { return slicemapColumn(map, q); }, xy, map.grid.cellSize(), view,
                           parameters);
     });
 }
@@ -328,7 +328,7 @@ GpuRefractionCaster::GpuRefractionCaster(const Slicemap& map)
     : GpuCaster("GpuRefractionCaster"), method_(RefractionMethod::SlicemapTwoSurface) {
     if (map.slicing != Slicing::Local) throw InvalidArgument("two-surface refraction needs a locally sliced slicemap");
     upload(map);
-    columnStep_ = map.grid.cellSize;
+    columnStep_ = map.grid.cellSize();
 }
 
 GpuRefractionCaster::GpuRefractionCaster(const Sprite& sprite)

@@ -68,11 +68,11 @@ void Model::classifyFloats(const float* xyz, std::size_t count, std::size_t stri
 }
 
 std::size_t modelMemoryBytes(const Box& box, Representation representation, const ModelOptions& options) {
-    const VoxelGrid grid = makeVoxelGrid(box, options.resolution, ~std::uint64_t(0));
+    const VoxelGrid grid = makeVoxelGrid(box, options.resolution);
     if (representation == Representation::Solid || representation == Representation::SolidCompute)
         return grid.wordCount() * sizeof(std::uint32_t); // BitGrid::memoryBytes
     // Slicemap::memoryBytes: front and back, a bit a slice; local slicing adds 3 floats a column.
-    const std::size_t columns = std::size_t(grid.size.x) * grid.size.y;
+    const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
     const std::size_t slices = options.slices ? options.slices : defaultSlices(box, options.resolution);
     return columns * 2 * (slices / 32) * sizeof(std::uint32_t) +
            (representation == Representation::SlicemapLocal ? columns * 3 * sizeof(float) : 0);
@@ -89,13 +89,13 @@ std::size_t Model::gpuBytes() const {
 }
 
 glm::uvec3 Model::cells() const {
-    if (const Slicemap* map = slicemap()) return map->grid.size;
-    return std::get<BitGrid>(data_).grid.size;
+    if (const Slicemap* map = slicemap()) return map->grid.dims;
+    return std::get<BitGrid>(data_).grid.dims;
 }
 
 float Model::cellSize() const {
-    if (const Slicemap* map = slicemap()) return map->grid.cellSize;
-    return std::get<BitGrid>(data_).grid.cellSize;
+    if (const Slicemap* map = slicemap()) return map->grid.cellSize();
+    return std::get<BitGrid>(data_).grid.cellSize();
 }
 
 std::string Model::summary() const {
@@ -110,7 +110,8 @@ Model buildModel(const GlContext& gl, MeshView mesh, Representation representati
     const bool isSlicemap =
         representation == Representation::Slicemap || representation == Representation::SlicemapLocal;
     // Grid checks before any GL work, so bad arguments fail fast.
-    const VoxelGrid grid = makeVoxelGrid(box, options.resolution, isSlicemap ? ~std::uint64_t(0) : kMaxGridCells);
+    const VoxelGrid grid = makeVoxelGrid(box, options.resolution);
+    if (!isSlicemap) checkGrid(grid); // a slicemap keeps only the columns
     const CurrentContext current(gl); // the caller's context is current again on return
     const std::uint64_t start = detail::nowNanoseconds();
     switch (representation) {
@@ -119,7 +120,7 @@ Model buildModel(const GlContext& gl, MeshView mesh, Representation representati
         SlicemapOptions o;
         o.slicing = representation == Representation::Slicemap ? Slicing::Uniform : Slicing::Local;
         o.slices = options.slices;
-        Slicemap map = detail::sliceClosed(gl, mesh, box, options.resolution, o);
+        Slicemap map = detail::sliceClosed(gl, mesh, box, grid, o);
         return Model(representation, std::move(map), detail::secondsSince(start));
     }
     case Representation::Solid:

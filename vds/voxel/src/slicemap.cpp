@@ -24,19 +24,19 @@ Slicing parseSlicing(const std::string& s) { return parseEnum<Slicing>(s); }
 const char* toString(Slicing s) { return enumName(s); }
 
 bool Slicemap::frontBit(std::uint32_t x, std::uint32_t y, std::uint32_t s) const {
-    return (front[(std::size_t(y) * grid.size.x + x) * words + (s >> 5)] >> (s & 31u)) & 1u;
+    return (front[(std::size_t(y) * grid.dims.x + x) * words + (s >> 5)] >> (s & 31u)) & 1u;
 }
 
 bool Slicemap::backBit(std::uint32_t x, std::uint32_t y, std::uint32_t s) const {
-    return (back[(std::size_t(y) * grid.size.x + x) * words + (s >> 5)] >> (s & 31u)) & 1u;
+    return (back[(std::size_t(y) * grid.dims.x + x) * words + (s >> 5)] >> (s & 31u)) & 1u;
 }
 
 bool Slicemap::locate(const glm::vec3& p, std::uint32_t& column, std::uint32_t& slice) const {
     const glm::vec3 v = grid.toCells(p);
     const float fx = std::floor(v.x), fy = std::floor(v.y);
-    if (!(fx >= 0.0f && fx < float(grid.size.x) && fy >= 0.0f && fy < float(grid.size.y))) return false;
-    const std::uint32_t c = std::uint32_t(fy) * grid.size.x + std::uint32_t(fx);
-    float near = 0.0f, far = float(grid.size.z), perDepth = 1.0f;
+    if (!(fx >= 0.0f && fx < float(grid.dims.x) && fy >= 0.0f && fy < float(grid.dims.y))) return false;
+    const std::uint32_t c = std::uint32_t(fy) * grid.dims.x + std::uint32_t(fx);
+    float near = 0.0f, far = float(grid.dims.z), perDepth = 1.0f;
     if (slicing == Slicing::Local) {
         near = nearDepth[c];
         far = farDepth[c];
@@ -45,7 +45,7 @@ bool Slicemap::locate(const glm::vec3& p, std::uint32_t& column, std::uint32_t& 
     if (!(v.z >= near && v.z <= far)) return false;
     const float s = std::floor((v.z - near) * perDepth);
     column = c;
-    slice = std::min(std::uint32_t(s), grid.size.z - 1);
+    slice = std::min(std::uint32_t(s), grid.dims.z - 1);
     return true;
 }
 
@@ -56,13 +56,13 @@ bool Slicemap::contains(const glm::vec3& p) const {
 }
 
 std::size_t Slicemap::memoryBytes() const {
-    const std::size_t columns = std::size_t(grid.size.x) * grid.size.y;
+    const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
     return (front.size() + back.size()) * sizeof(std::uint32_t) +
            (slicing == Slicing::Local ? columns * 3 * sizeof(float) : 0);
 }
 
 std::size_t Slicemap::gpuBytes() const {
-    const std::size_t columns = std::size_t(grid.size.x) * grid.size.y;
+    const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
     return columns * 2 * renderTargets * 16 + (slicing == Slicing::Local ? columns * 16 : 0);
 }
 
@@ -94,13 +94,13 @@ namespace {
 // The slices of `defaultSlices` over cubic `columns`: their cells along z,
 // rounded up to whole words.
 std::uint32_t slicesOver(const VoxelGrid& columns) {
-    return std::min<std::uint32_t>((columns.size.z + 31u) / 32u * 32u, kMaxSlices);
+    return std::min<std::uint32_t>((columns.dims.z + 31u) / 32u * 32u, kMaxSlices);
 }
 
 } // namespace
 
 std::uint32_t defaultSlices(const Box& box, std::uint32_t resolution) {
-    return slicesOver(makeVoxelGrid(box, resolution, ~std::uint64_t(0)));
+    return slicesOver(makeVoxelGrid(box, resolution));
 }
 
 namespace {
@@ -108,9 +108,9 @@ namespace {
 Texture makeTexture(GLenum target, GLenum format, const VoxelGrid& grid, GLsizei layers, const char* what) {
     Texture t = Texture::create(target);
     if (target == GL_TEXTURE_2D_ARRAY)
-        glTextureStorage3D(t.id(), 1, format, GLsizei(grid.size.x), GLsizei(grid.size.y), layers);
+        glTextureStorage3D(t.id(), 1, format, GLsizei(grid.dims.x), GLsizei(grid.dims.y), layers);
     else
-        glTextureStorage2D(t.id(), 1, format, GLsizei(grid.size.x), GLsizei(grid.size.y));
+        glTextureStorage2D(t.id(), 1, format, GLsizei(grid.dims.x), GLsizei(grid.dims.y));
     glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     if (glGetError() == GL_OUT_OF_MEMORY) throw OutOfMemory(std::string("GL cannot allocate ") + what);
@@ -161,7 +161,7 @@ RangeMaps renderRanges(const GlContext& gl, const detail::MeshBuffers& mesh, Sli
         glBlendEquationi(1, GL_MAX);
         mesh.draw();
     }
-    const std::size_t columns = std::size_t(grid.size.x) * grid.size.y;
+    const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
     map.nearDepth.resize(columns);
     map.farDepth.resize(columns);
     glGetTextureImage(near.id(), 0, GL_RED, GL_FLOAT, GLsizei(columns * sizeof(float)), map.nearDepth.data());
@@ -170,20 +170,18 @@ RangeMaps renderRanges(const GlContext& gl, const detail::MeshBuffers& mesh, Sli
     map.slicesPerDepth.resize(columns);
     for (std::size_t c = 0; c < columns; ++c)
         map.slicesPerDepth[c] =
-            map.farDepth[c] > map.nearDepth[c] ? float(grid.size.z) / (map.farDepth[c] - map.nearDepth[c]) : 0.0f;
+            map.farDepth[c] > map.nearDepth[c] ? float(grid.dims.z) / (map.farDepth[c] - map.nearDepth[c]) : 0.0f;
     map.passes += 1;
     return maps;
 }
 
-// The slicemap's grid: `columns` (makeVoxelGrid's cubic cells over `box`)
-// with `slices` along z in their place, 32 slices a word, four words a
-// render target; nothing drawn yet.
-Slicemap emptySlicemap(const VoxelGrid& columns, const Box& box, std::uint32_t slices, Slicing slicing) {
+// The slicemap on `grid` (slicemapGridOver's), 32 slices a word, four
+// words a render target; nothing drawn yet.
+Slicemap emptySlicemap(const VoxelGrid& grid, Slicing slicing) {
     Slicemap map;
     map.slicing = slicing;
-    map.grid = columns;
-    map.grid.size.z = slices;
-    map.grid.scale.z = float(double(slices) / (double(box.hi.z) - double(box.lo.z)));
+    map.grid = grid;
+    const std::uint32_t slices = grid.dims.z;
     map.words = slices / 32;
     map.renderTargets = (map.words + 3) / 4;
     return map;
@@ -196,13 +194,13 @@ bool fitsOnePass(const Slicemap& map) {
     glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
     glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &maxAttachments);
     const std::uint32_t maxTargets = std::uint32_t(std::min(maxDrawBuffers, maxAttachments));
-    const std::uint32_t targets = map.renderTargets, slices = map.grid.size.z;
+    const std::uint32_t targets = map.renderTargets, slices = map.grid.dims.z;
     if (targets > maxTargets)
         throw InvalidArgument(std::to_string(slices) + " slices need " + std::to_string(targets) +
                               " render targets, more than GL allows here (" + std::to_string(maxTargets) + ")");
-    const std::size_t columns = std::size_t(map.grid.size.x) * map.grid.size.y;
+    const std::size_t columns = std::size_t(map.grid.dims.x) * map.grid.dims.y;
     if (columns * 2 * targets * 16 > std::size_t(std::numeric_limits<GLsizei>::max()))
-        throw OutOfMemory("a slicemap of " + std::to_string(map.grid.size.x) + "x" + std::to_string(map.grid.size.y) +
+        throw OutOfMemory("a slicemap of " + std::to_string(map.grid.dims.x) + "x" + std::to_string(map.grid.dims.y) +
                           "x" + std::to_string(slices) + " needs more than 2 GiB; lower the resolution");
     return 2 * targets <= maxTargets;
 }
@@ -242,7 +240,7 @@ void drawSlices(const detail::MeshBuffers& buffers, const Program& program, cons
 
 // Layer-major texels (RGBA words) -> per-column words of each map.
 void readSlices(const Texture& layers, Slicemap& map) {
-    const std::size_t columns = std::size_t(map.grid.size.x) * map.grid.size.y;
+    const std::size_t columns = std::size_t(map.grid.dims.x) * map.grid.dims.y;
     const std::uint32_t targets = map.renderTargets;
     std::vector<std::uint32_t> texels(columns * 4 * 2 * targets);
     glGetTextureImage(layers.id(), 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, GLsizei(texels.size() * sizeof(std::uint32_t)),
@@ -263,21 +261,19 @@ void readSlices(const Texture& layers, Slicemap& map) {
 Slicemap buildSlicemap(const GlContext& gl, MeshView mesh, const Box& box, std::uint32_t resolution,
                        const SlicemapOptions& options) {
     requireClosed(mesh, "mesh");
-    return detail::sliceClosed(gl, mesh, box, resolution, options);
+    return detail::sliceClosed(gl, mesh, box, makeVoxelGrid(box, resolution), options);
 }
 
 namespace detail {
 
-Slicemap sliceClosed(const GlContext& gl, MeshView mesh, const Box& box, std::uint32_t resolution,
+Slicemap sliceClosed(const GlContext& gl, MeshView mesh, const Box& box, const VoxelGrid& columns,
                      const SlicemapOptions& options) {
-    // The cubic columns (no cell limit: a slicemap keeps only the columns); its slices replace their z.
-    const VoxelGrid columns = makeVoxelGrid(box, resolution, ~std::uint64_t(0));
     const std::uint32_t slices = options.slices ? options.slices : slicesOver(columns);
     if (slices % 32 != 0 || slices < 32 || slices > kMaxSlices)
         throw InvalidArgument("slicemap slices " + std::to_string(slices) + " must be a multiple of 32 in [32, " +
                               std::to_string(kMaxSlices) + "]");
     const CurrentContext current(gl); // the caller's context is current again on return
-    Slicemap map = emptySlicemap(columns, box, slices, options.slicing);
+    Slicemap map = emptySlicemap(slicemapGridOver(columns, box, slices), options.slicing);
     const VoxelGrid& grid = map.grid;
     const std::uint32_t viewport = detail::rasterViewport(grid);
     const bool onePass = fitsOnePass(map);

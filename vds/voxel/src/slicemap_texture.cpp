@@ -19,7 +19,7 @@ void nearestFiltering(const Texture& t) {
 SlicemapTextures uploadSlicemap(const Slicemap& map) {
     SlicemapTextures out;
     const VoxelGrid& g = map.grid;
-    const std::size_t columns = std::size_t(g.size.x) * g.size.y;
+    const std::size_t columns = std::size_t(g.dims.x) * g.dims.y;
     const std::uint32_t targets = map.renderTargets;
     std::vector<std::uint32_t> texels(columns * 4 * 2 * targets, 0u);
     for (std::size_t c = 0; c < columns; ++c)
@@ -28,9 +28,9 @@ SlicemapTextures uploadSlicemap(const Slicemap& map) {
             texels[((targets + w / 4) * columns + c) * 4 + w % 4] = map.back[c * map.words + w];
         }
     out.maps = Texture::create(GL_TEXTURE_2D_ARRAY);
-    glTextureStorage3D(out.maps.id(), 1, GL_RGBA32UI, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(2 * targets));
+    glTextureStorage3D(out.maps.id(), 1, GL_RGBA32UI, GLsizei(g.dims.x), GLsizei(g.dims.y), GLsizei(2 * targets));
     nearestFiltering(out.maps);
-    glTextureSubImage3D(out.maps.id(), 0, 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GLsizei(2 * targets),
+    glTextureSubImage3D(out.maps.id(), 0, 0, 0, 0, GLsizei(g.dims.x), GLsizei(g.dims.y), GLsizei(2 * targets),
                         GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
     out.bytes = texels.size() * sizeof(std::uint32_t);
     if (map.slicing == Slicing::Local) {
@@ -41,9 +41,9 @@ SlicemapTextures uploadSlicemap(const Slicemap& map) {
             range[4 * c + 2] = map.slicesPerDepth[c];
         }
         out.ranges = Texture::create(GL_TEXTURE_2D);
-        glTextureStorage2D(out.ranges.id(), 1, GL_RGBA32F, GLsizei(g.size.x), GLsizei(g.size.y));
+        glTextureStorage2D(out.ranges.id(), 1, GL_RGBA32F, GLsizei(g.dims.x), GLsizei(g.dims.y));
         nearestFiltering(out.ranges);
-        glTextureSubImage2D(out.ranges.id(), 0, 0, 0, GLsizei(g.size.x), GLsizei(g.size.y), GL_RGBA, GL_FLOAT,
+        glTextureSubImage2D(out.ranges.id(), 0, 0, 0, GLsizei(g.dims.x), GLsizei(g.dims.y), GL_RGBA, GL_FLOAT,
                             range.data());
         out.bytes += range.size() * sizeof(float);
     }

@@ -28,9 +28,9 @@ glm::vec3 SlicedVoxels::normal(std::uint32_t x, std::uint32_t y, std::uint32_t z
 
 BitGrid SlicedVoxels::occupancy() const {
     BitGrid bits = makeBitGrid(grid);
-    for (std::uint32_t z = 0; z < grid.size.z; ++z)
-        for (std::uint32_t y = 0; y < grid.size.y; ++y)
-            for (std::uint32_t x = 0; x < grid.size.x; ++x)
+    for (std::uint32_t z = 0; z < grid.dims.z; ++z)
+        for (std::uint32_t y = 0; y < grid.dims.y; ++y)
+            for (std::uint32_t x = 0; x < grid.dims.x; ++x)
                 if (voxels[index(x, y, z)].w > 0.0f) bits.set(x, y, z, true);
     return bits;
 }
@@ -45,10 +45,10 @@ SlicedVoxels voxelizeSlices(const GlContext& gl, MeshView mesh, const VoxelGrid&
     glGetIntegerv(GL_MAX_FRAMEBUFFER_LAYERS, &maxLayers);
     glGetIntegerv(GL_MAX_GEOMETRY_OUTPUT_VERTICES, &maxVertices);
     glGetIntegerv(GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS, &maxComponents);
-    if (std::max({grid.size.x, grid.size.y, grid.size.z}) > std::uint32_t(max3d) ||
-        grid.size.z > std::uint32_t(maxLayers))
-        throw InvalidArgument("a " + std::to_string(grid.size.x) + "x" + std::to_string(grid.size.y) + "x" +
-                              std::to_string(grid.size.z) + " grid exceeds GL's 3D texture size (" +
+    if (std::max({grid.dims.x, grid.dims.y, grid.dims.z}) > std::uint32_t(max3d) ||
+        grid.dims.z > std::uint32_t(maxLayers))
+        throw InvalidArgument("a " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) + "x" +
+                              std::to_string(grid.dims.z) + " grid exceeds GL's 3D texture size (" +
                               std::to_string(max3d) + "); lower the resolution");
     // Slices one geometry invocation can emit: 3 vertices each, of 4 (position)
     // + 2 (clip distances) + 1 (layer) + 3 (normal) components.
@@ -75,7 +75,7 @@ SlicedVoxels voxelizeSlices(const GlContext& gl, MeshView mesh, const VoxelGrid&
         throw OutOfMemory("cannot allocate " + std::to_string(bytes) + " bytes of voxel properties");
     }
     Texture texture = Texture::create(GL_TEXTURE_3D);
-    glTextureStorage3D(texture.id(), 1, GL_RGBA32F, GLsizei(grid.size.x), GLsizei(grid.size.y), GLsizei(grid.size.z));
+    glTextureStorage3D(texture.id(), 1, GL_RGBA32F, GLsizei(grid.dims.x), GLsizei(grid.dims.y), GLsizei(grid.dims.z));
     if (glGetError() == GL_OUT_OF_MEMORY) throw OutOfMemory("GL cannot allocate the voxel property texture");
     checkGl("allocating the voxel property texture");
     Framebuffer fbo = Framebuffer::create();
@@ -91,7 +91,7 @@ SlicedVoxels voxelizeSlices(const GlContext& gl, MeshView mesh, const VoxelGrid&
     glProgramUniform1f(program.id(), glGetUniformLocation(program.id(), "u_viewport"), float(viewport));
     glProgramUniform1f(program.id(), glGetUniformLocation(program.id(), "u_padding"), options.slabPadding);
     const detail::MeshBuffers buffers(gl, mesh);
-    result.instances = (grid.size.z + perInstance - 1) / perInstance;
+    result.instances = (grid.dims.z + perInstance - 1) / perInstance;
     {
         const detail::RasterState state(grid, viewport);
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());

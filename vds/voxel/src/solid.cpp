@@ -28,8 +28,8 @@ void rasterize(const GlContext& gl, const detail::MeshBuffers& mesh, const Voxel
     });
     const std::uint32_t viewport = detail::rasterViewport(grid);
     Framebuffer fbo = Framebuffer::create();
-    glNamedFramebufferParameteri(fbo.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, GLint(grid.size.x));
-    glNamedFramebufferParameteri(fbo.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, GLint(grid.size.y));
+    glNamedFramebufferParameteri(fbo.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, GLint(grid.dims.x));
+    glNamedFramebufferParameteri(fbo.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, GLint(grid.dims.y));
     if (glCheckNamedFramebufferStatus(fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw GlError("solid voxelization framebuffer is incomplete");
     detail::setGridUniform(program.id(), "u_grid", grid);
@@ -60,10 +60,10 @@ void computeFlips(const GlContext& gl, const detail::MeshBuffers& mesh, const Vo
     glUseProgram(flip.id());
     vds::detail::dispatchItems(mesh.triangleCount(), 64);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glProgramUniform3i(propagate.id(), glGetUniformLocation(propagate.id(), "u_size"), GLint(grid.size.x),
-                       GLint(grid.size.y), GLint(grid.size.z));
+    glProgramUniform3i(propagate.id(), glGetUniformLocation(propagate.id(), "u_size"), GLint(grid.dims.x),
+                       GLint(grid.dims.y), GLint(grid.dims.z));
     glUseProgram(propagate.id());
-    glDispatchCompute((grid.size.x + 7) / 8, (grid.size.y + 7) / 8, 1);
+    glDispatchCompute((grid.dims.x + 7) / 8, (grid.dims.y + 7) / 8, 1);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     glUseProgram(0);
     checkGl("solid voxelization in compute");

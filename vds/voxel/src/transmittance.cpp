@@ -41,8 +41,8 @@ int bitsBefore(const std::uint32_t* words, std::uint32_t wordCount, std::uint32_
 std::uint32_t slicemapSurfacesInFront(const Slicemap& map, const glm::vec3& p) {
     const glm::vec3 v = map.grid.toCells(p);
     const float fx = std::floor(v.x), fy = std::floor(v.y);
-    if (!(fx >= 0.0f && fx < float(map.grid.size.x) && fy >= 0.0f && fy < float(map.grid.size.y))) return 0;
-    const std::size_t column = std::size_t(fy) * map.grid.size.x + std::size_t(fx);
+    if (!(fx >= 0.0f && fx < float(map.grid.dims.x) && fy >= 0.0f && fy < float(map.grid.dims.y))) return 0;
+    const std::size_t column = std::size_t(fy) * map.grid.dims.x + std::size_t(fx);
     const std::uint32_t slices = map.slices();
     float near = 0.0f, far = float(slices), perDepth = 1.0f;
     if (map.slicing == Slicing::Local) {
@@ -64,9 +64,9 @@ float absorptionInFront(const SlicedVoxels& voxels, const glm::vec3& p) {
     const VoxelGrid& g = voxels.grid;
     const glm::vec3 v = g.toCells(p);
     const float fx = std::floor(v.x), fy = std::floor(v.y);
-    if (!(fx >= 0.0f && fx < float(g.size.x) && fy >= 0.0f && fy < float(g.size.y))) return 0.0f;
+    if (!(fx >= 0.0f && fx < float(g.dims.x) && fy >= 0.0f && fy < float(g.dims.y))) return 0.0f;
     if (!(v.z > 0.0f)) return 0.0f;
-    const std::uint32_t end = v.z >= float(g.size.z) ? g.size.z : std::uint32_t(std::floor(v.z));
+    const std::uint32_t end = v.z >= float(g.dims.z) ? g.dims.z : std::uint32_t(std::floor(v.z));
     float sum = 0.0f;
     for (std::uint32_t k = 0; k < end; ++k) sum += voxels.absorption(std::uint32_t(fx), std::uint32_t(fy), k);
     return sum;

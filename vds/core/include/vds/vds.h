@@ -311,8 +311,10 @@
 //     (the CPU lookup); GpuModelClassifier(gl, model) its GLSL lookup;
 //     `modelMemoryBytes(box, representation, options)` without building.
 //                                                <vds/voxel/representation.h>
-//   VoxelGrid makeVoxelGrid(box, resolution), BitGrid makeBitGrid(grid),
-//     `snapToSubcells`, `requireClosed(mesh, what)`   <vds/voxel/grid.h>
+//   VoxelGrid (a Grid with the voxelizers' float lattice) makeVoxelGrid(box,
+//     resolution), makeSlicemapGrid(box, resolution, slices), BitGrid
+//     makeBitGrid(grid), `snapToSubcells`, `requireClosed(mesh, what)`
+//                                                        <vds/voxel/grid.h>
 //   Slicemap buildSlicemap(gl, mesh, box, resolution, SlicemapOptions),
 //     Slicing (`parseSlicing`), `defaultSlices`, `slicemapInside`
 //                                                    <vds/voxel/slicemap.h>

@@ -4,16 +4,16 @@
 // model's mesh is validated once.
 #pragma once
 
-#include <cstdint>
-
 #include <vds/gl/context.h>
 #include <vds/mesh.h>
+#include <vds/voxel/grid.h>
 #include <vds/voxel/slicemap.h>
 
 namespace vds::voxel::detail {
 
-/// `buildSlicemap` of a mesh `requireClosed` accepted.
-Slicemap sliceClosed(const GlContext& gl, MeshView mesh, const Box& box, std::uint32_t resolution,
+/// `buildSlicemap` of a mesh `requireClosed` accepted, over its cubic
+/// `columns` (`makeVoxelGrid(box, resolution)`).
+Slicemap sliceClosed(const GlContext& gl, MeshView mesh, const Box& box, const VoxelGrid& columns,
                      const SlicemapOptions& options);
 
 } // namespace vds::voxel::detail

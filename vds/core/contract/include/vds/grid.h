@@ -1,6 +1,7 @@
 // vds: the one grid type — a regular grid of cells over a box, the shape
 // every occupancy call of every method fills (<vds/occupancy.h>,
-// `Classifier::occupancy`).
+// `Classifier::occupancy`); a voxel grid is one with the voxelizers' float
+// lattice added (`vds::voxel::VoxelGrid`).
 #pragma once
 
 #include <cstddef>

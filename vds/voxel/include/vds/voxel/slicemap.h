@@ -76,8 +76,8 @@ struct SlicemapOptions {
 
 /// A front/back slicemap pair in host memory.
 struct Slicemap {
-    /// Columns: cubic cells across x and y (grid.size.x by grid.size.y,
-    /// grid.cellSize); grid.size.z is the slice count S and grid.scale.z =
+    /// Columns: cubic cells across x and y (grid.dims.x by grid.dims.y,
+    /// grid.cellSize()); grid.dims.z is the slice count S and grid.scale.z =
     /// S / box depth, so grid.toCells(p).z is the slice coordinate.
     VoxelGrid grid;
     Slicing slicing = Slicing::Uniform;
@@ -95,7 +95,7 @@ struct Slicemap {
     std::uint32_t renderTargets = 0; ///< RGBA32UI targets per map: ceil(S / 128)
     std::uint32_t passes = 0;        ///< geometry passes for the pair (1 or 2), plus 1 for local ranges
 
-    std::uint32_t slices() const { return grid.size.z; }
+    std::uint32_t slices() const { return grid.dims.z; }
     /// Whether slice s of column (x, y) is set in the front / back map.
     bool frontBit(std::uint32_t x, std::uint32_t y, std::uint32_t s) const;
     bool backBit(std::uint32_t x, std::uint32_t y, std::uint32_t s) const;

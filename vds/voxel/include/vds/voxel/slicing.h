@@ -50,7 +50,7 @@ struct SlicedVoxels {
     std::uint32_t instances = 0;
 
     std::size_t index(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
-        return (std::size_t(z) * grid.size.y + y) * grid.size.x + x;
+        return (std::size_t(z) * grid.dims.y + y) * grid.dims.x + x;
     }
     std::uint32_t fragments(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
         return std::uint32_t(voxels[index(x, y, z)].w);
