@@ -623,13 +623,16 @@ TEST_F(Cli, BakeVerbosePrintsEveryPhase) {
 namespace {
 
 // A closed mesh with a non-manifold edge (two cubes sharing an edge) is
-// classified exactly, with a warning that counts the edge.
-TEST_F(Cli, ClosedNonManifoldMeshesAreClassifiedWithAWarning) {
+// classified exactly, with a note (not a warning: inside is defined) that
+// counts the edge.
+TEST_F(Cli, ClosedNonManifoldMeshesAreClassifiedWithANote) {
     writeObj(dir / "two.obj", vds::solids::boxesSharingAnEdge({0, 0, 0}, 1.0f).mesh);
     std::ofstream(dir / "in.txt") << "0.5 0.5 0.5\n1.5 1.5 0.5\n1.5 0.5 0.5\n";
     const Result r = vds("classify --exact --mesh " + p("two.obj") + " " + p("in.txt") + " -o " + p("two.txt"));
     ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("vds classify: note: "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("1 non-manifold edge"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
     EXPECT_EQ(readFile(dir / "two.txt"), "1\n1\n0\n");
 }
 

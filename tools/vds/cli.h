@@ -135,6 +135,13 @@ inline vds::MeshFlags meshFlags(bool allowOpen = false) {
     return {"--rule generalized-winding", allowOpen ? "--allow-open" : ""};
 }
 
+/// What the library says of a mesh asked by `rule` (<vds/mesh_check.h>), on
+/// stderr: "vds COMMAND: warning: NAME: ..." where `rule` does not define its
+/// inside or it is mis-oriented, "vds COMMAND: note: NAME: ..." of
+/// non-manifold edges around a defined inside.
+void tellAboutMesh(const char* command, const std::string& name, const vds::MeshReport& report, vds::Rule rule,
+                   const vds::MeshFlags& flags);
+
 void addBake(CLI::App& app);
 void addClassify(CLI::App& app);
 void addInfo(CLI::App& app);
@@ -144,7 +151,7 @@ void addVoxelize(CLI::App& app);
 void addDistance(CLI::App& app);
 /// What `vds distance`, `vds sdf` and `vds voxelize` refuse, as classify does: an unusable or
 /// flat mesh, and one whose inside `rule` does not define unless `allowOpen`;
-/// warns of non-manifold edges ("vds COMMAND: warning: ...").
+/// then tells of it as `tellAboutMesh` does.
 void checkSignedMesh(const vds::TriangleMesh& mesh, const std::string& name, vds::Rule rule, bool allowOpen,
                      const char* command);
 /// The signed distance of every cell of `grid` into `cells`, as

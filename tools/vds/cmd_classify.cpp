@@ -112,8 +112,7 @@ void checkMesh(const ClassifyArgs& a, const vds::TriangleMesh& mesh) {
     const vds::MeshFlags flags = meshFlags(true);
     if (!a.allowOpen && !vds::methodInfo(a.method).needsClosedMesh)
         vds::requireInsideDefined(report, a.mesh, a.options.rule, flags);
-    const std::string warning = vds::insideWarning(report, a.options.rule, flags);
-    if (!warning.empty()) std::fprintf(stderr, "vds classify: warning: %s: %s\n", a.mesh.c_str(), warning.c_str());
+    tellAboutMesh("classify", a.mesh, report, a.options.rule, flags);
 }
 
 void classify(ClassifyArgs& a) {

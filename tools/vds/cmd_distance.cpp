@@ -141,8 +141,7 @@ void checkSignedMesh(const vds::TriangleMesh& mesh, const std::string& name, vds
     vds::requireUsable(report, name);
     vds::requireVolume(report, name);
     if (!allowOpen) vds::requireInsideDefined(report, name, rule, meshFlags(true));
-    const std::string warning = vds::insideWarning(report, rule, meshFlags(true));
-    if (!warning.empty()) std::fprintf(stderr, "vds %s: warning: %s: %s\n", command, name.c_str(), warning.c_str());
+    tellAboutMesh(command, name, report, rule, meshFlags(true));
 }
 
 void addDistance(CLI::App& app) {

@@ -20,8 +20,7 @@ void eval(EvalArgs& a) {
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
     const vds::MeshReport report = vds::validateMesh(mesh);
     vds::requireInsideDefined(report, a.mesh, a.options.rule, meshFlags());
-    const std::string warning = vds::insideWarning(report, a.options.rule, meshFlags());
-    if (!warning.empty()) std::fprintf(stderr, "vds eval: warning: %s: %s\n", a.mesh.c_str(), warning.c_str());
+    tellAboutMesh("eval", a.mesh, report, a.options.rule, meshFlags());
     const vds::eval::EvalReport r = vds::eval::evaluate(mesh, a.options, nullptr, progressPrinter(a.quiet));
 
     std::fputs(vds::eval::toTable(r).c_str(), stdout);

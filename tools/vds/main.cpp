@@ -123,6 +123,14 @@ std::function<void(const std::string&)> progressPrinter(bool quiet) {
     };
 }
 
+void tellAboutMesh(const char* command, const std::string& name, const vds::MeshReport& report, vds::Rule rule,
+                   const vds::MeshFlags& flags) {
+    const std::string warning = vds::insideWarning(report, rule, flags);
+    if (!warning.empty()) std::fprintf(stderr, "vds %s: warning: %s: %s\n", command, name.c_str(), warning.c_str());
+    const std::string note = vds::insideNote(report, rule, flags);
+    if (!note.empty()) std::fprintf(stderr, "vds %s: note: %s: %s\n", command, name.c_str(), note.c_str());
+}
+
 std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates) {
     const std::string best = vds::nearestName(word, candidates);
     return best.empty() ? std::string() : " (did you mean '" + best + "'?)";

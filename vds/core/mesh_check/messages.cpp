@@ -99,14 +99,26 @@ void requireInsideDefined(const MeshReport& report, const std::string& meshName,
     if (!message.empty()) throw InvalidMesh(message);
 }
 
+namespace {
+
+std::string nonManifoldText(const MeshReport& report) {
+    if (!report.nonManifoldEdges) return {};
+    return counted(report.nonManifoldEdges, "non-manifold edge") + " (more than two triangles on an edge)";
+}
+
+} // namespace
+
 std::string insideWarning(const MeshReport& report, Rule rule, const MeshFlags& flags) {
     const std::string open = openMeshMessage(report, "the mesh", rule, flags);
     if (!open.empty()) return open + "; answered anyway";
-    std::string what;
-    if (report.nonManifoldEdges)
-        what = counted(report.nonManifoldEdges, "non-manifold edge") + " (more than two triangles on an edge)";
-    if (report.misoriented())
-        return (what.empty() ? "" : what + "; ") + misorientedMessage(report, "the mesh");
+    if (!report.misoriented()) return {};
+    const std::string what = nonManifoldText(report);
+    return (what.empty() ? "" : what + "; ") + misorientedMessage(report, "the mesh");
+}
+
+std::string insideNote(const MeshReport& report, Rule rule, const MeshFlags& flags) {
+    if (!insideWarning(report, rule, flags).empty()) return {}; // the warning says it
+    const std::string what = nonManifoldText(report);
     if (what.empty()) return what;
     return what + "; inside is still defined by the " + toString(rule) + " rule";
 }

@@ -89,7 +89,8 @@
 //     says it in one line. `requireUsable(report, name)` and
 //     `requireInsideDefined(report, name, rule, flags)` throw InvalidMesh where a
 //     mesh cannot be used or its inside is not defined by a rule;
-//     `insideWarning(report, rule, flags)` is the one-line warning otherwise;
+//     `insideWarning(report, rule, flags)` is the one-line warning otherwise,
+//     `insideNote(report, rule, flags)` what to tell of a defined inside;
 //     `openMeshMessage(report, name, rule, flags)`, `openSpriteMessage` and
 //     `misorientedMessage(report, name)` are the one wording for a mesh or
 //     sprite that bounds no solid by a rule (`MeshFlags`: the flags a
@@ -312,7 +313,8 @@
 //     `modelMemoryBytes(box, representation, options)` without building.
 //                                                <vds/voxel/representation.h>
 //   VoxelGrid (a Grid with the voxelizers' float lattice) makeVoxelGrid(box,
-//     resolution), makeSlicemapGrid(box, resolution, slices), BitGrid
+//     resolution), makeSlicemapGrid(box, resolution, slices) (slicemapGridOver
+//     from the columns), BitGrid
 //     makeBitGrid(grid), `snapToSubcells`, `requireClosed(mesh, what)`
 //                                                        <vds/voxel/grid.h>
 //   Slicemap buildSlicemap(gl, mesh, box, resolution, SlicemapOptions),

@@ -59,10 +59,15 @@ void requireVolume(const MeshReport& report, const std::string& meshName);
 
 /// What a caller should warn about in a mesh asked by `rule`: where `rule`
 /// does not define inside (a caller answering anyway), `openMeshMessage`'s
-/// text; else non-manifold edges (named with their count) and a closed
-/// mesh's mis-orientation (`misorientedMessage`). Empty when there is
-/// nothing to say.
+/// text; else a closed mesh's mis-orientation (`misorientedMessage`, after
+/// its non-manifold edges, if any). Empty when there is nothing to warn of.
 std::string insideWarning(const MeshReport& report, Rule rule, const MeshFlags& flags = {});
+
+/// What is worth telling, not warning, of a mesh whose inside `rule` does
+/// define: its non-manifold edges (named with their count; inside is still
+/// defined). Empty where there is nothing to tell, or `insideWarning` has
+/// something to say.
+std::string insideNote(const MeshReport& report, Rule rule, const MeshFlags& flags = {});
 
 /// Validation that keeps what it found beside the report: the partners of
 /// the mesh's edges and its triangles' facings, which the axis choice
