@@ -1,8 +1,11 @@
 // Benchmark of exact distances (<vds/distance.h>): vds's unsigned and signed
 // distance on one thread against a brute-force loop over every triangle,
-// CGAL's AABB tree, Embree's point query and libigl's AABB tree (where they
-// were found at configure time), the same random points in and around each mesh's box,
-// the rounds alternated (A B C, A B C, ...) and the best of each kept.
+// CGAL's AABB tree, Embree's point query, libigl's AABB tree and fcpw's
+// vectorized BVH (where they were found at configure time), on two point
+// sets: uniform in and around each mesh's box, and near the surface (on a
+// random triangle, area-weighted, moved along its normal by up to 1% of the
+// diagonal either way); the rounds alternated (A B C, A B C, ...) and the
+// best of each kept.
 // Agreement: vds against brute force on a sample (the same closest-point
 // kernel over every triangle: this checks the hierarchy's search), the sign
 // against the exact classifier of the same rule on every point, and the
@@ -24,6 +27,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/geometric.hpp>
 
 #include <vds/distance.h>
 #include <vds/error.h>
@@ -34,7 +38,8 @@
 #include "points.h"
 #include "solids.h"
 
-#if defined(VDS_DISTANCE_CGAL) || defined(VDS_DISTANCE_EMBREE) || defined(VDS_DISTANCE_LIBIGL)
+#if defined(VDS_DISTANCE_CGAL) || defined(VDS_DISTANCE_EMBREE) || defined(VDS_DISTANCE_LIBIGL) || \
+    defined(VDS_DISTANCE_FCPW)
 #include "distance_peer.h"
 #endif
 
@@ -97,6 +102,12 @@ std::vector<Contender> contenders(const vds::SignedDistance& vds, const vds::Tri
     std::shared_ptr<vds::peers::DistancePeer> libigl = vds::peers::makeLibiglDistance(mesh);
     std::printf("  build %-34s %8.1f ms\n", libigl->name().c_str(), 1e3 * seconds(start));
     all.push_back({libigl->name(), [libigl](const auto& p, double* o) { libigl->distances(p, o); }, {}});
+#endif
+#if defined(VDS_DISTANCE_FCPW)
+    start = Clock::now();
+    std::shared_ptr<vds::peers::DistancePeer> fcpw = vds::peers::makeFcpwDistance(mesh);
+    std::printf("  build %-34s %8.1f ms\n", fcpw->name().c_str(), 1e3 * seconds(start));
+    all.push_back({fcpw->name(), [fcpw](const auto& p, double* o) { fcpw->distances(p, o); }, {}});
 #endif
     (void)mesh;
     (void)start;
@@ -175,34 +186,72 @@ void grids(const vds::SignedDistance& vds, const vds::TriangleMesh& mesh, std::u
                 differ, exact.size(), mean, error[error.size() * 999 / 1000], error.back());
 }
 
+/// `n` points near the surface: on a random triangle (by area), at uniform
+/// barycentric coordinates, moved along its normal by up to `reach` either way.
+std::vector<glm::vec3> nearSurfacePoints(const vds::TriangleMesh& mesh, std::size_t n, double reach, std::uint32_t seed) {
+    std::vector<double> area(mesh.triangles.size());
+    for (std::size_t t = 0; t < area.size(); ++t) {
+        const glm::uvec3 v = mesh.triangles[t];
+        const glm::dvec3 a(mesh.positions[v.x]), b(mesh.positions[v.y]), c(mesh.positions[v.z]);
+        area[t] = glm::length(glm::cross(b - a, c - a)) + 1e-30;
+    }
+    std::mt19937 rng(seed);
+    std::discrete_distribution<std::size_t> pick(area.begin(), area.end());
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<glm::vec3> points(n);
+    for (glm::vec3& p : points) {
+        const glm::uvec3 v = mesh.triangles[pick(rng)];
+        const glm::dvec3 a(mesh.positions[v.x]), b(mesh.positions[v.y]), c(mesh.positions[v.z]);
+        double r = u(rng), s = u(rng);
+        if (r + s > 1.0) r = 1.0 - r, s = 1.0 - s;
+        const glm::dvec3 normal = glm::cross(b - a, c - a);
+        const double length = glm::length(normal);
+        const glm::dvec3 offset = length > 0.0 ? normal * (reach * (2.0 * u(rng) - 1.0) / length) : glm::dvec3(0.0);
+        p = glm::vec3(a + (b - a) * r + (c - a) * s + offset);
+    }
+    return points;
+}
+
+void timePoints(const char* label, const std::vector<glm::vec3>& points, std::vector<Contender>& all,
+                const Settings& settings) {
+    for (Contender& c : all) c.best = std::numeric_limits<double>::infinity();
+    for (int round = 0; round < settings.rounds; ++round)
+        for (Contender& c : all) {
+            c.out.assign(points.size(), 0.0);
+            const auto start = Clock::now();
+            c.run(points, c.out.data());
+            c.best = std::min(c.best, seconds(start));
+        }
+    std::printf("  %zu points %s:\n", points.size(), label);
+    for (const Contender& c : all)
+        std::printf("  %-34s %8.0f ns/point  %5.2fx vds unsigned's time\n", c.name.c_str(),
+                    1e9 * c.best / double(points.size()), c.best / all[0].best);
+}
+
 void run(const std::string& name, const vds::TriangleMesh& mesh, const Settings& settings) {
-    const auto points = vds::test::randomPoints(vds::meshBounds(mesh), settings.points, 0.1f, 2008);
-    std::printf("%s: %zu triangles, %zu points\n", name.c_str(), mesh.triangles.size(), points.size());
+    const vds::Box box = vds::meshBounds(mesh);
+    const double diagonal = glm::length(glm::dvec3(box.hi) - glm::dvec3(box.lo));
+    const auto uniform = vds::test::randomPoints(box, settings.points, 0.1f, 2008);
+    const auto near = nearSurfacePoints(mesh, settings.points, 0.01 * diagonal, 2009);
+    std::printf("%s: %zu triangles\n", name.c_str(), mesh.triangles.size());
     auto start = Clock::now();
     const vds::SignedDistance vds(mesh, ruleFor(mesh), name);
     std::printf("  build %-34s %8.1f ms\n", "vds", 1e3 * seconds(start));
     std::vector<Contender> all = contenders(vds, mesh);
-    for (int round = 0; round < settings.rounds; ++round)
-        for (Contender& c : all) {
-            c.out.assign(points.size(), 0.0);
-            start = Clock::now();
-            c.run(points, c.out.data());
-            c.best = std::min(c.best, seconds(start));
-        }
-    for (const Contender& c : all)
-        std::printf("  %-34s %8.0f ns/point  %5.2fx vds unsigned's time\n", c.name.c_str(),
-                    1e9 * c.best / double(points.size()), c.best / all[0].best);
-    agreement(mesh, vds, points, all, settings.brute);
+    timePoints("uniform in the box grown by 10%", uniform, all, settings);
+    agreement(mesh, vds, uniform, all, settings.brute);
+    timePoints("within 1% of the diagonal of the surface", near, all, settings);
+    agreement(mesh, vds, near, all, settings.brute);
     if (settings.sdf > 0 && mesh.triangles.size() >= 50000) grids(vds, mesh, settings.sdf, settings.band, settings.fullGrid);
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app("vds_distance_bench: exact distances against brute force, CGAL, Embree and libigl");
+    CLI::App app("vds_distance_bench: exact distances against brute force, CGAL, Embree, libigl and fcpw");
     Settings settings;
     std::vector<std::string> meshes;
-    app.add_option("--points", settings.points, "random points in and around each mesh's box");
+    app.add_option("--points", settings.points, "random points of each set (uniform, near the surface)");
     app.add_option("--brute", settings.brute, "of them, checked against brute force");
     app.add_option("--rounds", settings.rounds, "alternated rounds, the best kept");
     app.add_option("--sdf", settings.sdf, "cells of the SDF grids on the longest side (0: none), meshes of 50k triangles up");
