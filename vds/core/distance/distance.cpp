@@ -27,8 +27,8 @@ namespace {
 /// Points a chunk of a batch: enough to amortise a chunk's classify call.
 constexpr std::size_t kChunkPoints = 512;
 /// Triangles a hierarchy can reference: a leaf reference holds its first
-/// block in 31 - kLeafBits bits, a block holds four slots, and padding each
-/// leaf to whole blocks makes at most four slots a triangle.
+/// block in 31 - kLeafBits bits, and every block holds at least one
+/// triangle (a leaf's triangles fill its blocks from the first lane).
 constexpr std::size_t kMaxTriangles = (std::size_t(1) << (31 - detail::kLeafBits)) - 1;
 
 /// Cells a brick has along each axis: the unit of a grid's coherence.
