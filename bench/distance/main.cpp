@@ -94,6 +94,13 @@ std::vector<Contender> contenders(const vds::SignedDistance& vds, const vds::Tri
     one.threads = 1;
     all.push_back({"vds unsigned", [&vds, one](const auto& p, double* o) { vds.unsignedDistance(p, o, one); }, {}});
     all.push_back({"vds signed", [&vds, one](const auto& p, double* o) { vds.distance(p, o, one); }, {}});
+    // The search alone, in the points' own order: a batch of one a call, so
+    // without the batch's Morton order and seeds.
+    all.push_back({"vds unsigned, a point a call",
+                   [&vds, one](const auto& p, double* o) {
+                       for (std::size_t k = 0; k < p.size(); ++k) vds.unsignedDistance(vds::PointsView(&p[k], 1), o + k, one);
+                   },
+                   {}});
     auto start = Clock::now();
 #if defined(VDS_DISTANCE_CGAL)
     std::shared_ptr<vds::peers::DistancePeer> cgal = vds::peers::makeCgalDistance(mesh);

@@ -122,9 +122,13 @@ std::vector<std::uint32_t> searchOrder(const PointsView& points, const Box& box)
 } // namespace
 
 struct SignedDistance::Impl {
-    Impl(MeshView mesh, Rule r, std::string flatWhy)
-        : rule(r), bvh(mesh), bounds(meshBounds(mesh)), flat(std::move(flatWhy)) {
-        if (flat.empty()) exact.emplace(mesh, Axis::Z);
+    /// The hierarchy and the sign's classifier are independent: built at
+    /// once, each on threads of its own as well.
+    Impl(MeshView mesh, Rule r, std::string flatWhy) : rule(r), bounds(meshBounds(mesh)), flat(std::move(flatWhy)) {
+        detail::parallelFor(0, 2, 1, [&](std::size_t part, std::size_t) {
+            if (part == 0) bvh = detail::Bvh(mesh);
+            else if (flat.empty()) exact.emplace(mesh, Axis::Z);
+        });
     }
     Rule rule;
     detail::Bvh bvh;

@@ -136,6 +136,8 @@ public:
     /// `width` lanes (4, 8 or 16, available on this CPU; 0: the widest),
     /// the build on `threads` threads (0: one per hardware thread).
     explicit Bvh(MeshView mesh, int width = 0, unsigned threads = 0);
+    /// No hierarchy, to be assigned one: it must not be searched.
+    Bvh() = default;
 
     /// Lowers `state` to the nearest triangle to `p` if one is nearer than
     /// `state.distance2` (the caller's bound: infinity, a band's square, or
