@@ -134,6 +134,24 @@ TEST(BvhWidth, EveryWidthEqualsBruteForceOnTinyMeshes) {
     expectEveryWidthExact(vds::solids::box(glm::vec3(-1.0f), glm::vec3(2.0f)).mesh, "box");
 }
 
+/// A mesh large enough that its subtrees are built on threads of their own
+/// (past 4096 triangles), against brute force, with the tree of one thread.
+TEST(BvhWidth, TreesBuiltOnThreadsEqualBruteForce) {
+    const vds::TriangleMesh mesh = vds::solids::sphere(glm::vec3(0.0f), 1.0f, 96).mesh;
+    ASSERT_GT(mesh.triangles.size(), 2u * 4096u);
+    const std::vector<glm::vec3> points = vds::test::randomPoints(vds::meshBounds(mesh), 150, 0.2f, 48);
+    for (const int width : availableWidths()) {
+        const Bvh serial(vds::MeshView(mesh), width, 1), threaded(vds::MeshView(mesh), width, 4);
+        for (const glm::vec3& p : points) {
+            NearestState a{std::numeric_limits<double>::infinity()}, b = a;
+            serial.nearest(p, a);
+            threaded.nearest(p, b);
+            EXPECT_EQ(b.distance2, bruteForce2(mesh, p)) << "width " << width;
+            EXPECT_EQ(a.distance2, b.distance2) << "width " << width;
+        }
+    }
+}
+
 TEST(BvhWidth, LeafListsOfABoxFindWhatTheWholeSearchFinds) {
     const vds::TriangleMesh mesh = vds::solids::torusKnot(glm::vec3(0.0f), 1.0f, 2, 3, 0.25f, 120, 12).mesh;
     const glm::vec3 lo(0.1f, 0.2f, -0.2f), hi(0.4f, 0.5f, 0.1f);

@@ -70,12 +70,24 @@ struct BuildNode {
 /// left side first, and their count (0: no split worth a node found).
 class BinaryBuilder {
 public:
-    /// Leaves of at most `leafTriangles` (<= kMaxBvhWidth).
-    BinaryBuilder(std::vector<Prim>& prims, std::uint32_t leafTriangles) : prims_(prims), leafTriangles_(leafTriangles) {}
+    /// Leaves of at most `leafTriangles` (<= kMaxBvhWidth); subtrees of at
+    /// most `taskPrims` prims left to `tasks` (0: none), to be built apart.
+    BinaryBuilder(std::vector<Prim>& prims, std::uint32_t leafTriangles, std::uint32_t taskPrims = 0)
+        : prims_(prims), leafTriangles_(leafTriangles), taskPrims_(taskPrims) {}
+
+    /// A subtree left for later: its root's node here, prims and depth.
+    struct Task {
+        std::uint32_t node, first, count;
+        int depth;
+    };
 
     std::uint32_t build(std::uint32_t first, std::uint32_t count, int depth) {
         const std::uint32_t self = std::uint32_t(nodes.size());
         nodes.emplace_back();
+        if (count <= taskPrims_ && count > leafTriangles_) {
+            tasks.push_back({self, first, count, depth});
+            return self;
+        }
         Aabb box, centroids;
         for (std::uint32_t k = first; k < first + count; ++k) {
             box.grow(prims_[k].box);
@@ -99,6 +111,7 @@ public:
     }
 
     std::vector<BuildNode> nodes;
+    std::vector<Task> tasks;
 
 private:
     static int binOf(float c, float lo, float scale) {
@@ -162,7 +175,45 @@ private:
 
     std::vector<Prim>& prims_;
     std::uint32_t leafTriangles_;
+    std::uint32_t taskPrims_;
 };
+
+/// Prims a subtree built on a thread of its own holds at most: enough tasks
+/// to share among `threads`, each worth a thread's start.
+std::uint32_t taskPrims(std::size_t prims, unsigned threads) {
+    if (threads == 0) threads = ThreadPool::hardwareThreads();
+    if (threads <= 1) return 0;
+    return std::uint32_t(std::max<std::size_t>(4096, prims / (8 * std::size_t(threads))));
+}
+
+/// The binary tree over `prims`, depth first from the root (node 0): the
+/// top levels on this thread, the subtrees below them on `threads`, each
+/// into nodes of its own, appended after (their prims are disjoint ranges).
+std::vector<BuildNode> buildBinary(std::vector<Prim>& prims, std::uint32_t leafTriangles, unsigned threads) {
+    BinaryBuilder top(prims, leafTriangles, taskPrims(prims.size(), threads));
+    top.build(0, std::uint32_t(prims.size()), 0);
+    std::vector<std::vector<BuildNode>> subtrees(top.tasks.size());
+    parallelFor(threads, top.tasks.size(), 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t t = begin; t < end; ++t) {
+            BinaryBuilder builder(prims, leafTriangles);
+            builder.build(top.tasks[t].first, top.tasks[t].count, top.tasks[t].depth);
+            subtrees[t] = std::move(builder.nodes);
+        }
+    });
+    std::vector<BuildNode> nodes = std::move(top.nodes);
+    for (std::size_t t = 0; t < subtrees.size(); ++t) {
+        // Subtree node i > 0 goes to offset + i - 1; its root to the task's node.
+        const std::uint32_t offset = std::uint32_t(nodes.size());
+        const auto place = [&](std::uint32_t i) { return i == 0 ? top.tasks[t].node : offset + i - 1; };
+        for (std::size_t i = 0; i < subtrees[t].size(); ++i) {
+            BuildNode b = subtrees[t][i];
+            if (!b.leaf()) b.left = place(b.left), b.right = place(b.right);
+            if (i == 0) nodes[top.tasks[t].node] = b;
+            else nodes.push_back(b);
+        }
+    }
+    return nodes;
+}
 
 std::int32_t leafReference(std::uint32_t block, std::uint32_t count) {
     return ~std::int32_t(block << kLeafBits | (count - 1));
@@ -313,19 +364,18 @@ Bvh::Bvh(MeshView mesh, int width, unsigned threads) : width_(width == 0 ? wides
         }
     });
     // Leaves of up to W triangles (8 at W = 4: two blocks), one SIMD step each.
-    BinaryBuilder builder(prims, std::uint32_t(std::max(width_, 8)));
-    builder.build(0, std::uint32_t(prims.size()), 0);
+    const std::vector<BuildNode> binary = buildBinary(prims, std::uint32_t(std::max(width_, 8)), threads);
     // Each leaf's triangles from a multiple of W: its lanes fill whole blocks.
     const std::uint32_t w = std::uint32_t(width_);
     std::vector<std::uint32_t> slotOf(prims.size());
     std::uint32_t slots = 0;
-    for (const BuildNode& b : builder.nodes) // leaves in the build's order: depth first, left first
+    for (const BuildNode& b : binary) // leaves in the build's order
         if (b.leaf()) {
             slots = (slots + w - 1) / w * w;
             for (std::uint32_t k = 0; k < b.count; ++k) slotOf[b.first + k] = slots++;
         }
     slots = (slots + w - 1) / w * w;
-    Collapser collapser(builder.nodes, nodes_, width_, slotOf);
+    Collapser collapser(binary, nodes_, width_, slotOf);
     collapser.emit(0);
     nodeCount_ = collapser.count;
     triangleCount_ = prims.size();
