@@ -105,12 +105,12 @@ void expectEveryWidthExact(const vds::TriangleMesh& mesh, const std::string& nam
     }
 }
 
-TEST(BvhWidth, FourLanesAreAlwaysAvailableAndTheWidestIsAvailable) {
+TEST(BvhWidth, FourLanesAreAlwaysAvailableAndTheDefaultIsAvailable) {
     EXPECT_TRUE(vds::detail::bvhWidthAvailable(4));
     EXPECT_FALSE(vds::detail::bvhWidthAvailable(5));
-    EXPECT_TRUE(vds::detail::bvhWidthAvailable(vds::detail::widestBvhWidth()));
+    EXPECT_TRUE(vds::detail::bvhWidthAvailable(vds::detail::defaultBvhWidth()));
     EXPECT_EQ(Bvh(vds::MeshView(vds::solids::box(glm::vec3(0.0f), glm::vec3(1.0f)).mesh)).width(),
-              vds::detail::widestBvhWidth());
+              vds::detail::defaultBvhWidth());
 }
 
 TEST(BvhWidth, EveryWidthEqualsBruteForceOnAClosedMesh) {

@@ -345,12 +345,12 @@ bool bvhWidthAvailable(int width) {
     return false;
 }
 
-int widestBvhWidth() {
-    static const int widest = bvhWidthAvailable(16) ? 16 : bvhWidthAvailable(8) ? 8 : 4;
-    return widest;
+int defaultBvhWidth() {
+    static const int width = bvhWidthAvailable(8) ? 8 : 4;
+    return width;
 }
 
-Bvh::Bvh(MeshView mesh, int width, unsigned threads) : width_(width == 0 ? widestBvhWidth() : width) {
+Bvh::Bvh(MeshView mesh, int width, unsigned threads) : width_(width == 0 ? defaultBvhWidth() : width) {
     assert(bvhWidthAvailable(width_));
     search_ = width_ == 16 ? bvhSearch16() : width_ == 8 ? bvhSearch8() : bvhSearch4();
     std::vector<Prim> prims(mesh.triangleCount);

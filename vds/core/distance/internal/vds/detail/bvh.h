@@ -1,7 +1,7 @@
 // vds: a W-wide bounding volume hierarchy over triangles, for nearest-
-// triangle queries (<vds/distance.h>), W the lanes of the widest SIMD the
-// CPU has, chosen when the hierarchy is built: 4 (SSE), 8 (AVX2) or 16
-// (AVX-512), so one binary serves each at its full width.
+// triangle queries (<vds/distance.h>), W chosen when the hierarchy is
+// built from what the CPU has: 4 lanes (SSE), 8 (AVX2, the default where
+// present) or 16 (AVX-512), so one binary serves each.
 //
 // Built as a binary tree by the binned surface-area heuristic (Wald, "On
 // fast Construction of SAH-based Bounding Volume Hierarchies", 2007: 16
@@ -107,8 +107,11 @@ struct alignas(64) FloatLine {
 /// Whether this CPU can search a hierarchy of `width` lanes: 4 always, 8
 /// with AVX2 and FMA, 16 with AVX-512F and VL (x86-64; elsewhere 4 only).
 bool bvhWidthAvailable(int width);
-/// The widest width available: the one a hierarchy is built with unless told.
-int widestBvhWidth();
+/// The width a hierarchy is built with unless told: 8 where the CPU has
+/// AVX2, else 4. 16 lanes (AVX-512) are available but not the default: a
+/// leaf of up to 16 triangles tests more of them than it saves in steps
+/// (measured on the bench meshes, docs/distance.md).
+int defaultBvhWidth();
 
 /// The best found so far by a search: squared distance and triangle slot.
 struct NearestState {
@@ -133,7 +136,7 @@ struct BvhSearch {
 class Bvh {
 public:
     /// Triangles with valid indices (the caller validated the mesh), W =
-    /// `width` lanes (4, 8 or 16, available on this CPU; 0: the widest),
+    /// `width` lanes (4, 8 or 16, available on this CPU; 0: the default),
     /// the build on `threads` threads (0: one per hardware thread).
     explicit Bvh(MeshView mesh, int width = 0, unsigned threads = 0);
     /// No hierarchy, to be assigned one: it must not be searched.
