@@ -119,32 +119,37 @@ private:
     }
 
     std::uint32_t sahSplit(std::uint32_t first, std::uint32_t count, const Aabb& centroids) {
+        // The three axes' bins in one pass over the prims.
+        Aabb bins[3][kBins];
+        std::uint32_t counts[3][kBins] = {};
+        float scale[3];
+        for (int a = 0; a < 3; ++a) {
+            const float extent = centroids.hi[a] - centroids.lo[a];
+            scale[a] = extent > 0.0f ? float(kBins) / extent : 0.0f;
+        }
+        for (std::uint32_t k = first; k < first + count; ++k)
+            for (int a = 0; a < 3; ++a) {
+                const int b = binOf(prims_[k].centroid[a], centroids.lo[a], scale[a]);
+                bins[a][b].grow(prims_[k].box);
+                ++counts[a][b];
+            }
         float bestCost = std::numeric_limits<float>::infinity();
         int bestAxis = -1, bestBin = 0;
         for (int a = 0; a < 3; ++a) {
-            const float extent = centroids.hi[a] - centroids.lo[a];
-            if (!(extent > 0.0f)) continue;
-            const float scale = float(kBins) / extent;
-            Aabb bins[kBins];
-            std::uint32_t counts[kBins] = {};
-            for (std::uint32_t k = first; k < first + count; ++k) {
-                const int b = binOf(prims_[k].centroid[a], centroids.lo[a], scale);
-                bins[b].grow(prims_[k].box);
-                ++counts[b];
-            }
+            if (!(scale[a] > 0.0f)) continue;
             float rightCost[kBins];
             Aabb right;
             std::uint32_t rightCount = 0;
             for (int b = kBins - 1; b > 0; --b) {
-                right.grow(bins[b]);
-                rightCount += counts[b];
+                right.grow(bins[a][b]);
+                rightCount += counts[a][b];
                 rightCost[b] = right.area() * float(rightCount);
             }
             Aabb left;
             std::uint32_t leftCount = 0;
             for (int b = 0; b < kBins - 1; ++b) {
-                left.grow(bins[b]);
-                leftCount += counts[b];
+                left.grow(bins[a][b]);
+                leftCount += counts[a][b];
                 const float cost = left.area() * float(leftCount) + rightCost[b + 1];
                 if (leftCount > 0 && leftCount < count && cost < bestCost) {
                     bestCost = cost;
@@ -154,10 +159,9 @@ private:
             }
         }
         if (bestAxis < 0) return 0;
-        const float lo = centroids.lo[bestAxis];
-        const float scale = float(kBins) / (centroids.hi[bestAxis] - lo);
+        const float lo = centroids.lo[bestAxis], by = scale[bestAxis];
         const auto mid = std::partition(prims_.begin() + first, prims_.begin() + first + count, [&](const Prim& p) {
-            return binOf(p.centroid[bestAxis], lo, scale) <= bestBin;
+            return binOf(p.centroid[bestAxis], lo, by) <= bestBin;
         });
         return std::uint32_t(mid - (prims_.begin() + first));
     }
