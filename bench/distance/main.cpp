@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <ctime>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -128,6 +129,21 @@ std::vector<Contender> contenders(const vds::SignedDistance& vds, const vds::Tri
     (void)mesh;
     (void)start;
     return all;
+}
+
+/// The first line of /proc/cpuinfo that names the CPU ("?" elsewhere).
+std::string cpuModel() {
+    std::ifstream in("/proc/cpuinfo");
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+    return "?";
+}
+
+std::string loadAverage() {
+    std::ifstream in("/proc/loadavg");
+    std::string one, five, fifteen;
+    in >> one >> five >> fifteen;
+    return one + " " + five + " " + fifteen;
 }
 
 void agreement(const vds::TriangleMesh& mesh, const vds::SignedDistance& vds, const std::vector<glm::vec3>& points,
@@ -252,7 +268,7 @@ void run(const std::string& name, const vds::TriangleMesh& mesh, const Settings&
     std::printf("%s: %zu triangles\n", name.c_str(), mesh.triangles.size());
     auto start = Clock::now();
     const vds::SignedDistance vds(mesh, ruleFor(mesh), name);
-    std::printf("  build %-34s %8.1f ms\n", "vds", 1e3 * seconds(start));
+    std::printf("  build %-34s %8.1f ms (%s)\n", "vds", 1e3 * seconds(start), vds.summary().c_str());
     std::vector<Contender> all = contenders(vds, mesh);
     timePoints("uniform in the box grown by 10%", uniform, all, settings);
     agreement(mesh, vds, uniform, all, settings.brute);
@@ -278,6 +294,7 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"sphere", "trefoil", "soup", "holes"}));
     app.add_option("meshes", meshes, "mesh files (default: the generated meshes)");
     CLI11_PARSE(app, argc, argv);
+    std::printf("%s, load average %s\n", cpuModel().c_str(), loadAverage().c_str());
     try {
         if (meshes.empty() && generated.empty()) generated = {"sphere", "trefoil", "soup", "holes"};
         for (const std::string& g : generated) {

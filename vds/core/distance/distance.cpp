@@ -201,7 +201,7 @@ std::size_t SignedDistance::memoryBytes() const {
 
 std::string SignedDistance::summary() const {
     return "distance on " + std::to_string(triangleCount()) + " triangles, " + std::to_string(impl_->bvh.nodeCount()) +
-           " nodes, " + (impl_->exact ? std::string("signed by ") + toString(impl_->rule) : std::string("unsigned (flat)"));
+           " nodes of " + std::to_string(impl_->bvh.width()) + " lanes, " + (impl_->exact ? std::string("signed by ") + toString(impl_->rule) : std::string("unsigned (flat)"));
 }
 
 namespace {
