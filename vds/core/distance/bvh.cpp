@@ -4,9 +4,14 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include <glm/geometric.hpp>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include <vds/detail/parallel.h>
 #include <vds/detail/triangle_distance.h>
@@ -58,6 +63,37 @@ struct Prim {
     std::uint32_t index;
 };
 
+/// A box grown by prims in the build's inner loops: two SSE steps a prim.
+/// It reads four floats from each corner (the fourth is the next member of
+/// the prim, a lane never read back).
+struct PrimBounds {
+#if defined(__SSE2__)
+    __m128 lo = _mm_set1_ps(kInf), hi = _mm_set1_ps(-kInf);
+    void grow(const glm::vec3& l, const glm::vec3& h) {
+        lo = _mm_min_ps(lo, _mm_loadu_ps(&l.x));
+        hi = _mm_max_ps(hi, _mm_loadu_ps(&h.x));
+    }
+    Aabb box() const {
+        float l[4], h[4];
+        _mm_storeu_ps(l, lo);
+        _mm_storeu_ps(h, hi);
+        Aabb b;
+        b.lo = {l[0], l[1], l[2]};
+        b.hi = {h[0], h[1], h[2]};
+        return b;
+    }
+#else
+    Aabb b;
+    void grow(const glm::vec3& l, const glm::vec3& h) {
+        b.grow(l);
+        b.grow(h);
+    }
+    Aabb box() const { return b; }
+#endif
+};
+static_assert(offsetof(Prim, centroid) == sizeof(Aabb) && sizeof(Prim) >= sizeof(Aabb) + 16,
+              "PrimBounds reads a fourth float past each corner and the centroid, inside the prim");
+
 struct BuildNode {
     Aabb box;
     std::uint32_t left = 0, right = 0; ///< children (inner)
@@ -88,11 +124,12 @@ public:
             tasks.push_back({self, first, count, depth});
             return self;
         }
-        Aabb box, centroids;
+        PrimBounds boxes, centres;
         for (std::uint32_t k = first; k < first + count; ++k) {
-            box.grow(prims_[k].box);
-            centroids.grow(prims_[k].centroid);
+            boxes.grow(prims_[k].box.lo, prims_[k].box.hi);
+            centres.grow(prims_[k].centroid, prims_[k].centroid);
         }
+        const Aabb box = boxes.box(), centroids = centres.box();
         nodes[self].box = box;
         nodes[self].begin = first;
         nodes[self].end = first + count;
@@ -120,7 +157,7 @@ private:
 
     std::uint32_t sahSplit(std::uint32_t first, std::uint32_t count, const Aabb& centroids) {
         // The three axes' bins in one pass over the prims.
-        Aabb bins[3][kBins];
+        PrimBounds bins[3][kBins];
         std::uint32_t counts[3][kBins] = {};
         float scale[3];
         for (int a = 0; a < 3; ++a) {
@@ -130,7 +167,7 @@ private:
         for (std::uint32_t k = first; k < first + count; ++k)
             for (int a = 0; a < 3; ++a) {
                 const int b = binOf(prims_[k].centroid[a], centroids.lo[a], scale[a]);
-                bins[a][b].grow(prims_[k].box);
+                bins[a][b].grow(prims_[k].box.lo, prims_[k].box.hi);
                 ++counts[a][b];
             }
         float bestCost = std::numeric_limits<float>::infinity();
@@ -141,14 +178,14 @@ private:
             Aabb right;
             std::uint32_t rightCount = 0;
             for (int b = kBins - 1; b > 0; --b) {
-                right.grow(bins[a][b]);
+                right.grow(bins[a][b].box());
                 rightCount += counts[a][b];
                 rightCost[b] = right.area() * float(rightCount);
             }
             Aabb left;
             std::uint32_t leftCount = 0;
             for (int b = 0; b < kBins - 1; ++b) {
-                left.grow(bins[a][b]);
+                left.grow(bins[a][b].box());
                 leftCount += counts[a][b];
                 const float cost = left.area() * float(leftCount) + rightCost[b + 1];
                 if (leftCount > 0 && leftCount < count && cost < bestCost) {
