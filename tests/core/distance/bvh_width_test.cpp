@@ -67,7 +67,8 @@ std::vector<glm::vec3> probePoints(const vds::TriangleMesh& mesh) {
     points.insert(points.end(), far.begin(), far.end());
     std::mt19937 rng(46);
     std::uniform_real_distribution<float> u(0.0f, 1.0f), off(-1e-3f, 1e-3f);
-    for (std::size_t k = 0; k < mesh.triangles.size(); k += 3) { // on and just off triangles, and corners
+    const std::size_t step = std::max<std::size_t>(3, mesh.triangles.size() / 200);
+    for (std::size_t k = 0; k < mesh.triangles.size(); k += step) { // on and just off triangles, and corners
         const glm::uvec3 t = mesh.triangles[k];
         const glm::vec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
         float r = u(rng), s = u(rng);

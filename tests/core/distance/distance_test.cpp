@@ -208,7 +208,7 @@ TEST(Distance, BatchesEqualOnePointACall) {
     for (const Case& c : cases()) {
         SCOPED_TRACE(c.name);
         const SignedDistance distance(c.mesh, c.rule, c.name);
-        const std::vector<glm::vec3> points = samplePoints(c.mesh, 1500);
+        const std::vector<glm::vec3> points = samplePoints(c.mesh, 500);
         for (const unsigned threads : {1u, 2u}) {
             std::vector<double> unsignedBatch(points.size()), signedBatch(points.size());
             std::vector<ClosestPoint> closestBatch(points.size());
