@@ -1,5 +1,6 @@
 // Benchmark of exact distances (<vds/distance.h>): vds's unsigned and signed
-// distance on one thread against a brute-force loop over every triangle,
+// distance on one thread (a batch, and one point a call: the search alone,
+// without the batch's Morton order) against a brute-force loop over every triangle,
 // CGAL's AABB tree, Embree's point query, libigl's AABB tree and fcpw's
 // vectorized BVH (where they were found at configure time), on two point
 // sets: uniform in and around each mesh's box, and near the surface (on a
