@@ -1,8 +1,12 @@
 // Benchmark of exact distances (<vds/distance.h>): vds's unsigned and signed
-// distance on one thread against a brute-force loop over every triangle,
-// CGAL's AABB tree, Embree's point query and libigl's AABB tree (where they
-// were found at configure time), the same random points in and around each mesh's box,
-// the rounds alternated (A B C, A B C, ...) and the best of each kept.
+// distance on one thread (a batch, and one point a call: the search alone,
+// without the batch's Morton order) against a brute-force loop over every triangle,
+// CGAL's AABB tree, Embree's point query, libigl's AABB tree and fcpw's
+// vectorized BVH (where they were found at configure time), on two point
+// sets: uniform in and around each mesh's box, and near the surface (on a
+// random triangle, area-weighted, moved along its normal by up to 1% of the
+// diagonal either way); the rounds alternated (A B C, A B C, ...) and the
+// best of each kept, timed in the thread's CPU time.
 // Agreement: vds against brute force on a sample (the same closest-point
 // kernel over every triangle: this checks the hierarchy's search), the sign
 // against the exact classifier of the same rule on every point, and the
@@ -16,6 +20,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <ctime>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -24,6 +30,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/geometric.hpp>
 
 #include <vds/distance.h>
 #include <vds/error.h>
@@ -34,7 +41,8 @@
 #include "points.h"
 #include "solids.h"
 
-#if defined(VDS_DISTANCE_CGAL) || defined(VDS_DISTANCE_EMBREE) || defined(VDS_DISTANCE_LIBIGL)
+#if defined(VDS_DISTANCE_CGAL) || defined(VDS_DISTANCE_EMBREE) || defined(VDS_DISTANCE_LIBIGL) || \
+    defined(VDS_DISTANCE_FCPW)
 #include "distance_peer.h"
 #endif
 
@@ -43,6 +51,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double seconds(Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); }
+
+/// This thread's CPU time in seconds: the one-thread queries are timed by it,
+/// which other programs on a shared machine disturb less than wall time.
+double threadSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 struct Settings {
     std::size_t points = 100000, brute = 1000;
@@ -80,6 +96,13 @@ std::vector<Contender> contenders(const vds::SignedDistance& vds, const vds::Tri
     one.threads = 1;
     all.push_back({"vds unsigned", [&vds, one](const auto& p, double* o) { vds.unsignedDistance(p, o, one); }, {}});
     all.push_back({"vds signed", [&vds, one](const auto& p, double* o) { vds.distance(p, o, one); }, {}});
+    // The search alone, in the points' own order: a batch of one a call, so
+    // without the batch's Morton order and seeds.
+    all.push_back({"vds unsigned, a point a call",
+                   [&vds, one](const auto& p, double* o) {
+                       for (std::size_t k = 0; k < p.size(); ++k) vds.unsignedDistance(vds::PointsView(&p[k], 1), o + k, one);
+                   },
+                   {}});
     auto start = Clock::now();
 #if defined(VDS_DISTANCE_CGAL)
     std::shared_ptr<vds::peers::DistancePeer> cgal = vds::peers::makeCgalDistance(mesh);
@@ -98,9 +121,30 @@ std::vector<Contender> contenders(const vds::SignedDistance& vds, const vds::Tri
     std::printf("  build %-34s %8.1f ms\n", libigl->name().c_str(), 1e3 * seconds(start));
     all.push_back({libigl->name(), [libigl](const auto& p, double* o) { libigl->distances(p, o); }, {}});
 #endif
+#if defined(VDS_DISTANCE_FCPW)
+    start = Clock::now();
+    std::shared_ptr<vds::peers::DistancePeer> fcpw = vds::peers::makeFcpwDistance(mesh);
+    std::printf("  build %-34s %8.1f ms\n", fcpw->name().c_str(), 1e3 * seconds(start));
+    all.push_back({fcpw->name(), [fcpw](const auto& p, double* o) { fcpw->distances(p, o); }, {}});
+#endif
     (void)mesh;
     (void)start;
     return all;
+}
+
+/// The first line of /proc/cpuinfo that names the CPU ("?" elsewhere).
+std::string cpuModel() {
+    std::ifstream in("/proc/cpuinfo");
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+    return "?";
+}
+
+std::string loadAverage() {
+    std::ifstream in("/proc/loadavg");
+    std::string one, five, fifteen;
+    in >> one >> five >> fifteen;
+    return one + " " + five + " " + fifteen;
 }
 
 void agreement(const vds::TriangleMesh& mesh, const vds::SignedDistance& vds, const std::vector<glm::vec3>& points,
@@ -175,34 +219,72 @@ void grids(const vds::SignedDistance& vds, const vds::TriangleMesh& mesh, std::u
                 differ, exact.size(), mean, error[error.size() * 999 / 1000], error.back());
 }
 
-void run(const std::string& name, const vds::TriangleMesh& mesh, const Settings& settings) {
-    const auto points = vds::test::randomPoints(vds::meshBounds(mesh), settings.points, 0.1f, 2008);
-    std::printf("%s: %zu triangles, %zu points\n", name.c_str(), mesh.triangles.size(), points.size());
-    auto start = Clock::now();
-    const vds::SignedDistance vds(mesh, ruleFor(mesh), name);
-    std::printf("  build %-34s %8.1f ms\n", "vds", 1e3 * seconds(start));
-    std::vector<Contender> all = contenders(vds, mesh);
+/// `n` points near the surface: on a random triangle (by area), at uniform
+/// barycentric coordinates, moved along its normal by up to `reach` either way.
+std::vector<glm::vec3> nearSurfacePoints(const vds::TriangleMesh& mesh, std::size_t n, double reach, std::uint32_t seed) {
+    std::vector<double> area(mesh.triangles.size());
+    for (std::size_t t = 0; t < area.size(); ++t) {
+        const glm::uvec3 v = mesh.triangles[t];
+        const glm::dvec3 a(mesh.positions[v.x]), b(mesh.positions[v.y]), c(mesh.positions[v.z]);
+        area[t] = glm::length(glm::cross(b - a, c - a)) + 1e-30;
+    }
+    std::mt19937 rng(seed);
+    std::discrete_distribution<std::size_t> pick(area.begin(), area.end());
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<glm::vec3> points(n);
+    for (glm::vec3& p : points) {
+        const glm::uvec3 v = mesh.triangles[pick(rng)];
+        const glm::dvec3 a(mesh.positions[v.x]), b(mesh.positions[v.y]), c(mesh.positions[v.z]);
+        double r = u(rng), s = u(rng);
+        if (r + s > 1.0) r = 1.0 - r, s = 1.0 - s;
+        const glm::dvec3 normal = glm::cross(b - a, c - a);
+        const double length = glm::length(normal);
+        const glm::dvec3 offset = length > 0.0 ? normal * (reach * (2.0 * u(rng) - 1.0) / length) : glm::dvec3(0.0);
+        p = glm::vec3(a + (b - a) * r + (c - a) * s + offset);
+    }
+    return points;
+}
+
+void timePoints(const char* label, const std::vector<glm::vec3>& points, std::vector<Contender>& all,
+                const Settings& settings) {
+    for (Contender& c : all) c.best = std::numeric_limits<double>::infinity();
     for (int round = 0; round < settings.rounds; ++round)
         for (Contender& c : all) {
             c.out.assign(points.size(), 0.0);
-            start = Clock::now();
+            const double start = threadSeconds();
             c.run(points, c.out.data());
-            c.best = std::min(c.best, seconds(start));
+            c.best = std::min(c.best, threadSeconds() - start);
         }
+    std::printf("  %zu points %s:\n", points.size(), label);
     for (const Contender& c : all)
         std::printf("  %-34s %8.0f ns/point  %5.2fx vds unsigned's time\n", c.name.c_str(),
                     1e9 * c.best / double(points.size()), c.best / all[0].best);
-    agreement(mesh, vds, points, all, settings.brute);
+}
+
+void run(const std::string& name, const vds::TriangleMesh& mesh, const Settings& settings) {
+    const vds::Box box = vds::meshBounds(mesh);
+    const double diagonal = glm::length(glm::dvec3(box.hi) - glm::dvec3(box.lo));
+    const auto uniform = vds::test::randomPoints(box, settings.points, 0.1f, 2008);
+    const auto near = nearSurfacePoints(mesh, settings.points, 0.01 * diagonal, 2009);
+    std::printf("%s: %zu triangles\n", name.c_str(), mesh.triangles.size());
+    auto start = Clock::now();
+    const vds::SignedDistance vds(mesh, ruleFor(mesh), name);
+    std::printf("  build %-34s %8.1f ms (%s)\n", "vds", 1e3 * seconds(start), vds.summary().c_str());
+    std::vector<Contender> all = contenders(vds, mesh);
+    timePoints("uniform in the box grown by 10%", uniform, all, settings);
+    agreement(mesh, vds, uniform, all, settings.brute);
+    timePoints("within 1% of the diagonal of the surface", near, all, settings);
+    agreement(mesh, vds, near, all, settings.brute);
     if (settings.sdf > 0 && mesh.triangles.size() >= 50000) grids(vds, mesh, settings.sdf, settings.band, settings.fullGrid);
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app("vds_distance_bench: exact distances against brute force, CGAL, Embree and libigl");
+    CLI::App app("vds_distance_bench: exact distances against brute force, CGAL, Embree, libigl and fcpw");
     Settings settings;
     std::vector<std::string> meshes;
-    app.add_option("--points", settings.points, "random points in and around each mesh's box");
+    app.add_option("--points", settings.points, "random points of each set (uniform, near the surface)");
     app.add_option("--brute", settings.brute, "of them, checked against brute force");
     app.add_option("--rounds", settings.rounds, "alternated rounds, the best kept");
     app.add_option("--sdf", settings.sdf, "cells of the SDF grids on the longest side (0: none), meshes of 50k triangles up");
@@ -213,6 +295,7 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"sphere", "trefoil", "soup", "holes"}));
     app.add_option("meshes", meshes, "mesh files (default: the generated meshes)");
     CLI11_PARSE(app, argc, argv);
+    std::printf("%s, load average %s\n", cpuModel().c_str(), loadAverage().c_str());
     try {
         if (meshes.empty() && generated.empty()) generated = {"sphere", "trefoil", "soup", "holes"};
         for (const std::string& g : generated) {

@@ -1,6 +1,6 @@
 // vds_distance_bench: the peers' nearest-surface queries behind one shape,
-// each compiled in its own library (CGAL's -frounding-math, Embree's and
-// libigl's headers stay out of the vds code).
+// each compiled in its own library (CGAL's -frounding-math, Embree's,
+// libigl's and fcpw's headers and fcpw's -march=native stay out of the vds code).
 #pragma once
 
 #include <memory>
@@ -32,5 +32,8 @@ std::unique_ptr<DistancePeer> makeEmbreeDistance(MeshView mesh);
 /// libigl's igl::AABB over double vertices, squared_distance per point (the
 /// search under igl::signed_distance).
 std::unique_ptr<DistancePeer> makeLibiglDistance(MeshView mesh);
+/// fcpw's vectorized BVH (enoki packets, -march=native), findClosestPoint
+/// per point in float.
+std::unique_ptr<DistancePeer> makeFcpwDistance(MeshView mesh);
 
 } // namespace vds::peers

@@ -201,6 +201,33 @@ TEST(Distance, TriangleBoundsHoldNearCornersAndEdgesOfNeedlesFarFromTheOrigin) {
     for (std::size_t k = 0; k < points.size(); ++k) ASSERT_NEAR(d[k], bruteForce(mesh, points[k]), 1e-9) << "point " << k;
 }
 
+/// A batch is searched in Morton order, each point from its predecessor's
+/// nearest triangle: the answers are still those of one point a call, bit
+/// for bit, on any number of threads (closest points: the same triangle too).
+TEST(Distance, BatchesEqualOnePointACall) {
+    for (const Case& c : cases()) {
+        SCOPED_TRACE(c.name);
+        const SignedDistance distance(c.mesh, c.rule, c.name);
+        const std::vector<glm::vec3> points = samplePoints(c.mesh, 500);
+        for (const unsigned threads : {1u, 2u}) {
+            std::vector<double> unsignedBatch(points.size()), signedBatch(points.size());
+            std::vector<ClosestPoint> closestBatch(points.size());
+            distance.unsignedDistance(points, unsignedBatch.data(), DistanceOptions{threads});
+            distance.distance(points, signedBatch.data(), DistanceOptions{threads});
+            distance.closestPoints(points, closestBatch.data(), DistanceOptions{threads});
+            for (std::size_t k = 0; k < points.size(); ++k) {
+                double one = 0.0;
+                distance.unsignedDistance(PointsView(&points[k], 1), &one, DistanceOptions{1});
+                ASSERT_EQ(unsignedBatch[k], one) << "point " << k;
+                ASSERT_EQ(signedBatch[k], distance.distance(points[k])) << "point " << k;
+                const ClosestPoint c1 = distance.closest(points[k]);
+                ASSERT_EQ(closestBatch[k].triangle, c1.triangle) << "point " << k;
+                ASSERT_EQ(closestBatch[k].distance, c1.distance) << "point " << k;
+            }
+        }
+    }
+}
+
 TEST(Distance, ClosestPointsLieOnTheirTriangleAtTheDistance) {
     const TriangleMesh mesh = solids::sphereWithHoles();
     const SignedDistance distance(mesh, Rule::GeneralizedWinding);

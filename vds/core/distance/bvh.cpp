@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include <glm/geometric.hpp>
@@ -12,6 +13,7 @@
 #include <emmintrin.h>
 #endif
 
+#include <vds/detail/parallel.h>
 #include <vds/detail/triangle_distance.h>
 
 namespace vds::detail {
@@ -24,15 +26,11 @@ constexpr int kBins = 16;
 /// past it, median splits, so the depth (and the search's stack) stays
 /// bounded by kSahDepth + log2(triangles) whatever the input.
 constexpr int kSahDepth = 48;
-/// The search's stack: three entries a level at most over
-/// kSahDepth + 32 levels.
-constexpr int kStackEntries = 3 * (kSahDepth + 32) + 4;
-/// A box is pruned when its float squared distance exceeds the best squared
-/// distance by this relative margin: above the few float roundings of a box
-/// distance (4 * 2^-24) and of the bound itself (2^-24).
-constexpr double kPruneMargin = 1.0 + 1.0 / (1 << 20);
+static_assert(kSahDepth + 32 == 80, "bvh_search.h sizes its stack for this depth");
+/// The leavesNear walk's stack: W - 1 entries a level at most.
+constexpr int kStackEntries = (kMaxBvhWidth - 1) * (kSahDepth + 32) + 4;
 /// A float plane distance n . p - w (a triangle's face, edge or edge
-/// direction plane, TriangleBlock) is within kPlaneError (|p|_1 + 2 max |v|_1) of
+/// direction plane, PlaneLanes) is within kPlaneError (|p|_1 + 2 max |v|_1) of
 /// the exact signed distance to the plane: the unit normal's rounding to
 /// float (sqrt(3) 2^-24 relative), the offset's (2^-24) and four float
 /// roundings of the dot product (4 2^-24), with a factor of 2 to spare.
@@ -65,6 +63,37 @@ struct Prim {
     std::uint32_t index;
 };
 
+/// A box grown by prims in the build's inner loops: two SSE steps a prim.
+/// It reads four floats from each corner (the fourth is the next member of
+/// the prim, a lane never read back).
+struct PrimBounds {
+#if defined(__SSE2__)
+    __m128 lo = _mm_set1_ps(kInf), hi = _mm_set1_ps(-kInf);
+    void grow(const glm::vec3& l, const glm::vec3& h) {
+        lo = _mm_min_ps(lo, _mm_loadu_ps(&l.x));
+        hi = _mm_max_ps(hi, _mm_loadu_ps(&h.x));
+    }
+    Aabb box() const {
+        float l[4], h[4];
+        _mm_storeu_ps(l, lo);
+        _mm_storeu_ps(h, hi);
+        Aabb b;
+        b.lo = {l[0], l[1], l[2]};
+        b.hi = {h[0], h[1], h[2]};
+        return b;
+    }
+#else
+    Aabb b;
+    void grow(const glm::vec3& l, const glm::vec3& h) {
+        b.grow(l);
+        b.grow(h);
+    }
+    Aabb box() const { return b; }
+#endif
+};
+static_assert(offsetof(Prim, centroid) == sizeof(Aabb) && sizeof(Prim) >= sizeof(Aabb) + 16,
+              "PrimBounds reads a fourth float past each corner and the centroid, inside the prim");
+
 struct BuildNode {
     Aabb box;
     std::uint32_t left = 0, right = 0; ///< children (inner)
@@ -77,20 +106,34 @@ struct BuildNode {
 /// left side first, and their count (0: no split worth a node found).
 class BinaryBuilder {
 public:
-    explicit BinaryBuilder(std::vector<Prim>& prims) : prims_(prims) {}
+    /// Leaves of at most `leafTriangles` (<= kMaxBvhWidth); subtrees of at
+    /// most `taskPrims` prims left to `tasks` (0: none), to be built apart.
+    BinaryBuilder(std::vector<Prim>& prims, std::uint32_t leafTriangles, std::uint32_t taskPrims = 0)
+        : prims_(prims), leafTriangles_(leafTriangles), taskPrims_(taskPrims) {}
+
+    /// A subtree left for later: its root's node here, prims and depth.
+    struct Task {
+        std::uint32_t node, first, count;
+        int depth;
+    };
 
     std::uint32_t build(std::uint32_t first, std::uint32_t count, int depth) {
         const std::uint32_t self = std::uint32_t(nodes.size());
         nodes.emplace_back();
-        Aabb box, centroids;
-        for (std::uint32_t k = first; k < first + count; ++k) {
-            box.grow(prims_[k].box);
-            centroids.grow(prims_[k].centroid);
+        if (count <= taskPrims_ && count > leafTriangles_) {
+            tasks.push_back({self, first, count, depth});
+            return self;
         }
+        PrimBounds boxes, centres;
+        for (std::uint32_t k = first; k < first + count; ++k) {
+            boxes.grow(prims_[k].box.lo, prims_[k].box.hi);
+            centres.grow(prims_[k].centroid, prims_[k].centroid);
+        }
+        const Aabb box = boxes.box(), centroids = centres.box();
         nodes[self].box = box;
         nodes[self].begin = first;
         nodes[self].end = first + count;
-        if (count <= kLeafTriangles) {
+        if (count <= leafTriangles_) {
             nodes[self].first = first;
             nodes[self].count = count;
             return self;
@@ -105,6 +148,7 @@ public:
     }
 
     std::vector<BuildNode> nodes;
+    std::vector<Task> tasks;
 
 private:
     static int binOf(float c, float lo, float scale) {
@@ -112,32 +156,37 @@ private:
     }
 
     std::uint32_t sahSplit(std::uint32_t first, std::uint32_t count, const Aabb& centroids) {
+        // The three axes' bins in one pass over the prims.
+        PrimBounds bins[3][kBins];
+        std::uint32_t counts[3][kBins] = {};
+        float scale[3];
+        for (int a = 0; a < 3; ++a) {
+            const float extent = centroids.hi[a] - centroids.lo[a];
+            scale[a] = extent > 0.0f ? float(kBins) / extent : 0.0f;
+        }
+        for (std::uint32_t k = first; k < first + count; ++k)
+            for (int a = 0; a < 3; ++a) {
+                const int b = binOf(prims_[k].centroid[a], centroids.lo[a], scale[a]);
+                bins[a][b].grow(prims_[k].box.lo, prims_[k].box.hi);
+                ++counts[a][b];
+            }
         float bestCost = std::numeric_limits<float>::infinity();
         int bestAxis = -1, bestBin = 0;
         for (int a = 0; a < 3; ++a) {
-            const float extent = centroids.hi[a] - centroids.lo[a];
-            if (!(extent > 0.0f)) continue;
-            const float scale = float(kBins) / extent;
-            Aabb bins[kBins];
-            std::uint32_t counts[kBins] = {};
-            for (std::uint32_t k = first; k < first + count; ++k) {
-                const int b = binOf(prims_[k].centroid[a], centroids.lo[a], scale);
-                bins[b].grow(prims_[k].box);
-                ++counts[b];
-            }
+            if (!(scale[a] > 0.0f)) continue;
             float rightCost[kBins];
             Aabb right;
             std::uint32_t rightCount = 0;
             for (int b = kBins - 1; b > 0; --b) {
-                right.grow(bins[b]);
-                rightCount += counts[b];
+                right.grow(bins[a][b].box());
+                rightCount += counts[a][b];
                 rightCost[b] = right.area() * float(rightCount);
             }
             Aabb left;
             std::uint32_t leftCount = 0;
             for (int b = 0; b < kBins - 1; ++b) {
-                left.grow(bins[b]);
-                leftCount += counts[b];
+                left.grow(bins[a][b].box());
+                leftCount += counts[a][b];
                 const float cost = left.area() * float(leftCount) + rightCost[b + 1];
                 if (leftCount > 0 && leftCount < count && cost < bestCost) {
                     bestCost = cost;
@@ -147,10 +196,9 @@ private:
             }
         }
         if (bestAxis < 0) return 0;
-        const float lo = centroids.lo[bestAxis];
-        const float scale = float(kBins) / (centroids.hi[bestAxis] - lo);
+        const float lo = centroids.lo[bestAxis], by = scale[bestAxis];
         const auto mid = std::partition(prims_.begin() + first, prims_.begin() + first + count, [&](const Prim& p) {
-            return binOf(p.centroid[bestAxis], lo, scale) <= bestBin;
+            return binOf(p.centroid[bestAxis], lo, by) <= bestBin;
         });
         return std::uint32_t(mid - (prims_.begin() + first));
     }
@@ -167,22 +215,93 @@ private:
     }
 
     std::vector<Prim>& prims_;
+    std::uint32_t leafTriangles_;
+    std::uint32_t taskPrims_;
 };
+
+/// Prims a subtree built on a thread of its own holds at most: enough tasks
+/// to share among `threads`, each worth a thread's start.
+std::uint32_t taskPrims(std::size_t prims, unsigned threads) {
+    if (threads == 0) threads = ThreadPool::hardwareThreads();
+    if (threads <= 1) return 0;
+    return std::uint32_t(std::max<std::size_t>(4096, prims / (8 * std::size_t(threads))));
+}
+
+/// The binary tree over `prims`, depth first from the root (node 0): the
+/// top levels on this thread, the subtrees below them on `threads`, each
+/// into nodes of its own, appended after (their prims are disjoint ranges).
+std::vector<BuildNode> buildBinary(std::vector<Prim>& prims, std::uint32_t leafTriangles, unsigned threads) {
+    BinaryBuilder top(prims, leafTriangles, taskPrims(prims.size(), threads));
+    top.build(0, std::uint32_t(prims.size()), 0);
+    std::vector<std::vector<BuildNode>> subtrees(top.tasks.size());
+    parallelFor(threads, top.tasks.size(), 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t t = begin; t < end; ++t) {
+            BinaryBuilder builder(prims, leafTriangles);
+            builder.build(top.tasks[t].first, top.tasks[t].count, top.tasks[t].depth);
+            subtrees[t] = std::move(builder.nodes);
+        }
+    });
+    std::vector<BuildNode> nodes = std::move(top.nodes);
+    for (std::size_t t = 0; t < subtrees.size(); ++t) {
+        // Subtree node i > 0 goes to offset + i - 1; its root to the task's node.
+        const std::uint32_t offset = std::uint32_t(nodes.size());
+        const auto place = [&](std::uint32_t i) { return i == 0 ? top.tasks[t].node : offset + i - 1; };
+        for (std::size_t i = 0; i < subtrees[t].size(); ++i) {
+            BuildNode b = subtrees[t][i];
+            if (!b.leaf()) b.left = place(b.left), b.right = place(b.right);
+            if (i == 0) nodes[top.tasks[t].node] = b;
+            else nodes.push_back(b);
+        }
+    }
+    return nodes;
+}
 
 std::int32_t leafReference(std::uint32_t block, std::uint32_t count) {
     return ~std::int32_t(block << kLeafBits | (count - 1));
 }
 
-/// The four-wide tree of a binary one, depth first.
+/// The W-wide tree of a binary one, depth first, into lines of floats.
 class Collapser {
 public:
-    Collapser(const std::vector<BuildNode>& binary, std::vector<BvhNode>& nodes, const std::vector<std::uint32_t>& slotOf)
-        : binary_(binary), nodes_(nodes), slotOf_(slotOf) {}
+    Collapser(const std::vector<BuildNode>& binary, std::vector<FloatLine>& lines, int width,
+              const std::vector<std::uint32_t>& slotOf)
+        : binary_(binary), lines_(lines), width_(width), slotOf_(slotOf) {}
 
     std::uint32_t emit(std::uint32_t b) {
-        const std::uint32_t self = std::uint32_t(nodes_.size());
-        nodes_.emplace_back();
-        std::uint32_t kids[4];
+        const std::uint32_t self = count++;
+        lines_.resize(std::size_t(count) * linesPerNode());
+        std::uint32_t kids[kMaxBvhWidth];
+        const int n = gather(b, kids);
+        for (int k = 0; k < width_; ++k) {
+            const bool used = k < n;
+            const Aabb box = used ? binary_[kids[k]].box : Aabb{};
+            float* node = at(self);
+            for (int a = 0; a < 3; ++a) {
+                node[(NodeLanes::lo + a) * width_ + k] = box.lo[a];
+                node[(NodeLanes::hi + a) * width_ + k] = box.hi[a];
+                node[(NodeLanes::axis + a) * width_ + k] = 0.0f;
+            }
+            node[NodeLanes::slabLo * width_ + k] = node[NodeLanes::slabHi * width_ + k] = 0.0f;
+            if (used) slabs.push_back({self, std::uint32_t(k), binary_[kids[k]].begin, binary_[kids[k]].end});
+            std::int32_t reference = kEmptyChild;
+            if (used && binary_[kids[k]].leaf())
+                reference = leafReference(slotOf_[binary_[kids[k]].first] / std::uint32_t(width_), binary_[kids[k]].count);
+            else if (used) reference = std::int32_t(emit(kids[k]));
+            setChild(at(self), width_, k, reference);
+        }
+        return self;
+    }
+
+    std::vector<SlabJob> slabs;
+    std::uint32_t count = 0; ///< nodes emitted
+
+private:
+    std::size_t linesPerNode() const { return std::size_t(NodeLanes::size * width_) / 16; }
+    float* at(std::uint32_t node) { return lines_[node * linesPerNode()].f; }
+
+    /// The children of binary node b: its two, then the inner child with
+    /// the largest surface opened until there are W.
+    int gather(std::uint32_t b, std::uint32_t* kids) const {
         int n = 0;
         if (binary_[b].leaf()) {
             kids[n++] = b;
@@ -190,7 +309,7 @@ public:
             kids[n++] = binary_[b].left;
             kids[n++] = binary_[b].right;
         }
-        while (n < 4) { // open the inner child with the largest surface
+        while (n < width_) {
             int widest = -1;
             for (int k = 0; k < n; ++k)
                 if (!binary_[kids[k]].leaf() &&
@@ -201,212 +320,130 @@ public:
             kids[widest] = open.left;
             kids[n++] = open.right;
         }
-        for (int k = 0; k < 4; ++k) {
-            const bool used = k < n;
-            const Aabb box = used ? binary_[kids[k]].box : Aabb{};
-            for (int a = 0; a < 3; ++a) {
-                nodes_[self].lo[a][k] = box.lo[a];
-                nodes_[self].hi[a][k] = box.hi[a];
-            }
-            for (int a = 0; a < 3; ++a) nodes_[self].axis[a][k] = 0.0f;
-            nodes_[self].slabLo[k] = nodes_[self].slabHi[k] = 0.0f;
-            if (used) slabs.push_back({self, std::uint32_t(k), binary_[kids[k]].begin, binary_[kids[k]].end});
-            std::int32_t reference = kEmptyChild;
-            if (used && binary_[kids[k]].leaf())
-                reference = leafReference(slotOf_[binary_[kids[k]].first] / 4, binary_[kids[k]].count);
-            else if (used) reference = std::int32_t(emit(kids[k]));
-            nodes_[self].child[k] = reference;
-        }
-        return self;
+        return n;
     }
 
-    std::vector<SlabJob> slabs;
-
-private:
     const std::vector<BuildNode>& binary_;
-    std::vector<BvhNode>& nodes_;
+    std::vector<FloatLine>& lines_;
+    int width_;
     const std::vector<std::uint32_t>& slotOf_; ///< of each triangle in the build's order
 };
 
-/// Lower bounds of the squared distances from p to the four children of
-/// `node`: the larger of the box's and the slab's, the slab's less `slack`
-/// (its float rounding); infinity for an empty slot.
-inline void boxDistances(const BvhNode& node, const glm::vec3& p, float slack, float d2[4]) {
-#if defined(__SSE2__)
-    const __m128 zero = _mm_setzero_ps();
-    __m128 sum = zero, along = zero;
-    for (int a = 0; a < 3; ++a) {
-        const __m128 q = _mm_set1_ps(p[a]);
-        const __m128 below = _mm_sub_ps(_mm_load_ps(node.lo[a]), q);
-        const __m128 above = _mm_sub_ps(q, _mm_load_ps(node.hi[a]));
-        const __m128 d = _mm_max_ps(_mm_max_ps(below, above), zero);
-        sum = _mm_add_ps(sum, _mm_mul_ps(d, d));
-        along = _mm_add_ps(along, _mm_mul_ps(_mm_load_ps(node.axis[a]), q));
-    }
-    const __m128 off = _mm_max_ps(_mm_sub_ps(_mm_load_ps(node.slabLo), along),
-                                  _mm_sub_ps(along, _mm_load_ps(node.slabHi)));
-    const __m128 s = _mm_max_ps(_mm_sub_ps(off, _mm_set1_ps(slack)), zero);
-    _mm_storeu_ps(d2, _mm_max_ps(sum, _mm_mul_ps(s, s)));
-#else
-    for (int k = 0; k < 4; ++k) {
-        float sum = 0.0f, along = 0.0f;
-        for (int a = 0; a < 3; ++a) {
-            const float d = std::max(std::max(node.lo[a][k] - p[a], p[a] - node.hi[a][k]), 0.0f);
-            sum += d * d;
-            along += node.axis[a][k] * p[a];
-        }
-        const float s = std::max(std::max(node.slabLo[k] - along, along - node.slabHi[k]) - slack, 0.0f);
-        d2[k] = std::max(sum, s * s);
-    }
-#endif
-}
-
-float pruneBound(double distance2) { return float(distance2 * kPruneMargin); }
-
-void setPlane(Plane4& plane, int lane, const glm::dvec3& unit, const glm::dvec3& on) {
+/// Lane `lane` of the plane at `plane` (x, y, z, w, each `width` lanes):
+/// the unit normal rounded to float, and its offset through `on` in double.
+void setPlane(float* plane, int width, int lane, const glm::dvec3& unit, const glm::dvec3& on) {
     const glm::vec3 rounded(unit);
-    plane.x[lane] = rounded.x;
-    plane.y[lane] = rounded.y;
-    plane.z[lane] = rounded.z;
-    plane.w[lane] = float(glm::dot(glm::dvec3(rounded), on));
+    plane[lane] = rounded.x;
+    plane[width + lane] = rounded.y;
+    plane[2 * width + lane] = rounded.z;
+    plane[3 * width + lane] = float(glm::dot(glm::dvec3(rounded), on));
 }
 
-/// Lane `lane` of `block` and `extents`: the planes of triangle abc and its
-/// edges' extents (TriangleBlock), zero where it is too thin.
-void setLane(TriangleBlock& block, ExtentBlock& extents, int lane, const glm::vec3& a, const glm::vec3& b,
-             const glm::vec3& c) {
-    const glm::dvec3 v[3] = {glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)};
+/// Lane `lane` of a block's planes and extents (PlaneLanes, ExtentLanes):
+/// triangle abc's planes and its edges' extents, zero where it is too thin,
+/// and its corners.
+void setLane(float* planes, float* extents, int width, int lane, const glm::vec3* corners) {
+    for (int c = 0; c < 3; ++c)
+        for (int a = 0; a < 3; ++a) extents[(ExtentLanes::corner + 3 * c + a) * width + lane] = corners[c][a];
+    planes[(PlaneLanes::face + 3) * width + lane] = 0.0f;
+    const glm::dvec3 v[3] = {glm::dvec3(corners[0]), glm::dvec3(corners[1]), glm::dvec3(corners[2])};
     const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
     const double length = glm::length(n);
     if (!(length >= kMinSine * glm::length(v[1] - v[0]) * glm::length(v[2] - v[0])) || !(length > 0.0)) return;
     const glm::dvec3 unit = n / length;
-    setPlane(block.face, lane, unit, v[0]);
+    setPlane(planes + PlaneLanes::face * width, width, lane, unit, v[0]);
     for (int e = 0; e < 3; ++e) { // outward: (b - a) x n points away from c
         const glm::dvec3 edge = v[(e + 1) % 3] - v[e];
         const glm::dvec3 outward = glm::cross(edge, unit);
-        setPlane(block.edge[e], lane, outward / glm::length(outward), v[e]);
-        setPlane(extents.along[e], lane, edge / glm::length(edge), v[e]);
+        setPlane(planes + (PlaneLanes::edge + 4 * e) * width, width, lane, outward / glm::length(outward), v[e]);
+        float* along = extents + (ExtentLanes::along + 4 * e) * width;
+        setPlane(along, width, lane, edge / glm::length(edge), v[e]);
         // The far corner's position along the rounded direction, rounded up:
         // a longer edge only lowers the bound.
-        const glm::dvec3 u(extents.along[e].x[lane], extents.along[e].y[lane], extents.along[e].z[lane]);
-        extents.length[e][lane] = std::nextafter(float(glm::dot(u, edge)), kInf);
+        const glm::dvec3 u(along[lane], along[width + lane], along[2 * width + lane]);
+        extents[(ExtentLanes::length + e) * width + lane] = std::nextafter(float(glm::dot(u, edge)), kInf);
     }
 }
 
-/// An empty block: every lane's bound infinity until set.
-TriangleBlock emptyBlock() {
-    TriangleBlock block{};
-    for (float& w : block.face.w) w = -kInf;
-    return block;
-}
-
-#if defined(__SSE2__)
-inline __m128 planeDistance(const Plane4& q, __m128 x, __m128 y, __m128 z) {
-    return _mm_sub_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(q.x), x), _mm_mul_ps(_mm_load_ps(q.y), y)),
-                                 _mm_mul_ps(_mm_load_ps(q.z), z)),
-                      _mm_load_ps(q.w));
-}
-#endif
-
-/// Lower bounds of the squared distances from p to the four triangles of
-/// `block` into out[0..3] (TriangleBlock): each plane distance is within
-/// `slack` of the exact one, so each term is taken less `slack`, and an
-/// edge counts wherever its e may be > 0 (e > -slack), the triangle is
-/// certainly outside only where some e > slack.
-inline void lowerBounds(const TriangleBlock& block, const ExtentBlock& extents, const glm::vec3& p, float slack,
-                        float bound, float* out) {
-#if defined(__SSE2__)
-    const __m128 x = _mm_set1_ps(p.x), y = _mm_set1_ps(p.y), z = _mm_set1_ps(p.z), s = _mm_set1_ps(slack);
-    const __m128 zero = _mm_setzero_ps(), sign = _mm_set1_ps(-0.0f), inf = _mm_set1_ps(kInf);
-    const __m128 h = _mm_max_ps(_mm_sub_ps(_mm_andnot_ps(sign, planeDistance(block.face, x, y, z)), s), zero);
-    __m128 e[3], farthest = zero;
-    for (int i = 0; i < 3; ++i) {
-        e[i] = planeDistance(block.edge[i], x, y, z);
-        farthest = _mm_max_ps(farthest, _mm_sub_ps(e[i], s));
-    }
-    // The planes alone first (h^2 + the largest e^2): where they leave no
-    // lane within `bound`, the block ends here.
-    const __m128 h2 = _mm_mul_ps(h, h);
-    const __m128 planes = _mm_add_ps(h2, _mm_mul_ps(farthest, farthest));
-    if (_mm_movemask_ps(_mm_cmple_ps(planes, _mm_set1_ps(bound))) == 0) {
-        _mm_storeu_ps(out, planes);
-        return;
-    }
-    __m128 inPlane = inf, outside = zero;
-    for (int i = 0; i < 3; ++i) {
-        const __m128 t = planeDistance(extents.along[i], x, y, z);
-        const __m128 g = _mm_max_ps(_mm_xor_ps(t, sign), _mm_sub_ps(t, _mm_load_ps(extents.length[i])));
-        const __m128 es = _mm_max_ps(_mm_sub_ps(e[i], s), zero), gs = _mm_max_ps(_mm_sub_ps(g, s), zero);
-        const __m128 term = _mm_add_ps(_mm_mul_ps(es, es), _mm_mul_ps(gs, gs));
-        const __m128 counts = _mm_cmpgt_ps(e[i], _mm_xor_ps(s, sign));
-        inPlane = _mm_min_ps(inPlane, _mm_or_ps(_mm_and_ps(counts, term), _mm_andnot_ps(counts, inf)));
-        outside = _mm_or_ps(outside, _mm_cmpgt_ps(e[i], s));
-    }
-    _mm_storeu_ps(out, _mm_max_ps(planes, _mm_add_ps(h2, _mm_and_ps(outside, inPlane))));
-#else
-    (void)bound;
-    for (int k = 0; k < 4; ++k) {
-        const auto distance = [&](const Plane4& q) { return q.x[k] * p.x + q.y[k] * p.y + q.z[k] * p.z - q.w[k]; };
-        const float h = std::max(std::abs(distance(block.face)) - slack, 0.0f);
-        float inPlane = kInf;
-        bool outside = false;
-        for (int i = 0; i < 3; ++i) {
-            const float e = distance(block.edge[i]), t = distance(extents.along[i]);
-            const float es = std::max(e - slack, 0.0f);
-            const float gs = std::max(std::max(-t, t - extents.length[i][k]) - slack, 0.0f);
-            if (e > -slack) inPlane = std::min(inPlane, es * es + gs * gs);
-            outside = outside || e > slack;
-        }
-        out[k] = h * h + (outside ? inPlane : 0.0f);
-    }
-#endif
+/// Each block's planes all zero but the face's offsets, -infinity: every
+/// lane's bound infinity (an empty slot) until set.
+void clearBlocks(std::vector<FloatLine>& planes, int width) {
+    const std::size_t floats = std::size_t(PlaneLanes::size * width);
+    float* all = planes.data()->f;
+    std::fill(all, all + planes.size() * 16, 0.0f);
+    for (std::size_t block = 0; block * floats < planes.size() * 16; ++block)
+        std::fill_n(all + block * floats + (PlaneLanes::face + 3) * width, width, -kInf);
 }
 
 } // namespace
 
-Bvh::Bvh(MeshView mesh) {
-    std::vector<Prim> prims;
-    prims.reserve(mesh.triangleCount);
-    for (std::size_t t = 0; t < mesh.triangleCount; ++t) {
-        const glm::uvec3 v = mesh.triangles[t];
-        Prim prim;
-        for (int c = 0; c < 3; ++c) prim.box.grow(mesh.positions[v[c]]);
-        prim.centroid = (prim.box.lo + prim.box.hi) * 0.5f;
-        prim.index = std::uint32_t(t);
-        prims.push_back(prim);
-    }
-    BinaryBuilder builder(prims);
-    builder.build(0, std::uint32_t(prims.size()), 0);
-    // Each leaf's triangles from a multiple of 4: its lanes fill whole blocks.
+bool bvhWidthAvailable(int width) {
+    if (width == 4) return true;
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+    if (width == 8) return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    if (width == 16) return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl");
+#endif
+    return false;
+}
+
+int defaultBvhWidth() {
+    static const int width = bvhWidthAvailable(8) ? 8 : 4;
+    return width;
+}
+
+Bvh::Bvh(MeshView mesh, int width, unsigned threads) : width_(width == 0 ? defaultBvhWidth() : width) {
+    assert(bvhWidthAvailable(width_));
+    search_ = width_ == 16 ? bvhSearch16() : width_ == 8 ? bvhSearch8() : bvhSearch4();
+    std::vector<Prim> prims(mesh.triangleCount);
+    parallelFor(threads, prims.size(), 4096, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t t = begin; t < end; ++t) {
+            const glm::uvec3 v = mesh.triangles[t];
+            Prim& prim = prims[t];
+            for (int c = 0; c < 3; ++c) prim.box.grow(mesh.positions[v[c]]);
+            prim.centroid = (prim.box.lo + prim.box.hi) * 0.5f;
+            prim.index = std::uint32_t(t);
+        }
+    });
+    // Leaves of up to W triangles (8 at W = 4: two blocks), one SIMD step each.
+    const std::vector<BuildNode> binary = buildBinary(prims, std::uint32_t(std::max(width_, 8)), threads);
+    // Each leaf's triangles from a multiple of W: its lanes fill whole blocks.
+    const std::uint32_t w = std::uint32_t(width_);
     std::vector<std::uint32_t> slotOf(prims.size());
     std::uint32_t slots = 0;
-    for (const BuildNode& b : builder.nodes) // leaves in the build's order: depth first, left first
+    for (const BuildNode& b : binary) // leaves in the build's order
         if (b.leaf()) {
-            slots = (slots + 3u) & ~3u;
+            slots = (slots + w - 1) / w * w;
             for (std::uint32_t k = 0; k < b.count; ++k) slotOf[b.first + k] = slots++;
         }
-    slots = (slots + 3u) & ~3u;
-    nodes_.reserve(builder.nodes.size() / 2 + 1);
-    Collapser collapser(builder.nodes, nodes_, slotOf);
+    slots = (slots + w - 1) / w * w;
+    Collapser collapser(binary, nodes_, width_, slotOf);
     collapser.emit(0);
+    nodeCount_ = collapser.count;
     triangleCount_ = prims.size();
     indices_.assign(slots, kNoTriangle);
-    blocks_.assign(slots / 4, emptyBlock());
-    extents_.assign(slots / 4, ExtentBlock{});
-    for (std::size_t k = 0; k < prims.size(); ++k) {
-        const glm::uvec3 v = mesh.triangles[prims[k].index];
-        const glm::vec3 corners[3] = {mesh.positions[v.x], mesh.positions[v.y], mesh.positions[v.z]};
-        const std::uint32_t slot = slotOf[k];
-        const int lane = int(slot % 4);
-        indices_[slot] = prims[k].index;
-        blocks_[slot / 4].face.w[lane] = 0.0f;
-        setLane(blocks_[slot / 4], extents_[slot / 4], lane, corners[0], corners[1], corners[2]);
-        for (int c = 0; c < 3; ++c) {
-            for (int a = 0; a < 3; ++a) extents_[slot / 4].corner[c][a][lane] = corners[c][a];
-            verticesL1_ = std::max(verticesL1_, std::abs(corners[c].x) + std::abs(corners[c].y) + std::abs(corners[c].z));
+    planes_.assign(std::size_t(slots) * PlaneLanes::size / 16, FloatLine{});
+    extents_.assign(std::size_t(slots) * ExtentLanes::size / 16, FloatLine{});
+    clearBlocks(planes_, width_);
+    std::vector<float> largest(prims.size());
+    parallelFor(threads, prims.size(), 4096, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const glm::uvec3 v = mesh.triangles[prims[k].index];
+            const glm::vec3 corners[3] = {mesh.positions[v.x], mesh.positions[v.y], mesh.positions[v.z]};
+            const std::uint32_t slot = slotOf[k];
+            indices_[slot] = prims[k].index;
+            setLane(planes(slot / w), extents(slot / w), width_, int(slot % w), corners);
+            for (const glm::vec3& c : corners)
+                largest[k] = std::max(largest[k], std::abs(c.x) + std::abs(c.y) + std::abs(c.z));
         }
-    }
-    fillSlabs(collapser.slabs, slotOf);
+    });
+    for (const float l : largest) verticesL1_ = std::max(verticesL1_, l);
+    fillSlabs(collapser.slabs, slotOf, threads);
+}
+
+glm::dvec3 Bvh::corner(std::uint32_t slot, int c) const {
+    const std::uint32_t w = std::uint32_t(width_);
+    const float* e = extents(slot / w) + (ExtentLanes::corner + 3 * c) * width_ + slot % w;
+    return {e[0], e[width_], e[2 * width_]};
 }
 
 /// Each child's slab: its triangles' area-weighted mean normal, shrunk so
@@ -414,31 +451,34 @@ Bvh::Bvh(MeshView mesh) {
 /// bound), and the range of n . x over their corners in double, rounded
 /// outward to float. A child whose normals cancel keeps the zero slab,
 /// which bounds nothing.
-void Bvh::fillSlabs(const std::vector<SlabJob>& jobs, const std::vector<std::uint32_t>& slotOf) {
-    for (const SlabJob& job : jobs) {
-        glm::dvec3 sum(0.0);
-        for (std::uint32_t k = job.begin; k < job.end; ++k) {
-            const glm::dvec3 a = corner(slotOf[k], 0);
-            sum += glm::cross(corner(slotOf[k], 1) - a, corner(slotOf[k], 2) - a);
-        }
-        const double length = glm::length(sum);
-        if (!(length > 0.0)) continue;
-        const glm::vec3 n(sum * ((1.0 - 1e-6) / length));
-        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        for (std::uint32_t k = job.begin; k < job.end; ++k)
-            for (int c = 0; c < 3; ++c) {
-                const double w = glm::dot(glm::dvec3(n), corner(slotOf[k], c));
-                lo = std::min(lo, w);
-                hi = std::max(hi, w);
+void Bvh::fillSlabs(const std::vector<SlabJob>& jobs, const std::vector<std::uint32_t>& slotOf, unsigned threads) {
+    parallelFor(threads, jobs.size(), 256, [&](std::size_t first, std::size_t last) {
+        for (std::size_t j = first; j < last; ++j) {
+            const SlabJob& job = jobs[j];
+            glm::dvec3 sum(0.0);
+            for (std::uint32_t k = job.begin; k < job.end; ++k) {
+                const glm::dvec3 a = corner(slotOf[k], 0);
+                sum += glm::cross(corner(slotOf[k], 1) - a, corner(slotOf[k], 2) - a);
             }
-        BvhNode& node = nodes_[job.node];
-        for (int a = 0; a < 3; ++a) node.axis[a][job.slot] = n[a];
-        // One more float step each way covers the double sum's rounding.
-        node.slabLo[job.slot] = std::nextafter(float(lo), -kInf);
-        node.slabHi[job.slot] = std::nextafter(float(hi), kInf);
-        node.slabLo[job.slot] = std::nextafter(node.slabLo[job.slot], -kInf);
-        node.slabHi[job.slot] = std::nextafter(node.slabHi[job.slot], kInf);
-    }
+            const double length = glm::length(sum);
+            if (!(length > 0.0)) continue;
+            const glm::vec3 n(sum * ((1.0 - 1e-6) / length));
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (std::uint32_t k = job.begin; k < job.end; ++k)
+                for (int c = 0; c < 3; ++c) {
+                    const double w = glm::dot(glm::dvec3(n), corner(slotOf[k], c));
+                    lo = std::min(lo, w);
+                    hi = std::max(hi, w);
+                }
+            float* node = this->node(job.node);
+            for (int a = 0; a < 3; ++a) node[(NodeLanes::axis + a) * width_ + int(job.slot)] = n[a];
+            // Two more float steps each way cover the double sum's rounding.
+            float& slabLo = node[NodeLanes::slabLo * width_ + int(job.slot)];
+            float& slabHi = node[NodeLanes::slabHi * width_ + int(job.slot)];
+            slabLo = std::nextafter(std::nextafter(float(lo), -kInf), -kInf);
+            slabHi = std::nextafter(std::nextafter(float(hi), kInf), kInf);
+        }
+    });
 }
 
 float Bvh::slack(const glm::vec3& p) const {
@@ -458,151 +498,53 @@ ClosestPoint Bvh::closest(const glm::vec3& p, std::uint32_t slot) const {
     return {hit.point, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z), indices_[slot], hit.feature, hit.index};
 }
 
-/// Asks for a pushed node's lines, which arrive while the nodes popped
-/// before it are searched.
-void Bvh::prefetch(std::int32_t node) const {
-#if defined(__SSE2__)
-    const char* at = reinterpret_cast<const char*>(&nodes_[std::size_t(node)]);
-    for (std::size_t line = 0; line < sizeof(BvhNode); line += 64) _mm_prefetch(at + line, _MM_HINT_T0);
-#else
-    (void)node;
-#endif
+namespace {
+
+/// Appends child k of `node` (`width` lanes) to the groups of `out`, a new
+/// group of empty slots where the last is full (slot == 4).
+void keepChild(const float* node, int width, int k, std::vector<BvhNode>& out, int& slot) {
+    if (slot == 4) {
+        out.emplace_back();
+        float* fresh = out.back().lanes;
+        std::fill(fresh, fresh + NodeLanes::size * 4, 0.0f);
+        std::fill_n(fresh + NodeLanes::lo * 4, 12, kInf);
+        std::fill_n(fresh + NodeLanes::hi * 4, 12, -kInf);
+        for (int s = 0; s < 4; ++s) setChild(fresh, 4, s, kEmptyChild);
+        slot = 0;
+    }
+    float* into = out.back().lanes;
+    for (int row = 0; row < NodeLanes::child; ++row) into[row * 4 + slot] = node[row * width + k];
+    setChild(into, 4, slot++, childOf(node, width, k));
 }
 
-void Bvh::nearest(const glm::vec3& p, NearestState& state) const {
-    struct Entry {
-        float distance2;
-        std::int32_t node;
-    };
-    Entry stack[kStackEntries];
-    int top = 0;
-    stack[top++] = {0.0f, 0};
-    float bound = pruneBound(state.distance2);
-    const float margin = slack(p);
-    while (top > 0) {
-        const Entry e = stack[--top];
-        if (e.distance2 > bound) continue;
-        const BvhNode& node = nodes_[std::size_t(e.node)];
-        float d2[4];
-        boxDistances(node, p, margin, d2);
-        int order[4], n = 0;
-        for (int k = 0; k < 4; ++k) {
-            if (node.child[k] == kEmptyChild || d2[k] > bound) continue;
-            int at = n++; // insertion by distance, nearest first
-            while (at > 0 && d2[order[at - 1]] > d2[k]) {
-                order[at] = order[at - 1];
-                --at;
-            }
-            order[at] = k;
-        }
-        // Leaves now, nearest first, so the bound tightens before the inner
-        // children are pushed (farthest first: the nearest is popped next).
-        for (int i = 0; i < n; ++i) {
-            const std::int32_t ref = node.child[order[i]];
-            if (ref < 0 && d2[order[i]] <= bound) searchLeaf(p, margin, ref, state, bound);
-        }
-        for (int i = n - 1; i >= 0; --i) {
-            const std::int32_t ref = node.child[order[i]];
-            if (ref >= 0 && d2[order[i]] <= bound) {
-                stack[top++] = {d2[order[i]], ref};
-                prefetch(ref);
-            }
-        }
-    }
-}
-
-/// The leaf's triangles' lower bounds first, then the exact test of each
-/// whose bound is still within `bound`, the lowest bound first: the bound is
-/// the distance itself (less the slack) where the closest point is on a face
-/// or an edge, so few triangles of a leaf get the exact test.
-void Bvh::searchLeaf(const glm::vec3& p, float margin, std::int32_t leaf, NearestState& state, float& bound) const {
-    const std::uint32_t code = std::uint32_t(~leaf);
-    const std::uint32_t block = code >> kLeafBits, first = 4 * block, count = (code & (kLeafTriangles - 1)) + 1;
-    float below[(kLeafTriangles + 3) / 4 * 4];
-#if defined(__SSE2__)
-    // The extents and corners, read after the planes if at all, asked for
-    // now: their latency overlaps the planes'.
-    for (std::uint32_t b = 0; 4 * b < count; ++b) {
-        const char* at = reinterpret_cast<const char*>(&extents_[block + b]);
-        for (std::size_t line = 0; line < sizeof(ExtentBlock); line += 64) _mm_prefetch(at + line, _MM_HINT_T0);
-    }
-#endif
-    for (std::uint32_t b = 0; 4 * b < count; ++b)
-        lowerBounds(blocks_[block + b], extents_[block + b], p, margin, bound, below + 4 * b);
-    for (std::uint32_t tested = 0; tested < count; ++tested) {
-        std::uint32_t next = 0;
-        for (std::uint32_t i = 1; i < count; ++i)
-            if (below[i] < below[next]) next = i;
-        if (below[next] > bound) return;
-        below[next] = kInf;
-        const double t2 = distance2(p, first + next);
-        if (t2 < state.distance2) {
-            state.distance2 = t2;
-            state.slot = first + next;
-            bound = pruneBound(t2);
-        }
-    }
-}
+} // namespace
 
 bool Bvh::leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, std::vector<BvhNode>& out,
                      std::size_t maxGroups) const {
     const float bound = pruneBound(reach2);
     int slot = 4; // the next free slot of out.back()
-    const auto keep = [&](const BvhNode& node, int k) {
-        if (slot == 4) {
-            out.emplace_back();
-            BvhNode& fresh = out.back();
-            for (int a = 0; a < 3; ++a)
-                for (int s = 0; s < 4; ++s) {
-                    fresh.lo[a][s] = kInf;
-                    fresh.hi[a][s] = -kInf;
-                    fresh.axis[a][s] = 0.0f;
-                }
-            std::fill(fresh.slabLo, fresh.slabLo + 4, 0.0f);
-            std::fill(fresh.slabHi, fresh.slabHi + 4, 0.0f);
-            std::fill(fresh.child, fresh.child + 4, kEmptyChild);
-            slot = 0;
-        }
-        BvhNode& into = out.back();
-        for (int a = 0; a < 3; ++a) {
-            into.lo[a][slot] = node.lo[a][k];
-            into.hi[a][slot] = node.hi[a][k];
-            into.axis[a][slot] = node.axis[a][k];
-        }
-        into.slabLo[slot] = node.slabLo[k];
-        into.slabHi[slot] = node.slabHi[k];
-        into.child[slot++] = node.child[k];
-    };
     std::int32_t stack[kStackEntries];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-        const BvhNode& node = nodes_[std::size_t(stack[--top])];
-        for (int k = 0; k < 4; ++k) {
-            if (node.child[k] == kEmptyChild) continue;
+        const float* node = this->node(std::size_t(stack[--top]));
+        for (int k = 0; k < width_; ++k) {
+            const std::int32_t reference = childOf(node, width_, k);
+            if (reference == kEmptyChild) continue;
             float d2 = 0.0f; // box to box: the gap along each axis
             for (int a = 0; a < 3; ++a) {
-                const float gap = std::max(std::max(node.lo[a][k] - hi[a], lo[a] - node.hi[a][k]), 0.0f);
+                const float gap = std::max(std::max(node[(NodeLanes::lo + a) * width_ + k] - hi[a],
+                                                    lo[a] - node[(NodeLanes::hi + a) * width_ + k]),
+                                           0.0f);
                 d2 += gap * gap;
             }
             if (d2 > bound) continue;
-            if (node.child[k] >= 0) stack[top++] = node.child[k];
-            else keep(node, k);
+            if (reference >= 0) stack[top++] = reference;
+            else keepChild(node, width_, k, out, slot);
         }
         if (out.size() > maxGroups) return false;
     }
     return true;
-}
-
-void Bvh::nearestAmong(const glm::vec3& p, const std::vector<BvhNode>& leaves, NearestState& state) const {
-    float bound = pruneBound(state.distance2);
-    const float margin = slack(p);
-    for (const BvhNode& group : leaves) {
-        float d2[4];
-        boxDistances(group, p, margin, d2);
-        for (int k = 0; k < 4; ++k)
-            if (d2[k] <= bound && group.child[k] != kEmptyChild) searchLeaf(p, margin, group.child[k], state, bound);
-    }
 }
 
 } // namespace vds::detail

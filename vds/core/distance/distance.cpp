@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include <glm/common.hpp>
+
 #include <vds/detail/parallel.h>
 #include <vds/error.h>
 #include <vds/mesh_check.h>
@@ -26,9 +28,12 @@ namespace {
 
 /// Points a chunk of a batch: enough to amortise a chunk's classify call.
 constexpr std::size_t kChunkPoints = 512;
+/// Points a batch needs before it is searched in Morton order (searchOrder):
+/// below, sorting costs more than the order saves.
+constexpr std::size_t kOrderedBatch = 64;
 /// Triangles a hierarchy can reference: a leaf reference holds its first
-/// block in 31 - kLeafBits bits, a block holds four slots, and padding each
-/// leaf to whole blocks makes at most four slots a triangle.
+/// block in 31 - kLeafBits bits, and every block holds at least one
+/// triangle (a leaf's triangles fill its blocks from the first lane).
 constexpr std::size_t kMaxTriangles = (std::size_t(1) << (31 - detail::kLeafBits)) - 1;
 
 /// Cells a brick has along each axis: the unit of a grid's coherence.
@@ -82,14 +87,52 @@ void checkBatch(const PointsView& points, const DistanceOptions& options) {
                               std::to_string(points[bad].z) + "): it has no distance");
 }
 
+/// Spreads the low 10 bits of v to every third bit (a Morton code's axis).
+std::uint64_t spreadBits(std::uint32_t v) {
+    std::uint64_t x = v & 0x3ffu;
+    x = (x | x << 16) & 0x30000ffull;
+    x = (x | x << 8) & 0x300f00full;
+    x = (x | x << 4) & 0x30c30c3ull;
+    x = (x | x << 2) & 0x9249249ull;
+    return x;
+}
+
+/// The order a batch is searched in: along a Morton curve over `box` (1024
+/// steps an axis, points outside it clamped to its side), so that each
+/// point follows one near it, whose nodes and leaves are still in cache and
+/// whose nearest triangle bounds its own search from the start. Empty (the
+/// given order) for batches too small to gain or too large to index.
+std::vector<std::uint32_t> searchOrder(const PointsView& points, const Box& box) {
+    if (points.count < kOrderedBatch || points.count > std::numeric_limits<std::uint32_t>::max()) return {};
+    const glm::vec3 size = glm::max(box.hi - box.lo, glm::vec3(std::numeric_limits<float>::min()));
+    const glm::vec3 scale = 1024.0f / size;
+    std::vector<std::uint64_t> keys(points.count);
+    for (std::size_t k = 0; k < points.count; ++k) {
+        const glm::vec3 at = glm::clamp((points[k] - box.lo) * scale, glm::vec3(0.0f), glm::vec3(1023.0f));
+        const std::uint64_t code =
+            spreadBits(std::uint32_t(at.x)) | spreadBits(std::uint32_t(at.y)) << 1 | spreadBits(std::uint32_t(at.z)) << 2;
+        keys[k] = code << 32 | k;
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<std::uint32_t> order(points.count);
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(keys[i]);
+    return order;
+}
+
 } // namespace
 
 struct SignedDistance::Impl {
-    Impl(MeshView mesh, Rule r, std::string flatWhy) : rule(r), bvh(mesh), flat(std::move(flatWhy)) {
-        if (flat.empty()) exact.emplace(mesh, Axis::Z);
+    /// The hierarchy and the sign's classifier are independent: built at
+    /// once, each on threads of its own as well.
+    Impl(MeshView mesh, Rule r, std::string flatWhy) : rule(r), bounds(meshBounds(mesh)), flat(std::move(flatWhy)) {
+        detail::parallelFor(0, 2, 1, [&](std::size_t part, std::size_t) {
+            if (part == 0) bvh = detail::Bvh(mesh);
+            else if (flat.empty()) exact.emplace(mesh, Axis::Z);
+        });
     }
     Rule rule;
     detail::Bvh bvh;
+    Box bounds;
     std::optional<ExactClassifier> exact; ///< none for a flat mesh
     std::string flat;                     ///< why a flat mesh has no sign, else ""
 
@@ -110,10 +153,6 @@ struct SignedDistance::Impl {
         }
         bvh.nearest(p, state);
         return state;
-    }
-    double unsignedAt(const glm::vec3& p, double maxDistance) const {
-        const detail::NearestState s = nearest(p, maxDistance);
-        return s.slot == kNoTriangle ? maxDistance : std::sqrt(s.distance2);
     }
     void fillBrick(const Grid& grid, const Brick& brick, double band, const std::uint8_t* inside, float* cells,
                    std::vector<detail::BvhNode>& leaves) const;
@@ -162,36 +201,63 @@ std::size_t SignedDistance::memoryBytes() const {
 
 std::string SignedDistance::summary() const {
     return "distance on " + std::to_string(triangleCount()) + " triangles, " + std::to_string(impl_->bvh.nodeCount()) +
-           " nodes, " + (impl_->exact ? std::string("signed by ") + toString(impl_->rule) : std::string("unsigned (flat)"));
+           " nodes of " + std::to_string(impl_->bvh.width()) + " lanes, " + (impl_->exact ? std::string("signed by ") + toString(impl_->rule) : std::string("unsigned (flat)"));
 }
+
+namespace {
+
+/// Each chunk of a batch in search order (searchOrder): body(begin, end,
+/// at), the chunk's points at(begin) ... at(end - 1) by their batch index.
+template <class Body>
+void inSearchOrder(const PointsView& points, const Box& bounds, unsigned threads, const Body& body) {
+    const std::vector<std::uint32_t> order = searchOrder(points, bounds);
+    const auto at = [&order](std::size_t i) { return order.empty() ? i : std::size_t(order[i]); };
+    detail::parallelFor(threads, points.count, kChunkPoints,
+                        [&](std::size_t begin, std::size_t end) { body(begin, end, at); });
+}
+
+} // namespace
 
 void SignedDistance::unsignedDistance(const PointsView& points, double* out, const DistanceOptions& options) const {
     checkBatch(points, options);
-    detail::parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) out[k] = impl_->unsignedAt(points[k], options.maxDistance);
+    inSearchOrder(points, impl_->bounds, options.threads, [&](std::size_t begin, std::size_t end, const auto& at) {
+        std::uint32_t seed = kNoTriangle; // the previous point's nearest triangle
+        for (std::size_t i = begin; i < end; ++i) {
+            const std::size_t k = at(i);
+            const detail::NearestState s = impl_->nearest(points[k], options.maxDistance, seed);
+            seed = s.slot;
+            out[k] = s.slot == kNoTriangle ? options.maxDistance : std::sqrt(s.distance2);
+        }
     });
 }
 
 void SignedDistance::distance(const PointsView& points, double* out, const DistanceOptions& options) const {
     const ExactClassifier& signs = impl_->signs();
     checkBatch(points, options);
-    detail::parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
+    inSearchOrder(points, impl_->bounds, options.threads, [&](std::size_t begin, std::size_t end, const auto& at) {
+        glm::vec3 chunk[kChunkPoints];
+        for (std::size_t i = begin; i < end; ++i) chunk[i - begin] = points[at(i)];
         std::uint8_t inside[kChunkPoints];
         ClassifyOptions classify;
         classify.rule = impl_->rule;
         classify.threads = 1;
-        signs.classify(points.slice(begin, end - begin), inside, classify);
-        for (std::size_t k = begin; k < end; ++k) {
-            const double d = impl_->unsignedAt(points[k], options.maxDistance);
-            out[k] = inside[k - begin] ? -d : d;
+        signs.classify(PointsView(chunk, end - begin), inside, classify);
+        std::uint32_t seed = kNoTriangle;
+        for (std::size_t i = begin; i < end; ++i) {
+            const detail::NearestState s = impl_->nearest(chunk[i - begin], options.maxDistance, seed);
+            seed = s.slot;
+            const double d = s.slot == kNoTriangle ? options.maxDistance : std::sqrt(s.distance2);
+            out[at(i)] = inside[i - begin] ? -d : d;
         }
     });
 }
 
+/// In search order too, but without seeds: a point equidistant from two
+/// triangles gets the same one whatever the batch around it.
 void SignedDistance::closestPoints(const PointsView& points, ClosestPoint* out, const DistanceOptions& options) const {
     checkBatch(points, options);
-    detail::parallelFor(options.threads, points.count, kChunkPoints, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) out[k] = impl_->closestAt(points[k], options.maxDistance);
+    inSearchOrder(points, impl_->bounds, options.threads, [&](std::size_t begin, std::size_t end, const auto& at) {
+        for (std::size_t i = begin; i < end; ++i) out[at(i)] = impl_->closestAt(points[at(i)], options.maxDistance);
     });
 }
 

@@ -233,7 +233,8 @@
 //     texel, bands where the surface may be; outside them the answer is
 //     proven, inside them the exact classifier decides. <vds/certified.h>
 //   SignedDistance(mesh, rule)                             <vds/distance.h>
-//     exact distances to the triangles (a 4-wide SAH hierarchy, the closest
+//     exact distances to the triangles (an SAH hierarchy as wide as the CPU's
+//     SIMD, 8 lanes with AVX2, else 4; the closest
 //     point in double): `distance` (signed: negative exactly where the exact
 //     classifier of the rule says inside), `unsignedDistance`,
 //     `closestPoints` (a ClosestPoint each: point, distance, triangle, its
