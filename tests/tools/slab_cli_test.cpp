@@ -98,6 +98,11 @@ TEST_F(SlabCli, BadOutputsAndSlabSizesAreRefused) {
         EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
     }
     EXPECT_FALSE(fs::exists(p("g.npy")));
+    // Past 2^34 cells: written in slabs, a grid is checked a layer at a time; held whole (a propagated SDF), refused.
+    r = vds("sdf " + p("torus.obj") + " --dims 4096 --propagated -o " + p("s.npy"));
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("too large (at most 2^34 cells)"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(p("s.npy")));
     // Hidden: a knob for tests, not in the help.
     EXPECT_EQ(vds("voxelize --help").output.find("slab-cells"), std::string::npos);
 }

@@ -86,8 +86,9 @@ void sdf(SdfArgs& a) {
     const auto progress = progressPrinter(a.quiet);
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
     checkSignedMesh(mesh, a.mesh, a.rule, a.allowOpen, "sdf");
-    vds::Grid grid = gridOf(a.grid, vds::meshBounds(mesh), float(a.pad));
+    vds::Grid grid = gridOf(a.grid, vds::meshBounds(mesh), float(a.pad), true);
     if (a.cubic) grid = vds::cubicGrid(grid.box, a.grid.dims);
+    if (a.propagated) vds::checkGrid(grid); // held whole
     NpySlabWriter out(a.output, "<f4", {grid.dims.x, grid.dims.y, grid.dims.z}, sizeof(float));
     const vds::SignedDistance query(mesh, a.rule, a.mesh);
     progress("built " + query.summary());

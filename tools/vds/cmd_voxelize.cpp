@@ -100,7 +100,7 @@ void voxelize(VoxelizeArgs& a) {
         bounds = checkedBounds(a, mesh);
     }
     phase(fromSprite ? "read" : "validate", secondsSince(start));
-    const vds::Grid grid = gridOf(a.grid, bounds);
+    const vds::Grid grid = gridOf(a.grid, bounds, 0.0f, true);
     const std::uint64_t rowBytes = (std::uint64_t(grid.dims.z) + 7) / 8;
     NpySlabWriter out(a.output, a.packed ? "|u1" : "|b1",
                       {grid.dims.x, grid.dims.y, a.packed ? rowBytes : grid.dims.z}, 1);
