@@ -19,7 +19,7 @@ distributed = pytest.importorskip("distributed")
 zarr = pytest.importorskip("zarr")
 
 
-class CountingStore(zarr.storage.DirectoryStore if zarr else object):
+class CountingStore(zarr.storage.DirectoryStore):
     """Zarr's directory store (each chunk file replaced whole) that also
     appends the key of every completed write to a log beside it, one line a
     write from whichever process made it (O_APPEND: lines do not interleave)."""
