@@ -65,6 +65,14 @@ TEST_F(SlabCli, VoxelizeInSlabsEqualsTheWholeGridCall) {
         ASSERT_EQ(bits.size(), packed.size());
         EXPECT_EQ(std::memcmp(bits.data(), packed.data(), packed.size()), 0) << slab;
     }
+    // "-": the same array streamed to stdout, the summary on stderr (a subshell keeps them apart).
+    const Result r = vds::test::run("(" + std::string(VDS_TOOL) + " voxelize " + p("torus.obj") +
+                                    " --dims-xyz 23 19 11 --slab-cells 627 -o - > " + p("stdout.npy") + ")");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("wrote -: 23x19x11 cells"), std::string::npos) << r.output;
+    const vds::NpyArray streamed = vds::readNpy(p("stdout.npy"));
+    ASSERT_EQ(streamed.data.size(), whole.size());
+    EXPECT_EQ(std::memcmp(streamed.data.data(), whole.data(), whole.size()), 0);
 }
 
 TEST_F(SlabCli, SdfInSlabsEqualsTheWholeGridCall) {

@@ -14,6 +14,7 @@
 
 #include "cli.h"
 #include "npy_slabs.h"
+#include "outputs.h"
 
 namespace cli {
 
@@ -124,7 +125,9 @@ void voxelize(VoxelizeArgs& a) {
     start = std::chrono::steady_clock::now();
     out.commit();
     phase("write", secondsSince(start));
-    std::printf("wrote %s: %ux%ux%u cells, %zu inside, %s rule, swept in %.3f s (%.0f M cells/s)\n", a.output.c_str(),
+    // With the grid on stdout, the summary goes to stderr.
+    std::fprintf(a.output == kStdio ? stderr : stdout,
+                 "wrote %s: %ux%ux%u cells, %zu inside, %s rule, swept in %.3f s (%.0f M cells/s)\n", a.output.c_str(),
                 grid.dims.x, grid.dims.y, grid.dims.z, inside, vds::toString(a.options.rule), sweep,
                 double(grid.cellCount()) / std::max(sweep, 1e-9) * 1e-6);
 }
@@ -147,7 +150,7 @@ void addVoxelize(CLI::App& app) {
         "than memory ('--dims 4096 --packed', 8.6 GB) needs only the disk for its file.",
         voxelize);
     c->add_option("INPUT", a->input, "a mesh (OBJ, PLY, STL, OFF) or a sprite (.vds)")->required()->type_name("");
-    c->add_option("-o,--output", a->output, "output .npy (written slab by slab into a temporary file, renamed into place once whole)")->required()->type_name("FILE");
+    c->add_option("-o,--output", a->output, "output .npy (written slab by slab into a temporary file, renamed into place once whole); '-': stdout")->required()->type_name("FILE");
     addGridOptions(*c, a->grid, "the grid's box instead of the input's bounds");
     addEnum(*c, "--rule", a->options.rule,
             "parity, non-zero winding, or the generalized winding number (open meshes and soups too)");
