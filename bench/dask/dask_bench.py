@@ -15,6 +15,7 @@ repository root after building:
     PYTHONPATH=build/python python3 bench/dask/dask_bench.py points --points 1e8
     PYTHONPATH=build/python python3 bench/dask/dask_bench.py dataset --meshes 20 --samples 1e5
     PYTHONPATH=build/python python3 bench/dask/dask_bench.py scaling --workers 1,2,4,8,16
+    PYTHONPATH=build/python python3 bench/dask/dask_bench.py cli --dims 4096
 """
 import argparse
 import os
@@ -67,12 +68,25 @@ def header(args):
 
 
 class PeakMemory:
-    """The largest summed resident memory of this process and `pids`."""
+    """The largest summed resident memory of this process and `pids`, and the
+    CPU seconds they used meanwhile (their sum over the wall time: the cores
+    the work had, which on a shared machine may be fewer than it asked for)."""
 
     def __init__(self, pids=()):
         self.processes = [psutil.Process()] + [psutil.Process(p) for p in pids]
         self.peak, self.done = 0, threading.Event()
         self.thread = threading.Thread(target=self._sample, daemon=True)
+        self.cpu = 0.0
+
+    def _cpu_seconds(self):
+        total = 0.0
+        for p in self.processes:
+            try:
+                t = p.cpu_times()
+                total += t.user + t.system + t.children_user + t.children_system
+            except psutil.Error:
+                pass
+        return total
 
     def _sample(self):
         while not self.done.wait(0.05):
@@ -85,10 +99,12 @@ class PeakMemory:
             self.peak = max(self.peak, total)
 
     def __enter__(self):
+        self.cpu = -self._cpu_seconds()
         self.thread.start()
         return self
 
     def __exit__(self, *exc):
+        self.cpu += self._cpu_seconds()
         self.done.set()
         self.thread.join()
 
@@ -99,12 +115,13 @@ def cluster(workers):
     return c, Client(c)
 
 
-def timed(label, cells, work, pids=()):
+def timed(label, cells, work, pids=(), unit=("M/s", 1e-6)):
     with PeakMemory(pids) as memory:
         start = time.perf_counter()
         work()
         seconds = time.perf_counter() - start
-    print(f"  {label:<48} {seconds:9.2f} s {cells / seconds / 1e6:10.1f} M/s {memory.peak / 2**30:7.2f} GiB")
+    print(f"  {label:<48} {seconds:9.2f} s {cells / seconds * unit[1]:10.1f} {unit[0]} {memory.peak / 2**30:7.2f} GiB "
+          f"cpu {memory.cpu:8.1f} s = {memory.cpu / seconds:4.2f} cores, load {os.getloadavg()[0]:.1f}", flush=True)
     return cells / seconds
 
 
@@ -170,7 +187,14 @@ def run_points(args, V, F):
     del out
     sprite = vds.bake(V, F, resolution=1024, method="cpu")
     points = da.from_array(NpyRows(path), chunks=(args.chunk, 3), asarray=False)
-    for name, source, method in (("sprite", sprite, "sprite"), ("exact", (V, F), "exact")):
+    # What a chunk costs without a question: read from the .npy, a task scheduled, one number back.
+    empty = lambda: points.map_blocks(lambda b: np.zeros(len(b), bool), drop_axis=1, dtype=bool).sum().compute()  # noqa: E731
+    with dask.config.set(scheduler="sync"):
+        timed(f"no question: one process ({points.numblocks[0]} chunks)", n, empty)
+    c, client = cluster(args.workers)
+    with c, client:
+        timed(f"no question: {args.workers} worker processes", n, empty, client.run(os.getpid).values())
+    for name, source, method in [(m, sprite if m == "sprite" else (V, F), m) for m in args.methods.split(",")]:
         with dask.config.set(scheduler="sync"):  # one process, one chunk at a time
             vds.dask.classify(source, points[:1000], method=method).sum().compute()  # warm, as the workers
             base = timed(f"{name}: one process, 1 thread a chunk", n,
@@ -196,21 +220,42 @@ def run_dataset(args, V, F):
             f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in Fk)
     n = int(args.samples)
     rates = {}
-    for label, workers in (("a plain loop in one process", 0), (f"{args.workers} worker processes", args.workers)):
-        store = os.path.join(folder, f"store{workers}.zarr")
+    rows = (("a plain loop in one process", 0, 1), ("a plain loop, threads=0 (every core)", 0, 0),
+            (f"{args.workers} worker processes", args.workers, 1))
+    for label, workers, threads in rows:
+        store = os.path.join(folder, f"store{workers}-{threads}.zarr")
+        run = lambda: vds.dask.dataset(paths, store, uniform=n, near_surface=n, threads=threads)  # noqa: E731
         if workers == 0:
             with dask.config.set(scheduler="sync"):
-                start = time.perf_counter()
-                vds.dask.dataset(paths, store, uniform=n, near_surface=n)
+                rate = timed(f"dataset, {label}", args.meshes * 60, run, unit=("meshes/min", 1))
         else:
             c, client = cluster(workers)
             with c, client:
-                start = time.perf_counter()
-                vds.dask.dataset(paths, store, uniform=n, near_surface=n)
-        seconds = time.perf_counter() - start
-        rates[workers] = args.meshes / seconds * 60
-        print(f"  dataset, {label:<32} {seconds:8.2f} s {rates[workers]:8.1f} meshes/min")
-    print(f"  ratio: {rates[args.workers] / rates[0]:.2f}x")
+                rate = timed(f"dataset, {label}", args.meshes * 60, run, client.run(os.getpid).values(),
+                             unit=("meshes/min", 1))
+        rates[(workers, threads)] = rate
+    print(f"  ratio: {rates[(args.workers, 1)] / rates[(0, 1)]:.2f}x the plain loop, "
+          f"{rates[(args.workers, 1)] / rates[(0, 0)]:.2f}x the loop on every core")
+    shutil.rmtree(folder)
+
+
+def run_cli(args, V, F):
+    """`vds voxelize MESH --dims N --packed` writing its .npy slab by slab:
+    wall time and peak resident memory as /usr/bin/time -v reports them."""
+    folder = tempfile.mkdtemp(prefix="vds-cli-", dir=args.scratch)
+    mesh, out = os.path.join(folder, "mesh.obj"), os.path.join(folder, "grid.npy")
+    with open(mesh, "w") as f:
+        f.writelines(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in V)
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in F)
+    command = [args.tool, "voxelize", mesh, "--dims", str(args.dims), "--packed", "-o", out, "--quiet"]
+    result = subprocess.run(["/usr/bin/time", "-v"] + command, capture_output=True, text=True)
+    report = dict(line.strip().split(": ", 1) for line in result.stderr.splitlines() if ": " in line)
+    print(f"  {' '.join(['vds'] + command[1:2] + ['MESH'] + command[3:6] + ['grid.npy'])}: exit {result.returncode}")
+    print(f"  {result.stdout.strip()}")
+    print(f"  wall {report.get('Elapsed (wall clock) time (h:mm:ss or m:ss)')}, peak RSS "
+          f"{int(report.get('Maximum resident set size (kbytes)', 0)) / 2**20:.2f} GiB, CPU "
+          f"{report.get('Percent of CPU this job got')}, load {os.getloadavg()[0]:.1f}; "
+          f"file {os.path.getsize(out) / 2**30:.2f} GiB" if result.returncode == 0 else result.stderr[-2000:])
     shutil.rmtree(folder)
 
 
@@ -234,7 +279,7 @@ def run_scaling(args, V, F):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("what", choices=["grid", "sdf", "points", "dataset", "scaling"])
+    parser.add_argument("what", choices=["grid", "sdf", "points", "dataset", "scaling", "cli"])
     parser.add_argument("--triangles", type=int, default=200_000)
     parser.add_argument("--dims", type=int, default=1024)
     parser.add_argument("--reference", type=int, default=512, help="in-memory grid for the rate compared")
@@ -245,14 +290,16 @@ def main():
     parser.add_argument("--mesh-triangles", type=int, default=20_000)
     parser.add_argument("--samples", type=float, default=1e5, help="uniform and near-surface points a mesh, each")
     parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--methods", default="sprite,exact", help="points: the methods timed")
     parser.add_argument("--workers-list", default="1,2,4,8,16")
+    parser.add_argument("--tool", default=str(ROOT / "build" / "tools" / "vds"), help="cli: the vds program")
     parser.add_argument("--scratch", default=None, help="folder for the Zarr stores and .npy (default: the temp folder)")
     args = parser.parse_args()
     header(vars(args))
     V, F = bumpy_sphere(args.triangles)
     print(f"mesh: bumpy sphere, {len(F)} triangles")
     {"grid": run_grid, "sdf": run_sdf, "points": run_points, "dataset": run_dataset,
-     "scaling": run_scaling}[args.what](args, V, F)
+     "scaling": run_scaling, "cli": run_cli}[args.what](args, V, F)
 
 
 if __name__ == "__main__":

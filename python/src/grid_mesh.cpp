@@ -16,6 +16,7 @@
 #include <vds/error.h>
 #include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
+#include <vds/sample.h>
 #include <vds/vds_file.h>
 
 #include "arrays.h"
@@ -273,6 +274,20 @@ returns (V, F), V a (n, 3) float64 array of positions in the file's units, F
 a (m, 3) int32 array of vertex indices (polygons fanned into triangles).
 Raises vds.IoError (an OSError) for a file that cannot be read (a directory
 included), vds.FormatError (a ValueError) for a malformed one.)doc");
+    m.def("_sample_surface", [](const py::object& vertices, const py::object& faces, std::uint64_t count,
+                                std::uint64_t seed) {
+              const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
+              py::array_t<double> points({py::ssize_t(count), py::ssize_t(3)});
+              py::array_t<std::uint32_t> triangles{py::ssize_t(count)};
+              double* p = points.mutable_data();
+              std::uint32_t* t = triangles.mutable_data();
+              {
+                  py::gil_scoped_release released;
+                  vds::sampleSurface(mesh.view, count, seed, p, t);
+              }
+              return py::make_tuple(points, triangles);
+          }, py::arg("V"), py::arg("F"), py::arg("n"), py::arg("seed"),
+          "vds.sample_surface's compiled part: (points (n, 3) float64, triangles (n,) uint32).");
     m.def("_mesh_copies", [](const py::object& vertices, const py::object& faces) {
               const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
               return py::make_tuple(mesh.verticesCopied, mesh.facesCopied);

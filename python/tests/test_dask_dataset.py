@@ -84,3 +84,17 @@ def test_a_named_rule_and_duplicate_names(client, meshes, tmp_path):
     check_group(zarr.open_group(str(store), mode="r")["cup"], meshes["cup"], "parity", 0.01)
     with pytest.raises(vds.InvalidArgument, match="share the group 'ball'"):
         vds.dask.dataset([meshes["ball"], tmp_path / "ball.ply"], store)
+
+
+def test_near_surface_points_are_vds_sample_surface(client, meshes, tmp_path):
+    # With no displacement the near-surface points are the library's surface samples, on the triangles.
+    store = str(tmp_path / "on_surface.zarr")
+    vds.dask.dataset([meshes["cup"]], store, uniform=10, near_surface=2000, sigma=0.0, seed=7)
+    points = zarr.open_group(store, mode="r")["cup"]["near_surface"]["points"][...]
+    V, F = vds.load_mesh(meshes["cup"])
+    _, d, _ = vds.closest_points(V, F, points)
+    assert d.max() < 1e-6
+    # Reproducible: the same seed, the same points.
+    again = str(tmp_path / "again.zarr")
+    vds.dask.dataset([meshes["cup"]], again, uniform=10, near_surface=2000, sigma=0.0, seed=7)
+    assert np.array_equal(zarr.open_group(again, mode="r")["cup"]["near_surface"]["points"][...], points)

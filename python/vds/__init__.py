@@ -38,6 +38,8 @@ Scale-out over Dask: ``vds.dask``.
 """
 import atexit as _atexit
 import collections as _collections
+import operator as _operator
+import os as _os
 
 from ._vds import (  # noqa: F401  (the public API)
     Classifier,
@@ -62,6 +64,7 @@ from ._vds import (  # noqa: F401  (the public API)
     _methods,
     __version__,
     _release_gl,
+    _sample_surface,
     bake,
     closest_points,
     from_bytes,
@@ -79,7 +82,7 @@ __all__ = [
     "Classifier", "DTypeError", "Error", "ExactClassifier", "FEATURES", "FormatError", "GlError", "GlUnavailable", "Grid",
     "InvalidArgument", "InvalidMesh", "IoError", "MeshWarning", "MethodInfo", "NO_TRIANGLE", "OutOfMemory", "SignedDistance", "Sprite", "bake",
     "closest_points", "exact_contains", "from_bytes", "gl_available", "gl_unavailable_reason", "load_mesh", "methods",
-    "occupancy", "read", "sdf", "signed_distance", "validate_mesh",
+    "occupancy", "read", "sample_surface", "sdf", "signed_distance", "validate_mesh",
     "winding_numbers",
 ]
 
@@ -100,6 +103,36 @@ def exact_contains(V, F, points, rule="parity", threads=0):
     Builds an ExactClassifier for the call: keep one to ask many times.
     """
     return ExactClassifier(V, F).contains(points, rule=rule, threads=threads)
+
+
+def sample_surface(mesh, n, seed=0):
+    """n points on the surface of a mesh, area-weighted and reproducible.
+
+    mesh: (V, F) as vds.load_mesh returns them, or a mesh file's path.
+    n: how many points; seed: an integer 0 <= seed < 2**64. Each point lies
+    on a triangle chosen with probability its area over the total, uniform
+    on it. Returns (points, triangles): (n, 3) float64 positions and (n,)
+    uint32 indices into F of the triangle each lies on. The same mesh, n and
+    seed give the same points bit for bit, here and in C++ (vds::sampleSurface
+    of <vds/sample.h>, which states the generator: SplitMix64 read as a
+    counter, so the points do not depend on numpy's generators). Raises
+    vds.InvalidMesh for a mesh with no area (no triangles, all degenerate),
+    bad indices or a corner that is not finite; vds.InvalidArgument for a
+    negative n or a seed out of range.
+    """
+    if isinstance(mesh, (str, bytes, _os.PathLike)):
+        V, F = load_mesh(mesh)
+    elif isinstance(mesh, (tuple, list)) and len(mesh) == 2:
+        V, F = mesh
+    else:
+        raise DTypeError(f"mesh must be (V, F) or a mesh file's path, not {type(mesh).__name__}")
+    try:
+        n, seed = _operator.index(n), _operator.index(seed)
+    except TypeError:
+        raise DTypeError(f"n and seed must be integers, not {type(n).__name__} and {type(seed).__name__}") from None
+    if n < 0 or not 0 <= seed < 1 << 64:
+        raise InvalidArgument(f"sample_surface: n must be 0 or more and seed in 0..2**64-1, not {n} and {seed}")
+    return _sample_surface(V, F, n, seed)
 
 
 def winding_numbers(V, F, points):

@@ -12,7 +12,7 @@ import zlib
 import dask
 import numpy as np
 
-from . import Error, InvalidArgument, SignedDistance, load_mesh, validate_mesh
+from . import Error, InvalidArgument, SignedDistance, load_mesh, sample_surface, validate_mesh
 
 _GROUP_CHUNK = 1 << 16  # points a Zarr chunk
 
@@ -23,18 +23,6 @@ def _zarr():
     except ImportError:
         raise ImportError("vds.dask.dataset writes Zarr: install python3-zarr (tools/install-deps.sh)") from None
     return zarr
-
-
-def _sample_surface(V, F, n, rng):
-    """n points on the triangles, area-weighted: each on a triangle chosen
-    with probability its area over the total, uniform on it (the square
-    root of one uniform variable makes the barycentric pair uniform)."""
-    a, b, c = (V[F[:, k]].astype(np.float64) for k in range(3))
-    areas = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
-    triangle = rng.choice(len(F), size=n, p=areas / areas.sum())
-    r1 = np.sqrt(rng.random(n))[:, None]
-    r2 = rng.random(n)[:, None]
-    return (1 - r1) * a[triangle] + r1 * (1 - r2) * b[triangle] + r1 * r2 * c[triangle]
 
 
 class Settings:
@@ -63,7 +51,8 @@ def _samples(V, F, name, settings):
     box_lo, box_hi = lo - margin, hi + margin
     uniform = box_lo + rng.random((settings.uniform, 3)) * (box_hi - box_lo)
     sigma = settings.sigma * float(np.linalg.norm(hi - lo))
-    near = _sample_surface(V, F, settings.near_surface, rng) + rng.normal(0.0, sigma, (settings.near_surface, 3))
+    surface, _ = sample_surface((V, F), settings.near_surface, rng.integers(1 << 64, dtype=np.uint64))
+    near = surface + rng.normal(0.0, sigma, (settings.near_surface, 3))
     attrs = {"box": [box_lo.tolist(), box_hi.tolist()], "sigma": sigma, "sigma_of_diagonal": settings.sigma,
              "padding": settings.padding, "seed": settings.seed}
     return uniform.astype(np.float32), near.astype(np.float32), attrs

@@ -10,7 +10,8 @@
 Points (any chunking along rows; columns are joined): ``classify``,
 ``contains``, ``signed_distance``, ``closest_points``, ``winding_numbers``.
 Grids, block by block, each block equal cell for cell to the one-call
-result: ``occupancy``, ``sdf``. Many meshes: ``dataset`` (vds/_dask_dataset.py).
+result: ``occupancy``, ``sdf``; ``to_zarr`` writes one with each chunk
+written once, a killed worker's finished blocks included. Many meshes: ``dataset`` (vds/_dask_dataset.py).
 
 A source is a mesh ``(V, F)``, a mesh file's path (OBJ, PLY, STL, OFF), a
 ``vds.Sprite`` or a ``.vds`` file's path. Files are read on the client, and
@@ -33,9 +34,10 @@ from . import InvalidArgument
 from ._dask_dataset import dataset  # noqa: F401  (the public API)
 from ._dask_grids import occupancy, sdf  # noqa: F401  (the public API)
 from ._dask_ship import method_for, ship
+from ._dask_zarr import to_zarr  # noqa: F401  (the public API)
 
 __all__ = ["classify", "closest_points", "contains", "dataset", "occupancy", "sdf", "signed_distance",
-           "winding_numbers"]
+           "to_zarr", "winding_numbers"]
 
 
 def _points(points):

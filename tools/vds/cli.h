@@ -61,8 +61,10 @@ void addGridOptions(CLI::App& command, GridArgs& grid, const std::string& boxHel
 void requireGridSize(const GridArgs& args);
 /// The grid asked for over `bounds` (or --box), grown by `pad` of its size on
 /// every side; refuses neither or both of --dims and --dims-xyz, and a grid
-/// `vds::checkGrid` refuses.
-vds::Grid gridOf(const GridArgs& args, const vds::Box& bounds, float pad = 0.0f);
+/// `vds::checkGrid` refuses. `slabs`: the grid is filled and written a slab of
+/// x layers at a time, never held whole, so one x layer is what is checked
+/// (a 4096^3 grid passes; its cells need only disk).
+vds::Grid gridOf(const GridArgs& args, const vds::Box& bounds, float pad = 0.0f, bool slabs = false);
 
 /// "a|b|c": the choices, for the help.
 std::string joinChoices(const std::vector<std::string>& names);

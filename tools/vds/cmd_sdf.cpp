@@ -12,6 +12,7 @@
 #include <vds/sprite.h>
 
 #include "cli.h"
+#include "npy_slabs.h"
 #include "outputs.h"
 
 namespace cli {
@@ -27,6 +28,7 @@ struct SdfArgs {
     vds::Rule rule = vds::Rule::Parity;
     vds::DistanceGridOptions options;
     bool allowOpen = false, quiet = false, propagated = false, cubic = false;
+    std::size_t slabCells = kSlabCells;
 };
 
 void checkArguments(const SdfArgs& a) {
@@ -51,29 +53,51 @@ std::string geometry(const vds::Grid& grid) {
     return text;
 }
 
+/// The signed distances of `grid`, a slab of x layers at a time appended to
+/// `out` (a propagated grid spreads across the whole grid: one slab, held
+/// whole). Returns the cells inside (negative).
+std::size_t measureInSlabs(const SdfArgs& a, const vds::SignedDistance& query, const vds::Grid& grid,
+                           NpySlabWriter& out) {
+    constexpr std::uint32_t kProgressSlabs = 16;
+    const std::size_t layer = std::size_t(grid.dims.y) * grid.dims.z;
+    const std::uint32_t slab = a.propagated ? grid.dims.x : slabLayers(grid, a.slabCells, kProgressSlabs);
+    std::vector<float> cells;
+    try {
+        cells.resize(std::size_t(slab) * layer);
+    } catch (const std::bad_alloc&) {
+        throw vds::OutOfMemory("not enough memory for a slab of " + std::to_string(std::size_t(slab) * layer) + " cells");
+    }
+    SlabProgress progress(progressPrinter(a.quiet), "measured", grid.dims.x);
+    std::size_t inside = 0;
+    for (std::uint32_t i0 = 0; i0 < grid.dims.x; i0 += slab) {
+        const std::uint32_t i1 = std::min(grid.dims.x, i0 + slab);
+        const std::size_t count = std::size_t(i1 - i0) * layer;
+        query.grid(slab == grid.dims.x ? grid : grid.slabX(i0, i1), cells.data(), a.options);
+        for (std::size_t c = 0; c < count; ++c) inside += std::signbit(cells[c]);
+        out.append(cells.data(), count * sizeof(float));
+        progress.done(i1);
+    }
+    return inside;
+}
+
 void sdf(SdfArgs& a) {
     checkArguments(a);
-    Outputs outputs;
     outputFormat("-o", a.output, {OutputFormat::Npy}, OutputFormat::Npy);
-    const std::size_t output = outputs.claim("-o", a.output);
     const auto progress = progressPrinter(a.quiet);
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
     checkSignedMesh(mesh, a.mesh, a.rule, a.allowOpen, "sdf");
+    vds::Grid grid = gridOf(a.grid, vds::meshBounds(mesh), float(a.pad), true);
+    if (a.cubic) grid = vds::cubicGrid(grid.box, a.grid.dims);
+    if (a.propagated) vds::checkGrid(grid); // held whole
+    NpySlabWriter out(a.output, "<f4", {grid.dims.x, grid.dims.y, grid.dims.z}, sizeof(float));
     const vds::SignedDistance query(mesh, a.rule, a.mesh);
     progress("built " + query.summary());
-    vds::Grid grid = gridOf(a.grid, vds::meshBounds(mesh), float(a.pad));
-    if (a.cubic) grid = vds::cubicGrid(grid.box, a.grid.dims);
     a.options.band = a.band;
     a.options.far = a.propagated ? vds::FarCells::Propagated : vds::FarCells::Exact;
-    std::vector<float> cells(grid.cellCount());
     const auto start = std::chrono::steady_clock::now();
-    fillDistanceGrid(query, grid, cells.data(), a.options, progress);
+    const std::size_t inside = measureInSlabs(a, query, grid, out);
     const double seconds = secondsSince(start);
-    outputs.write(output, vds::npyHeader("<f4", {grid.dims.x, grid.dims.y, grid.dims.z}), cells.data(),
-                  cells.size() * sizeof(float));
-    outputs.commit();
-    std::size_t inside = 0;
-    for (float v : cells) inside += std::signbit(v);
+    out.commit();
     // With the grid on stdout, the summary goes to stderr.
     std::fprintf(a.output == kStdio ? stderr : stdout, "wrote %s: %ux%ux%u cells, %s, %zu inside, %s, %s rule, in %.3f s\n",
                  a.output.c_str(), grid.dims.x, grid.dims.y, grid.dims.z, geometry(grid).c_str(), inside,
@@ -97,10 +121,11 @@ void addSdf(CLI::App& app) {
         "never below the distance and within 4 cell diagonals above it (many times faster). With --cubic,\n"
         "N cells along the box's longest side and as many cubic cells along the others as fit ('vds bake\n"
         "--distance' and vds.Grid.cubic place them so). The summary line gives the grid's box and cell size.\n"
-        "SDF '-' writes the .npy to stdout, with the summary line on stderr.",
+        "SDF '-' writes the .npy to stdout, with the summary line on stderr. The grid is measured and\n"
+        "written a slab of x layers at a time (at most 2^26 cells held; --propagated holds it whole).",
         sdf);
     addMesh(*c, a->mesh);
-    c->add_option("-o,--output", a->output, "output .npy (written whole or not at all); '-': stdout")->required()->type_name("FILE");
+    c->add_option("-o,--output", a->output, "output .npy (written slab by slab into a temporary file, renamed into place once whole); '-': stdout")->required()->type_name("FILE");
     addGridOptions(*c, a->grid, "the grid's box instead of the mesh's bounds");
     c->add_flag("--cubic", a->cubic, "cubic cells: --dims N along the longest side, as many as fit along the others");
     c->add_option("--pad", a->pad, "grow the box by this fraction of its size on every side")->type_name("F");
@@ -112,6 +137,7 @@ void addSdf(CLI::App& app) {
     addEnum(*c, "--rule", a->rule, "what is inside (negative): parity, winding, or generalized-winding (open meshes)");
     c->add_flag("--allow-open", a->allowOpen, "sign an open mesh by crossing count anyway");
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
+    addSlabCells(*c, a->slabCells);
 }
 
 } // namespace cli

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <cstdio>
 #include <optional>
 #include <vector>
@@ -12,6 +13,8 @@
 #include <vds/vds_file.h>
 
 #include "cli.h"
+#include "npy_slabs.h"
+#include "outputs.h"
 
 namespace cli {
 
@@ -22,6 +25,7 @@ struct VoxelizeArgs {
     GridArgs grid;
     vds::ClassifyOptions options;
     bool packed = false, verbose = false, quiet = false, allowOpen = false;
+    std::size_t slabCells = kSlabCells;
 };
 
 /// Reads the sprite INPUT names, warns where its answers are a surface's; its box.
@@ -40,17 +44,41 @@ vds::Box checkedBounds(const VoxelizeArgs& a, const vds::TriangleMesh& mesh) {
     return vds::meshBounds(mesh);
 }
 
-/// The x layers labelled a call. --packed labels the grid a slab at a time
-/// (at most 2^26 cells), packing each slab's rows as it goes: the unpacked
-/// grid is never held whole. Unpacked, the grid goes in kProgressSlabs
-/// slabs, so that a sweep past a second (the generalized winding number of
-/// a messy scan) reports progress. Slabs have the whole grid's cell centres
-/// (Grid::slabX), so the labels are the same as in one call.
-std::uint32_t slabLayers(bool packed, const vds::Grid& grid) {
+using Labeller = std::function<void(const vds::Grid&, std::uint8_t*)>;
+
+/// Labels `grid` a slab of x layers at a time (Grid::slabX: the whole grid's
+/// cell centres, so the labels are those of one call), appending each slab to
+/// `out`, packed row by row with --packed (numpy.packbits(cells, axis=-1)):
+/// one slab's cells are held, never the grid's. Returns the cells inside.
+std::size_t labelInSlabs(const VoxelizeArgs& a, const vds::Grid& grid, const Labeller& label, NpySlabWriter& out) {
     constexpr std::uint32_t kProgressSlabs = 16;
     const std::size_t layer = std::size_t(grid.dims.y) * grid.dims.z;
-    return packed ? std::uint32_t(std::clamp<std::size_t>((std::size_t(1) << 26) / layer, 1, grid.dims.x))
-                  : std::max<std::uint32_t>(1, (grid.dims.x + kProgressSlabs - 1) / kProgressSlabs);
+    const std::uint32_t slab = slabLayers(grid, a.slabCells, kProgressSlabs);
+    const std::size_t rowBytes = (std::size_t(grid.dims.z) + 7) / 8;
+    std::vector<std::uint8_t> cells, bits;
+    try {
+        cells.resize(std::size_t(slab) * layer);
+        if (a.packed) bits.resize(std::size_t(slab) * grid.dims.y * rowBytes);
+    } catch (const std::bad_alloc&) {
+        throw vds::OutOfMemory("not enough memory for a slab of " + std::to_string(cells.size()) + " cells");
+    }
+    SlabProgress progress(progressPrinter(a.quiet), "labelled", grid.dims.x);
+    std::size_t inside = 0;
+    for (std::uint32_t i0 = 0; i0 < grid.dims.x; i0 += slab) {
+        const std::uint32_t i1 = std::min(grid.dims.x, i0 + slab);
+        label(slab == grid.dims.x ? grid : grid.slabX(i0, i1), cells.data());
+        const std::size_t count = std::size_t(i1 - i0) * layer, rows = std::size_t(i1 - i0) * grid.dims.y;
+        for (std::size_t c = 0; c < count; ++c) inside += cells[c];
+        if (a.packed) {
+            for (std::size_t r = 0; r < rows; ++r)
+                vds::packLabels(cells.data() + r * grid.dims.z, grid.dims.z, bits.data() + r * rowBytes);
+            out.append(bits.data(), rows * rowBytes);
+        } else {
+            out.append(cells.data(), count);
+        }
+        progress.done(i1);
+    }
+    return inside;
 }
 
 void voxelize(VoxelizeArgs& a) {
@@ -73,7 +101,10 @@ void voxelize(VoxelizeArgs& a) {
         bounds = checkedBounds(a, mesh);
     }
     phase(fromSprite ? "read" : "validate", secondsSince(start));
-    const vds::Grid grid = gridOf(a.grid, bounds);
+    const vds::Grid grid = gridOf(a.grid, bounds, 0.0f, true);
+    const std::uint64_t rowBytes = (std::uint64_t(grid.dims.z) + 7) / 8;
+    NpySlabWriter out(a.output, a.packed ? "|u1" : "|b1",
+                      {grid.dims.x, grid.dims.y, a.packed ? rowBytes : grid.dims.z}, 1);
     progress("labelling " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) + "x" +
              std::to_string(grid.dims.z) + " cells " + (fromSprite ? "from the sprite" : "exactly from the mesh"));
     // The mesh's exact classifier is built once (every slab sweeps through it).
@@ -83,46 +114,20 @@ void voxelize(VoxelizeArgs& a) {
         exact.emplace(mesh, vds::Axis::Z);
         phase("index", secondsSince(start));
     }
-    const auto label = [&](const vds::Grid& g, std::uint8_t* out) {
-        if (fromSprite) vds::occupancy(sprite, g, out, a.options);
-        else exact->occupancy(g, out, a.options);
+    const Labeller label = [&](const vds::Grid& g, std::uint8_t* cells) {
+        if (fromSprite) vds::occupancy(sprite, g, cells, a.options);
+        else exact->occupancy(g, cells, a.options);
     };
-    const std::size_t layer = std::size_t(grid.dims.y) * grid.dims.z;
-    const std::uint32_t slab = slabLayers(a.packed, grid);
-    const std::size_t rowBytes = (std::size_t(grid.dims.z) + 7) / 8, rows = std::size_t(grid.dims.x) * grid.dims.y;
-    std::vector<std::uint8_t> cells, bits;
     start = std::chrono::steady_clock::now();
-    try {
-        cells.resize(a.packed ? std::size_t(slab) * layer : grid.cellCount());
-        if (a.packed) bits.resize(rows * rowBytes);
-    } catch (const std::bad_alloc&) {
-        throw vds::OutOfMemory("not enough memory for " + std::to_string(grid.cellCount()) + " cells");
-    }
-    phase("allocate", secondsSince(start));
-    start = std::chrono::steady_clock::now();
-    std::size_t inside = 0;
-    for (std::uint32_t i0 = 0; i0 < grid.dims.x; i0 += slab) {
-        const std::uint32_t i1 = std::min(grid.dims.x, i0 + slab);
-        // Unpacked, each slab lands in its place in the whole grid; packed, at the start of the slab buffer.
-        std::uint8_t* slabCells = cells.data() + (a.packed ? 0 : std::size_t(i0) * layer);
-        label(slab == grid.dims.x ? grid : grid.slabX(i0, i1), slabCells);
-        const std::size_t count = std::size_t(i1 - i0) * layer;
-        for (std::size_t c = 0; c < count; ++c) inside += slabCells[c];
-        reportSteps(progress, "labelled", i1, grid.dims.x, "x layers", secondsSince(start));
-        if (a.packed) // numpy.packbits(cells, axis=-1): each z row packed on its own
-            for (std::size_t r = 0; r < std::size_t(i1 - i0) * grid.dims.y; ++r)
-                vds::packLabels(slabCells + r * grid.dims.z, grid.dims.z,
-                                bits.data() + (std::size_t(i0) * grid.dims.y + r) * rowBytes);
-    }
+    const std::size_t inside = labelInSlabs(a, grid, label, out);
     const double sweep = secondsSince(start);
     phase("sweep", sweep);
     start = std::chrono::steady_clock::now();
-    if (a.packed)
-        vds::writeNpy(a.output, "|u1", {grid.dims.x, grid.dims.y, rowBytes}, bits.data(), bits.size());
-    else
-        vds::writeNpy(a.output, "|b1", {grid.dims.x, grid.dims.y, grid.dims.z}, cells.data(), cells.size());
+    out.commit();
     phase("write", secondsSince(start));
-    std::printf("wrote %s: %ux%ux%u cells, %zu inside, %s rule, swept in %.3f s (%.0f M cells/s)\n", a.output.c_str(),
+    // With the grid on stdout, the summary goes to stderr.
+    std::fprintf(a.output == kStdio ? stderr : stdout,
+                 "wrote %s: %ux%ux%u cells, %zu inside, %s rule, swept in %.3f s (%.0f M cells/s)\n", a.output.c_str(),
                 grid.dims.x, grid.dims.y, grid.dims.z, inside, vds::toString(a.options.rule), sweep,
                 double(grid.cellCount()) / std::max(sweep, 1e-9) * 1e-6);
 }
@@ -140,10 +145,12 @@ void addVoxelize(CLI::App& app) {
         "count=NZ) gives the cells back). From a mesh the labels are exact (equal to 'vds classify --exact' on\n"
         "the cell centres); from a SPRITE.vds they are the sprite's answers. A mesh whose inside the rule\n"
         "does not define (an open mesh by parity or winding) is refused, as classify, distance and sdf\n"
-        "refuse it: --rule generalized-winding answers it, --allow-open counts crossings anyway.",
+        "refuse it: --rule generalized-winding answers it, --allow-open counts crossings anyway. The grid\n"
+        "is labelled and written a slab of x layers at a time (at most 2^26 cells held), so a grid larger\n"
+        "than memory ('--dims 4096 --packed', 8.6 GB) needs only the disk for its file.",
         voxelize);
     c->add_option("INPUT", a->input, "a mesh (OBJ, PLY, STL, OFF) or a sprite (.vds)")->required()->type_name("");
-    c->add_option("-o,--output", a->output, "output .npy (written whole or not at all)")->required()->type_name("FILE");
+    c->add_option("-o,--output", a->output, "output .npy (written slab by slab into a temporary file, renamed into place once whole); '-': stdout")->required()->type_name("FILE");
     addGridOptions(*c, a->grid, "the grid's box instead of the input's bounds");
     addEnum(*c, "--rule", a->options.rule,
             "parity, non-zero winding, or the generalized winding number (open meshes and soups too)");
@@ -151,6 +158,7 @@ void addVoxelize(CLI::App& app) {
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
     c->add_flag("--packed", a->packed, "eight cells to a byte");
     c->add_flag("--verbose", a->verbose, "print the time of each phase");
+    addSlabCells(*c, a->slabCells);
 }
 
 } // namespace cli

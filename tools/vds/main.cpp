@@ -46,7 +46,7 @@ void requireGridSize(const GridArgs& args) {
     if ((args.dims == 0) == args.dimsXyz.empty()) throw CLI::ValidationError("give --dims N or --dims-xyz NX NY NZ");
 }
 
-vds::Grid gridOf(const GridArgs& args, const vds::Box& bounds, float pad) {
+vds::Grid gridOf(const GridArgs& args, const vds::Box& bounds, float pad, bool slabs) {
     requireGridSize(args);
     const std::vector<float>& b = args.box;
     vds::Grid grid;
@@ -55,7 +55,7 @@ vds::Grid gridOf(const GridArgs& args, const vds::Box& bounds, float pad) {
     grid.box.lo -= margin;
     grid.box.hi += margin;
     grid.dims = args.dims ? glm::uvec3(args.dims) : glm::uvec3(args.dimsXyz[0], args.dimsXyz[1], args.dimsXyz[2]);
-    vds::checkGrid(grid);
+    vds::checkGrid(slabs ? grid.slabX(0, 1) : grid);
     return grid;
 }
 

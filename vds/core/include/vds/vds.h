@@ -100,6 +100,10 @@
 //   MeshValidation(mesh)   validation that keeps what it found beside its
 //     `report()`, for `chooseViewAxis(mesh, validation, resolution)`.
 //   Box meshBounds(mesh)    the axis-aligned bounds.
+//   sampleSurface(mesh, count, seed, points, triangles)     <vds/sample.h>
+//     area-weighted points on the triangles (SurfaceSamples), the same bit
+//     for bit everywhere from a seed (`sampleUniform`: the generator, written
+//     down); InvalidMesh for a mesh with no area.
 //   loadPoints(path) / parsePoints(data, size, PointFormat, name)
 //     points from text, PLY vertices or .npy.
 //
@@ -368,5 +372,6 @@
 #include <vds/npy.h>
 #include <vds/occupancy.h>
 #include <vds/rule.h>
+#include <vds/sample.h>
 #include <vds/sprite.h>
 #include <vds/vds_file.h>
