@@ -287,7 +287,7 @@ TEST_F(Cli, HelpShowsDefaultsAndChoices) {
         EXPECT_NE(compare.find(shown), std::string::npos) << shown << " in\n" << compare;
     const std::string classify = vds("classify --help").output;
     for (const char* shown : {"--method sprite|exact|certified|sprite-gpu|slicemap|slicemap-local|solid|solid-compute|"
-                              "slicemap-gpu|slicemap-local-gpu|solid-gpu|solid-compute-gpu=sprite",
+                              "slicemap-gpu|slicemap-local-gpu|solid-gpu|solid-compute-gpu|certified-gpu=sprite",
                               "=1024 for sprites and certified bands, 256 for voxels", "--threads N=0"})
         EXPECT_NE(classify.find(shown), std::string::npos) << shown << " in\n" << classify;
 }
