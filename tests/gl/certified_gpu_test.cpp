@@ -85,6 +85,14 @@ TriangleMesh benchLike() {
                          solids::torus({-1.9f, 0.3f, 0.2f}, 0.5f, 0.2f, 24).mesh);
 }
 
+// The labels of `points` from and to host arrays.
+std::vector<std::uint8_t> classifyOnHost(const GpuCertifiedClassifier& c, const std::vector<glm::vec3>& points,
+                                         const ClassifyOptions& options) {
+    std::vector<std::uint8_t> labels(points.size(), 7);
+    c.classify(points, labels.data(), options);
+    return labels;
+}
+
 // The labels of `points` in GL buffers (4-byte words, the tail's padding kept).
 std::vector<std::uint8_t> classifyOnGl(const GpuCertifiedClassifier& c, const std::vector<glm::vec3>& points,
                                        const ClassifyOptions& options) {
@@ -122,12 +130,10 @@ TEST_F(CertifiedGpu, EqualsTheExactClassifierOnEveryPointFromHostArraysAndGlBuff
             for (Rule rule : kRules) {
                 SCOPED_TRACE(mesh->name + " " + toString(axis) + " " + enumName(rule));
                 const std::vector<std::uint8_t> truth = exactLabels(c.certified().exact(), points, rule);
-                std::vector<std::uint8_t> labels(points.size(), 7);
                 ClassifyStats stats;
                 ClassifyOptions options{rule, 2};
                 options.stats = &stats;
-                c.classify(points, labels.data(), options);
-                EXPECT_EQ(differences(labels, truth), 0u);
+                EXPECT_EQ(differences(classifyOnHost(c, points, options), truth), 0u);
                 EXPECT_EQ(stats.certain + stats.exact, points.size());
                 EXPECT_GT(stats.certain, 1500u) << "the bands answer most of the 3000 uniform points";
                 EXPECT_GT(stats.exact, 0u) << "the hard cases need the exact path";
@@ -152,12 +158,10 @@ TEST_F(CertifiedGpu, UncertifiedMeshesAndRulesGoExactWhole) {
     for (Rule rule : kRules) {
         SCOPED_TRACE(enumName(rule));
         const std::vector<std::uint8_t> truth = exactLabels(c.certified().exact(), points, rule);
-        std::vector<std::uint8_t> labels(points.size(), 7);
         ClassifyStats stats;
         ClassifyOptions options{rule, 2};
         options.stats = &stats;
-        c.classify(points, labels.data(), options);
-        EXPECT_EQ(differences(labels, truth), 0u);
+        EXPECT_EQ(differences(classifyOnHost(c, points, options), truth), 0u);
         EXPECT_EQ(stats.exact, points.size());
         EXPECT_EQ(differences(classifyOnGl(c, points, options), truth), 0u);
     }
