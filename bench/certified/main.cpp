@@ -108,7 +108,8 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     try {
         const vds::GlContext gl;
-        std::printf("%zu uniform points a mesh (box + 10%%), resolution %u along z, best of %u alternating rounds; %s\n\n",
+        std::printf("%zu uniform points a mesh (box + 10%%), resolution %u along z, best of %u alternating "
+                    "rounds; %s\n\n",
                     set.points, set.resolution, set.runs, gl.info().renderer.c_str());
         std::puts("| mesh | triangles | exact path | certified CPU | sprite-gpu host | certified-gpu host | "
                   "sprite-gpu resident | certified-gpu resident | resident: certified-gpu / sprite-gpu | "

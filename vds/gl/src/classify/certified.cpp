@@ -4,7 +4,7 @@
 #include <vds/gl/certified.h>
 
 #include <algorithm>
-#include <atomic>
+#include <array>
 #include <cstring>
 #include <vector>
 
@@ -92,71 +92,86 @@ void GpuCertifiedBands::setUniforms(GLuint program, const std::string& name, GLu
     checkGl("GpuCertifiedBands::setUniforms");
 }
 
-// One batch's GL memory, kept between calls, and the host's copy of its
-// unsure list.
+// Two batches' GL memory, kept between calls, so that the host answers one
+// batch's unsure points while the GPU classifies the next.
 struct GpuCertifiedClassifier::Batches {
+    struct Slot {
+        Buffer points, labels;   // staging in GPU memory, for host arrays
+        Buffer unsure, answers;  // the unsure list; the exact answers for the scatter pass
+        Fence done;              // after the batch's dispatch
+        std::vector<UnsureRecord> records;
+        std::vector<std::uint32_t> answered; // (index << 1) | label
+        std::size_t first = 0, count = 0;    // the batch's points
+    };
     std::size_t batch = 1024;  // points a batch (a power of two)
-    std::size_t capacity = 0; // points the buffers hold
-    Buffer points, labels, unsure, answers;
-    std::vector<UnsureRecord> records;
-    std::vector<std::uint32_t> answered; // (index << 1) | label, for the scatter pass
+    std::size_t capacity = 0;  // points each slot's buffers hold
+    std::array<Slot, 2> slots;
 
     void reserve(std::size_t n, std::uint64_t limit) {
         if (n <= capacity) return;
-        points = detail::zeroedBuffer(n * kPointBytes, limit, "the certified classifier's points");
-        labels = detail::zeroedBuffer(labelBytes(n), limit, "the certified classifier's labels");
-        unsure = detail::zeroedBuffer(kUnsureHeaderBytes + n * kUnsureRecordBytes, limit,
-                                      "the certified classifier's unsure points");
-        answers = detail::zeroedBuffer(n * sizeof(std::uint32_t), limit, "the certified classifier's answers");
+        for (Slot& slot : slots) {
+            slot.points = detail::zeroedBuffer(n * kPointBytes, limit, "the certified classifier's points");
+            slot.labels = detail::zeroedBuffer(labelBytes(n), limit, "the certified classifier's labels");
+            slot.unsure = detail::zeroedBuffer(kUnsureHeaderBytes + n * kUnsureRecordBytes, limit,
+                                               "the certified classifier's unsure points");
+            slot.answers = detail::zeroedBuffer(n * sizeof(std::uint32_t), limit, "the certified classifier's answers");
+        }
         capacity = n;
     }
 
-    // Classifies `count` points of `pointsBuffer` from byte `pointsOffset`
-    // into `labelsBuffer` from byte `labelsOffset` (2 where unsure), and
-    // reads the unsure list into `records`.
-    void run(const GlContext& gl, const GpuCertifiedBands& bands, GLuint pointsBuffer, GLintptr pointsOffset,
-             GLuint labelsBuffer, GLintptr labelsOffset, std::size_t count, Rule rule) {
+    // Queues the classification of `slot.count` points of `pointsBuffer`
+    // from byte `pointsOffset` into `labelsBuffer` from byte `labelsOffset`
+    // (2 where unsure), the unsure ones listed in `slot.unsure`; `slot.done`
+    // signals when it is over.
+    void dispatch(const GlContext& gl, const GpuCertifiedBands& bands, Slot& slot, GLuint pointsBuffer,
+                  GLintptr pointsOffset, GLuint labelsBuffer, GLintptr labelsOffset, Rule rule) {
         const GLuint zero = 0;
-        glNamedBufferSubData(unsure.id(), 0, sizeof zero, &zero);
+        glNamedBufferSubData(slot.unsure.id(), 0, sizeof zero, &zero);
         const Program& program = certifiedProgram(gl, rule);
         glUseProgram(program.id());
         bands.setUniforms(program.id(), "u_certified", kOffsetsBinding, kBandsBinding);
-        const auto bytes = GLsizeiptr(count * kPointBytes);
+        const auto bytes = GLsizeiptr(slot.count * kPointBytes);
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, pointsBuffer, pointsOffset, bytes);
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, pointsBuffer, pointsOffset, bytes);
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kLabelsBinding, labelsBuffer, labelsOffset,
-                          GLsizeiptr(labelBytes(count)));
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kUnsureBinding, unsure.id(), 0,
-                          GLsizeiptr(kUnsureHeaderBytes + count * kUnsureRecordBytes));
-        glUniform1ui(glGetUniformLocation(program.id(), "u_count"), GLuint(count));
+                          GLsizeiptr(labelBytes(slot.count)));
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kUnsureBinding, slot.unsure.id(), 0,
+                          GLsizeiptr(kUnsureHeaderBytes + slot.count * kUnsureRecordBytes));
+        glUniform1ui(glGetUniformLocation(program.id(), "u_count"), GLuint(slot.count));
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        glDispatchCompute(detail::strideGroups((count + 3) / 4, kLocalSize), 1, 1);
+        glDispatchCompute(detail::strideGroups((slot.count + 3) / 4, kLocalSize), 1, 1);
         for (GLuint binding = 0; binding <= kUnsureBinding; ++binding)
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
         glUseProgram(0);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        GLuint unsureCount = 0;
-        glGetNamedBufferSubData(unsure.id(), 0, sizeof unsureCount, &unsureCount);
-        records.resize(unsureCount);
-        if (unsureCount > 0)
-            glGetNamedBufferSubData(unsure.id(), kUnsureHeaderBytes, GLsizeiptr(unsureCount * kUnsureRecordBytes),
-                                    records.data());
+        slot.done = Fence::insert();
         checkGl("classifying points on the GPU (certified)");
     }
 
-    // `answered` written into the labels from byte `labelsOffset` (their
-    // unsure bytes, 2, become the answers).
-    void scatter(const GlContext& gl, GLuint labelsBuffer, GLintptr labelsOffset, std::size_t count) {
-        if (answered.empty()) return;
-        glNamedBufferSubData(answers.id(), 0, GLsizeiptr(answered.size() * sizeof(std::uint32_t)), answered.data());
+    // Waits for the slot's dispatch and reads its unsure list into `records`.
+    void collect(Slot& slot) {
+        slot.done.wait();
+        GLuint unsureCount = 0;
+        glGetNamedBufferSubData(slot.unsure.id(), 0, sizeof unsureCount, &unsureCount);
+        slot.records.resize(unsureCount);
+        if (unsureCount > 0)
+            glGetNamedBufferSubData(slot.unsure.id(), kUnsureHeaderBytes,
+                                    GLsizeiptr(unsureCount * kUnsureRecordBytes), slot.records.data());
+    }
+
+    // The slot's `answered` written into the labels from byte `labelsOffset`
+    // (their unsure bytes, 2, become the answers).
+    void scatter(const GlContext& gl, Slot& slot, GLuint labelsBuffer, GLintptr labelsOffset) {
+        if (slot.answered.empty()) return;
+        const auto bytes = GLsizeiptr(slot.answered.size() * sizeof(std::uint32_t));
+        glNamedBufferSubData(slot.answers.id(), 0, bytes, slot.answered.data());
         const Program& program = scatterProgram(gl);
         glUseProgram(program.id());
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, labelsBuffer, labelsOffset, GLsizeiptr(labelBytes(count)));
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, answers.id(), 0,
-                          GLsizeiptr(answered.size() * sizeof(std::uint32_t)));
-        glUniform1ui(glGetUniformLocation(program.id(), "u_count"), GLuint(answered.size()));
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, labelsBuffer, labelsOffset, GLsizeiptr(labelBytes(slot.count)));
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, slot.answers.id(), 0, bytes);
+        glUniform1ui(glGetUniformLocation(program.id(), "u_count"), GLuint(slot.answered.size()));
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        glDispatchCompute(detail::strideGroups(answered.size(), kLocalSize), 1, 1);
+        glDispatchCompute(detail::strideGroups(slot.answered.size(), kLocalSize), 1, 1);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
         glUseProgram(0);
@@ -173,8 +188,8 @@ GpuCertifiedClassifier::GpuCertifiedClassifier(const GlContext& gl, MeshView mes
     // A power of two of points keeps every batch's byte offsets aligned for
     // glBindBufferRange; the unsure list, 16 bytes a point, must fit one block.
     std::size_t batch = 1024;
-    while (batch * 2 <= batchPoints && (kUnsureHeaderBytes + batch * 2 * kUnsureRecordBytes) <= gl_.limits().maxStorageBlockBytes)
-        batch *= 2;
+    const std::uint64_t block = gl_.limits().maxStorageBlockBytes;
+    while (batch * 2 <= batchPoints && kUnsureHeaderBytes + batch * 2 * kUnsureRecordBytes <= block) batch *= 2;
     batches_->batch = batch;
 }
 
@@ -185,8 +200,8 @@ GpuCertifiedClassifier::~GpuCertifiedClassifier() {
 }
 
 std::size_t GpuCertifiedClassifier::memoryBytes() const {
-    return bands_->bytes() + batches_->capacity * (kPointBytes + 1 + kUnsureRecordBytes + 4) +
-           cpu_->exact().memoryBytes();
+    const std::size_t perPoint = kPointBytes + 1 + kUnsureRecordBytes + sizeof(std::uint32_t);
+    return bands_->bytes() + batches_->slots.size() * batches_->capacity * perPoint + cpu_->exact().memoryBytes();
 }
 
 std::string GpuCertifiedClassifier::summary() const {
@@ -201,7 +216,8 @@ template <class Write>
 void answerExactly(const ExactClassifier& exact, const std::vector<UnsureRecord>& records,
                    const ClassifyOptions& options, const Write& write) {
     detail::parallelFor(options.threads, records.size(), kExactChunk, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) write(k, records[k].index, exact.contains(records[k].point(), options.rule));
+        for (std::size_t k = begin; k < end; ++k)
+            write(k, records[k].index, exact.contains(records[k].point(), options.rule));
     });
 }
 
@@ -220,27 +236,58 @@ void GpuCertifiedClassifier::classifyFloats(const float* xyz, std::size_t count,
     const CurrentContext current(gl_);
     Batches& b = *batches_;
     b.reserve(std::min(b.batch, count), gl_.limits().maxStorageBlockBytes);
+    std::size_t exactCount = 0;
+    // A batch's labels read back and its unsure points answered, while the GPU runs the next batch.
+    const auto finish = [&](Batches::Slot& slot) {
+        b.collect(slot);
+        glGetNamedBufferSubData(slot.labels.id(), 0, GLsizeiptr(slot.count), labels + slot.first);
+        answerExactly(exact, slot.records, options, [&](std::size_t, std::uint32_t index, bool inside) {
+            labels[slot.first + index] = inside ? 1 : 0;
+        });
+        exactCount += slot.records.size();
+    };
     const char* base = reinterpret_cast<const char*>(xyz);
     std::vector<glm::vec3> staged;
-    std::size_t exactCount = 0;
-    for (std::size_t first = 0; first < count; first += b.batch) {
-        const std::size_t n = std::min(b.batch, count - first);
+    Batches::Slot* previous = nullptr;
+    for (std::size_t first = 0, next = 0; first < count; first += b.batch, ++next) {
+        Batches::Slot& slot = b.slots[next % b.slots.size()]; // free: its batch was finished last round
+        slot.first = first;
+        slot.count = std::min(b.batch, count - first);
         const void* packed = base + first * strideBytes;
         if (strideBytes != kPointBytes) {
-            staged.resize(n);
-            for (std::size_t k = 0; k < n; ++k) std::memcpy(&staged[k], base + (first + k) * strideBytes, kPointBytes);
+            staged.resize(slot.count);
+            for (std::size_t k = 0; k < slot.count; ++k)
+                std::memcpy(&staged[k], base + (first + k) * strideBytes, kPointBytes);
             packed = staged.data();
         }
-        glNamedBufferSubData(b.points.id(), 0, GLsizeiptr(n * kPointBytes), packed);
-        b.run(gl_, *bands_, b.points.id(), 0, b.labels.id(), 0, n, options.rule);
-        glGetNamedBufferSubData(b.labels.id(), 0, GLsizeiptr(n), labels + first);
-        answerExactly(exact, b.records, options, [&](std::size_t, std::uint32_t index, bool inside) {
-            labels[first + index] = inside ? 1 : 0;
-        });
-        exactCount += b.records.size();
+        glNamedBufferSubData(slot.points.id(), 0, GLsizeiptr(slot.count * kPointBytes), packed);
+        b.dispatch(gl_, *bands_, slot, slot.points.id(), 0, slot.labels.id(), 0, options.rule);
+        if (previous) finish(*previous);
+        previous = &slot;
     }
+    if (previous) finish(*previous);
     checkGl("classifying points on the GPU (certified)");
     if (options.stats) *options.stats = {count - exactCount, exactCount};
+}
+
+void GpuCertifiedClassifier::classifyAllExact(GLuint points, std::size_t count, GLuint labels,
+                                              const ClassifyOptions& options) const {
+    Batches& b = *batches_;
+    std::vector<glm::vec3> host;
+    std::vector<std::uint8_t> answers;
+    ClassifyOptions o = options;
+    o.stats = nullptr;
+    for (std::size_t first = 0; first < count; first += b.batch) { // read back, classify, copy the labels in
+        const std::size_t n = std::min(b.batch, count - first);
+        host.resize(n);
+        answers.assign(labelBytes(n), 0);
+        glGetNamedBufferSubData(points, GLintptr(first * kPointBytes), GLsizeiptr(n * kPointBytes), host.data());
+        cpu_->exact().classify(host, answers.data(), o);
+        const Buffer& staging = b.slots[0].labels;
+        glNamedBufferSubData(staging.id(), 0, GLsizeiptr(answers.size()), answers.data());
+        glCopyNamedBufferSubData(staging.id(), labels, 0, GLintptr(first), GLsizeiptr(answers.size()));
+    }
+    if (options.stats) *options.stats = {0, count};
 }
 
 void GpuCertifiedClassifier::classify(GLuint points, std::size_t count, GLuint labels,
@@ -248,36 +295,35 @@ void GpuCertifiedClassifier::classify(GLuint points, std::size_t count, GLuint l
     const CurrentContext current(gl_);
     Batches& b = *batches_;
     b.reserve(std::min(b.batch, std::max<std::size_t>(count, 1)), gl_.limits().maxStorageBlockBytes);
-    const bool whole = !certifies(bands_->certifiedRules(), options.rule);
-    std::size_t exactCount = 0;
-    std::vector<glm::vec3> host;
-    std::vector<std::uint8_t> answers;
-    for (std::size_t first = 0; first < count; first += b.batch) {
-        const std::size_t n = std::min(b.batch, count - first);
-        const auto pointsOffset = GLintptr(first * kPointBytes), labelsOffset = GLintptr(first);
-        if (whole) { // every point exact: read back, classify on the host, copy the labels in
-            host.resize(n);
-            answers.assign(labelBytes(n), 0);
-            glGetNamedBufferSubData(points, pointsOffset, GLsizeiptr(n * kPointBytes), host.data());
-            ClassifyOptions o = options;
-            o.stats = nullptr;
-            cpu_->exact().classify(host, answers.data(), o);
-            glNamedBufferSubData(b.labels.id(), 0, GLsizeiptr(answers.size()), answers.data());
-            glCopyNamedBufferSubData(b.labels.id(), labels, 0, labelsOffset, GLsizeiptr(answers.size()));
-            exactCount += n;
-            continue;
+    if (!certifies(bands_->certifiedRules(), options.rule)) {
+        classifyAllExact(points, count, labels, options);
+    } else {
+        std::size_t exactCount = 0;
+        // A batch's unsure points answered on the host and written in, while the GPU runs the next batch.
+        const auto finish = [&](Batches::Slot& slot) {
+            b.collect(slot);
+            slot.answered.resize(slot.records.size());
+            answerExactly(cpu_->exact(), slot.records, options, [&](std::size_t k, std::uint32_t index, bool inside) {
+                slot.answered[k] = (index << 1) | (inside ? 1u : 0u);
+            });
+            b.scatter(gl_, slot, labels, GLintptr(slot.first));
+            exactCount += slot.records.size();
+        };
+        Batches::Slot* previous = nullptr;
+        for (std::size_t first = 0, next = 0; first < count; first += b.batch, ++next) {
+            Batches::Slot& slot = b.slots[next % b.slots.size()];
+            slot.first = first;
+            slot.count = std::min(b.batch, count - first);
+            b.dispatch(gl_, *bands_, slot, points, GLintptr(first * kPointBytes), labels, GLintptr(first),
+                       options.rule);
+            if (previous) finish(*previous);
+            previous = &slot;
         }
-        b.run(gl_, *bands_, points, pointsOffset, labels, labelsOffset, n, options.rule);
-        b.answered.resize(b.records.size());
-        answerExactly(cpu_->exact(), b.records, options, [&](std::size_t k, std::uint32_t index, bool inside) {
-            b.answered[k] = (index << 1) | (inside ? 1u : 0u);
-        });
-        b.scatter(gl_, labels, labelsOffset, n);
-        exactCount += b.records.size();
+        if (previous) finish(*previous);
+        if (options.stats) *options.stats = {count - exactCount, exactCount};
     }
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     checkGl("classifying points on the GPU (certified)");
-    if (options.stats) *options.stats = {count - exactCount, exactCount};
 }
 
 } // namespace vds

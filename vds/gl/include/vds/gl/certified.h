@@ -18,7 +18,8 @@
 // list (their bits and index). The host reads back only that list, answers
 // it with the exact classifier on the library's threads (`ClassifyOptions::
 // threads`), and writes those labels in: into the host array directly, or,
-// for GL buffers, with a small scatter pass. Meshes or rules the bands do
+// for GL buffers, with a small scatter pass. Two batches are in flight: the
+// host answers one batch's list while the GPU classifies the next. Meshes or rules the bands do
 // not certify (a mesh that is not closed, the winding rules on one that is
 // not consistently oriented: the generalized winding number of an open
 // mesh) go to the exact classifier whole, as on the CPU. So the labels
@@ -84,8 +85,8 @@ public:
     /// Builds the CPU certified classifier (`options`; `threads` for the
     /// build) and uploads its bands to `gl`. Host arrays and GL buffers go
     /// to the GPU `batchPoints` at a time (a power of two, at least 1024,
-    /// lowered to fit one storage block); GL memory for one batch is kept
-    /// (28 bytes a point). Throws as `CertifiedClassifier`, and `GlError`.
+    /// lowered to fit one storage block); GL memory for two batches is
+    /// kept (2 x 33 bytes a point). Throws as `CertifiedClassifier`, and `GlError`.
     GpuCertifiedClassifier(const GlContext& gl, MeshView mesh, const CertifiedOptions& options = {},
                            std::size_t batchPoints = std::size_t(1) << 22);
     ~GpuCertifiedClassifier() override;
@@ -105,7 +106,8 @@ public:
     /// bytes each) from offset 0, `labels` receives one byte a point, 1 or
     /// 0, written as 32-bit words (4 * ceil(count / 4) bytes, the tail
     /// word's unused bytes 0). Waits for the GPU once a batch (the unsure
-    /// points are read back, answered on the host and written in); returns
+    /// points are read back, answered on the host while the GPU classifies
+    /// the next batch, and written in); returns
     /// with the labels written, a glMemoryBarrier (all bits) issued.
     /// `options.stats` as for host arrays.
     void classify(GLuint points, std::size_t count, GLuint labels, const ClassifyOptions& options = {}) const;
@@ -115,6 +117,8 @@ protected:
                         const ClassifyOptions& options) const override;
 
 private:
+    /// GL buffers to GL buffers where the bands certify nothing: every point exact on the host.
+    void classifyAllExact(GLuint points, std::size_t count, GLuint labels, const ClassifyOptions& options) const;
     struct Batches;
     const GlContext& gl_;
     std::unique_ptr<CertifiedClassifier> cpu_;
