@@ -17,6 +17,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <vds/error.h>
 #include <vds/exact.h>
 #include <vds/gl/objects.h>
 #include <vds/gl/shader.h>
@@ -261,6 +262,20 @@ TEST_F(CertifiedGpu, ContainsCertainInAnImageIsExactWhereItAnswersAndUnsureOnlyN
     EXPECT_GT(inside, points.size() / 10) << "the slice passes through the solid";
     EXPECT_GT(unsure, 0u);
     EXPECT_LT(unsure, points.size() / 4) << "unsure pixels are a minority";
+}
+
+TEST_F(CertifiedGpu, BandsRefuseAnotherContext) {
+    const auto box = solids::box({0, 0, 0}, {1, 1, 1});
+    CertifiedOptions o;
+    o.resolution = 8;
+    const CertifiedClassifier certified(box.mesh, o);
+    const GpuCertifiedBands bands(certified);
+    EXPECT_EQ(bands.certifiedRules(), 7); // closed and oriented: every rule
+    {
+        const GlContext other; // made current
+        EXPECT_THROW(bands.setUniforms(0, "u_certified", 1, 2), GlError);
+    }
+    gl().makeCurrent();
 }
 
 } // namespace

@@ -60,7 +60,8 @@ struct UnsureRecord {
 
 } // namespace
 
-GpuCertifiedBands::GpuCertifiedBands(const CertifiedClassifier& certified) : grid_(certified.grid()) {
+GpuCertifiedBands::GpuCertifiedBands(const CertifiedClassifier& certified)
+    : context_(ContextStamp::current("GpuCertifiedBands")), grid_(certified.grid()) {
     const CertifiedBands b = certified.bands();
     box_ = b.box;
     depthAxis_ = b.depthAxis;
@@ -79,6 +80,7 @@ GpuCertifiedBands::GpuCertifiedBands(const CertifiedClassifier& certified) : gri
 
 void GpuCertifiedBands::setUniforms(GLuint program, const std::string& name, GLuint offsetsBinding,
                                     GLuint bandsBinding) const {
+    context_.check("GpuCertifiedBands::setUniforms");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, offsetsBinding, offsets_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bandsBinding, bands_.id());
     const auto at = [&](const char* field) { return glGetUniformLocation(program, (name + "." + field).c_str()); };

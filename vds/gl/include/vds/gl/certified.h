@@ -63,6 +63,8 @@ public:
     /// bands to `bandsBinding` (the shader's VDS_CERTIFIED_OFFSETS_BINDING
     /// and VDS_CERTIFIED_BANDS_BINDING) and sets, in `program` (in use or
     /// not), the `VdsCertified` uniform `name` (e.g. "u_certified").
+    /// Throws a one-line `GlError` unless the context the bands were made
+    /// in is current on the thread they were made on.
     void setUniforms(GLuint program, const std::string& name, GLuint offsetsBinding, GLuint bandsBinding) const;
     /// Bit (1 << Rule) for each rule the bands answer (`CertifiedBands::certifiedRules`).
     std::uint8_t certifiedRules() const { return rules_; }
@@ -70,6 +72,7 @@ public:
     std::size_t bytes() const { return bytes_; }
 
 private:
+    ContextStamp context_;
     Buffer offsets_, bands_;
     SpriteGrid grid_;
     Box box_;
