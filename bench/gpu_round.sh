@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# One round of the GPU figures of docs/benchmarks.md ("The GPU on an NVIDIA H200"),
+# One round of the GPU figures of docs/benchmarks.md ("The GPU on an NVIDIA H200",
+# "Exact answers on the GPU"),
 # for a machine lent a GPU for minutes: every table in one call, each with its
 # plain kernels of the same run, and the GPU's clocks logged beside them
 # (nvidia-smi, where there is one: a GL figure at half a CUDA one's rate with
@@ -43,5 +44,12 @@ run classify 240 "${sizes[@]}" --classify-only --points "$points" --classify-res
   --meshes "$meshes"
 # Bakes to the GPU: wall against GPU time (the axis count beside validation).
 run bake 180 "${sizes[@]}" --bake-only "${bake[@]}" --no-peel --no-cpu-bake --runs 2 --meshes "$meshes"
+# Exact answers on the GPU: certified-gpu against sprite-gpu and CPU certified, every mesh at 1024.
+certified="$build/bench/vds_certified_bench" cpoints=20000000
+[ "${VDS_ROUND_SMOKE:-0}" = 1 ] && cpoints=200000
+if [ -x "$certified" ]; then
+  timeout 180 "$certified" --points "$cpoints" --resolution 1024 --runs 3 "${files[@]}" > "$out/certified.md" 2>&1
+  echo "gpu_round: certified: rc $? ($out/certified.md)"
+fi
 [ -n "$clocks" ] && kill "$clocks" 2> /dev/null
 exit 0

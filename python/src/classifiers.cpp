@@ -312,8 +312,8 @@ V: (n, 3) float32/float64 vertex positions, F: (m, 3) integer vertex
 indices, counter-clockwise seen from outside (float32 V and int32/uint32 F,
 C-contiguous, are read in place; the classifier keeps what it needs, not
 the arrays). method: "sprite", "exact", "certified", "sprite-gpu",
-"slicemap", "slicemap-local", "solid", "solid-compute" or a voxel method's
-"-gpu" form. resolution: texels (sprites, certified bands) or cells (voxel
+"certified-gpu", "slicemap", "slicemap-local", "solid", "solid-compute" or a
+voxel method's "-gpu" form. resolution: texels (sprites, certified bands) or cells (voxel
 grids) on the box's longest side, 0 for the method's default. axis: the view
 axis of sprites and certified bands, "x", "y", "z" or "auto" (the fewest
 layers). bake_method: how sprite methods bake ("cpu", "lists", "peel").

@@ -23,7 +23,7 @@ V, F = icosphere(2, centre=CENTRE)
 V32 = V.astype(np.float32)  # what the library keeps
 BOX_SIDE = 2.0              # the solid's box: about 2 x 2 x 2
 METHODS = ["sprite", "exact", "certified", "sprite-gpu", "slicemap", "slicemap-local", "solid", "solid-compute",
-           "slicemap-gpu", "slicemap-local-gpu", "solid-gpu", "solid-compute-gpu"]
+           "slicemap-gpu", "slicemap-local-gpu", "solid-gpu", "solid-compute-gpu", "certified-gpu"]
 RESOLUTION = 64             # texels or cells on the box's longest side, for the approximate methods
 
 
@@ -47,7 +47,7 @@ def make(name, **kwargs):
 def test_the_method_table_names_every_method_as_the_cli_does():
     table = vds.methods()
     assert [m.name for m in table] == METHODS
-    assert {m.name for m in table if m.exact} == {"exact", "certified"}
+    assert {m.name for m in table if m.exact} == {"exact", "certified", "certified-gpu"}
     assert all(m.gpu == m.name.endswith("-gpu") for m in table)
     assert {m.name for m in table if m.from_sprite} == {"sprite", "sprite-gpu"}
     assert {m.name for m in table if m.needs_closed_mesh} == {m.name for m in table if m.layer == "voxel"}
@@ -101,8 +101,11 @@ def test_gpu_forms_give_their_cpu_forms_labels():
             assert np.array_equal(make(m.name).classify(points), make(cpu).classify(points)), m.name
 
 
-def test_certified_stats_count_every_point():
-    classifier = vds.Classifier(V, F, "certified", resolution=32)
+@pytest.mark.parametrize("name", ["certified", "certified-gpu"])
+def test_certified_stats_count_every_point(name):
+    if info(name).gpu:
+        gl_or_skip()
+    classifier = vds.Classifier(V, F, name, resolution=32)
     points = around(50_000)
     labels, stats = classifier.classify(points, stats=True)
     assert np.array_equal(labels, vds.Classifier(V, F, "exact").classify(points))

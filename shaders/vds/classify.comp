@@ -42,9 +42,8 @@ layout(local_size_x = VDS_LOCAL_SIZE) in; // before the include: it reads gl_Wor
 #include "vds/boundary_tiles.glsl"
 #endif
 
-// The same points twice: as vec4 for whole groups of four, as floats for the tail.
-layout(std430, binding = 0) readonly buffer Points4 { vec4 points4[]; };
-layout(std430, binding = 1) readonly buffer Points { float points[]; };
+// The points at bindings 0 and 1, four at a time, and u_count.
+#include "vds/points.glsl"
 layout(std430, binding = 2) writeonly restrict buffer Labels { uint labels[]; };
 #ifdef VDS_COLUMNS
 layout(std430, binding = 3) readonly restrict buffer Offsets { uint offsets[]; };
@@ -60,7 +59,6 @@ uniform VdsPlacement u_placement;
 #ifdef VDS_BOUNDARY_TERM
 uniform VdsBoundary u_boundary;
 #endif
-uniform uint u_count;
 
 #define VDS_N VDS_POINTS_PER_INVOCATION
 
@@ -165,27 +163,8 @@ uint vdsClassifyPoints(vec3 p[VDS_N], uint valid) {
     return word;
 }
 
-// Group q's points (q < quads) and how many of them are real.
-uint vdsLoadPoints(uint q, out vec3 p[VDS_N]) {
-    uint first = 4u * q;
-    uint valid = min(u_count - first, 4u);
-    if (valid == 4u) {
-        vec4 a = points4[3u * q], b = points4[3u * q + 1u], c = points4[3u * q + 2u];
-        p[0] = a.xyz;
-        p[1] = vec3(a.w, b.xy);
-        p[2] = vec3(b.zw, c.x);
-        p[3] = c.yzw;
-    } else {
-        for (uint k = 0u; k < 4u; ++k) {
-            uint i = 3u * (first + min(k, valid - 1u));
-            p[k] = vec3(points[i], points[i + 1u], points[i + 2u]);
-        }
-    }
-    return valid;
-}
-
 void main() {
-    uint quads = u_count / 4u + (u_count % 4u != 0u ? 1u : 0u);
+    uint quads = vdsPointQuads();
 #ifdef VDS_BOUNDARY_TERM
     // Workgroup by workgroup: `first` is the same in every invocation.
     uint step = vdsInvocationCount();

@@ -287,7 +287,7 @@ TEST_F(Cli, HelpShowsDefaultsAndChoices) {
         EXPECT_NE(compare.find(shown), std::string::npos) << shown << " in\n" << compare;
     const std::string classify = vds("classify --help").output;
     for (const char* shown : {"--method sprite|exact|certified|sprite-gpu|slicemap|slicemap-local|solid|solid-compute|"
-                              "slicemap-gpu|slicemap-local-gpu|solid-gpu|solid-compute-gpu=sprite",
+                              "slicemap-gpu|slicemap-local-gpu|solid-gpu|solid-compute-gpu|certified-gpu=sprite",
                               "=1024 for sprites and certified bands, 256 for voxels", "--threads N=0"})
         EXPECT_NE(classify.find(shown), std::string::npos) << shown << " in\n" << classify;
 }
@@ -568,7 +568,7 @@ TEST_F(Cli, VoxelizeWritesExactGridsAsNpy) {
     EXPECT_FALSE(fs::exists(p("bad.npy")));
 }
 
-// Points from .npy, labels to .npy; --certified answers as --exact does.
+// Points from .npy, labels to .npy; --certified and its GPU form answer as --exact does.
 TEST_F(Cli, ClassifyReadsAndWritesNpyAndCertifiedEqualsExact) {
     writeObj(dir / "shell.obj", vds::solids::shell({0, 0, 0}, 1.0f, 0.6f, 24).mesh);
     std::vector<float> xyz;
@@ -580,13 +580,16 @@ TEST_F(Cli, ClassifyReadsAndWritesNpyAndCertifiedEqualsExact) {
         Result r = vds(std::string("classify --exact --mesh ") + p("shell.obj") + " " + p("points.npy") + " -o " +
                        p("exact.npy") + " --quiet --rule " + rule);
         ASSERT_EQ(r.code, 0) << r.output;
-        r = vds(std::string("classify --certified --resolution 64 --mesh ") + p("shell.obj") + " " + p("points.npy") +
-                " -o " + p("certified.npy") + " --quiet --rule " + rule);
-        ASSERT_EQ(r.code, 0) << r.output;
-        const vds::NpyArray a = vds::readNpy(p("exact.npy")), b = vds::readNpy(p("certified.npy"));
-        EXPECT_EQ(a.shape, std::vector<std::uint64_t>{3000});
-        EXPECT_EQ(a.data, b.data) << rule;
-        EXPECT_GT(std::count(a.data.begin(), a.data.end(), 1), 100);
+        // The CPU form, and the GPU form by both spellings.
+        for (const char* method : {"--certified", "--certified --gpu", "--method certified-gpu"}) {
+            r = vds(std::string("classify ") + method + " --resolution 64 --mesh " + p("shell.obj") + " " +
+                    p("points.npy") + " -o " + p("certified.npy") + " --quiet --rule " + rule);
+            ASSERT_EQ(r.code, 0) << r.output;
+            const vds::NpyArray a = vds::readNpy(p("exact.npy")), b = vds::readNpy(p("certified.npy"));
+            EXPECT_EQ(a.shape, std::vector<std::uint64_t>{3000});
+            EXPECT_EQ(a.data, b.data) << rule << " " << method;
+            EXPECT_GT(std::count(a.data.begin(), a.data.end(), 1), 100);
+        }
     }
     // An open mesh: refused by crossing rules, answered by the generalized winding number.
     auto cup = vds::solids::sphere({0, 0, 0}, 1.0f, 16).mesh;

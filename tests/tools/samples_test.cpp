@@ -64,6 +64,29 @@ TEST_F(Samples, BadCommandLinesExitTwoWithOneLine) {
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
 }
 
+// At coarse bands the sprite errs along the cut (red on the left); the
+// certified-gpu panel, on the right, is exact on every pixel.
+TEST_F(Samples, ExactSliceIsExactWhereTheCoarseSpriteIsNot) {
+    const Result r = run(std::string(VDS_EXACT_SLICE) + " " VDS_SAMPLES_DATA "/spot.obj -o " + p("slice.png") +
+                         " --resolution 24 --size 96 --axis x");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("certified-gpu on 0 "), std::string::npos) << r.output;
+    const vds::eval::Image image = vds::eval::readPng(p("slice.png"));
+    ASSERT_EQ(image.width, 192u);
+    std::size_t redLeft = 0, redRight = 0;
+    for (std::uint32_t y = 0; y < image.height; ++y)
+        for (std::uint32_t x = 0; x < image.width; ++x) {
+            const std::uint8_t* px = image.at(x, y);
+            const bool red = px[0] == 220 && px[1] == 30;
+            (x < 96 ? redLeft : redRight) += red;
+        }
+    EXPECT_GT(redLeft, 0u);
+    EXPECT_EQ(redRight, 0u);
+    const Result bad = run(std::string(VDS_EXACT_SLICE) + " " + p("nowhere.obj") + " -o " + p("x.png"));
+    EXPECT_EQ(bad.code, 1) << bad.output;
+    EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
+}
+
 // The lens moves between frames (no re-bake), so consecutive frames differ,
 // and each frame equals the exact reference closely.
 TEST_F(Samples, LensFramesMoveAndMatchTheExactReference) {

@@ -210,7 +210,7 @@ void addClassify(CLI::App& app) {
     a->methodGiven = addEnum(*c, "--method", a->method, "how to answer (see below); default sprite", builtIn);
     addEnum(*c, "--rule", a->options.rule,
             "the paper's parity, non-zero winding, or the generalized winding number (open meshes)");
-    c->add_flag("--gpu", a->gpu, "the method's GPU form (sprite -> sprite-gpu, slicemap -> slicemap-gpu, ...)");
+    c->add_flag("--gpu", a->gpu, "the method's GPU form (sprite -> sprite-gpu, certified -> certified-gpu, ...)");
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
     c->add_option("--mesh", a->mesh, "build the method from this mesh")->type_name("MESH");
     c->add_flag("--exact", a->exact, "= --method exact");

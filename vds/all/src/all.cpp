@@ -24,6 +24,14 @@ Sprite bakeFor(const GlContext* gl, MeshView mesh, Method method, const MethodOp
     return gl ? bakeOnGl(*gl, mesh, bakeOptions) : bake(mesh, bakeOptions);
 }
 
+CertifiedOptions certifiedOptions(Method method, const MethodOptions& options) {
+    CertifiedOptions o;
+    o.resolution = resolutionFor(method, options);
+    o.axis = options.axis.value_or(Axis::Z);
+    o.threads = options.threads;
+    return o;
+}
+
 // A GL classifier with the private context it was made on: the classifier
 // goes first, then the context.
 class OwnContext final : public Classifier {
@@ -58,13 +66,7 @@ std::unique_ptr<Classifier> makeCore(const GlContext* gl, MeshView mesh, Method 
     switch (method) {
     case Method::Sprite: return std::make_unique<SpriteClassifier>(bakeFor(gl, mesh, method, options));
     case Method::Exact: return std::make_unique<ExactClassifier>(mesh, options.axis.value_or(Axis::Z));
-    case Method::Certified: {
-        CertifiedOptions o;
-        o.resolution = resolutionFor(method, options);
-        o.axis = options.axis.value_or(Axis::Z);
-        o.threads = options.threads;
-        return std::make_unique<CertifiedClassifier>(mesh, o);
-    }
+    case Method::Certified: return std::make_unique<CertifiedClassifier>(mesh, certifiedOptions(method, options));
     default: return nullptr;
     }
 }
@@ -91,6 +93,7 @@ std::unique_ptr<Classifier> makeClassifier(const GlContext& gl, MeshView mesh, M
     if (auto core = makeCore(&gl, mesh, method, options)) return core;
     if (method == Method::SpriteGpu)
         return std::make_unique<GpuSpriteClassifier>(gl, bakeFor(&gl, mesh, method, options));
+    if (method == Method::CertifiedGpu) return std::make_unique<GpuCertifiedClassifier>(gl, mesh, certifiedOptions(method, options));
     voxel::ModelOptions o;
     o.resolution = resolutionFor(method, options);
     o.slices = options.slices;

@@ -45,6 +45,8 @@ constexpr MethodInfo kMethods[kMethodCount] = {
      "rasterized solid voxels, looked up in a GL compute shader"},
     {Method::SolidComputeGpu, "solid-compute-gpu", Layer::Voxel, true, false, true, false, kParity, 256,
      "compute-shader solid voxels, looked up in a GL compute shader"},
+    {Method::CertifiedGpu, "certified-gpu", Layer::Gl, true, true, false, false, kAllRules, 1024,
+     "the exact answers, the certified bands' in a GL compute shader, the rest on the CPU"},
     {Method::Custom, "custom", Layer::Core, false, false, false, false, kAllRules, 0,
      "a classifier defined outside the library (derive from vds::Classifier)"},
 };
@@ -57,6 +59,7 @@ constexpr bool tableInOrder() {
 static_assert(tableInOrder(), "kMethods must list the methods in enum order");
 
 constexpr std::pair<Method, Method> kGpuForms[] = {{Method::Sprite, Method::SpriteGpu},
+                                                   {Method::Certified, Method::CertifiedGpu},
                                                    {Method::Slicemap, Method::SlicemapGpu},
                                                    {Method::SlicemapLocal, Method::SlicemapLocalGpu},
                                                    {Method::Solid, Method::SolidGpu},

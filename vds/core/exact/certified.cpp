@@ -110,10 +110,7 @@ struct CertifiedClassifier::Impl {
     // A band of a column: where the surface may be, in mesh units along the
     // axis, and the winding number of the gap above it (the gap below a
     // column's first band has winding 0: nothing is in front there).
-    struct Band {
-        float lo, hi;
-        std::int32_t windingAbove;
-    };
+    using Band = CertifiedBand;
     std::vector<std::uint32_t> offsets; // bands of column c: [offsets[c], offsets[c+1])
     std::vector<Band> bands;
 
@@ -413,6 +410,21 @@ std::size_t CertifiedClassifier::memoryBytes() const { return bandBytes() + impl
 std::string CertifiedClassifier::summary() const {
     return "certified bands " + std::to_string(impl_->grid.width) + " x " + std::to_string(impl_->grid.height) +
            " along " + toString(impl_->grid.axis) + (impl_->certifies ? "" : " (mesh bounds no solid: all exact)");
+}
+
+CertifiedBands CertifiedClassifier::bands() const {
+    const Impl& impl = *impl_;
+    CertifiedBands b;
+    b.box = impl.box;
+    b.depthAxis = impl.perm.z;
+    if (!impl.certifies) return b;
+    b.offsets = impl.offsets.data();
+    b.columnCount = impl.offsets.size() - 1;
+    b.bands = impl.bands.data();
+    b.bandCount = impl.bands.size();
+    for (Rule rule : {Rule::Parity, Rule::Winding, Rule::GeneralizedWinding})
+        if (rule == Rule::Parity || impl.certifiesWinding) b.certifiedRules |= std::uint8_t(1u << unsigned(rule));
+    return b;
 }
 
 std::size_t CertifiedClassifier::bandBytes() const {

@@ -19,6 +19,7 @@
 #include <vds/classify.h>
 #include <vds/exact.h>
 #include <vds/gl/bake.h>
+#include <vds/gl/certified.h>
 #include <vds/gl/classifier.h>
 #include <vds/gl/context.h>
 #include <vds/gl/sprite.h>

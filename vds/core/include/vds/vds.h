@@ -133,8 +133,8 @@
 //   (the CLI, Python, evaluation and benchmarks dispatch through it).
 //   enum class Method: sprite, exact, certified, sprite-gpu, slicemap,
 //     slicemap-local, solid, solid-compute, slicemap-gpu, slicemap-local-gpu,
-//     solid-gpu, solid-compute-gpu, and custom (a Classifier written outside
-//     the library). `methodInfo(method)` / `methodTable()` give each a
+//     solid-gpu, solid-compute-gpu, certified-gpu, and custom (a Classifier
+//     written outside the library). `methodInfo(method)` / `methodTable()` give each a
 //     `MethodInfo` {name, Layer, gpu, exact, needsClosedMesh, fromSprite,
 //     rules, defaultResolution, summary, builtIn()}: the one table the CLI,
 //     Python, evaluation and benchmarks read. `cpuForm` / `gpuForm` map a
@@ -235,7 +235,9 @@
 //   CertifiedClassifier(mesh, CertifiedOptions{resolution, axis, threads})
 //     the exact classifier's answers at close to a sprite's speed: per
 //     texel, bands where the surface may be; outside them the answer is
-//     proven, inside them the exact classifier decides. <vds/certified.h>
+//     proven, inside them the exact classifier decides; `bands()` gives
+//     them as CertifiedBands (offsets, CertifiedBand {lo, hi, windingAbove},
+//     box, depth axis, certified rules) for GPU forms. <vds/certified.h>
 //   SignedDistance(mesh, rule)                             <vds/distance.h>
 //     exact distances to the triangles (an SAH hierarchy as wide as the CPU's
 //     SIMD, 8 lanes with AVX2, else 4; the closest
@@ -293,6 +295,14 @@
 //                        memory (Auto: copied on a hardware renderer).
 //   GpuSpriteClassifier  the same as a Classifier (Method::SpriteGpu).
 //                                                        <vds/gl/classifier.h>
+//   GpuCertifiedClassifier(gl, mesh, CertifiedOptions)  Method::CertifiedGpu:
+//                        the exact classifier's labels, the certified bands'
+//                        in a compute shader, the unsure points compacted on
+//                        the GPU and answered exactly on the host; host
+//                        arrays, or GL buffers in and out.
+//   GpuCertifiedBands(certified)  the bands in GL, for shaders/vds/certified.glsl
+//                        (`vdsContainsCertain(...)`: 1 inside, 0 outside, -1
+//                        unsure, in any stage). <vds/gl/certified.h>
 //   GpuOccupancy         occupancy grids in a compute shader, into a GL
 //                        buffer or host memory.          <vds/gl/occupancy.h>
 //   uploadDistanceTexture(grid, cells)  a signed distance grid as a 3D

@@ -61,7 +61,8 @@ struct PointsView {
 };
 
 /// What a batch did, for methods that answer some points by a proof and the
-/// rest by an exact fallback (`Method::Certified`). Other methods count
+/// rest by an exact fallback (`Method::Certified`,
+/// `Method::CertifiedGpu`). Other methods count
 /// every point under `certain` (an approximate method's answers are its own).
 struct ClassifyStats {
     std::size_t certain = 0; ///< answered without the exact path
@@ -92,13 +93,14 @@ enum class Method : std::uint8_t {
     SlicemapLocalGpu, ///< SlicemapLocal, looked up in a compute shader (vds::voxel)
     SolidGpu,         ///< Solid, looked up in a compute shader (vds::voxel)
     SolidComputeGpu,  ///< SolidCompute, looked up in a compute shader (vds::voxel)
+    CertifiedGpu,     ///< Certified with its bands in a compute shader, the rest exact on the CPU (vds::gl)
     /// A classifier defined outside the library: derive from `Classifier`,
     /// return this from `method()` and name it in `summary()`; it then
     /// works with `occupancy` and everything else that takes a Classifier
     /// (the benchmarks' Embree and CGAL peers do). `makeClassifier` refuses it.
     Custom,
 };
-constexpr std::size_t kMethodCount = 13;
+constexpr std::size_t kMethodCount = 14;
 
 template <> struct EnumNames<Method> {
     static constexpr const char* kind = "method";
@@ -115,6 +117,7 @@ template <> struct EnumNames<Method> {
         {"slicemap-local-gpu", Method::SlicemapLocalGpu},
         {"solid-gpu", Method::SolidGpu},
         {"solid-compute-gpu", Method::SolidComputeGpu},
+        {"certified-gpu", Method::CertifiedGpu},
         {"custom", Method::Custom},
     };
 };

@@ -41,6 +41,36 @@
 
 namespace vds {
 
+/// One uncertain band of a column: the surface may lie at depths [lo, hi]
+/// (mesh units along the grid's axis), nowhere else in the gap up to the
+/// next band; `windingAbove` is the winding number of the gap above it
+/// (the gap below a column's first band has winding 0).
+struct CertifiedBand {
+    float lo, hi;
+    std::int32_t windingAbove;
+};
+
+/// The bands of a `CertifiedClassifier`, read-only views into it (valid
+/// while it lives, unchanged by queries): what its GPU form uploads and
+/// what shaders/vds/certified.glsl reads. A point p of mesh coordinates is
+/// answered from them when `certifiedRules` has its rule's bit, p lies
+/// strictly inside `box`, and its depth p[depthAxis] lies in no band of
+/// its column (the grid's texel of p, `SpriteGrid::toTexture`); finite
+/// points outside `box` are outside; every other point needs the exact
+/// classifier.
+struct CertifiedBands {
+    /// `columnCount + 1` entries (none when `certifiedRules` is 0): column
+    /// c = j * width + i of the grid has bands [offsets[c], offsets[c+1]),
+    /// sorted by depth, disjoint.
+    const std::uint32_t* offsets = nullptr;
+    std::size_t columnCount = 0;
+    const CertifiedBand* bands = nullptr;
+    std::size_t bandCount = 0;
+    Box box;              ///< the mesh's bounds, mesh coordinates
+    int depthAxis = 2;    ///< 0, 1, 2: the grid's axis x, y, z
+    std::uint8_t certifiedRules = 0; ///< bit (1 << Rule) for each rule the bands answer
+};
+
 struct CertifiedOptions {
     std::uint32_t resolution = 1024; ///< texels on the longer side of the grid, as for a sprite (1..16384)
     Axis axis = Axis::Z;
@@ -76,6 +106,8 @@ public:
     bool certifies() const;
     /// The grid of the bands (as a sprite baked with the same options would have).
     const SpriteGrid& grid() const;
+    /// The bands themselves, for GPU forms and shaders (see `CertifiedBands`).
+    CertifiedBands bands() const;
     /// Bytes of the bands (offsets, intervals, windings), without the exact classifier.
     std::size_t bandBytes() const;
     /// The exact classifier behind it.
