@@ -9,6 +9,7 @@
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 #include <vds/occupancy.h>
+#include <vds/vdb.h>
 #include <vds/vds_file.h>
 
 #include "cli.h"
@@ -53,8 +54,19 @@ std::uint32_t slabLayers(bool packed, const vds::Grid& grid) {
                   : std::max<std::uint32_t>(1, (grid.dims.x + kProgressSlabs - 1) / kProgressSlabs);
 }
 
+/// True for an output named .vdb, which the build must be able to write
+/// (refused now, before the work, otherwise).
+bool vdbOutput(const VoxelizeArgs& a) {
+    if (a.output.size() < 4 || a.output.compare(a.output.size() - 4, 4, ".vdb") != 0) return false;
+    if (!vds::vdbAvailable())
+        throw CLI::ValidationError("-o: " + a.output + ": this vds was built without OpenVDB (libopenvdb-dev): it cannot write .vdb files");
+    if (a.packed) throw CLI::ValidationError("--packed: a .vdb keeps whole blocks as tiles already; leave it out");
+    return true;
+}
+
 void voxelize(VoxelizeArgs& a) {
     requireGridSize(a.grid);
+    const bool vdb = vdbOutput(a);
     const auto progress = progressPrinter(a.quiet);
     const auto phase = [&](const char* what, double seconds) {
         if (a.verbose) std::fprintf(stderr, "vds voxelize: %-8s %8.3f s\n", what, seconds);
@@ -117,7 +129,11 @@ void voxelize(VoxelizeArgs& a) {
     const double sweep = secondsSince(start);
     phase("sweep", sweep);
     start = std::chrono::steady_clock::now();
-    if (a.packed)
+    if (vdb) {
+        vds::VdbOptions options;
+        options.source = a.input;
+        vds::writeVdb(a.output, grid, cells.data(), a.options.rule, options);
+    } else if (a.packed)
         vds::writeNpy(a.output, "|u1", {grid.dims.x, grid.dims.y, rowBytes}, bits.data(), bits.size());
     else
         vds::writeNpy(a.output, "|b1", {grid.dims.x, grid.dims.y, grid.dims.z}, cells.data(), cells.size());
@@ -140,10 +156,12 @@ void addVoxelize(CLI::App& app) {
         "count=NZ) gives the cells back). From a mesh the labels are exact (equal to 'vds classify --exact' on\n"
         "the cell centres); from a SPRITE.vds they are the sprite's answers. A mesh whose inside the rule\n"
         "does not define (an open mesh by parity or winding) is refused, as classify, distance and sdf\n"
-        "refuse it: --rule generalized-winding answers it, --allow-open counts crossings anyway.",
+        "refuse it: --rule generalized-winding answers it, --allow-open counts crossings anyway.\n"
+        "GRID.vdb (a build with OpenVDB, 'vds --version'): an OpenVDB BoolGrid 'occupancy', the inside\n"
+        "cells active, an 8^3 block wholly inside one active tile; voxel (i, j, k) centred on cell (i, j, k).",
         voxelize);
     c->add_option("INPUT", a->input, "a mesh (OBJ, PLY, STL, OFF) or a sprite (.vds)")->required()->type_name("");
-    c->add_option("-o,--output", a->output, "output .npy (written whole or not at all)")->required()->type_name("FILE");
+    c->add_option("-o,--output", a->output, "output .npy, or .vdb (written whole or not at all)")->required()->type_name("FILE");
     addGridOptions(*c, a->grid, "the grid's box instead of the input's bounds");
     addEnum(*c, "--rule", a->options.rule,
             "parity, non-zero winding, or the generalized winding number (open meshes and soups too)");

@@ -26,9 +26,14 @@ constexpr std::uint32_t kSide = kBandBlockSide;
 constexpr std::uint32_t kBlockCells = kSide * kSide * kSide;
 /// Triangles a chunk of the marking pass.
 constexpr std::size_t kTriangleChunk = 2048;
-/// Blocks a chunk of the band pass: its values go to one vector, so the
-/// chunks' vectors stay few (a thousand per 64k blocks).
-constexpr std::size_t kBlockChunk = 64;
+/// Runs of marked blocks a chunk of the band pass: its values go to one
+/// vector, so the chunks' vectors stay few.
+constexpr std::size_t kRunChunk = 16;
+/// Unmarked blocks a run of marked blocks along z may span: a run's cells
+/// are labelled by one sweep of its columns (a column's crossings found once,
+/// not once a block), and an unmarked block costs its labels only (no
+/// triangle is near it, so its distances are filled without a search).
+constexpr std::uint32_t kRunGap = 4;
 /// Cells of the tile grid a sweep labels at once: its label bytes.
 constexpr std::size_t kTileSlabCells = std::size_t(1) << 24;
 /// Relative margin by which a triangle's box grows past W, over the grid's
@@ -149,64 +154,82 @@ struct ChunkBand {
     std::vector<float> values; ///< `blocks`' first counts from the chunk's start
 };
 
-/// The cells of one block: their distances (bounded by W) and labels, into
-/// `out` when the block holds a band cell or labels that differ; otherwise
-/// the block is a tile of its one label.
-class BlockFiller {
-public:
-    BlockFiller(const SignedDistance& distance, const Grid& grid, const BlockFrame& frame, double halfWidth)
-        : distance_(distance), grid_(grid), frame_(frame), halfWidth_(halfWidth) {
-        classify_.rule = distance.rule();
-        classify_.threads = 1;
-        options_.threads = 1;
-        options_.maxDistance = halfWidth;
+/// Marked blocks [begin, end) of the ascending list: one column of blocks
+/// (the same x and y), from block z `first` to `last`.
+struct Run {
+    std::size_t begin, end;
+};
+
+/// The marked blocks in runs: the same column of blocks, at most kRunGap
+/// unmarked blocks between one and the next.
+std::vector<Run> runsOf(const std::vector<std::uint64_t>& marked, std::uint32_t blocksZ) {
+    std::vector<Run> runs;
+    for (std::size_t m = 0; m < marked.size(); ++m) {
+        const bool joins = m > 0 && marked[m] / blocksZ == marked[m - 1] / blocksZ &&
+                           marked[m] - marked[m - 1] <= kRunGap + 1;
+        if (joins) runs.back().end = m + 1;
+        else runs.push_back({m, m + 1});
     }
-    void fill(std::uint64_t index, ChunkBand& out, BlockBits& tiles);
+    return runs;
+}
+
+/// The cells of a run of blocks: the dense band of the run's cells alone (a
+/// grid of them, their centres the whole grid's: the same floats and signs
+/// as the whole dense band), each marked block into `out` when it holds a
+/// band cell or labels that differ, otherwise a tile of its one label.
+class RunFiller {
+public:
+    RunFiller(const SignedDistance& distance, const Grid& grid, const BlockFrame& frame, double halfWidth)
+        : distance_(distance), grid_(grid), frame_(frame), halfWidth_(halfWidth) {
+        options_.threads = 1;
+        options_.band = halfWidth;
+    }
+    void fill(const std::vector<std::uint64_t>& marked, const Run& run, ChunkBand& out, BlockBits& tiles);
 
 private:
+    void keep(std::uint64_t index, const Grid& cells, std::uint32_t z0, ChunkBand& out, BlockBits& tiles) const;
+
     const SignedDistance& distance_;
     const Grid& grid_;
     const BlockFrame& frame_;
     double halfWidth_;
-    ClassifyOptions classify_;
-    DistanceOptions options_;
-    glm::vec3 points_[kBlockCells];
-    double distances_[kBlockCells];
-    std::uint8_t labels_[kBlockCells];
+    DistanceGridOptions options_;
+    std::vector<float> cells_;
 };
 
-void BlockFiller::fill(std::uint64_t index, ChunkBand& out, BlockBits& tiles) {
-    const glm::uvec3 block(std::uint32_t(index / (std::uint64_t(frame_.blocks.y) * frame_.blocks.z)),
-                           std::uint32_t(index / frame_.blocks.z % frame_.blocks.y),
-                           std::uint32_t(index % frame_.blocks.z));
-    BandBlock b;
-    b.origin = block * kSide;
-    const glm::uvec3 size = glm::min(glm::uvec3(kSide), grid_.dims - b.origin);
-    std::size_t n = 0;
-    for (std::uint32_t x = 0; x < size.x; ++x)
-        for (std::uint32_t y = 0; y < size.y; ++y)
-            for (std::uint32_t z = 0; z < size.z; ++z)
-                points_[n++] = grid_.cellCentre(b.origin.x + x, b.origin.y + y, b.origin.z + z);
-    distance_.unsignedDistance(PointsView(points_, n), distances_, options_);
+void RunFiller::fill(const std::vector<std::uint64_t>& marked, const Run& run, ChunkBand& out, BlockBits& tiles) {
+    const std::uint64_t column = marked[run.begin] / frame_.blocks.z;
+    const glm::uvec3 origin(std::uint32_t(column / frame_.blocks.y) * kSide, std::uint32_t(column % frame_.blocks.y) * kSide,
+                            std::uint32_t(marked[run.begin] % frame_.blocks.z) * kSide);
+    const std::uint32_t zEnd = std::min(grid_.dims.z, std::uint32_t(marked[run.end - 1] % frame_.blocks.z + 1) * kSide);
     Grid cells = grid_;
     cells.whole = grid_.dims;
-    cells.first = b.origin;
-    cells.dims = size;
-    distance_.classifier().occupancy(cells, labels_, classify_);
+    cells.first = origin;
+    cells.dims = glm::uvec3(std::min(kSide, grid_.dims.x - origin.x), std::min(kSide, grid_.dims.y - origin.y), zEnd - origin.z);
+    cells_.resize(cells.cellCount());
+    distance_.grid(cells, cells_.data(), options_);
+    for (std::size_t m = run.begin; m < run.end; ++m)
+        keep(marked[m], cells, std::uint32_t(marked[m] % frame_.blocks.z) * kSide - origin.z, out, tiles);
+}
+
+/// Block `index`, its cells from z0 on in the run's `cells`.
+void RunFiller::keep(std::uint64_t index, const Grid& cells, std::uint32_t z0, ChunkBand& out, BlockBits& tiles) const {
+    BandBlock b;
+    b.origin = glm::uvec3(cells.first.x, cells.first.y, cells.first.z + z0);
+    const std::uint32_t depth = std::min(kSide, cells.dims.z - z0);
     const float background = float(halfWidth_);
     b.first = out.values.size();
     bool any = false;
-    std::size_t insideCount = 0;
-    n = 0;
-    for (std::uint32_t x = 0; x < size.x; ++x)
-        for (std::uint32_t y = 0; y < size.y; ++y)
-            for (std::uint32_t z = 0; z < size.z; ++z, ++n) {
+    std::size_t insideCount = 0, n = 0;
+    for (std::uint32_t x = 0; x < cells.dims.x; ++x)
+        for (std::uint32_t y = 0; y < cells.dims.y; ++y)
+            for (std::uint32_t z = 0; z < depth; ++z, ++n) {
                 const std::uint64_t bit = std::uint64_t(1) << (y * kSide + z);
-                if (labels_[n]) b.inside[x] |= bit, ++insideCount;
-                const float d = float(distances_[n]);
-                if (!(d < background)) continue;
+                const float v = cells_[cells.index(x, y, z0 + z)];
+                if (std::signbit(v)) b.inside[x] |= bit, ++insideCount;
+                if (!(std::abs(v) < background)) continue;
                 b.band[x] |= bit;
-                out.values.push_back(labels_[n] ? -d : d);
+                out.values.push_back(v);
                 any = true;
             }
     if (any || (insideCount != 0 && insideCount != n)) out.blocks.push_back(b);
@@ -286,11 +309,12 @@ SparseBand sparseBand(const SignedDistance& distance, MeshView mesh, const Grid&
     const std::vector<std::uint64_t> marked = markedBlocks(frame, mesh, reach, options.threads);
     BlockBits tiles(blockCount);
     labelTiles(signs, band.rule, frame, options.threads, tiles);
-    std::vector<ChunkBand> chunks((marked.size() + kBlockChunk - 1) / kBlockChunk);
-    detail::parallelFor(options.threads, marked.size(), kBlockChunk, [&](std::size_t begin, std::size_t end) {
-        BlockFiller filler(distance, grid, frame, options.halfWidth);
-        ChunkBand& out = chunks[begin / kBlockChunk];
-        for (std::size_t m = begin; m < end; ++m) filler.fill(marked[m], out, tiles);
+    const std::vector<Run> runs = runsOf(marked, frame.blocks.z);
+    std::vector<ChunkBand> chunks((runs.size() + kRunChunk - 1) / kRunChunk);
+    detail::parallelFor(options.threads, runs.size(), kRunChunk, [&](std::size_t begin, std::size_t end) {
+        RunFiller filler(distance, grid, frame, options.halfWidth);
+        ChunkBand& out = chunks[begin / kRunChunk];
+        for (std::size_t r = begin; r < end; ++r) filler.fill(marked, runs[r], out, tiles);
         out.values.shrink_to_fit();
     });
     gather(chunks, band);
