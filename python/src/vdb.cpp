@@ -37,10 +37,12 @@ Grid vdbGrid(const py::object& gridObject, const py::object& voxelSize, const Me
 }
 
 std::size_t writeVdbFile(const std::string& path, const py::object& vertices, const py::object& faces,
-                         const py::object& gridObject, const py::object& voxelSize, const std::optional<double>& band,
+                         const py::object& gridObject, const py::object& voxelSize, const py::object& bandObject,
                          const py::object& ruleObject, bool occupancy, const py::object& threads,
                          const std::string& source) {
     if (!vdbAvailable()) writeVdb(path, SparseBand{}); // the one-line refusal
+    std::optional<double> band;
+    if (!bandObject.is_none()) band = bandObject.cast<double>();
     if (occupancy == band.has_value())
         throw InvalidArgument(occupancy ? "occupancy=True writes labels: leave band out"
                                         : "a level set needs band (its half-width, mesh units), or occupancy=True");
