@@ -9,18 +9,19 @@
 // midpoints: the same surface, 4^K times the triangles), so a million
 // triangles come from a public mesh. The grid has N cubic cells along the
 // longest side of the mesh's box grown by band + 2 cells. One method a run,
-// so that the peak memory (getrusage's maximum resident size) is that
+// so that the peak memory (the maximum resident size, VmHWM) is that
 // method's: time (mesh in memory to band in memory, vds's distance index
-// included), peak, voxels stored, bytes. `compare` runs both and reads every
+// included), peak (the process's, the mesh's own counted, its subdivision's
+// not), voxels stored, bytes. `compare` runs both and reads every
 // OpenVDB active voxel against vds's exact band: the largest and mean
 // difference (in voxels) where both hold a distance, and the voxels whose
 // sign differs from vds's (whose signs equal the exact classifier's).
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <map>
 #include <string>
 #include <utility>
@@ -42,11 +43,28 @@ using Clock = std::chrono::steady_clock;
 
 double seconds(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-double peakGiB() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_maxrss) / (1024.0 * 1024.0); // KiB on Linux
+/// A line of /proc/self/status ("VmHWM:", "VmRSS:") in GiB.
+double statusGiB(const char* field) {
+    std::FILE* f = std::fopen("/proc/self/status", "r");
+    if (!f) return 0.0;
+    char line[256];
+    double kib = 0.0;
+    while (std::fgets(line, sizeof line, f))
+        if (std::strncmp(line, field, std::strlen(field)) == 0) kib = std::atof(line + std::strlen(field));
+    std::fclose(f);
+    return kib / (1024.0 * 1024.0);
 }
+
+/// Starts the peak resident size afresh (Linux: clear_refs 5), so that the
+/// peak a method reports is its own, not the mesh's subdivision's.
+void resetPeak() {
+    if (std::FILE* f = std::fopen("/proc/self/clear_refs", "w")) {
+        std::fputs("5", f);
+        std::fclose(f);
+    }
+}
+
+double peakGiB() { return statusGiB("VmHWM:"); }
 
 /// Each triangle into four at its edges' midpoints (shared edges share them).
 vds::TriangleMesh subdivide(const vds::TriangleMesh& in) {
@@ -146,6 +164,8 @@ int main(int argc, char** argv) {
         openvdb::initialize();
         std::printf("mesh %s x%u subdivided: %zu triangles; grid %ux%ux%u, band +-%g cells, %u threads\n", path.c_str(),
                     subdivisions, mesh.triangles.size(), grid.dims.x, grid.dims.y, grid.dims.z, double(bandCells), threads);
+        std::printf("mesh and grid in memory: %.2f GiB resident (the peaks below count it)\n", statusGiB("VmRSS:"));
+        resetPeak();
         vds::SparseBand band;
         if (method != "openvdb") {
             const auto start = Clock::now();
