@@ -19,8 +19,7 @@
 #include "solids.h"
 
 #if VDS_TEST_OPENVDB
-#include <openvdb/io/File.h>
-#include <openvdb/openvdb.h>
+#include "vdb_read.h"
 #endif
 
 namespace {
@@ -68,15 +67,7 @@ TEST_F(VdbCli, BadVdbRequestsAreRefusedInOneLineBeforeAnyWork) {
 
 #if VDS_TEST_OPENVDB
 
-template <class GridType> typename GridType::Ptr readGrid(const std::string& path) {
-    openvdb::initialize();
-    openvdb::io::File file(path);
-    file.open();
-    const openvdb::GridPtrVecPtr grids = file.getGrids();
-    file.close();
-    EXPECT_EQ(grids->size(), 1u);
-    return openvdb::gridPtrCast<GridType>(grids->front());
-}
+using vds::test::readOnlyGrid;
 
 TEST_F(VdbCli, ALevelSetHoldsTheValuesOfTheNpyBand) {
     const std::string common = "sdf " + p("torus.obj") + " --dims 40 --cubic --band 0.15 --quiet";
@@ -87,7 +78,7 @@ TEST_F(VdbCli, ALevelSetHoldsTheValuesOfTheNpyBand) {
     EXPECT_NE(vdb.output.find("band cells in"), std::string::npos) << vdb.output;
     const vds::NpyArray dense = vds::readNpy(p("t.npy"));
     ASSERT_EQ(dense.shape.size(), 3u);
-    const auto level = readGrid<openvdb::FloatGrid>(p("t.vdb"));
+    const auto level = readOnlyGrid<openvdb::FloatGrid>(p("t.vdb"));
     ASSERT_TRUE(level);
     EXPECT_EQ(level->getGridClass(), openvdb::GRID_LEVEL_SET);
     EXPECT_EQ(level->background(), 0.15f);
@@ -113,7 +104,7 @@ TEST_F(VdbCli, AnOccupancyGridHoldsTheLabelsOfTheNpyGrid) {
     const Result r = vds(common + " -o " + p("t.vdb"));
     ASSERT_EQ(r.code, 0) << r.output;
     const vds::NpyArray labels = vds::readNpy(p("t.npy"));
-    const auto occupancy = readGrid<openvdb::BoolGrid>(p("t.vdb"));
+    const auto occupancy = readOnlyGrid<openvdb::BoolGrid>(p("t.vdb"));
     ASSERT_TRUE(occupancy);
     const openvdb::BoolGrid::ConstAccessor access = occupancy->getConstAccessor();
     std::size_t inside = 0;

@@ -20,8 +20,7 @@
 #include "solids.h"
 
 #if VDS_TEST_OPENVDB
-#include <openvdb/io/File.h>
-#include <openvdb/openvdb.h>
+#include "vdb_read.h"
 #endif
 
 namespace vds {
@@ -65,15 +64,7 @@ TEST(Vdb, AvailabilityIsTheBuilds) {
 
 #if VDS_TEST_OPENVDB
 
-openvdb::GridBase::Ptr readOnly(const std::string& path) {
-    openvdb::initialize();
-    openvdb::io::File file(path);
-    file.open();
-    const openvdb::GridPtrVecPtr grids = file.getGrids();
-    file.close();
-    EXPECT_EQ(grids->size(), 1u);
-    return grids->front();
-}
+using test::readOnlyGrid;
 
 TEST(Vdb, ALevelSetReadsBackWithItsValuesTransformAndClass) {
     TempDir dir;
@@ -83,7 +74,7 @@ TEST(Vdb, ALevelSetReadsBackWithItsValuesTransformAndClass) {
     const double cell = double(grid.box.hi.x - grid.box.lo.x) / grid.dims.x;
     const SparseBand band = sparseBand(distance, mesh, grid, SparseBandOptions{2, 3.0 * cell});
     writeVdb(dir.file("torus.vdb"), band, VdbOptions{"", "torus.obj"});
-    const auto read = openvdb::gridPtrCast<openvdb::FloatGrid>(readOnly(dir.file("torus.vdb")));
+    const auto read = readOnlyGrid<openvdb::FloatGrid>(dir.file("torus.vdb"));
     ASSERT_TRUE(read);
     EXPECT_EQ(read->getName(), "sdf");
     EXPECT_EQ(read->getGridClass(), openvdb::GRID_LEVEL_SET);
@@ -120,7 +111,7 @@ TEST(Vdb, OccupancyReadsBackAsItsLabelsWithWholeBlocksAsTiles) {
     classify.rule = Rule::Winding;
     distance.classifier().occupancy(grid, labels.data(), classify);
     writeVdb(dir.file("sphere.vdb"), grid, labels.data(), Rule::Winding);
-    const auto read = openvdb::gridPtrCast<openvdb::BoolGrid>(readOnly(dir.file("sphere.vdb")));
+    const auto read = readOnlyGrid<openvdb::BoolGrid>(dir.file("sphere.vdb"));
     ASSERT_TRUE(read);
     EXPECT_EQ(read->getName(), "occupancy");
     EXPECT_EQ(read->metaValue<std::string>("rule"), "winding");
