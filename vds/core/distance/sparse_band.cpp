@@ -23,7 +23,6 @@ namespace vds {
 namespace {
 
 constexpr std::uint32_t kSide = kBandBlockSide;
-constexpr std::uint32_t kBlockCells = kSide * kSide * kSide;
 /// Triangles a chunk of the marking pass.
 constexpr std::size_t kTriangleChunk = 2048;
 /// Runs of marked blocks a chunk of the band pass: its values go to one
@@ -154,8 +153,8 @@ struct ChunkBand {
     std::vector<float> values; ///< `blocks`' first counts from the chunk's start
 };
 
-/// Marked blocks [begin, end) of the ascending list: one column of blocks
-/// (the same x and y), from block z `first` to `last`.
+/// Marked blocks [begin, end) of the ascending list, all in one column of
+/// blocks (the same x and y).
 struct Run {
     std::size_t begin, end;
 };
