@@ -15,6 +15,10 @@
 
 #include <glm/geometric.hpp>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include <vds/detail/parallel.h>
 #include <vds/error.h>
 
@@ -35,6 +39,8 @@ constexpr std::size_t kRunChunk = 16;
 constexpr std::uint32_t kRunGap = 4;
 /// Cells of the tile grid a sweep labels at once: its label bytes.
 constexpr std::size_t kTileSlabCells = std::size_t(1) << 24;
+/// Bytes of chunks freed between hand-backs of the gather (`gather`).
+constexpr std::size_t kReturnBytes = std::size_t(64) << 20;
 /// Relative margin by which a triangle's box grows past W, over the grid's
 /// largest coordinate: far more than the float rounding of a cell centre
 /// (2^-24 relative), so no cell within W of a triangle lies outside it.
@@ -235,8 +241,18 @@ void RunFiller::keep(std::uint64_t index, const Grid& cells, std::uint32_t z0, C
     else tiles.assign(index, insideCount != 0);
 }
 
+/// Hands freed memory back to the system: glibc keeps the small blocks the
+/// chunks were made of for reuse, which the band's one array cannot reuse.
+void returnFreedMemory() {
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
+}
+
 /// The chunks' blocks and values, in order, into `band`; each chunk is
-/// freed once copied.
+/// freed once copied, and the freed memory handed back every
+/// kReturnBytes, so that the band is held about once while it is gathered
+/// (the array's pages are touched only as they are filled), not twice.
 void gather(std::vector<ChunkBand>& chunks, SparseBand& band) {
     std::size_t blockCount = 0, valueCount = 0;
     for (const ChunkBand& c : chunks) blockCount += c.blocks.size(), valueCount += c.values.size();
@@ -246,6 +262,7 @@ void gather(std::vector<ChunkBand>& chunks, SparseBand& band) {
     } catch (const std::bad_alloc&) {
         throw OutOfMemory("not enough memory for a band of " + std::to_string(valueCount) + " cells");
     }
+    std::size_t freed = 0;
     for (ChunkBand& c : chunks) {
         const std::uint64_t offset = band.values.size();
         for (BandBlock b : c.blocks) {
@@ -253,8 +270,11 @@ void gather(std::vector<ChunkBand>& chunks, SparseBand& band) {
             band.blocks.push_back(b);
         }
         band.values.insert(band.values.end(), c.values.begin(), c.values.end());
+        freed += c.values.capacity() * sizeof(float) + c.blocks.capacity() * sizeof(BandBlock);
         c = ChunkBand{};
+        if (freed >= kReturnBytes) returnFreedMemory(), freed = 0;
     }
+    returnFreedMemory();
 }
 
 std::size_t bandBits(const std::uint64_t (&mask)[8], int words, std::uint64_t below) {
@@ -315,6 +335,7 @@ SparseBand sparseBand(const SignedDistance& distance, MeshView mesh, const Grid&
         ChunkBand& out = chunks[begin / kRunChunk];
         for (std::size_t r = begin; r < end; ++r) filler.fill(marked, runs[r], out, tiles);
         out.values.shrink_to_fit();
+        out.blocks.shrink_to_fit();
     });
     gather(chunks, band);
     band.tiles.resize(tiles.wordCount());
