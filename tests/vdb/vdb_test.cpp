@@ -1,6 +1,7 @@
 // .vdb output (<vds/vdb.h>) read back with OpenVDB itself: a sparse band's
 // level set holds the band's value in every cell, its band cells active,
-// the level-set class, its background and metadata, and a transform that
+// the level-set class (and OpenVDB's own level-set diagnosis), its
+// background and metadata, and a transform that
 // puts every voxel's centre on the vds cell's; occupancy reads back as the
 // labels, whole blocks as tiles. Without OpenVDB the build has no reader:
 // the writer must then refuse, in one line.
@@ -20,6 +21,8 @@
 #include "solids.h"
 
 #if VDS_TEST_OPENVDB
+#include <openvdb/tools/Diagnostics.h>
+
 #include "vdb_read.h"
 #endif
 
@@ -83,6 +86,11 @@ TEST(Vdb, ALevelSetReadsBackWithItsValuesTransformAndClass) {
     EXPECT_EQ(read->metaValue<std::string>("source"), "torus.obj");
     EXPECT_EQ(read->metaValue<std::string>("vds_version"), vdsVersion());
     EXPECT_EQ(read->activeVoxelCount(), band.values.size());
+    // OpenVDB's own diagnosis of a narrow-band level set: float, class,
+    // uniform voxels, background n voxels, no active tiles, finite values,
+    // active ones within +-background, inactive ones at +-background, and
+    // gradients of norm near one (the Eikonal equation).
+    EXPECT_EQ(openvdb::tools::checkLevelSet(*read, 9), "");
     const openvdb::FloatGrid::ConstAccessor access = read->getConstAccessor();
     for (std::uint32_t i = 0; i < grid.dims.x; ++i)
         for (std::uint32_t j = 0; j < grid.dims.y; ++j)
