@@ -9,4 +9,4 @@
 # include/igl); it uses Debian's Eigen (libeigen3-dev, which install-deps.sh
 # installs for the tests).
 set -euo pipefail
-exec bash "$(dirname "$0")/../tools/install-deps.sh" --only libembree-dev libtbb-dev libcgal-dev
+exec bash "$(dirname "$0")/../tools/install-deps.sh" --only libembree-dev libtbb-dev libcgal-dev libopenvdb-dev

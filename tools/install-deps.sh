@@ -17,6 +17,7 @@ packages=(
   libepoxy-dev                         # tests: vds headers after an application's GL loader
   libcgal-dev                          # tests: the exact predicates against CGAL's exact rationals
   libeigen3-dev libopenmesh-dev        # tests: the header-only Eigen/libigl and OpenMesh adapters
+  libopenvdb-dev python3-openvdb       # optional .vdb output (vds::vdb), read back by its tests in C++ and Python
 )
 if [ "${1:-}" = "--only" ]; then shift; packages=("$@"); fi
 missing=()

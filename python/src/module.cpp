@@ -225,6 +225,7 @@ PYBIND11_MODULE(_vds, m) {
     m.doc() = "vds: point-in-solid tests with volumetric depth sprites (the compiled part; use `import vds`)";
     registerExceptions(m);
     vds::python::registerDistance(m);
+    vds::python::registerVdb(m);
     pthread_atfork(nullptr, nullptr, &forgetGlThreadInChild);
     bindGrid(m);
     bindSprite(m);

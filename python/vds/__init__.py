@@ -76,13 +76,16 @@ from ._vds import (  # noqa: F401  (the public API)
     sdf,
     signed_distance,
     validate_mesh,
+    vdb_available,
+    write_vdb,
 )
 
 __all__ = [
     "Classifier", "DTypeError", "Error", "ExactClassifier", "FEATURES", "FormatError", "GlError", "GlUnavailable", "Grid",
     "InvalidArgument", "InvalidMesh", "IoError", "MeshWarning", "MethodInfo", "NO_TRIANGLE", "OutOfMemory", "SignedDistance", "Sprite", "bake",
     "closest_points", "exact_contains", "from_bytes", "gl_available", "gl_unavailable_reason", "load_mesh", "methods",
-    "occupancy", "read", "sample_surface", "sdf", "signed_distance", "validate_mesh",
+    "occupancy", "read", "sample_surface", "sdf", "signed_distance", "validate_mesh", "vdb_available",
+    "write_vdb",
     "winding_numbers",
 ]
 

@@ -59,6 +59,9 @@ struct GridArgs {
 void addGridOptions(CLI::App& command, GridArgs& grid, const std::string& boxHelp);
 /// Refuses neither or both of --dims and --dims-xyz (before any work).
 void requireGridSize(const GridArgs& args);
+/// The box a grid command covers: `bounds` (or --box) grown by `pad` of
+/// its size on every side.
+vds::Box boxOf(const GridArgs& args, const vds::Box& bounds, float pad = 0.0f);
 /// The grid asked for over `bounds` (or --box), grown by `pad` of its size on
 /// every side; refuses neither or both of --dims and --dims-xyz, and a grid
 /// `vds::checkGrid` refuses. `slabs`: the grid is filled and written a slab of

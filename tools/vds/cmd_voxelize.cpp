@@ -5,11 +5,13 @@
 #include <optional>
 #include <vector>
 
+#include <vds/atomic_file.h>
 #include <vds/exact.h>
 #include <vds/mesh_check.h>
 #include <vds/mesh_io.h>
 #include <vds/npy.h>
 #include <vds/occupancy.h>
+#include <vds/vdb.h>
 #include <vds/vds_file.h>
 
 #include "cli.h"
@@ -81,8 +83,30 @@ std::size_t labelInSlabs(const VoxelizeArgs& a, const vds::Grid& grid, const Lab
     return inside;
 }
 
+/// Labels `grid` whole into `cells` (a .vdb's grid); returns the cells inside.
+std::size_t labelWhole(const vds::Grid& grid, const Labeller& label, std::vector<std::uint8_t>& cells) {
+    try {
+        cells.resize(grid.cellCount());
+    } catch (const std::bad_alloc&) {
+        throw vds::OutOfMemory("not enough memory for a grid of " + std::to_string(grid.cellCount()) + " cells");
+    }
+    label(grid, cells.data());
+    return std::size_t(std::count(cells.begin(), cells.end(), std::uint8_t(1)));
+}
+
+/// True for an output named .vdb, which the build must be able to write
+/// (refused now, before the work, otherwise).
+bool vdbOutput(const VoxelizeArgs& a) {
+    if (a.output.size() < 4 || a.output.compare(a.output.size() - 4, 4, ".vdb") != 0) return false;
+    if (!vds::vdbAvailable())
+        throw CLI::ValidationError("-o: " + a.output + ": this vds was built without OpenVDB (libopenvdb-dev): it cannot write .vdb files");
+    if (a.packed) throw CLI::ValidationError("--packed: a .vdb keeps whole blocks as tiles already; leave it out");
+    return true;
+}
+
 void voxelize(VoxelizeArgs& a) {
     requireGridSize(a.grid);
+    const bool vdb = vdbOutput(a);
     const auto progress = progressPrinter(a.quiet);
     const auto phase = [&](const char* what, double seconds) {
         if (a.verbose) std::fprintf(stderr, "vds voxelize: %-8s %8.3f s\n", what, seconds);
@@ -101,10 +125,15 @@ void voxelize(VoxelizeArgs& a) {
         bounds = checkedBounds(a, mesh);
     }
     phase(fromSprite ? "read" : "validate", secondsSince(start));
-    const vds::Grid grid = gridOf(a.grid, bounds, 0.0f, true);
+    // A .vdb is written from the grid labelled whole; a .npy a slab at a time.
+    const vds::Grid grid = gridOf(a.grid, bounds, 0.0f, !vdb);
     const std::uint64_t rowBytes = (std::uint64_t(grid.dims.z) + 7) / 8;
-    NpySlabWriter out(a.output, a.packed ? "|u1" : "|b1",
-                      {grid.dims.x, grid.dims.y, a.packed ? rowBytes : grid.dims.z}, 1);
+    std::optional<NpySlabWriter> out;
+    std::optional<vds::AtomicFile> claim; // a missing directory fails now, not after the work
+    if (vdb) claim.emplace(a.output);
+    else
+        out.emplace(a.output, a.packed ? "|u1" : "|b1",
+                    std::vector<std::uint64_t>{grid.dims.x, grid.dims.y, a.packed ? rowBytes : grid.dims.z}, 1);
     progress("labelling " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) + "x" +
              std::to_string(grid.dims.z) + " cells " + (fromSprite ? "from the sprite" : "exactly from the mesh"));
     // The mesh's exact classifier is built once (every slab sweeps through it).
@@ -119,11 +148,19 @@ void voxelize(VoxelizeArgs& a) {
         else exact->occupancy(g, cells, a.options);
     };
     start = std::chrono::steady_clock::now();
-    const std::size_t inside = labelInSlabs(a, grid, label, out);
+    std::vector<std::uint8_t> whole;
+    const std::size_t inside = vdb ? labelWhole(grid, label, whole) : labelInSlabs(a, grid, label, *out);
     const double sweep = secondsSince(start);
     phase("sweep", sweep);
     start = std::chrono::steady_clock::now();
-    out.commit();
+    if (vdb) {
+        claim.reset();
+        vds::VdbOptions options;
+        options.source = a.input;
+        vds::writeVdb(a.output, grid, whole.data(), a.options.rule, options);
+    } else {
+        out->commit();
+    }
     phase("write", secondsSince(start));
     // With the grid on stdout, the summary goes to stderr.
     std::fprintf(a.output == kStdio ? stderr : stdout,
@@ -147,10 +184,17 @@ void addVoxelize(CLI::App& app) {
         "does not define (an open mesh by parity or winding) is refused, as classify, distance and sdf\n"
         "refuse it: --rule generalized-winding answers it, --allow-open counts crossings anyway. The grid\n"
         "is labelled and written a slab of x layers at a time (at most 2^26 cells held), so a grid larger\n"
-        "than memory ('--dims 4096 --packed', 8.6 GB) needs only the disk for its file.",
+        "than memory ('--dims 4096 --packed', 8.6 GB) needs only the disk for its file.\n"
+        "GRID.vdb (a build with OpenVDB, 'vds --version'): an OpenVDB BoolGrid 'occupancy', the inside\n"
+        "cells active, an 8^3 block wholly inside one active tile; voxel (i, j, k) centred on cell (i, j, k)\n"
+        "(labelled whole before it is written).",
         voxelize);
     c->add_option("INPUT", a->input, "a mesh (OBJ, PLY, STL, OFF) or a sprite (.vds)")->required()->type_name("");
-    c->add_option("-o,--output", a->output, "output .npy (written slab by slab into a temporary file, renamed into place once whole); '-': stdout")->required()->type_name("FILE");
+    c->add_option("-o,--output", a->output,
+                  "output .npy (written slab by slab into a temporary file, renamed into place once whole), or "
+                  ".vdb (written whole or not at all); '-': stdout (.npy)")
+        ->required()
+        ->type_name("FILE");
     addGridOptions(*c, a->grid, "the grid's box instead of the input's bounds");
     addEnum(*c, "--rule", a->options.rule,
             "parity, non-zero winding, or the generalized winding number (open meshes and soups too)");

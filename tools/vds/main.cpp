@@ -12,6 +12,8 @@
 #include <vds/error.h>
 #include <vds/sprite.h>
 
+#include <vds/vdb.h>
+
 #include "cli.h"
 
 namespace cli {
@@ -46,14 +48,19 @@ void requireGridSize(const GridArgs& args) {
     if ((args.dims == 0) == args.dimsXyz.empty()) throw CLI::ValidationError("give --dims N or --dims-xyz NX NY NZ");
 }
 
+vds::Box boxOf(const GridArgs& args, const vds::Box& bounds, float pad) {
+    const std::vector<float>& b = args.box;
+    vds::Box box = b.empty() ? bounds : vds::Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
+    const glm::vec3 margin = pad * (box.hi - box.lo);
+    box.lo -= margin;
+    box.hi += margin;
+    return box;
+}
+
 vds::Grid gridOf(const GridArgs& args, const vds::Box& bounds, float pad, bool slabs) {
     requireGridSize(args);
-    const std::vector<float>& b = args.box;
     vds::Grid grid;
-    grid.box = b.empty() ? bounds : vds::Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
-    const glm::vec3 margin = pad * (grid.box.hi - grid.box.lo);
-    grid.box.lo -= margin;
-    grid.box.hi += margin;
+    grid.box = boxOf(args, bounds, pad);
     grid.dims = args.dims ? glm::uvec3(args.dims) : glm::uvec3(args.dimsXyz[0], args.dimsXyz[1], args.dimsXyz[2]);
     vds::checkGrid(slabs ? grid.slabX(0, 1) : grid);
     return grid;
@@ -176,6 +183,8 @@ int main(int argc, char** argv) {
     app.get_formatter()->label("Usage", "usage");
     app.get_formatter()->column_width(36);
     app.option_defaults()->always_capture_default();
+    app.set_version_flag("--version", "vds " + vds::vdsVersion() + " (" + vds::vdbLibrary() +
+                                          (vds::vdbAvailable() ? ": writes .vdb)" : ": .vdb output refused)"));
     cli::addBake(app);
     cli::addClassify(app);
     cli::addInfo(app);

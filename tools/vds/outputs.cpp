@@ -35,6 +35,7 @@ const char* extensionOf(OutputFormat format) {
     case OutputFormat::Npy: return ".npy";
     case OutputFormat::Text: return ".txt";
     case OutputFormat::Csv: return ".csv";
+    case OutputFormat::Vdb: return ".vdb";
     }
     return "";
 }

@@ -50,8 +50,8 @@ private:
 };
 
 /// How an output's values are written: a numpy array, text lines of values
-/// separated by spaces, or by commas.
-enum class OutputFormat { Npy, Text, Csv };
+/// separated by spaces, or by commas, or an OpenVDB file (<vds/vdb.h>).
+enum class OutputFormat { Npy, Text, Csv, Vdb };
 
 /// The format `path`'s extension names (.npy, .txt, .csv) among `supported`;
 /// `stdio` for "-". Throws CLI::ValidationError naming `option` and the

@@ -253,6 +253,14 @@
 //     the distance grid a sprite carries (`Sprite::distance`, file format 3,
 //     `vds bake --distance N`), for `vdsDistance` in GLSL (`GpuSprite::distance`);
 //     `spriteDistanceGrid(box, n)` its cells, for callers filling it in slabs.
+//   SparseBand sparseBand(distance, mesh, grid, SparseBandOptions{threads, W})
+//     a narrow band stored sparsely: BandBlock's of 8^3 cells near the
+//     surface, whole blocks inside or outside as tiles, every cell the dense
+//     band's; grids up to 2^40 cells (`voxelSizeGrid(box, h)`). <vds/sparse_band.h>
+//   writeVdb(path, band or grid + labels, VdbOptions{name, source})  <vds/vdb.h>
+//     the optional vds::vdb (OpenVDB where found): a band as a level set,
+//     occupancy labels as a BoolGrid; `vdbAvailable()` says whether it can,
+//     `vdbLibrary()` with which OpenVDB, `vdsVersion()` the version it records.
 //
 // ---- 8. On the GPU (vds::gl) --------------------------------------------------
 //
@@ -383,5 +391,6 @@
 #include <vds/occupancy.h>
 #include <vds/rule.h>
 #include <vds/sample.h>
+#include <vds/sparse_band.h>
 #include <vds/sprite.h>
 #include <vds/vds_file.h>
