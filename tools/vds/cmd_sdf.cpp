@@ -153,8 +153,6 @@ void sdf(SdfArgs& a) {
         sdfVdb(a, mesh, query, progress);
         return;
     }
-    Outputs outputs;
-    const std::size_t output = outputs.claim("-o", a.output);
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
     checkSignedMesh(mesh, a.mesh, a.rule, a.allowOpen, "sdf");
     const vds::Grid grid = gridOfRun(a, vds::meshBounds(mesh), false);
