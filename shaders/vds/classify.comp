@@ -103,10 +103,13 @@ void vdsCountColumns(ivec2 column[VDS_N], bool inBox[VDS_N], vec3 T[VDS_N], out 
         walking = false;
         for (uint k = 0u; k < uint(VDS_N); ++k) {
             if (next[k] >= end[k]) continue;
-            if (!vdsCountCrossing(crossings[next[k]], T[k].z, parity[k], winding[k])) { // the column's walk ends
+            int step = vdsCrossingStep(crossings[next[k]], T[k].z);
+            if (step == 0) { // the column's walk ends
                 end[k] = next[k];
                 continue;
             }
+            parity[k] ^= 1;
+            winding[k] += step;
             ++next[k];
             walking = walking || next[k] < end[k];
         }

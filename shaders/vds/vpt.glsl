@@ -114,15 +114,23 @@ bool vdsColumnOf(vec3 T, ivec2 size, out ivec2 column) {
 }
 
 // The one step of every column walk (this texture's, the compact columns'
-// of vds/columns.glsl): counts crossing `e` into `parity` and `winding`
-// (entering +1, leaving -1) where it lies strictly in front of depth r, and
-// returns false where it does not: a column is sorted front to back, so its
-// walk ends there.
+// of vds/columns.glsl, classify.comp's lockstep walks): crossing `e`'s
+// step of the winding number where it lies strictly in front of depth r,
+// +1 entering and -1 leaving, and 0 where it does not: a column is sorted
+// front to back, so its walk ends there. A value, not inout arguments:
+// llvmpipe copies array elements in and out of a call, which cost the
+// lockstep walks 5% of their rate.
+int vdsCrossingStep(float e, float r) {
+    if (!(abs(e) < r)) return 0;
+    return floatBitsToInt(e) < 0 ? -1 : 1;
+}
+
+// vdsCrossingStep counted into `parity` and `winding`; false where the walk ends.
 bool vdsCountCrossing(float e, float r, inout int parity, inout int winding) {
-    if (!(abs(e) < r)) return false;
-    parity ^= 1;
-    winding += floatBitsToInt(e) < 0 ? -1 : 1;
-    return true;
+    int step = vdsCrossingStep(e, r);
+    parity ^= step & 1;
+    winding += step;
+    return step != 0;
 }
 
 // Winding number of the crossings strictly in front of texture-space point T
