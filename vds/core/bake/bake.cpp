@@ -1,3 +1,7 @@
+// vds: what every baker shares (<vds/detail/bake_common.h>): its
+// preparation (validation, the view axis, the grid; a count beside
+// validation where a baker's raster counts), the sprite's assembly, and the
+// axis choice and timings of <vds/bake.h>.
 #include <vds/bake.h>
 
 #include <algorithm>

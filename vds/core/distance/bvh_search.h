@@ -42,7 +42,7 @@ struct Scalar {
     static constexpr int lanes = 1;
     using F = float;
     using M = bool;
-    static F load(const float* p) { return *p; }
+    static F loadLanes(const float* p) { return *p; }
     static void store(float* p, F a) { *p = a; }
     static F set(float a) { return a; }
     static F add(F a, F b) { return a + b; }
@@ -65,7 +65,7 @@ struct Sse {
     static constexpr int lanes = 4;
     using F = __m128;
     using M = __m128;
-    static F load(const float* p) { return _mm_load_ps(p); }
+    static F loadLanes(const float* p) { return _mm_load_ps(p); }
     static void store(float* p, F a) { _mm_storeu_ps(p, a); }
     static F set(float a) { return _mm_set1_ps(a); }
     static F add(F a, F b) { return _mm_add_ps(a, b); }
@@ -93,7 +93,7 @@ struct Avx {
     static constexpr int lanes = 8;
     using F = __m256;
     using M = __m256;
-    static F load(const float* p) { return _mm256_load_ps(p); }
+    static F loadLanes(const float* p) { return _mm256_load_ps(p); }
     static void store(float* p, F a) { _mm256_storeu_ps(p, a); }
     static F set(float a) { return _mm256_set1_ps(a); }
     static F add(F a, F b) { return _mm256_add_ps(a, b); }
@@ -117,7 +117,7 @@ struct Avx512 {
     static constexpr int lanes = 16;
     using F = __m512;
     using M = __mmask16;
-    static F load(const float* p) { return _mm512_load_ps(p); }
+    static F loadLanes(const float* p) { return _mm512_load_ps(p); }
     static void store(float* p, F a) { _mm512_storeu_ps(p, a); }
     static F set(float a) { return _mm512_set1_ps(a); }
     static F add(F a, F b) { return _mm512_add_ps(a, b); }
@@ -152,14 +152,14 @@ inline void boxDistances(const float* node, const glm::vec3& p, float slack, flo
         const float* at = node + c;
         F sum = zero, along = zero;
         for (int a = 0; a < 3; ++a) {
-            const F below = V::sub(V::load(at + (NodeLanes::lo + a) * width), q[a]);
-            const F above = V::sub(q[a], V::load(at + (NodeLanes::hi + a) * width));
+            const F below = V::sub(V::loadLanes(at + (NodeLanes::lo + a) * width), q[a]);
+            const F above = V::sub(q[a], V::loadLanes(at + (NodeLanes::hi + a) * width));
             const F d = V::max(V::max(below, above), zero);
             sum = V::add(sum, V::mul(d, d));
-            along = V::add(along, V::mul(V::load(at + (NodeLanes::axis + a) * width), q[a]));
+            along = V::add(along, V::mul(V::loadLanes(at + (NodeLanes::axis + a) * width), q[a]));
         }
-        const F off = V::max(V::sub(V::load(at + NodeLanes::slabLo * width), along),
-                             V::sub(along, V::load(at + NodeLanes::slabHi * width)));
+        const F off = V::max(V::sub(V::loadLanes(at + NodeLanes::slabLo * width), along),
+                             V::sub(along, V::loadLanes(at + NodeLanes::slabHi * width)));
         const F out = V::max(V::sub(off, s), zero);
         V::store(d2 + c, V::max(sum, V::mul(out, out)));
     }
@@ -168,9 +168,9 @@ inline void boxDistances(const float* node, const glm::vec3& p, float slack, flo
 /// n . p - w of the plane at `plane` (x, y, z, w, each `width` lanes).
 template <class V, int width>
 inline typename V::F planeDistance(const float* plane, const typename V::F* q) {
-    return V::sub(V::add(V::add(V::mul(V::load(plane), q[0]), V::mul(V::load(plane + width), q[1])),
-                         V::mul(V::load(plane + 2 * width), q[2])),
-                  V::load(plane + 3 * width));
+    return V::sub(V::add(V::add(V::mul(V::loadLanes(plane), q[0]), V::mul(V::loadLanes(plane + width), q[1])),
+                         V::mul(V::loadLanes(plane + 2 * width), q[2])),
+                  V::loadLanes(plane + 3 * width));
 }
 
 /// Lower bounds of the squared distances from p to the `width` triangles of
@@ -205,7 +205,7 @@ inline void lowerBounds(const float* planes, const float* extents, const glm::ve
         typename V::M outside = V::none();
         for (int i = 0; i < 3; ++i) {
             const F t = planeDistance<V, width>(extent + (ExtentLanes::along + 4 * i) * width, q);
-            const F g = V::max(V::neg(t), V::sub(t, V::load(extent + (ExtentLanes::length + i) * width)));
+            const F g = V::max(V::neg(t), V::sub(t, V::loadLanes(extent + (ExtentLanes::length + i) * width)));
             const F es = V::max(V::sub(e[i], s), zero), gs = V::max(V::sub(g, s), zero);
             const F term = V::add(V::mul(es, es), V::mul(gs, gs));
             inPlane = V::min(inPlane, V::select(V::gt(e[i], V::neg(s)), term, inf));
