@@ -301,6 +301,64 @@ TEST(Distance, MaxDistanceClampsFarPoints) {
     EXPECT_EQ(c[2].distance, 0.25);
 }
 
+/// The torus and the open cup scaled by `scale` (exact: a power of two
+/// scales every float exactly, and the points with them).
+TriangleMesh scaled(TriangleMesh mesh, float scale) {
+    for (glm::vec3& p : mesh.positions) p *= scale;
+    return mesh;
+}
+
+// Distances at any finite scale: squared in float, 1e30 overflowed and
+// every distance was wrong (66 times too large); now the hierarchy holds the
+// mesh scaled by a power of two and scales back exactly. Points far from a
+// unit mesh (1e30 away) are answered too.
+TEST(Distance, IsExactAtAnyScale) {
+    for (const float scale : {0x1p-100f, 0x1p-40f, 0x1p40f, 0x1p100f, 0x1p125f}) {
+        for (const Case& c : {cases()[1], cases()[6]}) {
+            SCOPED_TRACE(c.name + " at " + std::to_string(scale));
+            const TriangleMesh mesh = scaled(c.mesh, scale);
+            const SignedDistance distance(mesh, c.rule, c.name);
+            std::vector<glm::vec3> points = samplePoints(mesh, 300);
+            std::vector<double> d(points.size());
+            std::vector<ClosestPoint> closest(points.size());
+            distance.distance(points, d.data(), DistanceOptions{2});
+            distance.closestPoints(points, closest.data(), DistanceOptions{2});
+            std::vector<std::uint8_t> inside(points.size());
+            ClassifyOptions classify;
+            classify.rule = c.rule;
+            distance.classifier().classify(points, inside.data(), classify);
+            for (std::size_t k = 0; k < points.size(); ++k) {
+                const double reference = bruteForce(mesh, points[k]);
+                ASSERT_NEAR(std::abs(d[k]), reference, 1e-12 * double(scale)) << "point " << k;
+                ASSERT_NEAR(closest[k].distance, reference, 1e-12 * double(scale)) << "point " << k;
+                ASSERT_EQ(std::signbit(d[k]), inside[k] != 0) << "point " << k;
+            }
+        }
+    }
+    // A grid at 2^100: its cells are its centres' distances, full and banded.
+    const TriangleMesh big = scaled(cases()[1].mesh, 0x1p100f);
+    const SignedDistance bigDistance(big, Rule::Winding);
+    Grid grid;
+    grid.box = meshBounds(big);
+    grid.dims = glm::uvec3(9, 11, 7);
+    std::vector<float> full(grid.cellCount()), band(grid.cellCount());
+    bigDistance.grid(grid, full.data(), DistanceGridOptions{2, 0.0});
+    const double width = 0.2 * 0x1p100;
+    bigDistance.grid(grid, band.data(), DistanceGridOptions{2, width});
+    for (std::uint32_t i = 0; i < grid.dims.x; ++i)
+        for (std::uint32_t j = 0; j < grid.dims.y; ++j)
+            for (std::uint32_t k = 0; k < grid.dims.z; ++k) {
+                const double d = bigDistance.distance(grid.cellCentre(i, j, k));
+                ASSERT_EQ(full[grid.index(i, j, k)], float(d));
+                ASSERT_EQ(band[grid.index(i, j, k)], std::abs(d) >= width ? float(std::copysign(width, d)) : float(d));
+            }
+    // Far from a unit mesh: every triangle nearly as far, each measured in double.
+    const TriangleMesh mesh = cases()[1].mesh;
+    const SignedDistance distance(mesh, Rule::Winding);
+    for (const glm::vec3& p : {glm::vec3(1e30f, -2e29f, 3e29f), glm::vec3(0.0f, 0.0f, -3e38f), glm::vec3(7e20f)})
+        ASSERT_NEAR(distance.distance(p), bruteForce(mesh, p), 1e-12 * double(glm::length(glm::dvec3(p))));
+}
+
 TEST(Distance, GridEqualsThePointDistancesOfItsCellCentres) {
     for (const Case& c : {cases()[2], cases()[7]}) {
         SCOPED_TRACE(c.name);

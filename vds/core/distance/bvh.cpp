@@ -391,9 +391,39 @@ int defaultBvhWidth() {
     return width;
 }
 
+namespace {
+
+/// Bvh::exponent_ for a mesh whose largest coordinate magnitude is `largest`.
+int scaleExponent(float largest) {
+    constexpr float kLow = 1.0f / float(1 << 30), kHigh = float(1 << 30);
+    if (!(largest > 0.0f) || (largest >= kLow && largest <= kHigh)) return 0;
+    return std::ilogb(largest);
+}
+
+} // namespace
+
 Bvh::Bvh(MeshView mesh, int width, unsigned threads) : width_(width == 0 ? defaultBvhWidth() : width) {
     assert(bvhWidthAvailable(width_));
     search_ = width_ == 16 ? bvhSearch16() : width_ == 8 ? bvhSearch8() : bvhSearch4();
+    std::vector<float> largest(mesh.positionCount);
+    parallelFor(threads, largest.size(), 4096, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const glm::vec3 a = glm::abs(mesh.positions[i]);
+            largest[i] = std::max(a.x, std::max(a.y, a.z));
+        }
+    });
+    exponent_ = scaleExponent(largest.empty() ? 0.0f : *std::max_element(largest.begin(), largest.end()));
+    toStored_ = std::ldexp(1.0, -exponent_);
+    fromStored_ = std::ldexp(1.0, exponent_);
+    fromStored2_ = fromStored_ * fromStored_;
+    std::vector<glm::vec3> scaled;
+    if (exponent_ != 0) {
+        scaled.resize(mesh.positionCount);
+        parallelFor(threads, scaled.size(), 4096, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i) scaled[i] = stored(mesh.positions[i]);
+        });
+        mesh.positions = scaled.data();
+    }
     std::vector<Prim> prims(mesh.triangleCount);
     parallelFor(threads, prims.size(), 4096, [&](std::size_t begin, std::size_t end) {
         for (std::size_t t = begin; t < end; ++t) {
@@ -424,7 +454,7 @@ Bvh::Bvh(MeshView mesh, int width, unsigned threads) : width_(width == 0 ? defau
     planes_.assign(std::size_t(slots) * PlaneLanes::size / 16, FloatLine{});
     extents_.assign(std::size_t(slots) * ExtentLanes::size / 16, FloatLine{});
     clearBlocks(planes_, width_);
-    std::vector<float> largest(prims.size());
+    largest.assign(prims.size(), 0.0f);
     parallelFor(threads, prims.size(), 4096, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) {
             const glm::uvec3 v = mesh.triangles[prims[k].index];
@@ -485,17 +515,35 @@ float Bvh::slack(const glm::vec3& p) const {
     return kPlaneError * (std::abs(p.x) + std::abs(p.y) + std::abs(p.z) + 2.0f * verticesL1_);
 }
 
-double Bvh::distance2(const glm::vec3& p, std::uint32_t slot) const {
+double Bvh::slotDistance2(const glm::vec3& p, std::uint32_t slot) const {
     const glm::dvec3 q(p);
     const glm::dvec3 d = q - closestOnTriangle(q, corner(slot, 0), corner(slot, 1), corner(slot, 2)).point;
     return d.x * d.x + d.y * d.y + d.z * d.z;
 }
 
 ClosestPoint Bvh::closest(const glm::vec3& p, std::uint32_t slot) const {
-    const glm::dvec3 q(p);
+    const glm::dvec3 q(exponent_ == 0 ? p : stored(p));
     const TriangleHit hit = closestOnTriangle(q, corner(slot, 0), corner(slot, 1), corner(slot, 2));
     const glm::dvec3 d = q - hit.point;
-    return {hit.point, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z), indices_[slot], hit.feature, hit.index};
+    return {hit.point * fromStored_, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z) * fromStored_, indices_[slot],
+            hit.feature, hit.index};
+}
+
+void Bvh::nearestAtScale(const glm::vec3& p, const std::vector<BvhNode>* leaves, NearestState& state) const {
+    const glm::vec3 q = stored(p);
+    state.distance2 *= toStored_ * toStored_;
+    if (!withinReach(q)) {
+        for (std::uint32_t slot = 0; slot < indices_.size(); ++slot) {
+            if (indices_[slot] == kNoTriangle) continue;
+            const double d2 = slotDistance2(q, slot);
+            if (d2 < state.distance2) state = {d2, slot};
+        }
+    } else if (leaves) {
+        search_.nearestAmong(*this, q, *leaves, state);
+    } else {
+        search_.nearest(*this, q, state);
+    }
+    state.distance2 *= fromStored2_;
 }
 
 namespace {
@@ -519,9 +567,10 @@ void keepChild(const float* node, int width, int k, std::vector<BvhNode>& out, i
 
 } // namespace
 
-bool Bvh::leavesNear(const glm::vec3& lo, const glm::vec3& hi, double reach2, std::vector<BvhNode>& out,
+bool Bvh::leavesNear(const glm::vec3& boxLo, const glm::vec3& boxHi, double reach2, std::vector<BvhNode>& out,
                      std::size_t maxGroups) const {
-    const float bound = pruneBound(reach2);
+    const glm::vec3 lo = stored(boxLo), hi = stored(boxHi); // the hierarchy's coordinates
+    const float bound = pruneBound(reach2 * toStored_ * toStored_);
     int slot = 4; // the next free slot of out.back()
     std::int32_t stack[kStackEntries];
     int top = 0;

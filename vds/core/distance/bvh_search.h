@@ -14,7 +14,7 @@
 // pushed farthest first. A leaf's triangles are first bounded below in float
 // by their planes (PlaneLanes, ExtentLanes) in W / L steps, and only those
 // whose bound is still within reach get the exact test in double
-// (Bvh::distance2), the lowest bound first.
+// (Bvh::slotDistance2), the lowest bound first.
 #pragma once
 
 #include <cstdint>
@@ -250,7 +250,7 @@ struct Search {
                 if (below[i] < below[next]) next = i;
             if (below[next] > bound) return;
             below[next] = kSearchInf;
-            const double t2 = bvh.distance2(p, first + next);
+            const double t2 = bvh.slotDistance2(p, first + next);
             if (t2 < state.distance2) {
                 state.distance2 = t2;
                 state.slot = first + next;

@@ -32,7 +32,12 @@
 // the distance returned is within 2^-45 * L of the exact distance from the
 // float point to the triangles, L = the largest coordinate magnitude of the
 // point and the mesh (measured against a brute-force reference by another
-// formula in tests/core/distance_test.cpp; far below float precision).
+// formula in tests/core/distance/distance_test.cpp; far below float
+// precision). At any finite scale: the hierarchy holds a mesh whose largest
+// coordinate lies outside 2^-30..2^30 scaled by a power of two (exact), so
+// squares in float neither overflow nor vanish, and a point more than 2^50
+// times the mesh's size away is measured against every triangle in double
+// (tested from 2^-100 to 2^125, and 1e30 away from a unit mesh).
 #pragma once
 
 #include <cstddef>

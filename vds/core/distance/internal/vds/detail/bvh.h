@@ -14,6 +14,7 @@
 // fill one block of W lanes (two of 4 at W = 4), tested in one step too.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -145,7 +146,10 @@ public:
     /// Lowers `state` to the nearest triangle to `p` if one is nearer than
     /// `state.distance2` (the caller's bound: infinity, a band's square, or
     /// the distance to a seed triangle).
-    void nearest(const glm::vec3& p, NearestState& state) const { search_.nearest(*this, p, state); }
+    void nearest(const glm::vec3& p, NearestState& state) const {
+        if (exponent_ == 0 && withinReach(p)) search_.nearest(*this, p, state);
+        else nearestAtScale(p, nullptr, state);
+    }
     /// Appends to `out` the leaves whose boxes come within `reach2` (squared
     /// distance) of the box [lo, hi], packed four to a group (empty slots
     /// kEmptyChild): every triangle that can be nearer than sqrt(reach2) to
@@ -155,10 +159,13 @@ public:
                     std::size_t maxGroups) const;
     /// `nearest` over the leaves `leavesNear` gave only.
     void nearestAmong(const glm::vec3& p, const std::vector<BvhNode>& leaves, NearestState& state) const {
-        search_.nearestAmong(*this, p, leaves, state);
+        if (exponent_ == 0 && withinReach(p)) search_.nearestAmong(*this, p, leaves, state);
+        else nearestAtScale(p, &leaves, state);
     }
     /// Squared distance from p to the triangle in `slot`.
-    double distance2(const glm::vec3& p, std::uint32_t slot) const;
+    double distance2(const glm::vec3& p, std::uint32_t slot) const {
+        return exponent_ == 0 ? slotDistance2(p, slot) : slotDistance2(stored(p), slot) * fromStored2_;
+    }
     /// The closest point on the triangle in `slot`, its index the mesh's.
     ClosestPoint closest(const glm::vec3& p, std::uint32_t slot) const;
 
@@ -176,8 +183,27 @@ public:
     const float* planes(std::size_t b) const { return planes_.data()->f + b * std::size_t(PlaneLanes::size * width_); }
     const float* extents(std::size_t b) const { return extents_.data()->f + b * std::size_t(ExtentLanes::size * width_); }
     float slack(const glm::vec3& p) const;
+    /// Squared distance from q, in the hierarchy's own coordinates (the
+    /// search's), to the triangle in `slot`.
+    double slotDistance2(const glm::vec3& q, std::uint32_t slot) const;
+
+    /// The float search squares distances: it takes points within this of
+    /// the origin in the hierarchy's coordinates (a square up to 2^100).
+    static constexpr float kReach = 1125899906842624.0f; // 2^50
+    static bool withinReach(const glm::vec3& q) {
+        return std::abs(q.x) <= kReach && std::abs(q.y) <= kReach && std::abs(q.z) <= kReach;
+    }
 
 private:
+    /// p in the hierarchy's coordinates: times 2^-exponent_, exact but where
+    /// a coordinate falls below float's normal range (then off by less than
+    /// 2^-149 of the mesh's size, far inside the stated bound).
+    glm::vec3 stored(const glm::vec3& p) const { return glm::vec3(glm::dvec3(p) * toStored_); }
+    /// `nearest` or `nearestAmong` (`leaves` set) of a point the search
+    /// cannot take as it is: scaled to the hierarchy's coordinates, and past
+    /// kReach (every triangle then about equally far) every triangle's
+    /// distance in double.
+    void nearestAtScale(const glm::vec3& p, const std::vector<BvhNode>* leaves, NearestState& state) const;
     float* node(std::size_t i) { return nodes_.data()->f + i * std::size_t(NodeLanes::size * width_); }
     float* planes(std::size_t b) { return planes_.data()->f + b * std::size_t(PlaneLanes::size * width_); }
     float* extents(std::size_t b) { return extents_.data()->f + b * std::size_t(ExtentLanes::size * width_); }
@@ -197,6 +223,13 @@ private:
     /// The float plane distances' error bound: kPlaneError times (|p|_1 + 2
     /// max |v|_1 over the vertices).
     float verticesL1_ = 0.0f;
+    /// The hierarchy holds the mesh times 2^-exponent_, a power of two so
+    /// that every distance scales back exactly: 0 for a mesh whose largest
+    /// coordinate is within 2^-30..2^30, else that coordinate's exponent
+    /// (squares in float would overflow past 2^64, or lose every bit below
+    /// 2^-75), so distances are exact at any finite scale, 1e-30 to 1e38.
+    int exponent_ = 0;
+    double toStored_ = 1.0, fromStored_ = 1.0, fromStored2_ = 1.0;
 };
 
 /// The searches of each width, one a translation unit compiled for its
