@@ -8,7 +8,8 @@
 #     tests, samples or benchmarks by default;
 #   - VDS_BUILD_GL=OFF (vds::core alone) with GL, EGL, PNG, JSON, CLI11 and
 #     Python made unfindable: it configures, builds, and its tests pass
-#     (the core suite and the installed core-only consumer, tests/install).
+#     (the core suite, the .vdb writer's on top of core, and the installed
+#     core-only consumer, tests/install).
 #   configure_test.sh SOURCE_DIR [GENERATOR]
 set -euo pipefail
 source=$(cd "$1" && pwd)
@@ -88,7 +89,7 @@ if configure core-only -DVDS_BUILD_TESTS=ON -DVDS_BUILD_GL=OFF "${unfindable[@]}
   if ! cmake --build "$work/core-only" -j "$(nproc)" >"$work/core-only-build.log" 2>&1; then
     fail "core-only: build failed:"
     tail -n 40 "$work/core-only-build.log" >&2
-  elif [ -n "$(find "$work/core-only" -name 'libvds_gl*' -o -name 'vds_*_tests' ! -name vds_core_tests ! -name vds_caps_tests ! -name vds_predicates_tests ! -name vds_interop_tests)" ]; then
+  elif [ -n "$(find "$work/core-only" -name 'libvds_gl*' -o -name 'vds_*_tests' ! -name vds_core_tests ! -name vds_caps_tests ! -name vds_predicates_tests ! -name vds_interop_tests ! -name vds_vdb_tests)" ]; then
     fail "core-only: a GL library or GL test suite was built"
   elif ldd "$work/core-only/tests/vds_core_tests" | grep -E 'libEGL|libGL|libOpenGL|libpng'; then
     fail "core-only: the core suite loads GL or PNG"
