@@ -151,9 +151,8 @@ private:
     std::shared_ptr<const MeshCopy> mesh_; ///< what rebuilds it (pickling)
 };
 
-} // namespace
-
-void registerDistance(py::module_& m) {
+/// vds.SignedDistance: built once, asked many times.
+void registerSignedDistance(py::module_& m) {
     py::class_<PySignedDistance>(m, "SignedDistance", R"doc(
 Exact distances to the mesh (V, F), signed by a rule: built once (a bounding
 volume hierarchy over the triangles and the exact classifier), asked many
@@ -203,7 +202,12 @@ to Dask workers and multiprocessing pools.)doc")
                             return std::make_unique<PySignedDistance>(t[0], t[1], t[2]);
                         }))
         .def("__repr__", [](const PySignedDistance& s) { return "<vds.SignedDistance: " + s.summary() + ">"; });
+}
 
+} // namespace
+
+void registerDistance(py::module_& m) {
+    registerSignedDistance(m);
     m.def("signed_distance", [](const py::object& v, const py::object& f, const py::object& points,
                                 const py::object& rule, const py::object& threads, const py::object& maxDistance) {
               return PySignedDistance(v, f, rule).distance(points, threads, maxDistance, true);

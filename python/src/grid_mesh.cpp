@@ -213,6 +213,44 @@ within whole.)doc")
 
 }
 
+/// The mesh files' and samples' functions: load_mesh, _sample_surface, _mesh_copies.
+static void bindMeshFileFunctions(py::module_& m) {
+    m.def("load_mesh", [](const py::object& path) {
+              const std::string p = vds::python::fsPath(path);
+              vds::python::requireNotDirectory(p);
+              vds::TriangleMesh mesh;
+              {
+                  py::gil_scoped_release released;
+                  mesh = vds::loadMesh(p);
+              }
+              return meshArraysOut(mesh);
+          }, py::arg("path"), R"doc(
+Reads an OBJ, PLY, STL or OFF mesh (path: str, bytes or os.PathLike):
+returns (V, F), V a (n, 3) float64 array of positions in the file's units, F
+a (m, 3) int32 array of vertex indices (polygons fanned into triangles).
+Raises vds.IoError (an OSError) for a file that cannot be read (a directory
+included), vds.FormatError (a ValueError) for a malformed one.)doc");
+    m.def("_sample_surface", [](const py::object& vertices, const py::object& faces, std::uint64_t count,
+                                std::uint64_t seed) {
+              const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
+              py::array_t<double> points({py::ssize_t(count), py::ssize_t(3)});
+              py::array_t<std::uint32_t> triangles{py::ssize_t(count)};
+              double* p = points.mutable_data();
+              std::uint32_t* t = triangles.mutable_data();
+              {
+                  py::gil_scoped_release released;
+                  vds::sampleSurface(mesh.view, count, seed, p, t);
+              }
+              return py::make_tuple(points, triangles);
+          }, py::arg("V"), py::arg("F"), py::arg("n"), py::arg("seed"),
+          "vds.sample_surface's compiled part: (points (n, 3) float64, triangles (n,) uint32).");
+    m.def("_mesh_copies", [](const py::object& vertices, const py::object& faces) {
+              const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
+              return py::make_tuple(mesh.verticesCopied, mesh.facesCopied);
+          }, "(V copied, F copied): whether (V, F) would be copied or read in place (for tests).");
+}
+
+
 void bindMeshFunctions(py::module_& m) {
     m.def("occupancy", &meshOccupancy, py::arg("V"), py::arg("F"), py::arg("grid"), py::arg("rule") = "parity",
           py::arg("threads") = 0, R"doc(
@@ -259,39 +297,7 @@ count of ExactClassifier.boundary_edges), "degenerate_triangles", ...),
 (the parity rule defines inside), "oriented" (the winding rule too), "manifold", "usable",
 "bounds" ((lo, hi) of the used vertices) and the one-line "summary". Indices
 out of range raise vds.InvalidMesh, as everywhere.)doc");
-    m.def("load_mesh", [](const py::object& path) {
-              const std::string p = vds::python::fsPath(path);
-              vds::python::requireNotDirectory(p);
-              vds::TriangleMesh mesh;
-              {
-                  py::gil_scoped_release released;
-                  mesh = vds::loadMesh(p);
-              }
-              return meshArraysOut(mesh);
-          }, py::arg("path"), R"doc(
-Reads an OBJ, PLY, STL or OFF mesh (path: str, bytes or os.PathLike):
-returns (V, F), V a (n, 3) float64 array of positions in the file's units, F
-a (m, 3) int32 array of vertex indices (polygons fanned into triangles).
-Raises vds.IoError (an OSError) for a file that cannot be read (a directory
-included), vds.FormatError (a ValueError) for a malformed one.)doc");
-    m.def("_sample_surface", [](const py::object& vertices, const py::object& faces, std::uint64_t count,
-                                std::uint64_t seed) {
-              const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
-              py::array_t<double> points({py::ssize_t(count), py::ssize_t(3)});
-              py::array_t<std::uint32_t> triangles{py::ssize_t(count)};
-              double* p = points.mutable_data();
-              std::uint32_t* t = triangles.mutable_data();
-              {
-                  py::gil_scoped_release released;
-                  vds::sampleSurface(mesh.view, count, seed, p, t);
-              }
-              return py::make_tuple(points, triangles);
-          }, py::arg("V"), py::arg("F"), py::arg("n"), py::arg("seed"),
-          "vds.sample_surface's compiled part: (points (n, 3) float64, triangles (n,) uint32).");
-    m.def("_mesh_copies", [](const py::object& vertices, const py::object& faces) {
-              const MeshArrays mesh = vds::python::meshArrays(vertices, faces);
-              return py::make_tuple(mesh.verticesCopied, mesh.facesCopied);
-          }, "(V copied, F copied): whether (V, F) would be copied or read in place (for tests).");
+    bindMeshFileFunctions(m);
 }
 
 } // namespace vds::python
