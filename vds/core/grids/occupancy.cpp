@@ -8,6 +8,7 @@
 #include <vds/occupancy.h>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <chrono>
 #include <cmath>
@@ -74,6 +75,50 @@ std::vector<float> centres(const Grid& grid, int axis) {
 //
 // so a split costs the column's cut (chords and fans where the boundary is
 // far, edges where it is near), not every edge.
+/// The far nodes' fans along one column (x, y): each node's first-order
+/// expansion (firstOrderSolidAngle) is, at depth z, with w = c_z - z,
+///
+///     (A . y + trace - 3 y M y / d^2) / d^3,   d^2 = r^2 + w^2,
+///
+/// y = c - q, r the column's distance from c; A . y and y M y are a line
+/// and a parabola in w whose coefficients depend on the column alone. So
+/// the column's nodes are set up once (add) as those coefficients, a field
+/// a vector, and a depth costs a few multiplies, a square root and a
+/// division a node, over every node at once (sum: no pointer chasing, no
+/// branch; cloned for AVX2).
+class ColumnFans {
+public:
+    void clear() {
+        for (std::vector<double>* v : {&cz_, &r2_, &c0_, &c1_, &m0_, &m1_, &m2_}) v->clear();
+    }
+    std::size_t size() const { return cz_.size(); }
+    void add(const detail::CapsNode& n, double x, double y) {
+        const double ux = n.centre.x - x, uy = n.centre.y - y;
+        const std::array<double, 9>& m = n.moment;
+        cz_.push_back(n.centre.z);
+        r2_.push_back(ux * ux + uy * uy);
+        c0_.push_back(n.vectorArea.x * ux + n.vectorArea.y * uy + n.trace);
+        c1_.push_back(n.vectorArea.z);
+        m0_.push_back(3.0 * (m[0] * ux * ux + (m[1] + m[3]) * ux * uy + m[4] * uy * uy));
+        m1_.push_back(3.0 * ((m[2] + m[6]) * ux + (m[5] + m[7]) * uy));
+        m2_.push_back(3.0 * m[8]);
+    }
+    /// The nodes' first-order solid angles summed at depth z.
+    VDS_EDGE_CLONES double sum(double z) const {
+        const double *__restrict cz = cz_.data(), *r2 = r2_.data(), *c0 = c0_.data(), *c1 = c1_.data(),
+                                 *m0 = m0_.data(), *m1 = m1_.data(), *m2 = m2_.data();
+        double total = 0.0;
+        for (std::size_t k = 0; k < cz_.size(); ++k) {
+            const double w = cz[k] - z, d2 = r2[k] + w * w, inv2 = 1.0 / d2;
+            total += (c0[k] + c1[k] * w - (m0[k] + (m1[k] + m2[k] * w) * w) * inv2) * inv2 / std::sqrt(d2);
+        }
+        return total;
+    }
+
+private:
+    std::vector<double> cz_, r2_, c0_, c1_, m0_, m1_, m2_;
+};
+
 /// The boundary term at one depth of a column, split as ColumnBoundary
 /// brackets it.
 struct Split {
@@ -115,7 +160,7 @@ public:
                 const double bound = detail::firstOrderBound(n, n.radius * (1.0 + 1e-12) + e);
                 const double drift = 2.0 * n.area / (e * e * e) / kFourPi;
                 if (bound <= kFarBound && drift * height <= kFarDrift) {
-                    far_.push_back(&n);
+                    far_.add(n, x, y);
                     error_ += bound;
                     drift_ += drift;
                     return !n.chord || addEdge(n.from, n.to);
@@ -156,9 +201,7 @@ public:
         // do not wait on each other.
         detail::AngleProduct up[2], down[2];
         if (!product(ups_, z, up) || !product(downs_, z, down)) return false;
-        double fans = 0.0;
-        const glm::dvec3 q(x_, y_, z);
-        for (const detail::BoundaryCaps::Node* n : far_) fans += detail::firstOrderSolidAngle(*n, q);
+        const double fans = far_.sum(z);
         // Each edge adds 2 atan2(det, den); over 4 pi.
         split.up = (up[0].angle() + up[1].angle()) / (2.0 * kPi);
         split.down = -(down[0].angle() + down[1].angle()) / (2.0 * kPi);
@@ -171,7 +214,7 @@ public:
 private:
     /// A node is taken by its fan's expansion where that errs by at most
     /// this anywhere along the column,
-    static constexpr double kFarBound = 1e-3;
+    static constexpr double kFarBound = 1e-4;
     /// and its fan's solid angle (over 4 pi) moves by at most this over the
     /// column's height; else its edges or children are taken (tuning:
     /// docs/benchmarks.md).
@@ -269,7 +312,7 @@ private:
         return true;
     }
     Terms ups_, downs_; ///< the column's edges with det > 0, det < 0
-    std::vector<const detail::BoundaryCaps::Node*> far_;
+    ColumnFans far_;
     double error_ = 0.0, drift_ = 0.0, x_ = 0.0, y_ = 0.0;
 };
 
@@ -286,9 +329,9 @@ constexpr std::uint32_t kShortRun = 8;
 constexpr double kReachMargin = 2.0;
 /// Most cells labelled alone after a run came out empty.
 constexpr std::uint32_t kMaxAlone = 16;
-/// Every this many columns a range is labelled the other way, to time it:
-/// it bounds the share of columns spent on the slower way (tuning:
-/// docs/benchmarks.md).
+/// The slower way is timed again once the cheaper has spent this many of
+/// the slower's mean column times since: it bounds the share of time spent
+/// probing the slower way at about 1 / kProbe (tuning: docs/benchmarks.md).
 constexpr std::size_t kProbe = 64;
 
 
@@ -459,17 +502,17 @@ public:
         // Which way labels a column faster depends on the boundary:
         // brackets cost O(edges) a split, the capped loops a tree query a
         // cell (cheap for small holes, dear beside a large cap). Both give
-        // the same labels, so each range of columns times both (the first
-        // two columns, then every kProbe-th the other way) and takes the
-        // cheaper.
-        const bool cheaper = secondsSpent_[1] * double(columnsTimed_[0]) <= secondsSpent_[0] * double(columnsTimed_[1]);
-        const bool useBrackets = way_ == detail::SweepWay::Timed
-                                     ? (local < 2 ? local == 0 : (local % kProbe == 0) != cheaper)
-                                     : way_ == detail::SweepWay::Brackets;
+        // the same labels, so each range of columns times both (its first
+        // two columns) and takes the cheaper, timing the other way again
+        // once the cheaper has spent kProbe of the other's columns since.
+        const bool useBrackets = way_ == detail::SweepWay::Timed ? (local < 2 ? local == 0 : timedWay())
+                                                                 : way_ == detail::SweepWay::Brackets;
         const auto started = std::chrono::steady_clock::now();
         const auto record = [&](int timed) {
-            secondsSpent_[timed] += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            secondsSpent_[timed] += seconds;
             ++columnsTimed_[timed];
+            sinceProbe_ = timed == int(cheaper_) ? sinceProbe_ + seconds : 0.0;
         };
         if (!useBrackets ||
             !bracket_.reset(edges_, caps_->closed() ? caps_ : nullptr, double(q_[0]), double(q_[1]), height_)) {
@@ -482,6 +525,19 @@ public:
     }
 
 private:
+    /// Whether the next column takes the brackets (SweepWay::Timed, after
+    /// the first two columns): the way with the lower mean time a column,
+    /// but the other once the cheaper has spent kProbe times the other's
+    /// mean since the other was last timed, so probing costs at most about
+    /// 1 / kProbe of the time whatever the ratio of the two.
+    bool timedWay() {
+        // A way not timed yet (its first column fell back) counts as free, so it is tried.
+        const double mean[2] = {columnsTimed_[0] ? secondsSpent_[0] / double(columnsTimed_[0]) : 0.0,
+                                columnsTimed_[1] ? secondsSpent_[1] / double(columnsTimed_[1]) : 0.0};
+        cheaper_ = mean[1] <= mean[0];
+        const bool probe = sinceProbe_ >= double(kProbe) * mean[cheaper_ ? 0 : 1];
+        return probe != cheaper_;
+    }
     /// The column's crossings as (first cell the crossing is in front of,
     /// +-1), in order.
     void crossings();
@@ -525,6 +581,8 @@ private:
     const double height_;
     double secondsSpent_[2] = {0.0, 0.0}; ///< on the columns timed, [0]: cell by cell, [1]: brackets
     std::size_t columnsTimed_[2] = {0, 0};
+    bool cheaper_ = true;      ///< brackets the cheaper way, as last timed
+    double sinceProbe_ = 0.0;  ///< seconds on the cheaper way since the other was timed
 };
 
 void ColumnSweep::crossings() {
