@@ -138,7 +138,9 @@ std::string ExactClassifier::summary() const {
 void ExactClassifier::sweep(const Grid& grid, std::uint8_t* cells, const ClassifyOptions& options) const {
     assert(impl_ && "use of a moved-from ExactClassifier");
     if (impl_->axis != Axis::Z) return Classifier::sweep(grid, cells, options);
-    detail::sweepExact(*impl_, impl_->boundaryEnds, grid, cells, options);
+    // The classifier's own caps: a grid swept in slabs builds them once.
+    detail::sweepExact(*impl_, impl_->boundaryEnds, grid, cells, options, detail::SweepWay::Timed,
+                       impl_->caps ? &*impl_->caps : nullptr);
 }
 
 void ExactClassifier::classifyFloats(const float* xyz, std::size_t count, std::size_t strideBytes, std::uint8_t* labels,

@@ -730,20 +730,21 @@ void ColumnSweep::decideRun(std::uint32_t k0, std::uint32_t k1) {
 } // namespace
 
 void detail::sweepExact(const ProjectedMesh& projected, const std::vector<glm::vec3>& edges, const Grid& grid,
-                        std::uint8_t* cells, const ClassifyOptions& options, SweepWay way) {
+                        std::uint8_t* cells, const ClassifyOptions& options, SweepWay way, const BoundaryCaps* built) {
     assert(projected.axis == Axis::Z);
     // The generalized winding number of a mesh with boundary: each cell's
     // crossing count plus the boundary term at its centre, by the boundary's
     // capped loops (the labels of the exact per-edge sum).
     const std::size_t edgeCount = options.rule == Rule::GeneralizedWinding ? edges.size() / 2 : 0;
-    std::optional<detail::BoundaryCaps> caps;
+    std::optional<detail::BoundaryCaps> own;
     const detail::ProjectedSurface surface(projected);
-    if (edgeCount > 0) caps.emplace(edges.data(), edgeCount, Axis::Z, &grid.box, &surface);
+    if (edgeCount > 0 && !built) own.emplace(edges.data(), edgeCount, Axis::Z, &grid.box, &surface);
+    const detail::BoundaryCaps* caps = edgeCount == 0 ? nullptr : built ? built : &*own;
     const std::vector<float> xs = centres(grid, 0), ys = centres(grid, 1), zs = centres(grid, 2);
     const std::uint32_t n = grid.dims.z;
     const std::size_t columns = std::size_t(grid.dims.x) * grid.dims.y;
     detail::parallelFor(options.threads, columns, 256, [&](std::size_t begin, std::size_t end) {
-        ColumnSweep sweep(projected, edges, zs, caps ? &*caps : nullptr, options, way);
+        ColumnSweep sweep(projected, edges, zs, caps, options, way);
         std::size_t local = 0;
         for (std::size_t column = begin; column < end; ++column, ++local)
             sweep.column(xs[column / grid.dims.y], ys[column % grid.dims.y], cells + column * n, local);

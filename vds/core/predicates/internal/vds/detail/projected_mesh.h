@@ -278,12 +278,18 @@ struct ProjectedMesh {
 /// How the exact sweep labels the columns of a mesh with boundary under
 /// Rule::GeneralizedWinding: both ways give the same labels; Timed times
 /// both on a few columns of each range and takes the cheaper.
+class BoundaryCaps;
+
 enum class SweepWay { Timed, CellByCell, Brackets };
 
 /// The exact column sweep of `occupancy(mesh, ...)` (<vds/occupancy.h>) on
 /// a mesh projected along z; `edges` (2 points an edge) its boundary for
 /// Rule::GeneralizedWinding (ignored for the other rules).
+/// `caps`: the boundary's capped loops already built over `edges` with this
+/// mesh as their surface (an ExactClassifier's), so that a grid swept a
+/// slab at a time builds them once; none: built for this call.
 void sweepExact(const ProjectedMesh& projected, const std::vector<glm::vec3>& edges, const Grid& grid,
-                std::uint8_t* cells, const ClassifyOptions& options, SweepWay way = SweepWay::Timed);
+                std::uint8_t* cells, const ClassifyOptions& options, SweepWay way = SweepWay::Timed,
+                const BoundaryCaps* caps = nullptr);
 
 } // namespace vds::detail
