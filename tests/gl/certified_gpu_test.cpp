@@ -147,6 +147,31 @@ TEST_F(CertifiedGpu, EqualsTheExactClassifierOnEveryPointFromHostArraysAndGlBuff
         }
 }
 
+TEST_F(CertifiedGpu, MoreUnsurePointsThanTheReadBackHoldsAreReadWhole) {
+    // A batch of 65536 points reads back its first 1024 unsure records from
+    // the mapped buffer and the rest from the list: points on the surface
+    // (vertices, edge midpoints, centroids), nearly all unsure, fill one
+    // batch with many more than that.
+    const auto sphere = solids::sphere({0.1f, 0.0f, -0.2f}, 1.0f, 64);
+    CertifiedOptions o;
+    o.resolution = 48;
+    const GpuCertifiedClassifier c(gl(), sphere.mesh, o, 65536);
+    std::vector<glm::vec3> points = sphere.mesh.positions;
+    for (const glm::uvec3& t : sphere.mesh.triangles) {
+        const glm::vec3 a = sphere.mesh.positions[t[0]], b = sphere.mesh.positions[t[1]], d = sphere.mesh.positions[t[2]];
+        points.push_back(0.5f * (a + b));
+        points.push_back((a + b + d) / 3.0f);
+    }
+    ASSERT_LT(points.size(), 65536u) << "one batch";
+    const std::vector<std::uint8_t> truth = exactLabels(c.certified().exact(), points, Rule::Parity);
+    ClassifyStats stats;
+    ClassifyOptions options{Rule::Parity, 2};
+    options.stats = &stats;
+    EXPECT_EQ(differences(classifyOnHost(c, points, options), truth), 0u);
+    EXPECT_GT(stats.exact, 4096u) << "more unsure points than the read-back holds";
+    EXPECT_EQ(differences(classifyOnGl(c, points, options), truth), 0u);
+}
+
 TEST_F(CertifiedGpu, UncertifiedMeshesAndRulesGoExactWhole) {
     // An open cup: the generalized winding number is answered, every point exact.
     const TriangleMesh cup = solids::sphereCup();
