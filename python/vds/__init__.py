@@ -10,7 +10,7 @@ occupancy grid is a ``Grid``.
 
     import numpy as np, vds
     V, F = vds.load_mesh("spot.obj")            # (n, 3) float64, (m, 3) int32
-    sprite = vds.bake(V, F, resolution=1024)    # axis "auto", GL fragment lists
+    sprite = vds.bake(V, F, resolution=1024)    # axis, method "auto" (CPU baker without a GPU)
     inside = sprite.contains(points)            # (N, 3) float32/float64 -> (N,) bool
     sprite.save("spot.vds"); sprite = vds.read("spot.vds")
     exact = vds.Classifier(V, F, "exact").classify(points)

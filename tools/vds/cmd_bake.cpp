@@ -126,8 +126,9 @@ void bake(BakeArgs& a) {
 void addBake(CLI::App& app) {
     const auto [c, a] =
         addCommand<BakeArgs>(app, "bake", "bake a mesh (OBJ, PLY, STL, OFF) into a sprite",
-                             "An open or non-manifold mesh is baked with a warning, and the file records that its\n"
-                             "answers are a surface's, not a solid's.",
+                             "An open or mis-oriented mesh is baked with a warning, and the file records that its\n"
+                             "answers are a surface's, not a solid's; a closed mesh whose parts touch along\n"
+                             "non-manifold edges bounds a solid like any other.",
                              bake);
     addMesh(*c, a->mesh);
     c->add_option("-o,--output", a->output, "output sprite (written whole or not at all)")

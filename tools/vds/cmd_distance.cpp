@@ -146,7 +146,7 @@ void checkSignedMesh(const vds::TriangleMesh& mesh, const std::string& name, vds
 
 void addDistance(CLI::App& app) {
     const auto [c, a] = addCommand<DistanceArgs>(
-        app, "distance", "signed distance of points to a mesh's surface, into a numpy .npy file",
+        app, "distance", "signed distance of points to a mesh's surface, into a numpy .npy file or text",
         "  vds distance MESH POINTS -o D.npy [--rule RULE] [--closest-points P.npy] [--triangles T.npy]\n"
         "D.npy: float64, one distance a point in the order given, in mesh units: negative exactly where\n"
         "'vds classify --exact' with the same rule says inside (-0.0 for an inside point on the surface).\n"

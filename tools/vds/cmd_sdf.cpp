@@ -178,7 +178,8 @@ void sdf(SdfArgs& a) {
 void addSdf(CLI::App& app) {
     const auto [c, a] = addCommand<SdfArgs>(
         app, "sdf", "signed distance grid of a mesh (full or a narrow band), into a float32 .npy file",
-        "  vds sdf MESH --dims N [--cubic] [--band W] -o SDF.npy [--rule RULE] [--box ...] [--pad F]\n"
+        "  vds sdf MESH (--dims N [--cubic] | --dims-xyz NX NY NZ | --voxel-size H) [--band W | --propagated]\n"
+        "      -o SDF.npy [--rule RULE] [--box ...] [--pad F]\n"
         "  vds sdf MESH (--dims N | --voxel-size H) --band W -o SDF.vdb\n"
         "SDF.npy: float32 of shape (NX, NY, NZ), indexed [i][j][k], the signed distance of the centre of\n"
         "cell (i, j, k), lo + (i + 1/2, j + 1/2, k + 1/2) * (hi - lo) / (NX, NY, NZ), as 'vds voxelize'\n"
@@ -187,8 +188,9 @@ void addSdf(CLI::App& app) {
         "(mesh units), cells farther than W from the surface hold -W or +W. With --propagated, the full\n"
         "grid as a closest-feature transform: exact within a cell diagonal of the surface, beyond it\n"
         "never below the distance and within 4 cell diagonals above it (many times faster). With --cubic,\n"
-        "N cells along the box's longest side and as many cubic cells along the others as fit ('vds bake\n"
-        "--distance' and vds.Grid.cubic place them so). The summary line gives the grid's box and cell size.\n"
+        "N cells along the box's longest side and as many cubic cells along the others as cover it, the\n"
+        "box's high corner grown to whole cells ('vds bake --distance' and vds.Grid.cubic place them so;\n"
+        "--voxel-size H likewise). The summary line gives the grid's box and cell size.\n"
         "SDF '-' writes the .npy to stdout, with the summary line on stderr. The grid is measured and\n"
         "written a slab of x layers at a time (at most 2^26 cells held; --propagated holds it whole).\n"
         "SDF.vdb (a build with OpenVDB, 'vds --version'): the band computed sparsely, only the cells\n"
@@ -206,7 +208,7 @@ void addSdf(CLI::App& app) {
     a->voxelSizeGiven = c->add_option("--voxel-size", a->voxelSize, "cubic cells of this side, mesh units, from the box's low corner (instead of --dims)")
                             ->type_name("H")
                             ->default_str("");
-    c->add_flag("--cubic", a->cubic, "cubic cells: --dims N along the longest side, as many as fit along the others");
+    c->add_flag("--cubic", a->cubic, "cubic cells: --dims N along the longest side, as many as cover the others (the box grows to whole cells)");
     c->add_option("--pad", a->pad, "grow the box by this fraction of its size on every side")->type_name("F");
     a->bandGiven = c->add_option("--band", a->band, "narrow band half-width W > 0, mesh units: farther cells hold +-W (default: the full grid)")
                        ->type_name("W")

@@ -173,7 +173,7 @@ void voxelize(VoxelizeArgs& a) {
 
 void addVoxelize(CLI::App& app) {
     const auto [c, a] = addCommand<VoxelizeArgs>(
-        app, "voxelize", "label every cell of a grid inside or outside, into a numpy .npy file",
+        app, "voxelize", "label every cell of a grid inside or outside, into a numpy .npy (or OpenVDB .vdb) file",
         "Cell (i, j, k) has the centre lo + (i + 1/2, j + 1/2, k + 1/2) * (hi - lo) / (NX, NY, NZ),\n"
         "box [lo, hi] the mesh's (or the sprite's) bounding box unless --box is given. GRID.npy is a\n"
         "C-order boolean array of shape (NX, NY, NZ), indexed [i][j][k] along x, y, z; with\n"
