@@ -38,6 +38,9 @@ std::string insideMessage(const vds::MeshReport& report, const std::string& name
 /// warnings.warn(message, vds.MeshWarning) at the caller's line (the first
 /// frame outside the vds package); needs the GIL.
 void warn(const std::string& message);
+/// vds.MeshWarning where `rule` does not define the mesh's inside (as
+/// vds.exact_contains warns), at the caller's line (python/src/distance.cpp).
+void warnIfOpen(const MeshView& mesh, Rule rule);
 /// The warning of a sprite baked from a mesh that bounds no solid (or is
 /// mis-oriented), asked by a rule that answers for solids.
 void warnOpenSprite(const vds::Sprite& sprite, vds::Rule rule);

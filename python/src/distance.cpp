@@ -21,8 +21,6 @@
 
 namespace vds::python {
 
-namespace {
-
 /// vds.MeshWarning where `rule` does not define the mesh's inside (as
 /// vds.exact_contains warns), at the caller's line and in Python's words;
 /// the distances still come.
@@ -34,6 +32,9 @@ void warnIfOpen(const MeshView& mesh, Rule rule) {
     }
     if (report.usable()) warn(insideMessage(report, "", rule)); // an unusable mesh: SignedDistance says why
 }
+
+namespace {
+
 
 /// A distance option (band): a real number, else `DTypeError` naming `what`
 /// and the type given (pybind's own TypeError would print every argument).

@@ -52,6 +52,7 @@ std::size_t writeVdbFile(const std::string& path, const py::object& vertices, co
     const Grid grid = vdbGrid(gridObject, voxelSize, mesh.view, band.value_or(0.0));
     VdbOptions options;
     options.source = source;
+    warnIfOpen(mesh.view, rule); // as vds.signed_distance and vds.sdf warn
     py::gil_scoped_release released;
     const SignedDistance distance(mesh.view, rule);
     if (occupancy) {

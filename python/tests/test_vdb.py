@@ -64,6 +64,16 @@ def test_occupancy_holds_the_labels(tmp_path):
     assert inside == occupancy.activeVoxelCount() == labels.sum()
 
 
+@needs_vdb
+def test_an_open_mesh_by_parity_warns_as_sdf_does(tmp_path):
+    V, F = sphere_mesh(radius=1.0, segments=16, rings=8)
+    F = F[1:]  # one triangle fewer: open
+    with pytest.warns(vds.MeshWarning, match="open"):
+        vds.write_vdb(str(tmp_path / "o.vdb"), V, F, voxel_size=0.1, band=0.2)
+    with pytest.warns(vds.MeshWarning, match="open"):
+        vds.sdf(V, F, vds.Grid((-1.1, -1.1, -1.1), (1.1, 1.1, 1.1), 8), band=0.2)
+
+
 def test_bad_requests_are_refused_in_one_line(tmp_path):
     V, F = sphere_mesh(radius=1.0, segments=12, rings=6)
     grid = vds.Grid((-1.1, -1.1, -1.1), (1.1, 1.1, 1.1), 8)

@@ -47,8 +47,8 @@ void checkArguments(const SdfArgs& a) {
             throw CLI::ValidationError("give --voxel-size or --dims N or --dims-xyz NX NY NZ, not more than one");
         if (!(std::isfinite(a.voxelSize) && a.voxelSize > 0.0))
             throw CLI::ValidationError("--voxel-size: a length above 0, not " + std::to_string(a.voxelSize));
-    } else {
-        requireGridSize(a.grid);
+    } else if ((a.grid.dims == 0) == a.grid.dimsXyz.empty()) {
+        throw CLI::ValidationError("give --dims N, --dims-xyz NX NY NZ or --voxel-size H");
     }
     if (a.bandGiven->count() && !(std::isfinite(a.band) && a.band > 0.0))
         throw CLI::ValidationError("--band: the band's half-width must be a finite distance above 0 (leave it out "

@@ -67,7 +67,7 @@ vds::Grid gridOf(const GridArgs& args, const vds::Box& bounds, float pad, bool s
 }
 
 CLI::Option* addMesh(CLI::App& command, std::string& path) {
-    return command.add_option("MESH", path, "closed triangle mesh (OBJ, PLY, STL, OFF)")->required()->type_name("");
+    return command.add_option("MESH", path, "triangle mesh (OBJ, PLY, STL, OFF)")->required()->type_name("");
 }
 
 std::string joinChoices(const std::vector<std::string>& names) {
