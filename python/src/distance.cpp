@@ -30,7 +30,9 @@ void warnIfOpen(const MeshView& mesh, Rule rule) {
         py::gil_scoped_release released;
         report = validateMesh(mesh);
     }
-    if (report.usable()) warn(insideMessage(report, "", rule)); // an unusable mesh: SignedDistance says why
+    // An unusable mesh: SignedDistance says why; a flat one has no sign to
+    // warn about (its signed calls are refused, its unsigned ones answer).
+    if (report.usable() && !report.flat()) warn(insideMessage(report, "", rule));
 }
 
 namespace {

@@ -3,6 +3,7 @@ vds.sdf and vds.SignedDistance against a brute-force distance computed here
 in numpy (plane or nearest edge, over every triangle), the sign against the
 exact classifier of the same rule, and bad input."""
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -230,6 +231,9 @@ def test_a_flat_mesh_has_unsigned_distances_and_closest_points_but_no_sign():
     V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float)
     F = np.array([[0, 1, 2]])
     P = np.array([[0.25, 0.25, 2.0], [-3.0, 0.0, 4.0]], np.float32)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # by parity too: a sheet has no sign to be "answered anyway"
+        vds.SignedDistance(V, F)
     sheet = vds.SignedDistance(V, F, rule="generalized-winding")
     np.testing.assert_array_equal(sheet.unsigned_distance(P), [2.0, 5.0])
     Q, d, t = vds.closest_points(V, F, P)

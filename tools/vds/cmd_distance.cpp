@@ -81,7 +81,11 @@ void distance(DistanceArgs& a) {
             throw vds::InvalidMesh(std::string(e.what()) + ": it has distances but no sign (--unsigned)");
         }
     }
-    progress("built " + query.summary());
+    // Unsigned, the rule plays no part: the summary says so rather than "signed by RULE".
+    std::string built = query.summary();
+    const std::size_t signedBy = built.find("signed by ");
+    if (a.isUnsigned && signedBy != std::string::npos) built = built.substr(0, signedBy) + "unsigned";
+    progress("built " + built);
     vds::DistanceOptions options;
     options.threads = a.threads;
     const auto start = std::chrono::steady_clock::now();
