@@ -186,6 +186,28 @@ TEST(CapsTree, ExpansionErrsByNoMoreThanItsBound) {
     }
 }
 
+TEST(CapsTree, ATreeOfManyCapTrianglesBuiltOnThreadsErrsByNoMoreThanItsBound) {
+    // A rim of 512 edges and more, about 40 times their length in radius: each fan
+    // triangle is cut into 64, 32,768 cap triangles and more, enough for the value
+    // tree's subtrees to be built on threads and put together.
+    const TriangleMesh cup = solids::openSphere(12, 512, [](const glm::vec3& c) { return c.z < 0.2f; });
+    const std::vector<glm::vec3> edges = boundaryEdges(MeshView(cup));
+    ASSERT_GE(edges.size() / 2, 512u);
+    const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z);
+    ASSERT_TRUE(caps.closed());
+    std::size_t checked = 0, loose = 0;
+    for (const glm::vec3& q : points(400, 5))
+        for (const double tolerance : {0.1, 1e-3}) {
+            const BoundaryCaps::Estimate e = caps.estimate(q, tolerance);
+            if (!std::isfinite(e.bound)) continue; // on a cap
+            ASSERT_LE(std::fabs(e.term - exactTerm(edges, q)), e.bound) << "tolerance " << tolerance;
+            ++checked;
+            loose += e.bound > 1e-6;
+        }
+    EXPECT_GT(checked, 700u);
+    EXPECT_GT(loose, checked / 4);
+}
+
 TEST(CapsTree, BoundaryTermDriftsNoMoreThanItsReach) {
     std::mt19937 rng(9);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);

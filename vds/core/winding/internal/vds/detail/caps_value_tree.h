@@ -23,7 +23,8 @@ namespace vds::detail {
 constexpr double kCapValueTolerance = 1e-3;
 
 /// The value tree of `loops`' caps (kept by reference: it must outlive
-/// this). Built once, then thread safe.
+/// this). Built once (its subtrees on the library's threads), then thread
+/// safe.
 class CapsValueTree {
 public:
     explicit CapsValueTree(const CapLoops& loops);
@@ -35,22 +36,8 @@ public:
     std::size_t memoryBytes() const;
 
 private:
-    using Triangles = std::vector<std::array<glm::dvec3, 3>>;
-    /// `unsignedMoments[node]`: the integral of |n| (x - centre) dA, for the
-    /// parent's moments from its children's.
-    std::uint32_t build(std::uint32_t first, std::uint32_t last, std::vector<std::uint32_t>& order,
-                        const Triangles& tris, std::vector<glm::dvec3>& unsignedMoments);
-    /// build()'s leaf `node` (its ball set) at `index`: its triangles'
-    /// moments, and the triangles themselves into leafTris_.
-    void buildLeaf(CapsNode& node, std::uint32_t index, std::uint32_t first, std::uint32_t last,
-                   const std::vector<std::uint32_t>& order, const Triangles& tris,
-                   std::vector<glm::dvec3>& unsignedMoments);
-    /// build()'s inner `node` at `index`: its children's moments moved to
-    /// its centre and summed.
-    void gatherChildren(CapsNode& node, std::uint32_t index, std::vector<glm::dvec3>& unsignedMoments);
-
     const CapLoops& loops_;
-    Triangles leafTris_;         ///< cap triangles in tree order
+    std::vector<std::array<glm::dvec3, 3>> leafTris_; ///< cap triangles in tree order
     std::vector<CapsNode> nodes_; ///< [0] is the root; empty where the caps are no mesh
 };
 
