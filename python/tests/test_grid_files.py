@@ -14,7 +14,7 @@ import vds
 from conftest import sphere_mesh
 
 TOOL = os.environ.get("VDS_TOOL")
-needs_tool = pytest.mark.skipif(not TOOL, reason="VDS_TOOL (the vds command line) not given")
+needs_tool = pytest.mark.skipif(not (TOOL and os.path.exists(TOOL)), reason="VDS_TOOL (the vds command line) not given or not built")
 DIMS = (13, 11, 9)
 
 
