@@ -7,6 +7,9 @@ import statistics
 import sys
 
 OUT, COMMIT, MACHINE = sys.argv[1:4]
+# Open meshes: parity's inside is a surface's there, so a sprite's answers are not held to the exact
+# classifier's (their figures are the generalized winding number's, vds_gwn_bench).
+OPEN = ("stanford-bunny.obj", "suzanne.obj", "teapot.obj")
 
 
 def text(name):
@@ -67,8 +70,9 @@ def vds_bench():
                    span([t / e for t, e in zip(two, exact) if e > 0], unit="×")))
             say("classification on GL compute, host arrays or resident GL buffers",
                 "%s M points/s, answers identical to the CPU's: %s" % (span(gpu, 1e3), "yes" if same else "NO"))
-            say("accuracy, sprites at 2048, the same random points against the exact classifier",
-                "%s of the points answered otherwise" % span(column(header, rows, "VDS vs exact"), unit=" %"))
+            say("accuracy, sprites at 2048, the same random points against the exact classifier, closed meshes",
+                "%s of the points answered otherwise" % span(column(header, rows, "VDS vs exact",
+                                                                    lambda r: r[0] not in OPEN), unit=" %", digits=2))
         if "cpu / lists" in header:
             bundled = lambda r: r[0].endswith(".obj")
             same = all(r[header.index("lists == peel")] == "yes" for r in rows)
@@ -129,7 +133,8 @@ def peers():
             continue
         ratio = lambda method, threads="2": column(header, rows, "× Embree",
                                                    lambda r: r[2] == method and r[3] == threads)
-        wrong = lambda method: sum(int(r[header.index("wrong")].split()[0]) for r in rows if r[2].startswith(method))
+        wrongs = lambda method: [int(r[header.index("wrong")].split()[0]) for r in rows if r[2].startswith(method)]
+        wrong = lambda method: sum(wrongs(method))
         if "random points" in heading:
             sprite_one = column(header, rows, "M points/s", lambda r: r[2].startswith("vds sprite @") and r[3] == "1")
             sprite = [r for r in rows if r[2].startswith("vds sprite @")][0][2]
@@ -144,10 +149,10 @@ def peers():
             query = lambda method: column(header, rows, "query s", lambda r: r[2].startswith(method))
             sweep = "vds exact sweep"
             say("exact %s occupancy grid (`vds::occupancy`) against Embree on the cell centres" % heading.split()[2],
-                "%s Embree (%s s against %s s), %d wrong cells (Embree %d)" % (
+                "%s Embree (%s s against %s s), %d wrong cells (Embree %s a mesh)" % (
                     span([e / v for v, e in zip(query(sweep), query("Embree parity"))], unit="×", digits=3),
                     span(query(sweep), digits=2), span(query("Embree parity"), digits=2), wrong(sweep),
-                    wrong("Embree parity")))
+                    span(wrongs("Embree parity"))))
 
 
 def distances():

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Re-measures every VM figure of the README's table "Benchmarks and accuracy" that a program
-# of bench/ prints, in one command, about 12 minutes on 2 cores (more under load), and prints
+# of bench/ prints, in one command, about 8 minutes on 2 cores (at load 2-3), and prints
 # each as one line with the commit and the machine, then the full tables they come from:
 #   classification (CPU, GL compute), bakes, .vds file size, accuracy at 2048   vds_bench
 #   certified and exact answers; occupancy sweeps against per-point answers     vds_query_bench
