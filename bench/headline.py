@@ -225,6 +225,16 @@ def axis():
                         r[header.index("axis count ms")]))
 
 
+def exact():
+    rows = re.findall(r"^(\S+(?: \d+)?)\s+\d+\s.*?([0-9.]+)x\s+(\d+)/(\d+)$", text("exact.txt"), re.M)
+    if rows:
+        say("the exact classifier against the brute-force loop over every triangle, 1M random points",
+            "%s faster (%s), the same answer on %d of %d points compared" % (
+                span([float(r[1]) for r in rows], unit="×", digits=6),
+                ", ".join("%s %s×" % (r[0], r[1]) for r in rows),
+                sum(int(r[2]) for r in rows), sum(int(r[3]) for r in rows)))
+
+
 print("vds headline figures, commit %s" % COMMIT)
 print("machine: %s" % MACHINE)
 vds_bench()
@@ -233,3 +243,4 @@ peers()
 distances()
 gwn()
 axis()
+exact()

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Re-measures every VM figure of the README's table "Benchmarks and accuracy" that a program
-# of bench/ prints, in one command, about 8 minutes on 2 cores (at load 2-3), and prints
+# of bench/ prints, in one command, about 9 minutes on 2 cores (at load 2-3), and prints
 # each as one line with the commit and the machine, then the full tables they come from:
 #   classification (CPU, GL compute), bakes, .vds file size, accuracy at 2048   vds_bench
 #   certified and exact answers; occupancy sweeps against per-point answers     vds_query_bench
@@ -9,6 +9,7 @@
 #   exact distances against CGAL and Embree; SDF grids at 256^3                vds_distance_bench
 #   open meshes by the generalized winding number; their grids at 256^3        vds_gwn_bench, vds voxelize
 #   validation and the auto axis's count of a 1M-triangle mesh                 vds_axis_bench
+#   the exact classifier against the brute-force loop                         vds_exact_bench
 # The H200 rows and certified-gpu (bench/gpu_round.sh, vds_certified_bench) and the open scan's
 # grid (vds_scan_grid_bench) are measured apart.
 #   bench/headline.sh [BUILD_DIR]      (default build; configured with VDS_BUILD_BENCHMARKS=ON)
@@ -25,7 +26,8 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   echo "headline: $build is not a CMake build folder: cmake -S . -B $build -G Ninja -DCMAKE_BUILD_TYPE=Release" >&2
   exit 1
 fi
-targets=(vds_bench vds_query_bench vds_peers_bench vds_distance_bench vds_gwn_bench vds_axis_bench vds_tool)
+targets=(vds_bench vds_query_bench vds_peers_bench vds_distance_bench vds_gwn_bench vds_axis_bench vds_exact_bench
+         vds_tool)
 cmake --build "$build" --target "${targets[@]}" > /dev/null
 
 commit="$(git rev-parse --short=7 HEAD 2>/dev/null || echo unknown)"
@@ -72,9 +74,10 @@ for mesh in stanford-bunny teapot suzanne; do
   voxelize voxelize-gwn "$meshes/$mesh.obj" --dims 256 --rule generalized-winding --threads 2
 done
 step axis "$bin/vds_axis_bench" --runs 5 --sphere --no-bake
+step exact "$bin/vds_exact_bench" "$meshes/fandisk.obj" "$meshes/rocker-arm.obj" "$meshes/spot.obj"
 
 python3 bench/headline.py "$out" "$commit" "$machine, at the end $(cut -d' ' -f1-3 /proc/loadavg)"
-for name in bench query peers distance-generated distance-meshes sdf-grids gwn axis; do
+for name in bench query peers distance-generated distance-meshes sdf-grids gwn axis exact; do
   echo
   cat "$out/$name.txt"
 done
