@@ -1,10 +1,17 @@
 #!/usr/bin/env bash
-# Re-measures the README's headline figures (the first three rows of its table
-# "Benchmarks and accuracy": CPU and GL-compute classification of 10M random
-# points against sprites at 2048, and the bake at 1024 by fragment lists, the
-# CPU baker and depth peeling) in one command, about 3 minutes on 2 cores, and
-# prints them with the commit and the machine they were measured on, then the
-# full tables they come from.
+# Re-measures every VM figure of the README's table "Benchmarks and accuracy" that a program
+# of bench/ prints, in one command, about 9 minutes on 2 cores (at load 2-3), and prints
+# each as one line with the commit and the machine, then the full tables they come from:
+#   classification (CPU, GL compute), bakes, .vds file size, accuracy at 2048   vds_bench
+#   certified and exact answers; occupancy sweeps against per-point answers     vds_query_bench
+#   the exact occupancy grid of spot at 256^3, the whole command               vds voxelize
+#   random points and a 512^3 grid against Embree's ray parity                 vds_peers_bench (built with Embree)
+#   exact distances against CGAL and Embree; SDF grids at 256^3                vds_distance_bench
+#   open meshes by the generalized winding number; their grids at 256^3        vds_gwn_bench, vds voxelize
+#   validation and the auto axis's count of a 1M-triangle mesh                 vds_axis_bench
+#   the exact classifier against the brute-force loop                         vds_exact_bench
+# The H200 rows and certified-gpu (bench/gpu_round.sh, vds_certified_bench) and the open scan's
+# grid (vds_scan_grid_bench) are measured apart.
 #   bench/headline.sh [BUILD_DIR]      (default build; configured with VDS_BUILD_BENCHMARKS=ON)
 # Meshes: bench/meshes (bench/fetch-meshes.sh downloads them) or VDS_MESHES=DIR.
 set -euo pipefail
@@ -19,59 +26,58 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   echo "headline: $build is not a CMake build folder: cmake -S . -B $build -G Ninja -DCMAKE_BUILD_TYPE=Release" >&2
   exit 1
 fi
-cmake --build "$build" --target vds_bench > /dev/null
+targets=(vds_bench vds_query_bench vds_peers_bench vds_distance_bench vds_gwn_bench vds_axis_bench vds_exact_bench
+         vds_tool)
+cmake --build "$build" --target "${targets[@]}" > /dev/null
 
 commit="$(git rev-parse --short=7 HEAD 2>/dev/null || echo unknown)"
 git diff --quiet HEAD -- 2>/dev/null || commit="$commit + uncommitted changes"
 cpu="$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)"
 machine="$(nproc)-core $(uname -m) ($cpu), $(free -g | awk '/^Mem:/ {print $2}') GiB, load $(cut -d' ' -f1-3 /proc/loadavg)"
-out="$(mktemp)"
-trap 'rm -f "$out"' EXIT
-"$build/bench/vds_bench" --meshes "$meshes" --resolutions 1024 --points 10000000 --classify-resolution 2048 > "$out"
+out="$(mktemp -d)"
+trap 'rm -rf "$out"' EXIT
+bin="$build/bench"
+vds="$build/tools/vds"
 
-python3 - "$out" "$commit" "$machine" <<'PY'
-import re, sys
-text = open(sys.argv[1]).read()
-renderer = re.search(r"GL[^\n]*(llvmpipe|NVIDIA|AMD|Intel|Mesa)[^\n]*", text)
+since() { awk -v start="$1" -v end="$(date +%s.%N)" 'BEGIN { printf "%.3f", end - start }'; }
+# step NAME COMMAND...: COMMAND's output into $out/NAME.txt, its seconds said on stderr.
+step() {
+  local name="$1" start
+  shift
+  start=$(date +%s.%N)
+  "$@" > "$out/$name.txt"
+  echo "headline: $name: $(since "$start") s, load $(cut -d' ' -f1 /proc/loadavg)" >&2
+}
+# voxelize NAME MESH ARGS...: the whole `vds voxelize` command's wall seconds, best of 3, into $out/NAME.seconds.
+voxelize() {
+  local name="$1" mesh="$2" start
+  shift 2
+  for run in 1 2 3; do
+    start=$(date +%s.%N)
+    "$vds" voxelize "$mesh" -o "$out/grid.npy" --quiet "$@" > /dev/null
+    echo "$(basename "$mesh" .obj) $(since "$start")" >> "$out/$name.seconds"
+  done
+}
 
-def tables():
-    """Every markdown table of the output: (header cells, rows of cells)."""
-    for block in re.split(r"\n\s*\n", text):
-        lines = [l for l in block.splitlines() if l.startswith("|")]
-        if len(lines) > 2:
-            cells = [[c.strip() for c in l.strip("|").split("|")] for l in lines]
-            yield cells[0], cells[2:]
+step bench "$bin/vds_bench" --meshes "$meshes" --resolutions 1024 --points 10000000 --classify-resolution 2048
+step query "$bin/vds_query_bench" --points 2000000 --grids 256 --resolution 1024 --threads 2 \
+  "$meshes/spot.obj" "$meshes/fandisk.obj" "$meshes/rocker-arm.obj"
+voxelize voxelize-spot "$meshes/spot.obj" --dims 256
+step peers "$bin/peers/vds_peers_bench" --points 1000000 --grids 512 --no-generated --cgal-limit 1000000 \
+  --threads 2 --mesh-dir "$meshes"
+step distance-generated "$bin/vds_distance_bench" --sdf 0 --rounds 2
+step distance-meshes "$bin/vds_distance_bench" --sdf 0 --rounds 2 "$meshes"/*.obj
+step sdf-grids "$bin/vds_distance_bench" --points 1000 --rounds 1 --brute 10 --sdf 256 --full-grid
+step gwn "$bin/vds_gwn_bench" --points 200000 --resolution 1024 --dims 64 --threads 1 \
+  "$meshes/stanford-bunny.obj" "$meshes/teapot.obj" "$meshes/suzanne.obj"
+for mesh in stanford-bunny teapot suzanne; do
+  voxelize voxelize-gwn "$meshes/$mesh.obj" --dims 256 --rule generalized-winding --threads 2
+done
+step axis "$bin/vds_axis_bench" --runs 5 --sphere --no-bake
+step exact "$bin/vds_exact_bench" "$meshes/fandisk.obj" "$meshes/rocker-arm.obj" "$meshes/spot.obj"
 
-def column(header, rows, name, keep=lambda row: True):
-    i = header.index(name)
-    return [float(r[i].rstrip("x")) for r in rows if keep(r) and re.match(r"^[0-9.]+x?$", r[i])]
-
-def span(values, scale=1.0, unit=""):
-    return "%.3g–%.3g%s" % (min(values) * scale, max(values) * scale, unit) if values else "-"
-
-print("vds headline figures, commit %s" % sys.argv[2])
-print("machine: %s" % sys.argv[3])
-if renderer:
-    print(renderer.group(0).strip())
-for header, rows in tables():
-    if "CPU 1 thr" in header:
-        one, two, exact = (column(header, rows, n) for n in ("CPU 1 thr", "CPU 2 thr", "exact"))
-        gpu = column(header, rows, "GPU host -> host") + column(header, rows, "GPU resident random") \
-            + column(header, rows, "GPU resident coherent")
-        ratio = [t / e for t, e in zip(two, exact) if e > 0]
-        same = all(r[header.index("GPU == CPU")] == "yes" for r in rows)
-        print("classification, 10M random points, sprites at 2048, CPU: %s M points/s on 2 threads, %s on 1; "
-              "%s the exact classifier" % (span(two, 1e3), span(one, 1e3), span(ratio, unit="x")))
-        print("classification on GL compute, host arrays or resident GL buffers: %s M points/s, "
-              "answers identical to the CPU's: %s" % (span(gpu, 1e3), "yes" if same else "NO"))
-    if "cpu / lists" in header:
-        bundled = lambda r: r[0].endswith(".obj")
-        same = all(r[header.index("lists == peel")] == "yes" for r in rows)
-        print("bake at 1024 on the six public meshes: lists %s the CPU baker's speed (%s in CPU time), "
-              "%s faster than peeling; layers bit-identical to peeling's: %s"
-              % (span(column(header, rows, "cpu / lists", bundled), unit="x"),
-                 span(column(header, rows, "(CPU time)", bundled), unit="x"),
-                 span(column(header, rows, "peel / lists", bundled), unit="x"), "yes" if same else "NO"))
-print()
-PY
-cat "$out"
+python3 bench/headline.py "$out" "$commit" "$machine, at the end $(cut -d' ' -f1-3 /proc/loadavg)"
+for name in bench query peers distance-generated distance-meshes sdf-grids gwn axis exact; do
+  echo
+  cat "$out/$name.txt"
+done

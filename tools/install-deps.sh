@@ -10,6 +10,7 @@ packages=(
   libgl1-mesa-dri libegl-mesa0         # Mesa's llvmpipe: GL 4.5 core where there is no GPU
   libglm-dev libopenexr-dev libpng-dev libgtest-dev
   libcli11-dev nlohmann-json3-dev     # command lines, JSON reports
+  zlib1g-dev                           # the CRC-32 of the tool's .npz grid files (libopenexr-dev brings it too)
   python3-dev pybind11-dev python3-numpy python3-pytest   # the Python module vds and its tests
   python3-pip python3-venv                                # pip install . (pyproject.toml), its test
   python3-dask python3-distributed python3-zarr           # vds.dask: every question on a Dask cluster, grids into Zarr

@@ -17,6 +17,8 @@ occupancy grid is a ``Grid``.
     labels, stats = vds.Classifier(V, F, "certified").classify(points, stats=True)
     grid = vds.Grid(V.min(0), V.max(0), 128)    # occupancy arrays are grid.shape, [i, j, k]
     cells = vds.occupancy(V, F, grid)           # exact; sprite.occupancy(grid, gpu=True) too
+    vds.save_grid("cells.npz", cells, grid)     # with its geometry, as `vds voxelize -o cells.npz`
+    cells, grid = vds.load_grid("cells.npz")
 
 Coordinates are the mesh's own units. Errors: every exception vds raises is a
 ``vds.Error``, and also the builtin class its kind fits: ``InvalidArgument``
@@ -79,13 +81,14 @@ from ._vds import (  # noqa: F401  (the public API)
     vdb_available,
     write_vdb,
 )
+from ._grid_files import load_grid, save_grid  # noqa: F401  (the public API)
 
 __all__ = [
     "Classifier", "DTypeError", "Error", "ExactClassifier", "FEATURES", "FormatError", "GlError", "GlUnavailable", "Grid",
     "InvalidArgument", "InvalidMesh", "IoError", "MeshWarning", "MethodInfo", "NO_TRIANGLE", "OutOfMemory", "SignedDistance", "Sprite", "bake",
-    "closest_points", "exact_contains", "from_bytes", "gl_available", "gl_unavailable_reason", "load_mesh", "methods",
-    "occupancy", "read", "sample_surface", "sdf", "signed_distance", "validate_mesh", "vdb_available",
-    "write_vdb",
+    "closest_points", "exact_contains", "from_bytes", "gl_available", "gl_unavailable_reason", "load_grid", "load_mesh",
+    "methods", "occupancy", "read", "sample_surface", "save_grid", "sdf", "signed_distance", "validate_mesh",
+    "vdb_available", "write_vdb",
     "winding_numbers",
 ]
 

@@ -93,6 +93,22 @@ TEST_F(SlabCli, SdfInSlabsEqualsTheWholeGridCall) {
     }
 }
 
+// A .npz holds the .npy's bytes verbatim (a stored member), written slab by
+// slab into the same file whatever the slab; numpy's reading of it, and its
+// geometry, are python/tests/test_grid_files.py's.
+TEST_F(SlabCli, NpzHoldsTheNpyWhateverTheSlab) {
+    for (const std::string command : {"voxelize --packed", "voxelize", "sdf", "sdf --band 0.1"}) {
+        const std::string grid = command + " " + p("torus.obj") + " --dims-xyz 23 19 11 --quiet -o ";
+        ASSERT_EQ(vds(grid + p("g.npy")).code, 0) << command;
+        ASSERT_EQ(vds(grid + p("whole.npz")).code, 0) << command;
+        ASSERT_EQ(vds(grid + p("slabs.npz") + " --slab-cells 1").code, 0) << command;
+        const std::string npy = vds::test::readFile(p("g.npy")), npz = vds::test::readFile(p("whole.npz"));
+        EXPECT_EQ(npz.substr(0, 2), "PK") << command;
+        EXPECT_NE(npz.find(npy), std::string::npos) << command;
+        EXPECT_EQ(vds::test::readFile(p("slabs.npz")), npz) << command;
+    }
+}
+
 // An output whose directory is missing fails before any work, and a bad
 // --slab-cells is a command-line error; neither leaves a file.
 TEST_F(SlabCli, BadOutputsAndSlabSizesAreRefused) {
@@ -101,6 +117,11 @@ TEST_F(SlabCli, BadOutputsAndSlabSizesAreRefused) {
     EXPECT_NE(r.output.find("none/g.npy"), std::string::npos) << r.output;
     r = vds("sdf " + p("torus.obj") + " --dims 8 -o " + p("none/s.npy"));
     EXPECT_EQ(r.code, 1) << r.output;
+    for (const char* command : {"voxelize ", "sdf "}) {
+        r = vds(command + p("torus.obj") + " --dims 8 -o " + p("none/g.npz"));
+        EXPECT_EQ(r.code, 1) << r.output;
+        EXPECT_NE(r.output.find("none/g.npz"), std::string::npos) << r.output;
+    }
     for (const char* bad : {"0", "-3", "x"}) {
         r = vds("voxelize " + p("torus.obj") + " --dims 8 --slab-cells " + bad + " -o " + p("g.npy"));
         EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
@@ -113,6 +134,7 @@ TEST_F(SlabCli, BadOutputsAndSlabSizesAreRefused) {
     EXPECT_FALSE(fs::exists(p("s.npy")));
     // Hidden: a knob for tests, not in the help.
     EXPECT_EQ(vds("voxelize --help").output.find("slab-cells"), std::string::npos);
+    EXPECT_EQ(vds("sdf --help").output.find("zip64-above"), std::string::npos);
 }
 
 } // namespace

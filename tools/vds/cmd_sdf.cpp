@@ -35,6 +35,7 @@ struct SdfArgs {
     vds::DistanceGridOptions options;
     bool allowOpen = false, quiet = false, propagated = false, cubic = false;
     std::size_t slabCells = kSlabCells;
+    std::uint64_t zip64Above = kZip64Above;
 };
 
 bool hasVdbExtension(const std::string& path) {
@@ -60,21 +61,11 @@ void checkArguments(const SdfArgs& a) {
     if (a.cubic && a.grid.dims == 0) throw CLI::ValidationError("--cubic takes the cells of the longest side from --dims N");
 }
 
-// "box [x0, y0, z0] to [x1, y1, z1], cells 0.1 x 0.1 x 0.1"
-std::string geometry(const vds::Grid& grid) {
-    const glm::vec3 cell = (grid.box.hi - grid.box.lo) / glm::vec3(grid.dims);
-    char text[256];
-    std::snprintf(text, sizeof text, "box [%.9g, %.9g, %.9g] to [%.9g, %.9g, %.9g], cells %.9g x %.9g x %.9g",
-                  grid.box.lo.x, grid.box.lo.y, grid.box.lo.z, grid.box.hi.x, grid.box.hi.y, grid.box.hi.z, cell.x,
-                  cell.y, cell.z);
-    return text;
-}
-
 /// The signed distances of `grid`, a slab of x layers at a time appended to
 /// `out` (a propagated grid spreads across the whole grid: one slab, held
 /// whole). Returns the cells inside (negative).
 std::size_t measureInSlabs(const SdfArgs& a, const vds::SignedDistance& query, const vds::Grid& grid,
-                           NpySlabWriter& out) {
+                           GridSlabWriter& out) {
     constexpr std::uint32_t kProgressSlabs = 16;
     const std::size_t layer = std::size_t(grid.dims.y) * grid.dims.z;
     const std::uint32_t slab = a.propagated ? grid.dims.x : slabLayers(grid, a.slabCells, kProgressSlabs);
@@ -125,7 +116,7 @@ void sdfVdb(const SdfArgs& a, const vds::TriangleMesh& mesh, const vds::SignedDi
     options.source = a.mesh;
     vds::writeVdb(a.output, band, options);
     std::printf("wrote %s: %ux%ux%u cells, %s, %zu band cells in %zu blocks (%.1f MB), band %s, %s rule, in %.3f s\n",
-                a.output.c_str(), grid.dims.x, grid.dims.y, grid.dims.z, geometry(grid).c_str(), band.values.size(),
+                a.output.c_str(), grid.dims.x, grid.dims.y, grid.dims.z, geometrySummary(grid).c_str(), band.values.size(),
                 band.blocks.size(), double(band.memoryBytes()) * 1e-6, std::to_string(a.band).c_str(),
                 vds::toString(a.rule), seconds);
 }
@@ -134,11 +125,11 @@ void sdf(SdfArgs& a) {
     checkArguments(a);
     const bool banded = a.bandGiven->count() != 0;
     if (!banded && hasVdbExtension(a.output))
-        throw CLI::ValidationError("-o: " + a.output + ": unsupported output format without --band (supported: .npy, or "
-                                   "'-' for standard output; .vdb holds a narrow band: add --band W)");
-    const OutputFormat format = outputFormat(
-        "-o", a.output, banded ? std::vector<OutputFormat>{OutputFormat::Npy, OutputFormat::Vdb} : std::vector<OutputFormat>{OutputFormat::Npy},
-        OutputFormat::Npy);
+        throw CLI::ValidationError("-o: " + a.output + ": unsupported output format without --band (supported: .npy, "
+                                   ".npz, or '-' for standard output; .vdb holds a narrow band: add --band W)");
+    std::vector<OutputFormat> formats{OutputFormat::Npy, OutputFormat::Npz};
+    if (banded) formats.push_back(OutputFormat::Vdb);
+    const OutputFormat format = outputFormat("-o", a.output, formats, OutputFormat::Npy);
     if (format == OutputFormat::Vdb && !vds::vdbAvailable())
         throw CLI::ValidationError("-o: " + a.output + ": this vds was built without OpenVDB (libopenvdb-dev): it cannot write .vdb files");
     if (format == OutputFormat::Vdb && !a.grid.dimsXyz.empty())
@@ -156,7 +147,13 @@ void sdf(SdfArgs& a) {
     const vds::TriangleMesh mesh = vds::loadMesh(a.mesh);
     checkSignedMesh(mesh, a.mesh, a.rule, a.allowOpen, "sdf");
     const vds::Grid grid = gridOfRun(a, vds::meshBounds(mesh), false);
-    NpySlabWriter out(a.output, "<f4", {grid.dims.x, grid.dims.y, grid.dims.z}, sizeof(float));
+    GridFileInfo info;
+    info.grid = grid;
+    info.kind = banded ? "band" : "sdf";
+    info.rule = a.rule;
+    info.band = a.band;
+    info.zip64Above = a.zip64Above;
+    GridSlabWriter out(a.output, "<f4", {grid.dims.x, grid.dims.y, grid.dims.z}, sizeof(float), info);
     const vds::SignedDistance query(mesh, a.rule, a.mesh);
     progress("built " + query.summary());
     a.options.band = a.band;
@@ -167,7 +164,7 @@ void sdf(SdfArgs& a) {
     out.commit();
     // With the grid on stdout, the summary goes to stderr.
     std::fprintf(a.output == kStdio ? stderr : stdout, "wrote %s: %ux%ux%u cells, %s, %zu inside, %s, %s rule, in %.3f s\n",
-                 a.output.c_str(), grid.dims.x, grid.dims.y, grid.dims.z, geometry(grid).c_str(), inside,
+                 a.output.c_str(), grid.dims.x, grid.dims.y, grid.dims.z, geometrySummary(grid).c_str(), inside,
                  a.band > 0.0 ? ("band " + std::to_string(a.band)).c_str()
                               : (a.propagated ? "full grid, propagated" : "full grid"),
                  vds::toString(a.rule), seconds);
@@ -177,9 +174,9 @@ void sdf(SdfArgs& a) {
 
 void addSdf(CLI::App& app) {
     const auto [c, a] = addCommand<SdfArgs>(
-        app, "sdf", "signed distance grid of a mesh (full or a narrow band), into a float32 .npy file",
+        app, "sdf", "signed distance grid of a mesh (full or a narrow band), into a float32 .npy or .npz file",
         "  vds sdf MESH (--dims N [--cubic] | --dims-xyz NX NY NZ | --voxel-size H) [--band W | --propagated]\n"
-        "      -o SDF.npy [--rule RULE] [--box ...] [--pad F]\n"
+        "      -o SDF.npy|SDF.npz [--rule RULE] [--box ...] [--pad F]\n"
         "  vds sdf MESH (--dims N | --voxel-size H) --band W -o SDF.vdb\n"
         "SDF.npy: float32 of shape (NX, NY, NZ), indexed [i][j][k], the signed distance of the centre of\n"
         "cell (i, j, k), lo + (i + 1/2, j + 1/2, k + 1/2) * (hi - lo) / (NX, NY, NZ), as 'vds voxelize'\n"
@@ -193,6 +190,10 @@ void addSdf(CLI::App& app) {
         "--voxel-size H likewise). The summary line gives the grid's box and cell size.\n"
         "SDF '-' writes the .npy to stdout, with the summary line on stderr. The grid is measured and\n"
         "written a slab of x layers at a time (at most 2^26 cells held; --propagated holds it whole).\n"
+        "SDF.npz: the same array as member 'values' of a numpy .npz (np.load(path); vds.load_grid(path)\n"
+        "gives the array and its vds.Grid) with the grid's geometry beside it: 'lo', 'hi' (float64[3], the\n"
+        "box), 'dims' (int64[3]), 'spacing' (float64[3], (hi - lo) / dims), 'kind' ('sdf', or 'band' with\n"
+        "'band' W), 'rule', 'version'; uncompressed, written slab by slab as the .npy (docs/format.md).\n"
         "SDF.vdb (a build with OpenVDB, 'vds --version'): the band computed sparsely, only the cells\n"
         "within W of the surface, so grids far past the dense limit fit (4096^3 and more), written as an\n"
         "OpenVDB level set (FloatGrid 'sdf', background W, voxel (i, j, k) centred on cell (i, j, k),\n"
@@ -200,8 +201,9 @@ void addSdf(CLI::App& app) {
         sdf);
     addMesh(*c, a->mesh);
     c->add_option("-o,--output", a->output,
-                  "output .npy (written slab by slab into a temporary file, renamed into place once whole) or, "
-                  "with --band, .vdb (written whole or not at all); '-': stdout (.npy)")
+                  "output .npy, or .npz (the values and the grid's geometry), written slab by slab into a temporary "
+                  "file, renamed into place once whole; or, with --band, .vdb (written whole or not at all); "
+                  "'-': stdout (.npy)")
         ->required()
         ->type_name("FILE");
     addGridOptions(*c, a->grid, "the grid's box instead of the mesh's bounds");
@@ -218,7 +220,7 @@ void addSdf(CLI::App& app) {
     addEnum(*c, "--rule", a->rule, "what is inside (negative): parity, winding, or generalized-winding (open meshes)");
     c->add_flag("--allow-open", a->allowOpen, "sign an open mesh by crossing count anyway");
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
-    addSlabCells(*c, a->slabCells);
+    addGridFileKnobs(*c, a->slabCells, a->zip64Above);
 }
 
 } // namespace cli

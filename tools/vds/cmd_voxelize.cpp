@@ -28,6 +28,7 @@ struct VoxelizeArgs {
     vds::ClassifyOptions options;
     bool packed = false, verbose = false, quiet = false, allowOpen = false;
     std::size_t slabCells = kSlabCells;
+    std::uint64_t zip64Above = kZip64Above;
 };
 
 /// Reads the sprite INPUT names, warns where its answers are a surface's; its box.
@@ -52,7 +53,7 @@ using Labeller = std::function<void(const vds::Grid&, std::uint8_t*)>;
 /// cell centres, so the labels are those of one call), appending each slab to
 /// `out`, packed row by row with --packed (numpy.packbits(cells, axis=-1)):
 /// one slab's cells are held, never the grid's. Returns the cells inside.
-std::size_t labelInSlabs(const VoxelizeArgs& a, const vds::Grid& grid, const Labeller& label, NpySlabWriter& out) {
+std::size_t labelInSlabs(const VoxelizeArgs& a, const vds::Grid& grid, const Labeller& label, GridSlabWriter& out) {
     constexpr std::uint32_t kProgressSlabs = 16;
     const std::size_t layer = std::size_t(grid.dims.y) * grid.dims.z;
     const std::uint32_t slab = slabLayers(grid, a.slabCells, kProgressSlabs);
@@ -128,12 +129,17 @@ void voxelize(VoxelizeArgs& a) {
     // A .vdb is written from the grid labelled whole; a .npy a slab at a time.
     const vds::Grid grid = gridOf(a.grid, bounds, 0.0f, !vdb);
     const std::uint64_t rowBytes = (std::uint64_t(grid.dims.z) + 7) / 8;
-    std::optional<NpySlabWriter> out;
+    std::optional<GridSlabWriter> out;
     std::optional<vds::AtomicFile> claim; // a missing directory fails now, not after the work
+    GridFileInfo info;
+    info.grid = grid;
+    info.rule = a.options.rule;
+    info.packed = a.packed;
+    info.zip64Above = a.zip64Above;
     if (vdb) claim.emplace(a.output);
     else
         out.emplace(a.output, a.packed ? "|u1" : "|b1",
-                    std::vector<std::uint64_t>{grid.dims.x, grid.dims.y, a.packed ? rowBytes : grid.dims.z}, 1);
+                    std::vector<std::uint64_t>{grid.dims.x, grid.dims.y, a.packed ? rowBytes : grid.dims.z}, 1, info);
     progress("labelling " + std::to_string(grid.dims.x) + "x" + std::to_string(grid.dims.y) + "x" +
              std::to_string(grid.dims.z) + " cells " + (fromSprite ? "from the sprite" : "exactly from the mesh"));
     // The mesh's exact classifier is built once (every slab sweeps through it).
@@ -164,16 +170,17 @@ void voxelize(VoxelizeArgs& a) {
     phase("write", secondsSince(start));
     // With the grid on stdout, the summary goes to stderr.
     std::fprintf(a.output == kStdio ? stderr : stdout,
-                 "wrote %s: %ux%ux%u cells, %zu inside, %s rule, swept in %.3f s (%.0f M cells/s)\n", a.output.c_str(),
-                grid.dims.x, grid.dims.y, grid.dims.z, inside, vds::toString(a.options.rule), sweep,
-                double(grid.cellCount()) / std::max(sweep, 1e-9) * 1e-6);
+                 "wrote %s: %ux%ux%u cells, %s, %zu inside, %s rule, swept in %.3f s (%.0f M cells/s)\n",
+                 a.output.c_str(), grid.dims.x, grid.dims.y, grid.dims.z, geometrySummary(grid).c_str(), inside,
+                 vds::toString(a.options.rule), sweep,
+                 double(grid.cellCount()) / std::max(sweep, 1e-9) * 1e-6);
 }
 
 } // namespace
 
 void addVoxelize(CLI::App& app) {
     const auto [c, a] = addCommand<VoxelizeArgs>(
-        app, "voxelize", "label every cell of a grid inside or outside, into a numpy .npy (or OpenVDB .vdb) file",
+        app, "voxelize", "label every cell of a grid inside or outside, into a numpy .npy or .npz (or OpenVDB .vdb) file",
         "Cell (i, j, k) has the centre lo + (i + 1/2, j + 1/2, k + 1/2) * (hi - lo) / (NX, NY, NZ),\n"
         "box [lo, hi] the mesh's (or the sprite's) bounding box unless --box is given. GRID.npy is a\n"
         "C-order boolean array of shape (NX, NY, NZ), indexed [i][j][k] along x, y, z; with\n"
@@ -185,14 +192,18 @@ void addVoxelize(CLI::App& app) {
         "refuse it: --rule generalized-winding answers it, --allow-open counts crossings anyway. The grid\n"
         "is labelled and written a slab of x layers at a time (at most 2^26 cells held), so a grid larger\n"
         "than memory ('--dims 4096 --packed', 8.6 GB) needs only the disk for its file.\n"
+        "GRID.npz: the same array as member 'values' of a numpy .npz (np.load(path); vds.load_grid(path)\n"
+        "gives the array and its vds.Grid) with the grid's geometry beside it: 'lo', 'hi' (float64[3], the\n"
+        "box), 'dims' (int64[3]), 'spacing' (float64[3], (hi - lo) / dims), 'kind' ('occupancy'),\n"
+        "'packed', 'rule', 'version'; uncompressed, written slab by slab as the .npy (docs/format.md).\n"
         "GRID.vdb (a build with OpenVDB, 'vds --version'): an OpenVDB BoolGrid 'occupancy', the inside\n"
         "cells active, an 8^3 block wholly inside one active tile; voxel (i, j, k) centred on cell (i, j, k)\n"
         "(labelled whole before it is written).",
         voxelize);
     c->add_option("INPUT", a->input, "a mesh (OBJ, PLY, STL, OFF) or a sprite (.vds)")->required()->type_name("");
     c->add_option("-o,--output", a->output,
-                  "output .npy (written slab by slab into a temporary file, renamed into place once whole), or "
-                  ".vdb (written whole or not at all); '-': stdout (.npy)")
+                  "output .npy, or .npz (the values and the grid's geometry), written slab by slab into a temporary "
+                  "file, renamed into place once whole; or .vdb (written whole or not at all); '-': stdout (.npy)")
         ->required()
         ->type_name("FILE");
     addGridOptions(*c, a->grid, "the grid's box instead of the input's bounds");
@@ -202,7 +213,7 @@ void addVoxelize(CLI::App& app) {
     addCount(*c, "--threads", a->options.threads, "CPU threads, 0: all");
     c->add_flag("--packed", a->packed, "eight cells to a byte");
     c->add_flag("--verbose", a->verbose, "print the time of each phase");
-    addSlabCells(*c, a->slabCells);
+    addGridFileKnobs(*c, a->slabCells, a->zip64Above);
 }
 
 } // namespace cli

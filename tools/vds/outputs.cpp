@@ -36,6 +36,7 @@ const char* extensionOf(OutputFormat format) {
     case OutputFormat::Text: return ".txt";
     case OutputFormat::Csv: return ".csv";
     case OutputFormat::Vdb: return ".vdb";
+    case OutputFormat::Npz: return ".npz";
     }
     return "";
 }

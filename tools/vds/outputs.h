@@ -50,10 +50,11 @@ private:
 };
 
 /// How an output's values are written: a numpy array, text lines of values
-/// separated by spaces, or by commas, or an OpenVDB file (<vds/vdb.h>).
-enum class OutputFormat { Npy, Text, Csv, Vdb };
+/// separated by spaces, or by commas, an OpenVDB file (<vds/vdb.h>), or a
+/// numpy .npz of a grid's values and geometry (npy_slabs.h).
+enum class OutputFormat { Npy, Text, Csv, Vdb, Npz };
 
-/// The format `path`'s extension names (.npy, .txt, .csv) among `supported`;
+/// The format `path`'s extension names (.npy, .txt, .csv, .vdb, .npz) among `supported`;
 /// `stdio` for "-". Throws CLI::ValidationError naming `option` and the
 /// supported extensions for any other name.
 OutputFormat outputFormat(const std::string& option, const std::string& path,
