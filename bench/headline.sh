@@ -10,8 +10,9 @@
 #   open meshes by the generalized winding number; their grids at 256^3        vds_gwn_bench, vds voxelize
 #   validation and the auto axis's count of a 1M-triangle mesh                 vds_axis_bench
 #   the exact classifier against the brute-force loop                         vds_exact_bench
-# The H200 rows and certified-gpu (bench/gpu_round.sh, vds_certified_bench) and the open scan's
-# grid (vds_scan_grid_bench) are measured apart.
+#   real open scans' GWN grids, SDF bands, sprite against exact (where      vds_scan_grid_bench,
+#   bench/fetch-meshes.sh --scans fetched them into bench/scans; VDS_SCANS=DIR) vds_gwn_bench
+# The H200 rows and certified-gpu (bench/gpu_round.sh, vds_certified_bench) are measured apart.
 #   bench/headline.sh [BUILD_DIR]      (default build; configured with VDS_BUILD_BENCHMARKS=ON)
 # Meshes: bench/meshes (bench/fetch-meshes.sh downloads them) or VDS_MESHES=DIR.
 set -euo pipefail
@@ -75,9 +76,19 @@ for mesh in stanford-bunny teapot suzanne; do
 done
 step axis "$bin/vds_axis_bench" --runs 5 --sphere --no-bake
 step exact "$bin/vds_exact_bench" "$meshes/fandisk.obj" "$meshes/rocker-arm.obj" "$meshes/spot.obj"
+scans=()
+for f in "${VDS_SCANS:-bench/scans}"/*.ply "${VDS_SCANS:-bench/scans}"/*.obj; do [ -f "$f" ] && scans+=("$f"); done
+if [ ${#scans[@]} -gt 0 ]; then
+  step scans "$bin/vds_scan_grid_bench" --threads 2 "${scans[@]}"
+  step scans-gwn "$bin/vds_gwn_bench" --points 200000 --resolution 1024 --dims 64 --threads 1 --no-generated "${scans[@]}"
+else
+  echo "headline: no scans in ${VDS_SCANS:-bench/scans} (bench/fetch-meshes.sh --scans): their row is left out" >&2
+  : > "$out/scans.txt"
+  : > "$out/scans-gwn.txt"
+fi
 
 python3 bench/headline.py "$out" "$commit" "$machine, at the end $(cut -d' ' -f1-3 /proc/loadavg)"
-for name in bench query peers distance-generated distance-meshes sdf-grids gwn axis exact; do
+for name in bench query peers distance-generated distance-meshes sdf-grids gwn axis exact scans scans-gwn; do
   echo
   cat "$out/$name.txt"
 done
