@@ -28,7 +28,7 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   exit 1
 fi
 targets=(vds_bench vds_query_bench vds_peers_bench vds_distance_bench vds_gwn_bench vds_axis_bench vds_exact_bench
-         vds_tool)
+         vds_scan_grid_bench vds_tool)
 cmake --build "$build" --target "${targets[@]}" > /dev/null
 
 commit="$(git rev-parse --short=7 HEAD 2>/dev/null || echo unknown)"
