@@ -7,10 +7,14 @@ their chunks are written a second time (the same bytes, but twice the work,
 and a reader may see a chunk replaced under it). Here each block's task
 first asks the store whether its chunk is already there, and a chunk file is
 only ever there whole (Zarr's directory store writes a temporary file and
-renames it), so a task run again after a kill writes nothing.
+renames it), so a task run again after a kill writes nothing. A worker
+killed between those two steps leaves its temporary file behind: once every
+block is written, the write's last task removes such leftovers from a
+directory store.
 """
 import os
 
+import dask
 import dask.array as da
 
 
@@ -20,6 +24,20 @@ def _zarr():
     except ImportError:
         raise ImportError("vds.dask.to_zarr writes Zarr: install python3-zarr (tools/install-deps.sh)") from None
     return zarr
+
+
+def _remove_leftovers(_written, path):
+    """Zarr's directory store writes a chunk to '<key>.<hex>.partial' and then
+    renames it into place; a worker killed in between leaves that file. Run
+    once every block is written (after `_written`), when no write is under
+    way, so every such file is a leftover."""
+    for folder, _, names in os.walk(path):
+        for name in names:
+            if name.endswith(".partial"):
+                try:
+                    os.remove(os.path.join(folder, name))
+                except FileNotFoundError:
+                    pass
 
 
 class _ChunkOnce:
@@ -52,6 +70,8 @@ def to_zarr(array, store, overwrite=True, compute=True, **kwargs):
     target = zarr.create(shape=array.shape, chunks=chunks, dtype=array.dtype, store=store, overwrite=overwrite,
                          **kwargs)
     write = da.store(array, _ChunkOnce(target), lock=False, compute=False)
+    if isinstance(store, zarr.storage.DirectoryStore):
+        write = dask.delayed(_remove_leftovers)(write, store.path)
     if not compute:
         return write
     write.compute()
