@@ -6,10 +6,7 @@
 // tree's nodes are walked by the workgroup as one: a node is taken whole by
 // its chord and its fan's expansion only when every point of the workgroup
 // may take it (a vote through shared memory), so the walk, its loads and its
-// branches are the same in every invocation. The ranges of edges of the
-// nodes not taken are merged where they follow one another (the tree's
-// leaves are in edge order) and summed in full tiles: a boundary of many
-// small loops (a scan's holes) is then one tile pass, not one a loop.
+// branches are the same in every invocation.
 //
 // The floor is the brute-force sum (every edge for every point, tiled): the
 // walk costs one vote a node visited more, and a node of at most one tile of
@@ -109,7 +106,6 @@ void vdsBoundaryTerms(VdsBoundary boundary, vec3 q[VDS_TERM_POINTS], bool live[V
         barrier();
         int base = 2 * boundary.edgeCount;
         int node = 0;
-        int first = 0, count = 0; // edges to sum, merged while the nodes' ranges follow one another
         for (int round = 0; node < boundary.nodeCount; ++round) {
             int at = base + 14 * node;
             vec4 ball = vdsBoundaryEdges[at];
@@ -123,19 +119,12 @@ void vdsBoundaryTerms(VdsBoundary boundary, vec3 q[VDS_TERM_POINTS], bool live[V
                 }
                 node = floatBitsToInt(links.y);
             } else if ((flags & 1) != 0 || (flags >> 2) <= VDS_NODE_TILE_EDGES) {
-                int from = floatBitsToInt(links.z), n = flags >> 2;
-                if (count > 0 && first + count != from) {
-                    vdsSumEdgeTiles(first, count, q, sum);
-                    count = 0;
-                }
-                if (count == 0) first = from;
-                count += n;
+                vdsSumEdgeTiles(floatBitsToInt(links.z), flags >> 2, q, sum);
                 node = floatBitsToInt(links.y);
             } else {
                 node += 1;
             }
         }
-        if (count > 0) vdsSumEdgeTiles(first, count, q, sum);
     }
     for (int k = 0; k < VDS_TERM_POINTS; ++k) term[k] = sum[k] / VDS_FOUR_PI;
 }

@@ -81,13 +81,12 @@ int vdsCount(ivec2 column, bool inBox, float r, out int parity) {
 // The generalized winding number's program: each point's signed count and
 // parity of the crossings in front of its texture depth, the points'
 // columns walked in lockstep (every step loads the next crossing of each
-// column still in walk). Measured on an H200 (docs/benchmarks.md): with
-// lockstep walks suzanne ran 6.5 G points/s, with serial walks and the
-// boundary term's merged ranges 4.1. Suzanne's 42 edges are one range
-// whatever the merging, so the walks made that difference, and the merged
-// ranges (boundary_tiles.glsl: the bunny's small loops one tile pass, not one each)
-// are kept with the lockstep walks. In the parity and winding programs the
-// lockstep walks were the slower on random points.
+// column still in walk). As measured fastest on an H200 (lockstep walks,
+// a vote a node, each node's edges summed on their own): merging the ranges
+// of adjacent nodes not taken into fuller tile passes cost 0.62 of the rate
+// on the teapot, suzanne and the bunny alike (a bisection on the H200:
+// docs/benchmarks.md); in the parity and winding programs the lockstep
+// walks were the slower on random points.
 void vdsCountColumns(ivec2 column[VDS_N], bool inBox[VDS_N], vec3 T[VDS_N], out int winding[VDS_N],
                      out int parity[VDS_N]) {
     uint next[VDS_N], end[VDS_N];
