@@ -8,7 +8,6 @@
 #include <vds/occupancy.h>
 
 #include <algorithm>
-#include <array>
 #include <cassert>
 #include <chrono>
 #include <cmath>

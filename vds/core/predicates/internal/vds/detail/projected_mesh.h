@@ -275,11 +275,11 @@ struct ProjectedMesh {
     }
 };
 
+class BoundaryCaps;
+
 /// How the exact sweep labels the columns of a mesh with boundary under
 /// Rule::GeneralizedWinding: both ways give the same labels; Timed times
 /// both on a few columns of each range and takes the cheaper.
-class BoundaryCaps;
-
 enum class SweepWay { Timed, CellByCell, Brackets };
 
 /// The exact column sweep of `occupancy(mesh, ...)` (<vds/occupancy.h>) on
