@@ -52,6 +52,18 @@ constexpr double kPlanWidth = 0.45;
 /// the tree from its root at the cell's centre.
 constexpr std::size_t kPlanNear = 64;
 constexpr double kPlanShare = 0.75;
+
+/// Whether the ray towards -axis from some point within `half` of `c` may
+/// cross loop `loop`'s cap: the cap (the fan from the centroid) lies in
+/// the loop's ball, so the ray must pass within its radius across the axis
+/// and start above the ball's lowest point (widened against rounding).
+bool capMayCross(const CapLoop& loop, const glm::dvec3& c, double half, int axis) {
+    const double reach = (loop.radius + half) * (1.0 + 1e-9) + kRoundingSlack;
+    double across = 0.0;
+    for (int a = 0; a < 3; ++a)
+        if (a != axis) across += (loop.centroid[a] - c[a]) * (loop.centroid[a] - c[a]);
+    return across <= reach * reach && loop.centroid[axis] - c[axis] <= reach;
+}
 } // namespace
 
 BoundRanges::BoundRanges(const CapLoops& loops, const CapsValueTree& values, const ChainLabels& labels,
@@ -276,8 +288,8 @@ std::size_t BoundRanges::memoryBytes() const {
         total += held(g->met) + held(g->capMet) + held(g->constantWinding) + held(g->closedWinding) + held(g->lowestEdge);
         if (g == &fine_ ? !fineReady_.load(std::memory_order_acquire) : !g->state) continue;
         const std::size_t cells = std::size_t(g->dims.x) * g->dims.y * g->dims.z;
-        // state, alone, planMisses; near, nearCount, nearLoops; lo, hi
-        total += cells * (sizeof(CellState) + sizeof(CellVerdict) + 1 + sizeof(std::unique_ptr<std::uint32_t[]>) + 2 * sizeof(std::uint32_t) + 2 * sizeof(double));
+        // state, alone, planMisses, farCrossed; near, nearCount, nearLoops; lo, hi
+        total += cells * (sizeof(CellState) + sizeof(CellVerdict) + 2 + sizeof(std::unique_ptr<std::uint32_t[]>) + 2 * sizeof(std::uint32_t) + 2 * sizeof(double));
         if (g->visits) total += cells * sizeof(std::uint16_t);
         if (g->blockTried) total += std::size_t(g->blockDims.x) * g->blockDims.y * g->blockDims.z;
         for (std::size_t c = 0; c < cells; ++c) // plans published so far
@@ -418,6 +430,13 @@ bool BoundRanges::plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c,
     // centre (some 2 us of the soup's) is not asked again.
     if (!within && double(near.size()) > kPlanShare * labels_.decide(0, c, 1.0).work) return false;
     std::sort(loops.begin(), loops.end());
+    // Whether a query must count the far loops' caps crossed in front of it
+    // (decidePlanned): not where no far cap lies in the cell's column below it.
+    bool farCrossed = false;
+    for (std::uint32_t l = 0; l < loops_.loops().size() && !farCrossed; ++l)
+        farCrossed = !std::binary_search(loops.begin(), loops.end(), l) &&
+                     capMayCross(loops_.loops()[l], p, half, loops_.axisIndex());
+    g.farCrossed[cell] = farCrossed ? 1 : 0;
     // The filling thread owns the cell (Filling).
     width = width * (1.0 + 1e-9) + kRoundingSlack;
     g.lo[cell] = value - width;
@@ -437,11 +456,13 @@ bool BoundRanges::decidePlanned(const RangeGrid& g, int winding, const glm::vec3
     const std::uint32_t* loops = near + count;
     const std::uint32_t* loopsEnd = loops + g.nearLoops[cell];
     // The far loops' caps crossed in front of q: C_caps less the near loops'.
-    thread_local std::vector<std::pair<std::uint32_t, int>> crossed;
-    loops_.capCrossings(q, crossed);
     int far = 0;
-    for (const auto& [loop, crossing] : crossed)
-        if (!std::binary_search(loops, loopsEnd, loop)) far += crossing;
+    if (g.farCrossed[cell]) {
+        thread_local std::vector<std::pair<std::uint32_t, int>> crossed;
+        loops_.capCrossings(q, crossed);
+        for (const auto& [loop, crossing] : crossed)
+            if (!std::binary_search(loops, loopsEnd, loop)) far += crossing;
+    }
     // Where every near node is summed whole when not taken (a loop of few
     // edges: a soup's), most planned queries decide on the first cut: that
     // round alone first, in one pass.

@@ -26,6 +26,7 @@ void RangeGrid::allocate() const {
     g.near.reset(new std::unique_ptr<std::uint32_t[]>[cells]);
     g.nearCount.reset(new std::uint32_t[cells]());
     g.nearLoops.reset(new std::uint32_t[cells]());
+    g.farCrossed.reset(new std::uint8_t[cells]());
     g.planMisses.reset(new std::atomic<std::uint8_t>[cells]);
     for (std::size_t c = 0; c < cells; ++c) g.planMisses[c].store(0, std::memory_order_relaxed);
     for (std::size_t c = 0; c < cells; ++c) g.state[c].store(CellState::Unvisited, std::memory_order_relaxed);

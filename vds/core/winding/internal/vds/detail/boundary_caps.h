@@ -63,8 +63,9 @@
 //     by a closed count, for a query apart from its count: as CappedRange.
 //  5. BoundaryRange: winding + [lo, hi]; CappedRange: winding + C_caps(q)
 //     + [lo, hi]; the label where that keeps clear of 1/2.
-//  6. Planned: the near loops refined, the far ones by their range; a few
-//     net misses turn the cell NoRange.
+//  6. Planned: the near loops refined, the far ones by their range (plus
+//     their caps' crossing count, counted only in a cell whose column
+//     below it a far cap may reach); a few net misses turn the cell NoRange.
 //  7. Else the chain tree (ChainLabels::decide): the coarsest cut whose
 //     nodes each err by at most 1/4, then the nodes with the largest bounds
 //     opened a round at a time until the value is farther from 1/2 than the

@@ -109,6 +109,9 @@ struct RangeGrid {
     /// first, nearLoops[cell] of the second.
     mutable std::unique_ptr<std::unique_ptr<std::uint32_t[]>[]> near;
     mutable std::unique_ptr<std::uint32_t[]> nearCount, nearLoops;
+    /// A planned cell's: 1 where a far loop's cap may lie in the column
+    /// below it (its queries count the caps they cross), else 0.
+    mutable std::unique_ptr<std::uint8_t[]> farCrossed;
     /// A planned cell's score of queries the plan did not decide, less
     /// those it did: past a few, the cell goes back to NoRange (most of
     /// its queries lie close to 1/2).
