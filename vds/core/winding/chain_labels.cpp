@@ -160,9 +160,30 @@ bool ChainLabels::takeNode(const ChainNode& n, const glm::dvec3& p, bool secondO
     bound = secondOrder ? n.errorScale * remainderFactor(d, e, reach) : n.errorScale * firstOrderFactor(d, e);
     if (!(bound <= kMaxTakenBound)) return false;
     value = secondOrder ? -secondOrderTerm(n, y, d2, d) : -firstOrderTerm(n, y, d2, d);
-    if (n.chord) value += edgeSolidAngle(a, n.from, n.to, p);
     return true;
 }
+
+namespace {
+/// The chords' angles of the chain nodes nodeAt(0 .. count - 1) (those with a chord), as
+/// the per-edge sum takes an edge's (EdgeAngles: one atan2 for them all,
+/// not one a chord). A chord's ends are loop vertices, floats.
+template <class NodeAt>
+double chordAngles(const std::vector<ChainNode>& chains, std::size_t count, const NodeAt& nodeAt, int axis,
+                   const glm::dvec3& p) {
+    thread_local std::vector<glm::vec3> ends;
+    ends.clear();
+    for (std::size_t k = 0; k < count; ++k) {
+        const ChainNode& n = chains[nodeAt(k)];
+        if (!n.chord) continue;
+        ends.emplace_back(n.from);
+        ends.emplace_back(n.to);
+    }
+    if (ends.empty()) return 0.0;
+    EdgeAngles sum;
+    sum.add(ends.data(), ends.size() / 2, axis, p);
+    return sum.angle();
+}
+} // namespace
 
 bool ChainLabels::firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount,
                             double farLo, double farHi, CapsEstimate& out) const {
@@ -171,6 +192,8 @@ bool ChainLabels::firstCut(int winding, const glm::vec3& q, const std::uint32_t*
     double angles = 0.0, bound = 0.5 * (farHi - farLo), work = 0.0;
     EdgeAngles leafSum;
     bool leaves = false;
+    thread_local std::vector<std::uint32_t> chords;
+    chords.clear();
     for (std::size_t r = 0; r < rootCount; ++r) {
         // refine()'s open() on a root, its first step: the same tests and
         // terms (first order, as the first cut is).
@@ -180,6 +203,7 @@ bool ChainLabels::firstCut(int winding, const glm::vec3& q, const std::uint32_t*
             work += n.chord ? 2.0 : 1.0;
             angles += value;
             bound += b;
+            if (n.chord) chords.push_back(roots[r]);
             continue;
         }
         if (n.count == 0 && n.edgeCount > kDirectEdges) return false; // refine splits it
@@ -189,6 +213,7 @@ bool ChainLabels::firstCut(int winding, const glm::vec3& q, const std::uint32_t*
     }
     // As refine() finds its first value (margin 1).
     const double offset = double(winding) - 0.5 - kGeneralizedWindingTie + 0.5 * (farLo + farHi);
+    angles += chordAngles(chains_, chords.size(), [&](std::size_t k) { return chords[k]; }, a, p);
     const double value = offset + (angles + (leaves ? leafSum.angle() : 0.0)) / kFourPi;
     if (!(std::fabs(value) > bound + kRoundingSlack)) return false;
     out = {value + 0.5 + kGeneralizedWindingTie, bound + kRoundingSlack, work};
@@ -211,7 +236,7 @@ CapsEstimate ChainLabels::decide(int winding, const glm::vec3& q, double margin)
 struct ChainLabels::Refinement {
     struct Taken {
         double bound;
-        double value; ///< the node's edges' angles by its chord and expansion
+        double value; ///< the node's fan's angle by its expansion (its chord's: chordAngles)
         std::uint32_t node;
     };
     Refinement(const ChainLabels& of, const glm::vec3& q, double farHalfWidth, std::vector<Taken>& takenNodes,
@@ -233,6 +258,7 @@ struct ChainLabels::Refinement {
                 angles += value;
                 bound += b;
                 taken.push_back({b, value, i});
+                chordsChanged |= n.chord;
                 return true;
             }
             if (n.count == 0 && n.edgeCount > kDirectEdges) {
@@ -273,6 +299,10 @@ struct ChainLabels::Refinement {
     /// summed.
     bool leavesChanged = false;
     double leaves = 0.0;
+    /// The taken nodes' chords' angle, taken again only after the taken
+    /// chords changed.
+    bool chordsChanged = false;
+    double chords = 0.0;
     std::vector<Taken>& taken;
     std::vector<Taken>& opening;
 };
@@ -293,7 +323,11 @@ bool ChainLabels::Refinement::decide(double offset, double margin, CapsEstimate&
                 leaves = leafSum.angle();
                 leavesChanged = false;
             }
-            value = offset + (angles + leaves) / kFourPi;
+            if (chordsChanged) {
+                chords = chordAngles(tree.chains_, taken.size(), [&](std::size_t k) { return taken[k].node; }, axis, p);
+                chordsChanged = false;
+            }
+            value = offset + (angles + leaves + chords) / kFourPi;
             moved = 0.0;
             found = true;
             // The running sums drift by some 1e-13 at most (each taken
@@ -333,6 +367,7 @@ bool ChainLabels::Refinement::openRound(double& moved) {
     for (const Taken& tk : taken) {
         if (tk.bound >= least) {
             opening.push_back(tk);
+            chordsChanged |= tree.chains_[tk.node].chord;
             angles -= tk.value;
             bound -= tk.bound;
             moved += tk.bound;

@@ -52,9 +52,10 @@ private:
     std::uint32_t buildChain(std::uint32_t loop, std::uint32_t first, std::uint32_t count, std::uint32_t treeFirst);
     /// refine()'s step on one chain node at p: where q's ray misses its
     /// ball and its bound (first order, or the remainder where
-    /// `secondOrder`) is at most kMaxTakenBound, that bound and its edges'
-    /// angle (its chord's less its fan's, by the expansion); false where it
-    /// must be opened.
+    /// `secondOrder`) is at most kMaxTakenBound, that bound and minus its
+    /// fan's angle by the expansion (its edges' angle is that plus its
+    /// chord's, which the caller sums with the other taken chords' at one
+    /// atan2: chain_labels.cpp); false where it must be opened.
     inline bool takeNode(const ChainNode& n, const glm::dvec3& p, bool secondOrder, double& bound,
                          double& value) const;
 
