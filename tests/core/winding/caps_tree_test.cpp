@@ -25,6 +25,7 @@
 
 #include <vds/detail/antipodal.h>
 #include <vds/detail/boundary_caps.h>
+#include <vds/detail/chain_labels.h>
 #include <vds/detail/projected_mesh.h>
 #include "solids.h"
 
@@ -363,6 +364,59 @@ TEST(CapsTree, PointsBesideALargeLoopCostItsChainsNearThemNotItsEdges) {
     ASSERT_GT(count, 300u);
     EXPECT_LT(nearest, 1e-3); // some points really are close to 1/2
     EXPECT_LT(work / double(count), kEdges / 16.0);
+}
+
+TEST(CapsTree, RefiningFromACellsFrontierTakesWhatRefiningFromTheRootTakes) {
+    // A planned cell's queries refine from the chain nodes none of them can
+    // take a level above (ChainLabels::frontier). Beside a circle of 4,096
+    // edges, for points within a small ball, that must take the same nodes
+    // and sum the same edges as refining from the root: the same value (to
+    // the order of summing), bound and work, and the per-edge sum's label.
+    constexpr int kEdges = 4096;
+    std::vector<glm::vec3> edges;
+    const auto at = [](int k) {
+        const double phi = 2.0 * kPi * (k % kEdges) / kEdges;
+        return glm::vec3(float(std::cos(phi)), float(std::sin(phi)), 0.0f);
+    };
+    for (int k = 0; k < kEdges; ++k) {
+        edges.push_back(at(k));
+        edges.push_back(at(k + 1));
+    }
+    const CapLoops loops(edges.data(), edges.size() / 2, Axis::Z);
+    const ChainLabels labels(loops);
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> radius(0.0f, 1.2f), angle(0.0f, 6.2831853f), height(-0.1f, 0.1f), unit(-1.0f, 1.0f);
+    const std::uint32_t root = 0;
+    std::vector<std::uint32_t> starts;
+    std::size_t descended = 0, compared = 0;
+    for (int cell = 0; cell < 60; ++cell) {
+        const float r = radius(rng), phi = angle(rng);
+        const glm::dvec3 c(r * std::cos(phi), r * std::sin(phi), height(rng));
+        const double half = 0.02;
+        labels.frontier(&root, 1, c, half, starts);
+        ASSERT_FALSE(starts.empty());
+        descended += starts.size() > 1;
+        for (int k = 0; k < 20; ++k) {
+            glm::dvec3 d(unit(rng), unit(rng), unit(rng));
+            if (glm::length(d) > 1.0 || glm::length(d) == 0.0) continue;
+            const glm::vec3 q(c + 0.99 * half * d);
+            for (const int winding : {0, 1}) {
+                CapsEstimate fromRoot, fromStarts;
+                const bool a = labels.refine(winding, q, 1.0, &root, 1, 0.0, 0.0, fromRoot);
+                const bool b = labels.refine(winding, q, 1.0, starts.data(), starts.size(), 0.0, 0.0, fromStarts);
+                ASSERT_EQ(a, b);
+                ASSERT_EQ(fromRoot.work, fromStarts.work);
+                if (!a) continue;
+                ASSERT_NEAR(fromRoot.term, fromStarts.term, 1e-12);
+                ASSERT_NEAR(fromRoot.bound, fromStarts.bound, 1e-12);
+                const double exact = double(winding) + exactTerm(edges, q);
+                ASSERT_EQ(fromStarts.term > 0.5 + kGeneralizedWindingTie, generalizedWindingInside(exact));
+                ++compared;
+            }
+        }
+    }
+    EXPECT_GT(descended, 40u); // the frontier lies below the root for most cells
+    EXPECT_GT(compared, 800u);
 }
 
 TEST(CapsTree, RangesOfTheBoundaryTermLabelAsThePerEdgeSum) {

@@ -441,11 +441,14 @@ bool BoundRanges::plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c,
     width = width * (1.0 + 1e-9) + kRoundingSlack;
     g.lo[cell] = value - width;
     g.hi[cell] = value + width;
-    g.nearCount[cell] = std::uint32_t(near.size());
+    // Its queries refine the near loops from the nodes each of them reaches.
+    std::vector<std::uint32_t> starts;
+    labels_.frontier(near.data(), near.size(), p, half, starts);
+    g.nearCount[cell] = std::uint32_t(starts.size());
     g.nearLoops[cell] = std::uint32_t(loops.size());
-    g.near[cell].reset(new std::uint32_t[near.size() + loops.size()]);
-    std::copy(near.begin(), near.end(), g.near[cell].get());
-    std::copy(loops.begin(), loops.end(), g.near[cell].get() + near.size());
+    g.near[cell].reset(new std::uint32_t[starts.size() + loops.size()]);
+    std::copy(starts.begin(), starts.end(), g.near[cell].get());
+    std::copy(loops.begin(), loops.end(), g.near[cell].get() + starts.size());
     return true;
 }
 

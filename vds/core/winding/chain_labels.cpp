@@ -409,6 +409,31 @@ bool ChainLabels::refine(int winding, const glm::vec3& q, double margin, const s
     return false;
 }
 
+void ChainLabels::frontier(const std::uint32_t* roots, std::size_t rootCount, const glm::dvec3& c, double half,
+                           std::vector<std::uint32_t>& out) const {
+    // A query lies within `half` of c (widened here against its rounding),
+    // so its distance to a node's centre is at most d + half, where the
+    // first-order bound, falling with the distance, is least.
+    const auto noneTakes = [&](const ChainNode& n) {
+        const double reach = n.radius * (1.0 + 1e-12), d = glm::length(n.centre - c);
+        const double farthest = (d + half) * (1.0 + 1e-9);
+        if (!(farthest > reach)) return true; // every query within the ball
+        return n.errorScale * firstOrderFactor(farthest, farthest - reach) > kMaxTakenBound * (1.0 + 1e-9);
+    };
+    out.clear();
+    for (std::size_t r = 0; r < rootCount; ++r)
+        walkTree(roots[r], [&](std::uint32_t i, TreeStack& stack) {
+            const ChainNode& n = chains_[i];
+            if (n.count == 0 && n.edgeCount > kDirectEdges && noneTakes(n)) {
+                stack.push(n.left);
+                stack.push(n.right);
+            } else {
+                out.push_back(i);
+            }
+            return true;
+        });
+}
+
 std::size_t ChainLabels::memoryBytes() const {
     return chains_.capacity() * sizeof(chains_[0]) + chainEdges_.capacity() * sizeof(chainEdges_[0]);
 }

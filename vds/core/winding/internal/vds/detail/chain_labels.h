@@ -43,6 +43,15 @@ public:
     /// false where it does not or a root would be split.
     bool firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount, double farLo,
                   double farHi, CapsEstimate& out) const;
+    /// The nodes refine() from `roots` reaches for every query within
+    /// `half` of `c`: a root that no such query can take (its ball holds
+    /// them all, or its first-order bound exceeds kMaxTakenBound at the
+    /// farthest of them) and that refine() would split is replaced by its
+    /// children, and so on. refine() from these takes the same nodes and
+    /// sums the same edges for each such query, without the tests on the
+    /// nodes above them (a planned cell's queries start here).
+    void frontier(const std::uint32_t* roots, std::size_t rootCount, const glm::dvec3& c, double half,
+                  std::vector<std::uint32_t>& out) const;
     std::size_t memoryBytes() const;
 
 private:

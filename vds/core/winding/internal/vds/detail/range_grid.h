@@ -104,9 +104,9 @@ struct RangeGrid {
     mutable std::unique_ptr<CellVerdict[]> alone;
     mutable std::unique_ptr<double[]> lo, hi;
     mutable std::atomic<std::size_t> closedCells{0}; ///< WindingRange by closedWinding
-    /// A planned cell's near nodes (whole loops, or groups of them),
-    /// then the loops they hold, ascending: nearCount[cell] of the
-    /// first, nearLoops[cell] of the second.
+    /// A planned cell's chain nodes its queries refine the near loops
+    /// from (ChainLabels::frontier), then the near loops, ascending:
+    /// nearCount[cell] of the first, nearLoops[cell] of the second.
     mutable std::unique_ptr<std::unique_ptr<std::uint32_t[]>[]> near;
     mutable std::unique_ptr<std::uint32_t[]> nearCount, nearLoops;
     /// A planned cell's: 1 where a far loop's cap may lie in the column
