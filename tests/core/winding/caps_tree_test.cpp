@@ -575,6 +575,60 @@ TriangleMesh openCylinder(int segments) {
     return m;
 }
 
+// The sprite cases of the next test: each seen along its axis.
+struct SpriteCase {
+    std::string name;
+    TriangleMesh mesh;
+    Axis axis;
+};
+
+std::vector<SpriteCase> spriteCases() {
+    // A box without its floor, seen along z: its walls lie on the texture's
+    // edges, so the cells along them reach past the texture, and its rim's
+    // sweep runs up them. A point just beyond a wall counts 0 and has B at
+    // itself, where the columns inside (the floor's cap in front: 1) would
+    // put it inside: its cell's closed count does not answer for it.
+    const TriangleMesh openBox =
+        solids::without(solids::box({-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}).mesh,
+                        [](const glm::vec3& centroid) { return centroid.z < -0.49f; });
+    return {
+        {"box open below, walls on the texture's edges", openBox, Axis::Z},
+        {"open cylinder along its walls", openCylinder(48), Axis::Z},
+        {"open cylinder across", openCylinder(48), Axis::X},
+        {"cup, one large opening", cases()[0].mesh, Axis::Z},
+        {"finned shell", finnedShell(16, 32), Axis::Y},
+    };
+}
+
+// Points in, beside, in front of and behind a sprite's box, close to the
+// walls of a cylinder or box (where columns either side count
+// differently) and to the boundary curve.
+std::vector<glm::vec3> spritePoints(const Sprite& baked, std::mt19937& rng) {
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), angle(0.0f, 6.2831853f), height(-0.7f, 0.7f);
+    std::normal_distribution<float> near(0.0f, 0.01f);
+    const Box box = baked.grid.box;
+    const glm::vec3 mid = 0.5f * (box.lo + box.hi), half = 0.5f * (box.hi - box.lo);
+    std::vector<glm::vec3> at;
+    for (int k = 0; k < 6000; ++k) // the box and 80% more each way: past the grid's margin
+        at.push_back(mid + 1.8f * half * glm::vec3(u(rng), u(rng), u(rng)));
+    for (int k = 0; k < 3000; ++k) { // beside a cylinder's wall
+        const float phi = angle(rng), r = 0.5f + near(rng);
+        at.push_back({r * std::cos(phi), r * std::sin(phi), height(rng)});
+    }
+    for (int k = 0; k < 3000; ++k) { // just beyond a box's wall (and just inside it)
+        const float across = 0.5f + 3.0f * near(rng), along = 0.9f * u(rng) * 0.5f;
+        const int wall = k % 4;
+        const float x = wall < 2 ? (wall == 0 ? across : -across) : along;
+        const float y = wall < 2 ? along : (wall == 2 ? across : -across);
+        at.push_back({x, y, height(rng)});
+    }
+    for (std::size_t e = 0; e + 1 < baked.boundaryEdges.size(); e += 2)
+        for (int k = 0; k < 4; ++k)
+            at.push_back(0.5f * (baked.boundaryEdges[e] + baked.boundaryEdges[e + 1]) +
+                         glm::vec3(near(rng), near(rng), near(rng)) * 3.0f);
+    return at;
+}
+
 TEST(CapsTree, SpriteCellsWhereEveryColumnCountsAlikeLabelAsThePerEdgeSum) {
     // A sprite's caps know its columns, not its triangles: a cell clear of
     // the boundary's sweep, none of whose columns has a crossing within its
@@ -584,60 +638,17 @@ TEST(CapsTree, SpriteCellsWhereEveryColumnCountsAlikeLabelAsThePerEdgeSum) {
     // where the caps keep out of a cell and every column's count plus the
     // caps' crossings in it are alike, that sum less w_caps's range. Labels by the
     // caps equal those by the per-edge sum (BoundaryEvaluation::Exact) on
-    // points in, beside, in front of and behind the box, close to the
-    // walls (where columns either side count differently) and to the
-    // boundary curve, the cells found on one thread and on all; and on the
+    // spritePoints(), the cells found on one thread and on all; and on the
     // sprite placed in the world by a rotation, scale and translation.
-    struct SpriteCase {
-        std::string name;
-        TriangleMesh mesh;
-        Axis axis;
-    };
-    // A box without its floor, seen along z: its walls lie on the texture's
-    // edges, so the cells along them reach past the texture, and its rim's
-    // sweep runs up them. A point just beyond a wall counts 0 and has B at
-    // itself, where the columns inside (the floor's cap in front: 1) would
-    // put it inside: its cell's closed count does not answer for it.
-    const TriangleMesh openBox =
-        solids::without(solids::box({-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}).mesh,
-                        [](const glm::vec3& centroid) { return centroid.z < -0.49f; });
-    const std::vector<SpriteCase> all = {
-        {"box open below, walls on the texture's edges", openBox, Axis::Z},
-        {"open cylinder along its walls", openCylinder(48), Axis::Z},
-        {"open cylinder across", openCylinder(48), Axis::X},
-        {"cup, one large opening", cases()[0].mesh, Axis::Z},
-        {"finned shell", finnedShell(16, 32), Axis::Y},
-    };
     std::mt19937 rng(41);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f), angle(0.0f, 6.2831853f), height(-0.7f, 0.7f);
-    std::normal_distribution<float> near(0.0f, 0.01f);
-    for (const SpriteCase& c : all)
+    for (const SpriteCase& c : spriteCases())
         for (const std::uint32_t resolution : {40u, 96u}) {
             BakeOptions o;
             o.resolution = resolution;
             o.axis = c.axis;
             const Sprite baked = bakeCpu(c.mesh, o);
             ASSERT_EQ(baked.status, SolidStatus::Open) << c.name;
-            const Box box = baked.grid.box;
-            const glm::vec3 mid = 0.5f * (box.lo + box.hi), half = 0.5f * (box.hi - box.lo);
-            std::vector<glm::vec3> at;
-            for (int k = 0; k < 6000; ++k) // the box and 80% more each way: past the grid's margin
-                at.push_back(mid + 1.8f * half * glm::vec3(u(rng), u(rng), u(rng)));
-            for (int k = 0; k < 3000; ++k) { // beside a cylinder's wall
-                const float phi = angle(rng), r = 0.5f + near(rng);
-                at.push_back({r * std::cos(phi), r * std::sin(phi), height(rng)});
-            }
-            for (int k = 0; k < 3000; ++k) { // just beyond a box's wall (and just inside it)
-                const float across = 0.5f + 3.0f * near(rng), along = 0.9f * u(rng) * 0.5f;
-                const int wall = k % 4;
-                const float x = wall < 2 ? (wall == 0 ? across : -across) : along;
-                const float y = wall < 2 ? along : (wall == 2 ? across : -across);
-                at.push_back({x, y, height(rng)});
-            }
-            for (std::size_t e = 0; e + 1 < baked.boundaryEdges.size(); e += 2)
-                for (int k = 0; k < 4; ++k)
-                    at.push_back(0.5f * (baked.boundaryEdges[e] + baked.boundaryEdges[e + 1]) +
-                                 glm::vec3(near(rng), near(rng), near(rng)) * 3.0f);
+            const std::vector<glm::vec3> at = spritePoints(baked, rng);
             std::vector<std::uint8_t> expected(at.size()), labels(at.size());
             classify(baked, {at.data(), at.size()}, expected.data(),
                      {Rule::GeneralizedWinding, 1}, {QueryLayout::Auto, BoundaryEvaluation::Exact});
