@@ -40,12 +40,17 @@ def column(header, rows, name, keep=lambda row: True):
     return [v for v in (number(r[i]) for r in rows if keep(r)) if v is not None]
 
 
+def number(value, digits):
+    # `digits` significant digits, but never an exponent: 1070, not 1.07e+03
+    text = "%.*g" % (digits, value)
+    return "%.0f" % value if "e+" in text else text
+
+
 def span(values, scale=1.0, unit="", digits=3):
     if not values:
         return "-"
-    lo, hi = min(values) * scale, max(values) * scale
-    return ("%.*g%s" % (digits, lo, unit)) if "%.*g" % (digits, lo) == "%.*g" % (digits, hi) else \
-        "%.*g–%.*g%s" % (digits, lo, digits, hi, unit)
+    lo, hi = number(min(values) * scale, digits), number(max(values) * scale, digits)
+    return lo + unit if lo == hi else "%s–%s%s" % (lo, hi, unit)
 
 
 def say(row, figure):
