@@ -324,6 +324,20 @@ TEST(CapsTree, FinsOnANonManifoldRingAreLoopsOfTheirOwn) {
     EXPECT_EQ(triangles, 32u);
 }
 
+// The unit circle in z = 0 as `count` edges, counter-clockwise seen from +z.
+std::vector<glm::vec3> unitCircle(int count) {
+    std::vector<glm::vec3> edges;
+    const auto at = [count](int k) {
+        const double phi = 2.0 * kPi * (k % count) / count;
+        return glm::vec3(float(std::cos(phi)), float(std::sin(phi)), 0.0f);
+    };
+    for (int k = 0; k < count; ++k) {
+        edges.push_back(at(k));
+        edges.push_back(at(k + 1));
+    }
+    return edges;
+}
+
 TEST(CapsTree, PointsBesideALargeLoopCostItsChainsNearThemNotItsEdges) {
     // A circle of 4,096 edges in z = 0, alone: just above and below its
     // disk the boundary term lies within 0.05 of -1/2 or 1/2, so with
@@ -332,15 +346,7 @@ TEST(CapsTree, PointsBesideALargeLoopCostItsChainsNearThemNotItsEdges) {
     // tree takes the far arcs by their chords and needs a few chains near
     // the point: far less work than the per-edge sum's 4,096 angles.
     constexpr int kEdges = 4096;
-    std::vector<glm::vec3> edges;
-    const auto at = [](int k) {
-        const double phi = 2.0 * kPi * (k % kEdges) / kEdges;
-        return glm::vec3(float(std::cos(phi)), float(std::sin(phi)), 0.0f);
-    };
-    for (int k = 0; k < kEdges; ++k) {
-        edges.push_back(at(k));
-        edges.push_back(at(k + 1));
-    }
+    const std::vector<glm::vec3> edges = unitCircle(kEdges);
     const BoundaryCaps caps(edges.data(), edges.size() / 2, Axis::Z);
     ASSERT_TRUE(caps.closed());
     std::mt19937 rng(11);
@@ -373,15 +379,7 @@ TEST(CapsTree, RefiningFromACellsFrontierTakesWhatRefiningFromTheRootTakes) {
     // and sum the same edges as refining from the root: the same value (to
     // the order of summing), bound and work, and the per-edge sum's label.
     constexpr int kEdges = 4096;
-    std::vector<glm::vec3> edges;
-    const auto at = [](int k) {
-        const double phi = 2.0 * kPi * (k % kEdges) / kEdges;
-        return glm::vec3(float(std::cos(phi)), float(std::sin(phi)), 0.0f);
-    };
-    for (int k = 0; k < kEdges; ++k) {
-        edges.push_back(at(k));
-        edges.push_back(at(k + 1));
-    }
+    const std::vector<glm::vec3> edges = unitCircle(kEdges);
     const CapLoops loops(edges.data(), edges.size() / 2, Axis::Z);
     const ChainLabels labels(loops);
     std::mt19937 rng(13);
