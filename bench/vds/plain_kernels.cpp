@@ -84,7 +84,7 @@ void PlainKernels::run(const Program& program, const GpuSprite& sprite, GLuint p
     glUniformMatrix3fv(glGetUniformLocation(id, "u_placement.matrix"), 1, GL_FALSE, &sprite.matrix()[0][0]);
     glUniform3fv(glGetUniformLocation(id, "u_placement.position"), 1, &sprite.position()[0]);
     glUniform1ui(glGetUniformLocation(id, "u_count"), GLuint(count));
-    if (&program == gwn_) sprite.setBoundaryUniforms(id, "u_boundary", kBoundaryBinding);
+    if (&program == gwn_) sprite.boundary().setUniforms(id, "u_boundary", kBoundaryBinding);
     const std::size_t invocations = onePoint ? count : (count + 3) / 4;
     const std::size_t groups = std::max<std::size_t>(1, (invocations + kLocal - 1) / kLocal);
     const std::size_t x = std::min<std::size_t>(groups, 65535);

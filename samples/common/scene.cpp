@@ -481,7 +481,7 @@ void SceneRenderer::Impl::setUniforms(GLuint p) {
 void SceneRenderer::Impl::setDistanceUniforms(GLuint p, std::size_t i, GLuint unit) {
     const std::string k = "[" + std::to_string(i) + "]";
     const glm::mat4& placement = scene.solids[i].placement;
-    sprites[i].setDistanceUniforms(p, "u_distance" + k, "u_distanceLo" + k, "u_distanceHi" + k, unit);
+    sprites[i].distanceGrid().setUniforms(p, "u_distance" + k, "u_distanceLo" + k, "u_distanceHi" + k, unit);
     const glm::mat4 toMesh = glm::inverse(placement);
     glUniformMatrix4fv(location(p, "u_distanceToMesh" + k), 1, GL_FALSE, glm::value_ptr(toMesh));
     glUniform1f(location(p, "u_distanceScale" + k), std::cbrt(std::abs(glm::determinant(glm::mat3(placement)))));

@@ -18,7 +18,7 @@
 // signed crossing count plus a boundary term summed over the baked mesh's
 // boundary edges, which live in a shader storage buffer. Define
 // VDS_BOUNDARY_BINDING to the buffer's binding point before the include to
-// get it (GpuSprite::setBoundaryUniforms fills both):
+// get it (GpuBoundary::setUniforms fills both):
 //   #define VDS_BOUNDARY_BINDING 5
 //   #include "vds/vpt.glsl"
 //   uniform VdsBoundary u_boundary;
@@ -167,7 +167,7 @@ bool vdsContains(sampler3D ldi, VdsPlacement placement, vec3 world, int rule) {
 }
 
 // The frame of the bake that the boundary term is evaluated in, and the
-// number of boundary edges (GpuSprite::setBoundaryUniforms):
+// number of boundary edges (GpuBoundary::setUniforms):
 //   lo    the baked box's low corner, (s, t, r) order, mesh coordinates
 //   step  (texel size, texel size, the box's extent along r), mesh units
 //   edgeCount  boundary edges in VdsBoundaryEdges; 0: the mesh is closed, or
@@ -287,7 +287,7 @@ bool vdsNodeTaken(vec4 ball, float errorScale, vec3 q) {
 
 // The boundary term at q (the bake's frame, (s, t, r) order): the sum over
 // the edges of their solid angles, over 4 pi. With the chain tree
-// (GpuSprite::setBoundaryUniforms sets nodeCount; C++ caps_tree.h,
+// (GpuBoundary::setUniforms sets nodeCount; C++ caps_tree.h,
 // BoundaryCaps::chains, and vds/gl/src/sprite pack_boundary.h for the records): a node's
 // edges run from P to Q, closed by its chord Q -> P into a fan in its
 // ball (whole loops have no chord). Where q's ray towards -r misses the

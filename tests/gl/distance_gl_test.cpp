@@ -163,16 +163,16 @@ TEST_F(DistanceGlTest, AGpuSpriteCarriesItsDistanceGrid) {
     options.resolution = 32;
     Sprite sprite = bakeCpu(mesh, options);
     const GpuSprite plain(sprite);
-    EXPECT_FALSE(plain.hasDistance());
-    EXPECT_THROW(plain.setDistanceUniforms(0, "u_distance", "u_lo", "u_hi", 1), InvalidArgument);
+    EXPECT_FALSE(bool(plain.distanceGrid()));
+    EXPECT_THROW(plain.distanceGrid().setUniforms(0, "u_distance", "u_lo", "u_hi", 1), InvalidArgument);
     sprite.distance = bakeDistance(mesh, sprite.grid.box, 16, Rule::Winding, 0);
     const GpuSprite carried(sprite, GpuSpriteParts::ColumnsOnly);
-    ASSERT_TRUE(carried.hasDistance());
+    ASSERT_TRUE(bool(carried.distanceGrid()));
     const Grid& g = sprite.distance.grid;
-    EXPECT_EQ(carried.distanceBox().lo, g.box.lo);
-    EXPECT_EQ(carried.distanceBox().hi, g.box.hi);
+    EXPECT_EQ(carried.distanceGrid().box().lo, g.box.lo);
+    EXPECT_EQ(carried.distanceGrid().box().hi, g.box.hi);
     std::vector<float> texels(g.cellCount());
-    glGetTextureImage(carried.distance().id(), 0, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
+    glGetTextureImage(carried.distanceGrid().texture().id(), 0, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
                       texels.data());
     std::size_t same = 0;
     for (std::uint32_t i = 0; i < g.dims.x; ++i)

@@ -21,6 +21,7 @@
 #include <vds/gl/context.h>
 #include <vds/gl/occupancy.h>
 #include <vds/gl/shader.h>
+#include <vds/distance.h>
 #include <vds/gl/sprite.h>
 #include <vds/sprite.h>
 
@@ -220,6 +221,9 @@ TEST_F(ForeignContext, MisuseGivesOneLineErrorsNamingTheMistake) {
         return "no GlError";
     };
     const GpuSprite sprite(host); // belongs to the application's context
+    Sprite withDistance = host;
+    withDistance.distance = bakeDistance(box.mesh, host.grid.box, 8, Rule::Parity);
+    const GpuSprite distanced(withDistance); // its boundary and distance grid too
 
     // No context current.
     RawEgl::release();
@@ -234,6 +238,10 @@ TEST_F(ForeignContext, MisuseGivesOneLineErrorsNamingTheMistake) {
         const GlContext other;
         const std::string wrong = message([&] { sprite.bind(0); });
         EXPECT_NE(wrong.find("another GL context"), std::string::npos) << wrong;
+        const std::string boundary = message([&] { distanced.boundary().setUniforms(0, "u_boundary", 5); });
+        EXPECT_NE(boundary.find("another GL context"), std::string::npos) << boundary;
+        const std::string field = message([&] { distanced.distanceGrid().setUniforms(0, "u_d", "u_lo", "u_hi", 1); });
+        EXPECT_NE(field.find("another GL context"), std::string::npos) << field;
         GpuClassifier classifier(other);
         std::vector<glm::vec3> points{{0.5f, 0.5f, 0.5f}};
         std::uint8_t label = 7;

@@ -46,8 +46,8 @@ protected:
         const Sprite host = bakeOnGl(gl(), mesh, options, glOptions);
         const GpuSprite uploaded(host);
         const GpuBake baked = bakeToGpu(gl(), mesh, options, GpuSpriteParts::Both, glOptions);
-        ASSERT_TRUE(baked.sprite.hasTexture());
-        ASSERT_TRUE(baked.sprite.hasColumns());
+        ASSERT_TRUE(bool(baked.sprite.texture()));
+        ASSERT_TRUE(bool(baked.sprite.offsets()));
         EXPECT_EQ(baked.depthComplexity, host.depthComplexity);
         EXPECT_EQ(baked.crossings, host.crossings.size());
         EXPECT_EQ(baked.status, host.status);
@@ -113,12 +113,12 @@ TEST_F(GpuBakeTest, KeepsOnlyThePartsAskedFor) {
     BakeOptions o;
     o.resolution = 32;
     const GpuBake columns = bakeToGpu(gl(), sphere.mesh, o, GpuSpriteParts::ColumnsOnly);
-    EXPECT_FALSE(columns.sprite.hasTexture());
-    EXPECT_TRUE(columns.sprite.hasColumns());
+    EXPECT_FALSE(bool(columns.sprite.texture()));
+    EXPECT_TRUE(bool(columns.sprite.offsets()));
     EXPECT_EQ(columns.sprite.size(), glm::uvec3(32, 32, 2));
     const GpuBake texture = bakeToGpu(gl(), sphere.mesh, o, GpuSpriteParts::TextureOnly);
-    EXPECT_TRUE(texture.sprite.hasTexture());
-    EXPECT_FALSE(texture.sprite.hasColumns());
+    EXPECT_TRUE(bool(texture.sprite.texture()));
+    EXPECT_FALSE(bool(texture.sprite.offsets()));
     EXPECT_EQ(texture.depthComplexity, 2u);
 }
 

@@ -86,7 +86,7 @@ TEST_F(GpuOccupancyTest, GeneralizedWindingOfOpenMeshesEqualsTheCpu) {
             const glm::vec3 pad = 0.08f * (box.hi - box.lo);
             const Grid grid{{box.lo - pad, box.hi + pad}, {33, 27, 30}};
             const GpuSprite gpu(sprite, GpuSpriteParts::ColumnsOnly);
-            ASSERT_EQ(gpu.boundaryEdgeCount(), sprite.boundaryEdges.size() / 2);
+            ASSERT_EQ(gpu.boundary().edgeCount(), sprite.boundaryEdges.size() / 2);
             std::vector<std::uint8_t> cpu(grid.cellCount(), 9), gpuCells(grid.cellCount(), 7);
             occupancy(sprite, grid, cpu.data(), {Rule::GeneralizedWinding, 1});
             sweep.occupancy(gpu, grid, gpuCells.data(), {Rule::GeneralizedWinding});
@@ -177,7 +177,7 @@ TEST_F(GpuOccupancyTest, GeneralizedWindingOfAClosedSpriteIsWinding) {
     o.method = BakeMethod::Cpu;
     const Sprite sprite = bake(two.mesh, o);
     const GpuSprite gpu(sprite, GpuSpriteParts::ColumnsOnly);
-    ASSERT_EQ(gpu.boundaryEdgeCount(), 0u);
+    ASSERT_EQ(gpu.boundary().edgeCount(), 0u);
     const Box box = meshBounds(two.mesh);
     const Grid grid{{box.lo - 0.1f, box.hi + 0.1f}, {21, 22, 23}};
     std::vector<std::uint8_t> gwn(grid.cellCount(), 7), winding(grid.cellCount(), 9), cpu(grid.cellCount(), 5);
@@ -196,7 +196,7 @@ TEST_F(GpuOccupancyTest, GeneralizedWindingNeedsAKnownBoundary) {
     Sprite sprite = bake(solids::sphereCup(), o);
     sprite.boundaryKnown = false; // as read from a version 1 file
     const GpuSprite gpu(sprite, GpuSpriteParts::ColumnsOnly);
-    ASSERT_FALSE(gpu.boundaryKnown());
+    ASSERT_FALSE(gpu.boundary().known());
     const Grid grid{sprite.grid.box, {8, 8, 8}};
     std::vector<std::uint8_t> cells(grid.cellCount());
     GpuOccupancy sweep(gl());

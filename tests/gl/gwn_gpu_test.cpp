@@ -76,11 +76,11 @@ TEST_F(GwnGpuTest, ClassifierMatchesTheCpuOnOpenMeshes) {
                 classify(sprite, {points.data(), points.size()}, cpu.data(), options, {QueryLayout::Auto, BoundaryEvaluation::Exact});
                 for (GpuSpriteParts parts : {GpuSpriteParts::ColumnsOnly, GpuSpriteParts::TextureOnly}) {
                     const GpuSprite gpu(sprite, parts);
-                    EXPECT_EQ(gpu.boundaryEdgeCount(), sprite.boundaryEdges.size() / 2);
+                    EXPECT_EQ(gpu.boundary().edgeCount(), sprite.boundaryEdges.size() / 2);
                     // The holes' loops get a tree: far nodes are taken by
                     // their chords and fans' expansion in the shader.
                     if (std::string(c.name) == "sphere with holes") {
-                        EXPECT_GT(gpu.boundaryNodeCount(), 3u);
+                        EXPECT_GT(gpu.boundary().nodeCount(), 3u);
                     }
                     std::vector<std::uint8_t> labels(points.size(), 7);
                     classifier.classify(gpu, {points.data(), points.size()}, labels.data(), {Rule::GeneralizedWinding});
@@ -262,7 +262,7 @@ TEST_F(GwnGpuTest, ClosedMeshReadsAsWinding) {
     const auto points = test::randomPoints(sprite.grid.box, 20000, 0.1f, 3);
     GpuClassifier classifier(gl());
     const GpuSprite gpu(sprite);
-    EXPECT_EQ(gpu.boundaryEdgeCount(), 0u);
+    EXPECT_EQ(gpu.boundary().edgeCount(), 0u);
     std::vector<std::uint8_t> winding(points.size()), gwn(points.size(), 7);
     classifier.classify(gpu, {points.data(), points.size()}, winding.data(), {Rule::Winding});
     classifier.classify(gpu, {points.data(), points.size()}, gwn.data(), {Rule::GeneralizedWinding});
@@ -287,8 +287,8 @@ TEST_F(GwnGpuTest, BakeToGpuCarriesTheBoundary) {
     o.resolution = 64;
     const Sprite host = bake(gl(), cup, o);
     const GpuBake baked = bakeToGpu(gl(), cup, o, GpuSpriteParts::ColumnsOnly);
-    ASSERT_EQ(baked.sprite.boundaryEdgeCount(), host.boundaryEdges.size() / 2);
-    ASSERT_GT(baked.sprite.boundaryEdgeCount(), 0u);
+    ASSERT_EQ(baked.sprite.boundary().edgeCount(), host.boundaryEdges.size() / 2);
+    ASSERT_GT(baked.sprite.boundary().edgeCount(), 0u);
     const auto points = test::randomPoints(host.grid.box, 20000, 0.1f, 5);
     GpuClassifier classifier(gl());
     std::vector<std::uint8_t> fromBake(points.size()), fromHost(points.size(), 7);
@@ -329,7 +329,7 @@ void main() {
     glBindFramebuffer(GL_FRAMEBUFFER, empty.id());
     glUseProgram(program.id());
     gpu.setUniforms(program.id(), "u_ldi", "u_placement", 0);
-    gpu.setBoundaryUniforms(program.id(), "u_boundary", 1);
+    gpu.boundary().setUniforms(program.id(), "u_boundary", 1);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, valueBuffer.id());
     glEnable(GL_RASTERIZER_DISCARD);
     glBindVertexArray(vao.id());
@@ -409,7 +409,7 @@ void main() {
     glUniform3fv(glGetUniformLocation(id, "u_placement.position"), 1, &gpu.position()[0]);
     glUniform2i(glGetUniformLocation(id, "u_size"), GLint(gpu.size().x), GLint(gpu.size().y));
     glUniform1ui(glGetUniformLocation(id, "u_count"), GLuint(points.size()));
-    gpu.setBoundaryUniforms(id, "u_boundary", 1);
+    gpu.boundary().setUniforms(id, "u_boundary", 1);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pointBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, valueBuffer.id());
     glDispatchCompute(GLuint((points.size() + 63) / 64), 1, 1);
@@ -487,7 +487,7 @@ TEST_F(GwnGpuTest, OneLargeOpeningMatchesTheCpuNearItsPlane) {
         classify(sprite, {points.data(), points.size()}, cpu.data(), options, {QueryLayout::Auto, BoundaryEvaluation::Exact});
         const GpuSprite gpu(sprite, GpuSpriteParts::TextureOnly);
         // one loop, halved into chains closed by their chords
-        EXPECT_GE(gpu.boundaryNodeCount(), 256u / 4u) << toString(axis);
+        EXPECT_GE(gpu.boundary().nodeCount(), 256u / 4u) << toString(axis);
         std::vector<std::uint8_t> labels(points.size(), 7);
         classifier.classify(gpu, {points.data(), points.size()}, labels.data(), {Rule::GeneralizedWinding});
         const std::vector<glm::vec2> values = includeValues(gpu, points);

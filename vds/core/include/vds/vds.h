@@ -251,7 +251,7 @@
 //     `closestPointOnTriangle(p, a, b, c)`: the one closest-point kernel.
 //   SpriteDistance bakeDistance(mesh, box, n, rule)         <vds/distance.h>
 //     the distance grid a sprite carries (`Sprite::distance`, file format 3,
-//     `vds bake --distance N`), for `vdsDistance` in GLSL (`GpuSprite::distance`);
+//     `vds bake --distance N`), for `vdsDistance` in GLSL (`GpuSprite::distanceGrid`);
 //     `spriteDistanceGrid(box, n)` its cells, for callers filling it in slabs.
 //   SparseBand sparseBand(distance, mesh, grid, SparseBandOptions{threads, W})
 //     a narrow band stored sparsely: BandBlock's of 8^3 cells near the
@@ -294,7 +294,10 @@
 //   GpuSprite(sprite)    the paper's R32F 3D texture and placement, for
 //                        shaders/vds/vpt.glsl (`vdsContains(...)` in any
 //                        stage; the same answers as the CPU), and the
-//                        boundary edges for `vdsContainsGeneralized(...)`;
+//                        boundary edges for `vdsContainsGeneralized(...)`
+//                        (`boundary()`, a GpuBoundary, sets the VdsBoundary
+//                        uniform) and its distance grid (`distanceGrid()`, a
+//                        GpuDistanceGrid, for `vdsDistance`);
 //                        GpuSpriteParts picks what is uploaded. <vds/gl/sprite.h>
 //   GpuClassifier        the VPT over many points in a compute shader: host
 //                        arrays in and out, or points and labels already in

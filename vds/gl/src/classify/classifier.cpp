@@ -23,7 +23,7 @@ GpuSpriteClassifier::~GpuSpriteClassifier() {
 
 std::size_t GpuSpriteClassifier::memoryBytes() const {
     return (std::size_t(sprite_->size().x) * sprite_->size().y + 1) * sizeof(std::uint32_t) +
-           sprite_->crossingCount() * sizeof(float) + std::size_t(sprite_->boundaryEdgeCount()) * 2 * 16;
+           sprite_->crossingCount() * sizeof(float) + std::size_t(sprite_->boundary().edgeCount()) * 2 * 16;
 }
 
 std::string GpuSpriteClassifier::summary() const { return summary_ + " on " + gl_.info().renderer; }

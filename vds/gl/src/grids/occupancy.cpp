@@ -114,10 +114,10 @@ void GpuOccupancy::occupancy(const GpuSprite& sprite, const Grid& grid, GLuint c
 void GpuOccupancy::sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells, const ClassifyOptions& options) {
     const Rule rule = options.rule;
     checkGrid(grid);
-    if (rule == Rule::GeneralizedWinding && !sprite.boundaryKnown())
+    if (rule == Rule::GeneralizedWinding && !sprite.boundary().known())
         throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
                               "store the boundary edges the generalized winding number needs: bake it again");
-    if (!sprite.hasColumns()) throw InvalidArgument("GpuOccupancy: the sprite has no columns in GL");
+    if (!bool(sprite.offsets())) throw InvalidArgument("GpuOccupancy: the sprite has no columns in GL");
     if (grid.cellCount() > (std::uint64_t(1) << 32))
         throw InvalidArgument("GpuOccupancy: at most 2^32 cells (use vds::occupancy on the CPU)");
     if (labelBytes(grid) > maxBlock_)
@@ -137,7 +137,7 @@ void GpuOccupancy::sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells
     // With no boundary edges (a mesh that bounds a solid) the generalized
     // winding number is the winding number: the plain sweep, over the
     // sprite's columns and depth range; with them every cell counts.
-    const bool boundaryTerm = rule == Rule::GeneralizedWinding && sprite.boundaryEdgeCount() > 0;
+    const bool boundaryTerm = rule == Rule::GeneralizedWinding && sprite.boundary().edgeCount() > 0;
     const AcrossColumns across = boundaryTerm ? acrossColumns(sg, grid, plan) : AcrossColumns{};
     const std::vector<std::int32_t>& texels = boundaryTerm ? across.texels : plan.texels;
     const Buffer texelBuffer = detail::uploadBuffer(texels.data(), texels.size() * 4, "uploading the occupancy columns");
@@ -164,7 +164,7 @@ void GpuOccupancy::sweep(const GpuSprite& sprite, const Grid& grid, GLuint cells
     setSweepUniforms(id, grid, plan, sg, boundaryTerm);
     if (boundaryTerm) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kColumnPointsBinding, stBuffer.id());
-        sprite.setBoundaryUniforms(id, "u_boundary", kBoundaryBinding);
+        sprite.boundary().setUniforms(id, "u_boundary", kBoundaryBinding);
     }
     glDispatchCompute(detail::strideGroups(plan.columns, kLocalSize), 1, 1);
     for (GLuint binding = 0; binding <= kColumnPointsBinding; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);

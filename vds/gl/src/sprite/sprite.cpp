@@ -54,7 +54,7 @@ GpuSprite GpuSprite::adopt(Texture texture, Buffer offsets, Buffer crossings, st
                            const std::vector<glm::vec3>& boundaryEdges) {
     GpuSprite s;
     s.context_ = ContextStamp::current("GpuSprite");
-    s.setBoundary(grid, boundaryEdges, true);
+    s.boundary_ = GpuBoundary(grid, boundaryEdges, true);
     s.status_ = status;
     s.texture_ = std::move(texture);
     s.offsets_ = std::move(offsets);
@@ -86,14 +86,8 @@ GpuSprite& GpuSprite::operator=(GpuSprite&& o) noexcept {
         matrix_ = o.matrix_;
         position_ = o.position_;
         status_ = o.status_;
-        boundaryEdges_ = std::move(o.boundaryEdges_);
-        boundaryEdgeCount_ = o.boundaryEdgeCount_;
-        boundaryNodeCount_ = o.boundaryNodeCount_;
-        boundaryKnown_ = o.boundaryKnown_;
-        boundaryLo_ = o.boundaryLo_;
-        boundaryStep_ = o.boundaryStep_;
+        boundary_ = std::move(o.boundary_);
         distance_ = std::move(o.distance_);
-        distanceBox_ = o.distanceBox_;
     }
     return *this;
 }
@@ -105,8 +99,8 @@ void GpuSprite::releaseIfForeign() noexcept {
     texture_.release();
     offsets_.release();
     crossings_.release();
-    boundaryEdges_.release();
-    distance_.release();
+    boundary_.buffer_.release();
+    distance_.texture_.release();
 }
 
 void GpuSprite::requireContext(const char* what) const { context_.check(what); }
@@ -134,47 +128,61 @@ void GpuSprite::upload(const Sprite& sprite, GpuSpriteParts parts) {
                             dense.data());
         checkGl("uploading the sprite texture");
     }
-    if (!sprite.distance.empty()) {
-        distance_ = uploadDistanceTexture(sprite.distance.grid, sprite.distance.cells.data());
-        distanceBox_ = sprite.distance.grid.box;
-    }
+    if (!sprite.distance.empty()) distance_ = GpuDistanceGrid(sprite.distance);
     if (parts != GpuSpriteParts::TextureOnly) {
         offsets_ = detail::uploadBuffer(sprite.offsets.data(), sprite.offsets.size() * 4, "uploading the sprite's columns");
         crossings_ = detail::uploadBuffer(sprite.crossings.data(), sprite.crossings.size() * 4, "uploading the sprite's columns");
     }
     setPlacement(sprite.grid);
-    setBoundary(sprite.grid, sprite.boundaryEdges, sprite.boundaryKnown || sprite.status != SolidStatus::Open);
+    boundary_ = GpuBoundary(sprite.grid, sprite.boundaryEdges, sprite.boundaryKnown || sprite.status != SolidStatus::Open);
 }
 
-void GpuSprite::setBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>& edges, bool known) {
+// --- GpuBoundary, GpuDistanceGrid ----------------------------------------
+
+GpuBoundary::GpuBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>& edges, bool known)
+    : context_(ContextStamp::current("GpuSprite upload")), known_(known) {
     const glm::ivec3 p = axisPermutation(grid.axis);
     // The edges loop by loop, and the chain tree's nodes after them, so
     // that the shader takes far chains by their chords and expansions.
     detail::PackedBoundary packed = detail::packBoundary(edges, grid.axis);
     if (packed.data.empty()) packed.data.emplace_back(0.0f);
-    boundaryEdges_ = detail::uploadBuffer(packed.data.data(), packed.data.size() * sizeof(glm::vec4), "uploading the boundary edges");
-    boundaryEdgeCount_ = packed.edgeCount;
-    boundaryNodeCount_ = packed.nodeCount;
-    boundaryKnown_ = known;
+    buffer_ = detail::uploadBuffer(packed.data.data(), packed.data.size() * sizeof(glm::vec4), "uploading the boundary edges");
+    edgeCount_ = packed.edgeCount;
+    nodeCount_ = packed.nodeCount;
     // As SpriteGrid::texelCentre computes a ray's point, in float.
-    boundaryLo_ = {grid.box.lo[p.x], grid.box.lo[p.y], grid.box.lo[p.z]};
-    boundaryStep_ = {grid.texelSize, grid.texelSize, grid.box.hi[p.z] - grid.box.lo[p.z]};
+    lo_ = {grid.box.lo[p.x], grid.box.lo[p.y], grid.box.lo[p.z]};
+    step_ = {grid.texelSize, grid.texelSize, grid.box.hi[p.z] - grid.box.lo[p.z]};
 }
 
-void GpuSprite::setBoundaryUniforms(GLuint program, const std::string& boundary, GLuint binding) const {
-    if (!boundaryKnown_)
+void GpuBoundary::setUniforms(GLuint program, const std::string& name, GLuint binding) const {
+    if (!known_)
         throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
                               "store the boundary edges the generalized winding number needs: bake it again");
-    requireContext("GpuSprite::setBoundaryUniforms");
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, boundaryEdges_.id());
-    glProgramUniform3fv(program, glGetUniformLocation(program, (boundary + ".lo").c_str()), 1, &boundaryLo_[0]);
-    glProgramUniform3fv(program, glGetUniformLocation(program, (boundary + ".step").c_str()), 1, &boundaryStep_[0]);
-    glProgramUniform1i(program, glGetUniformLocation(program, (boundary + ".edgeCount").c_str()),
-                       GLint(boundaryEdgeCount_));
-    glProgramUniform1i(program, glGetUniformLocation(program, (boundary + ".nodeCount").c_str()),
-                       GLint(boundaryNodeCount_));
-    checkGl("GpuSprite::setBoundaryUniforms");
+    context_.check("GpuBoundary::setUniforms");
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer_.id());
+    glProgramUniform3fv(program, glGetUniformLocation(program, (name + ".lo").c_str()), 1, &lo_[0]);
+    glProgramUniform3fv(program, glGetUniformLocation(program, (name + ".step").c_str()), 1, &step_[0]);
+    glProgramUniform1i(program, glGetUniformLocation(program, (name + ".edgeCount").c_str()), GLint(edgeCount_));
+    glProgramUniform1i(program, glGetUniformLocation(program, (name + ".nodeCount").c_str()), GLint(nodeCount_));
+    checkGl("GpuBoundary::setUniforms");
 }
+
+GpuDistanceGrid::GpuDistanceGrid(const SpriteDistance& distance)
+    : context_(ContextStamp::current("GpuSprite upload")),
+      texture_(uploadDistanceTexture(distance.grid, distance.cells.data())), box_(distance.grid.box) {}
+
+void GpuDistanceGrid::setUniforms(GLuint program, const std::string& sampler, const std::string& lo,
+                                  const std::string& hi, GLuint unit) const {
+    if (!texture_) throw InvalidArgument("the sprite carries no distance grid (bake it with --distance)");
+    context_.check("GpuDistanceGrid::setUniforms");
+    glBindTextureUnit(unit, texture_.id());
+    glProgramUniform1i(program, glGetUniformLocation(program, sampler.c_str()), GLint(unit));
+    glProgramUniform3fv(program, glGetUniformLocation(program, lo.c_str()), 1, &box_.lo[0]);
+    glProgramUniform3fv(program, glGetUniformLocation(program, hi.c_str()), 1, &box_.hi[0]);
+    checkGl("GpuDistanceGrid::setUniforms");
+}
+
+// --- GpuSprite ---------------------------------------------------------------
 
 void GpuSprite::setPlacement(const SpriteGrid& grid) {
     matrix_ = grid.matrix;
@@ -194,16 +202,6 @@ void GpuSprite::setUniforms(GLuint program, const std::string& sampler, const st
                               &matrix_[0][0]);
     glProgramUniform3fv(program, glGetUniformLocation(program, (placement + ".position").c_str()), 1, &position_[0]);
     checkGl("GpuSprite::setUniforms");
-}
-
-void GpuSprite::setDistanceUniforms(GLuint program, const std::string& sampler, const std::string& lo,
-                                    const std::string& hi, GLuint unit) const {
-    if (!distance_) throw InvalidArgument("the sprite carries no distance grid (bake it with --distance)");
-    glBindTextureUnit(unit, distance_.id());
-    glProgramUniform1i(program, glGetUniformLocation(program, sampler.c_str()), GLint(unit));
-    glProgramUniform3fv(program, glGetUniformLocation(program, lo.c_str()), 1, &distanceBox_.lo[0]);
-    glProgramUniform3fv(program, glGetUniformLocation(program, hi.c_str()), 1, &distanceBox_.hi[0]);
-    checkGl("GpuSprite::setDistanceUniforms");
 }
 
 // --- GpuClassifier ---------------------------------------------------------
@@ -289,14 +287,14 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
                              GLintptr labelsOffset, std::size_t count, Rule rule) {
     const std::uint64_t offsetBytes = (std::uint64_t(sprite.size().x) * sprite.size().y + 1) * 4;
     const std::uint64_t crossingBytes = std::max<std::uint64_t>(sprite.crossingCount(), 1) * 4;
-    const bool columns = sprite.hasColumns() && offsetBytes <= maxBlock_ && crossingBytes <= maxBlock_;
-    if (!columns && !sprite.hasTexture()) throw InvalidArgument("GpuClassifier: the sprite holds nothing to classify with");
-    if (rule == Rule::GeneralizedWinding && !sprite.boundaryKnown())
+    const bool columns = bool(sprite.offsets()) && offsetBytes <= maxBlock_ && crossingBytes <= maxBlock_;
+    if (!columns && !bool(sprite.texture())) throw InvalidArgument("GpuClassifier: the sprite holds nothing to classify with");
+    if (rule == Rule::GeneralizedWinding && !sprite.boundary().known())
         throw InvalidArgument("this sprite of an open mesh was written by .vds format version 1, which does not "
                               "store the boundary edges the generalized winding number needs: bake it again");
     // With no boundary edges (a mesh that bounds a solid) the generalized
     // winding number is the winding number: the plain program.
-    const bool boundaryTerm = rule == Rule::GeneralizedWinding && sprite.boundaryEdgeCount() > 0;
+    const bool boundaryTerm = rule == Rule::GeneralizedWinding && sprite.boundary().edgeCount() > 0;
     const Program& program = classifierProgram(*gl_, columns, boundaryTerm || rule == Rule::Parity ? rule : Rule::Winding);
     glUseProgram(program.id());
     if (columns) {
@@ -309,7 +307,7 @@ void GpuClassifier::dispatch(const GpuSprite& sprite, GLuint points, GLintptr po
     } else {
         sprite.setUniforms(program.id(), "u_ldi", "u_placement", 0);
     }
-    if (boundaryTerm) sprite.setBoundaryUniforms(program.id(), "u_boundary", kBoundaryBinding);
+    if (boundaryTerm) sprite.boundary().setUniforms(program.id(), "u_boundary", kBoundaryBinding);
     const GLint countLoc = glGetUniformLocation(program.id(), "u_count");
     for (std::size_t first = 0; first < count; first += maxDispatch_) {
         const std::size_t n = std::min(maxDispatch_, count - first);

@@ -50,12 +50,12 @@ public:
     /// outside, written as 32-bit words (low byte first); the buffer is
     /// cleared first. Only queues GL commands: a glMemoryBarrier after it
     /// makes the labels visible to later GL commands.
-    /// `sprite` needs its columns (`hasColumns()`) and must be placed with
+    /// `sprite` needs its columns (`offsets()` not empty) and must be placed with
     /// its axes along the grid's (as baked, moved or scaled but not rotated);
     /// throws `InvalidArgument` otherwise, for a grid `checkGrid`
     /// refuses, for more than 2^32 cells, for a buffer larger than GL's
     /// largest shader storage block, and for Rule::GeneralizedWinding on a
-    /// sprite whose boundary is unknown (`boundaryKnown()`: a version 1 file).
+    /// sprite whose boundary is unknown (`GpuBoundary::known()`: a version 1 file).
     void occupancy(const GpuSprite& sprite, const Grid& grid, GLuint cells, const ClassifyOptions& options = {});
 
     /// Host array out: `cells` holds `grid.cellCount()` bytes (caller-owned).

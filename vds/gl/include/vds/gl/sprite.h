@@ -48,6 +48,74 @@ enum class GpuSpriteParts : std::uint8_t {
     ColumnsOnly, ///< for the classifier, without the dense texture's memory
 };
 
+/// A GpuSprite's boundary, for Rule::GeneralizedWinding (`GpuSprite::boundary`):
+/// the baked mesh's boundary edges and a tree over them in one shader storage
+/// buffer, with what the shader's VdsBoundary uniform needs. Belongs to the
+/// context its sprite was made in, as the sprite does.
+class GpuBoundary {
+public:
+    GpuBoundary() = default;
+    /// The buffer: 2 * edgeCount() vec4 (16 bytes each, at least one), edge k
+    /// from entry 2k to 2k+1, xyz the endpoint in the baked mesh's
+    /// coordinates in the sprite's (s, t, r) order, loop by loop where the
+    /// edges close into loops; then 14 vec4 for each of nodeCount() nodes of
+    /// a tree over the loops and chains of their edges: its ball, its fan's
+    /// moments, its chord and its children or edges (see
+    /// shaders/vds/vpt.glsl). Empty only on a default-made sprite.
+    const Buffer& buffer() const { return buffer_; }
+    std::uint32_t edgeCount() const { return edgeCount_; }
+    std::uint32_t nodeCount() const { return nodeCount_; }
+    /// False for a sprite of an open mesh read from a version-1 .vds file:
+    /// its boundary is unknown, and Rule::GeneralizedWinding refuses it.
+    bool known() const { return known_; }
+    /// Binds the buffer to shader storage binding `binding` (the shader's
+    /// VDS_BOUNDARY_BINDING) and sets, in `program` (in use or not), the
+    /// VdsBoundary uniform `name` (e.g. "u_boundary"). Throws
+    /// `InvalidArgument` when `known()` is false, and `GlError` unless the
+    /// sprite's context is current on its thread.
+    void setUniforms(GLuint program, const std::string& name, GLuint binding) const;
+
+private:
+    friend class GpuSprite;
+    /// Uploads `edges` (as `Sprite::boundaryEdges`) to the context current now.
+    GpuBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>& edges, bool known);
+    ContextStamp context_;
+    Buffer buffer_;
+    std::uint32_t edgeCount_ = 0;
+    std::uint32_t nodeCount_ = 0; ///< tree node records after the edges (vpt.glsl)
+    bool known_ = true;
+    glm::vec3 lo_{0.0f};   ///< the baked box's low corner, (s, t, r) order
+    glm::vec3 step_{0.0f}; ///< (texel, texel, extent along r)
+};
+
+/// A GpuSprite's distance grid (`Sprite::distance`, `GpuSprite::distanceGrid`)
+/// as `uploadDistanceTexture` makes it, uploaded with the sprite whatever its
+/// parts; empty when the sprite carries none.
+class GpuDistanceGrid {
+public:
+    GpuDistanceGrid() = default;
+    explicit operator bool() const { return bool(texture_); }
+    const Texture& texture() const { return texture_; }
+    /// Its box, in the mesh coordinates of the bake: the `lo`, `hi` of
+    /// `vdsDistance(field, lo, hi, world)` once a world point is taken back
+    /// there (the inverse of the solid's placement).
+    const Box& box() const { return box_; }
+    /// Binds the texture to `unit` and sets the program's sampler `sampler`
+    /// and the vec3 uniforms `lo` and `hi` to its box (unknown names are
+    /// ignored, as GL does). Throws `InvalidArgument` when empty, and
+    /// `GlError` unless the sprite's context is current on its thread.
+    void setUniforms(GLuint program, const std::string& sampler, const std::string& lo, const std::string& hi,
+                     GLuint unit) const;
+
+private:
+    friend class GpuSprite;
+    /// Uploads `distance` to the context current now.
+    explicit GpuDistanceGrid(const SpriteDistance& distance);
+    ContextStamp context_;
+    Texture texture_;
+    Box box_;
+};
+
 class GpuSprite {
 public:
     GpuSprite() = default;
@@ -80,11 +148,11 @@ public:
     /// sprite was made in is current on the thread it was made on.
     void requireContext(const char* what) const;
 
-    bool hasTexture() const { return bool(texture_); }
-    bool hasColumns() const { return bool(offsets_); }
-    /// The 3D texture (empty unless `hasTexture()`).
+    /// The 3D texture; empty (false) where the sprite was uploaded without
+    /// it (GpuSpriteParts::ColumnsOnly).
     const Texture& texture() const { return texture_; }
-    /// The columns (empty unless `hasColumns()`): `offsets` holds at least
+    /// The columns; empty (false) where the sprite was uploaded without them
+    /// (GpuSpriteParts::TextureOnly): `offsets` holds at least
     /// width * height + 1 uint32 (column c = j * width + i has crossings
     /// [offsets[c], offsets[c+1])), `crossings` holds `crossingCount()`
     /// encoded crossings as floats (see `encodeCrossing`), each column sorted.
@@ -99,25 +167,8 @@ public:
     /// Moves the sprite on the GPU without re-uploading (see Sprite::transform).
     void setPlacement(const SpriteGrid& grid);
 
-    /// The boundary edges, for Rule::GeneralizedWinding: 2 * boundaryEdgeCount()
-    /// vec4 (16 bytes each, at least one), edge k from entry 2k to 2k+1, xyz
-    /// the endpoint in the baked mesh's coordinates in the sprite's (s, t, r)
-    /// order, loop by loop where the edges close into loops; then 14 vec4
-    /// for each of boundaryNodeCount() nodes of a tree over the loops and
-    /// chains of their edges: its ball, its fan's moments, its chord and
-    /// its children or edges (see shaders/vds/vpt.glsl). Empty only on a
-    /// default-made sprite.
-    const Buffer& boundaryEdges() const { return boundaryEdges_; }
-    std::uint32_t boundaryEdgeCount() const { return boundaryEdgeCount_; }
-    std::uint32_t boundaryNodeCount() const { return boundaryNodeCount_; }
-    /// False for a sprite of an open mesh read from a version-1 .vds file:
-    /// its boundary is unknown, and Rule::GeneralizedWinding refuses it.
-    bool boundaryKnown() const { return boundaryKnown_; }
-    /// Binds the boundary edges to shader storage binding `binding` (the
-    /// shader's VDS_BOUNDARY_BINDING) and sets, in `program` (in use or not), the
-    /// VdsBoundary uniform `boundary` (e.g. "u_boundary"). Throws
-    /// `InvalidArgument` when `boundaryKnown()` is false.
-    void setBoundaryUniforms(GLuint program, const std::string& boundary, GLuint binding) const;
+    /// The boundary edges and their tree, for Rule::GeneralizedWinding.
+    const GpuBoundary& boundary() const { return boundary_; }
 
     /// Binds the texture to texture unit `unit`.
     void bind(GLuint unit) const;
@@ -127,21 +178,8 @@ public:
     /// Unknown names are ignored, as GL does; leaves no GL error behind.
     void setUniforms(GLuint program, const std::string& sampler, const std::string& placement, GLuint unit) const;
 
-    /// The sprite's distance grid (`Sprite::distance`) as `uploadDistanceTexture`
-    /// makes it, uploaded with the sprite whatever its parts; empty when the
-    /// sprite carries none.
-    bool hasDistance() const { return bool(distance_); }
-    const Texture& distance() const { return distance_; }
-    /// The distance grid's box, in the mesh coordinates of the bake: the
-    /// `lo`, `hi` of `vdsDistance(field, lo, hi, world)` once a world point is
-    /// taken back there (the inverse of the solid's placement).
-    const Box& distanceBox() const { return distanceBox_; }
-    /// Binds the distance texture to `unit` and sets the program's sampler
-    /// `sampler` and the vec3 uniforms `lo` and `hi` to its box (unknown
-    /// names are ignored, as GL does). Throws `InvalidArgument` when the
-    /// sprite carries no distance grid.
-    void setDistanceUniforms(GLuint program, const std::string& sampler, const std::string& lo, const std::string& hi,
-                             GLuint unit) const;
+    /// The sprite's distance grid; empty when the sprite carries none.
+    const GpuDistanceGrid& distanceGrid() const { return distance_; }
 
 private:
     void upload(const Sprite& sprite, GpuSpriteParts parts);
@@ -155,15 +193,8 @@ private:
     glm::mat3 matrix_{1.0f};
     glm::vec3 position_{0.0f};
     SolidStatus status_ = SolidStatus::Closed;
-    Buffer boundaryEdges_;
-    std::uint32_t boundaryEdgeCount_ = 0;
-    std::uint32_t boundaryNodeCount_ = 0; ///< tree node records after the edges (vpt.glsl)
-    bool boundaryKnown_ = true;
-    Texture distance_;
-    Box distanceBox_;
-    glm::vec3 boundaryLo_{0.0f};   ///< the baked box's low corner, (s, t, r) order
-    glm::vec3 boundaryStep_{0.0f}; ///< (texel, texel, extent along r)
-    void setBoundary(const SpriteGrid& grid, const std::vector<glm::vec3>& edges, bool known);
+    GpuBoundary boundary_;
+    GpuDistanceGrid distance_;
 };
 
 /// Classifies points against a GpuSprite with a compute shader. Answers are
@@ -205,7 +236,7 @@ public:
     /// boundary edges adds the boundary term in float (vpt.glsl says where
     /// that can change a label against the CPU's double), O(boundary edges)
     /// a point; with none it reads as Winding. Throws `InvalidArgument` for
-    /// it on a sprite whose boundary is unknown (`boundaryKnown()`).
+    /// it on a sprite whose boundary is unknown (`GpuBoundary::known()`).
     ///
     /// Host arrays to host arrays, the contract of <vds/classify.h>:
     /// `labels` holds `points.count` bytes (caller-owned), 1 inside, 0
