@@ -53,6 +53,19 @@ ChainLabels::ChainLabels(const CapLoops& loops) : loops_(loops) {
     for (std::uint32_t l = 0; l < order.size(); ++l) order[l] = l;
     chains_.reserve(2 * loops.edgeCount() / 2 + 2 * loops.loops().size() + 2);
     buildChainGroup(order, 0, std::uint32_t(order.size()));
+    loopStarts_.push_back(std::uint32_t(chainEdges_.size() / 2));
+    lengthBefore_.assign(chainEdges_.size() / 2 + 1, 0.0);
+    for (std::size_t k = 0; k + 1 < lengthBefore_.size(); ++k)
+        lengthBefore_[k + 1] = lengthBefore_[k] + glm::length(glm::dvec3(chainEdges_[2 * k + 1]) - glm::dvec3(chainEdges_[2 * k]));
+}
+
+double ChainLabels::lengthOf(const ChainNode& n) const {
+    return lengthBefore_[n.edgeFirst + n.edgeCount] - lengthBefore_[n.edgeFirst];
+}
+
+std::pair<std::uint32_t, std::uint32_t> ChainLabels::loopOf(std::uint32_t edge) const {
+    const auto at = std::upper_bound(loopStarts_.begin(), loopStarts_.end(), edge);
+    return {*(at - 1), *at};
 }
 
 std::uint32_t ChainLabels::buildChainGroup(std::vector<std::uint32_t>& loops, std::uint32_t first,
@@ -60,6 +73,7 @@ std::uint32_t ChainLabels::buildChainGroup(std::vector<std::uint32_t>& loops, st
     if (last - first == 1) {
         const CapLoop& loop = loops_.loops()[loops[first]];
         const std::uint32_t treeFirst = std::uint32_t(chainEdges_.size() / 2);
+        loopStarts_.push_back(treeFirst);
         chainEdges_.insert(chainEdges_.end(), loops_.loopEdges().begin() + 2 * std::ptrdiff_t(loop.first),
                           loops_.loopEdges().begin() + 2 * std::ptrdiff_t(loop.first + loop.count));
         return buildChain(loops[first], loop.first, loop.count, treeFirst);
@@ -184,6 +198,73 @@ double chordAngles(const std::vector<ChainNode>& chains, std::size_t count, cons
     return sum.angle();
 }
 } // namespace
+
+int ChainLabels::axisIndex() const { return loops_.axisIndex(); }
+
+double ChainLabels::sumOver(const std::uint32_t* roots, std::size_t rootCount, const glm::dvec3& lo,
+                           const glm::dvec3& hi, const glm::dvec3* points, std::size_t count, double tolerance,
+                           double* out, double& work) const {
+    const int a = loops_.axisIndex(), s = (a + 1) % 3, t = (a + 2) % 3;
+    // One cut for every point of the box: a node is taken where no ray
+    // from the box towards -axis meets its ball (its footprint clear of
+    // the box's, or the box below it) and its bound at the box's nearest
+    // point, the largest, is within the tolerance; the rest opened.
+    std::vector<std::uint32_t> taken;
+    std::vector<glm::vec3> edges; // the taken chords and the leaves' edges
+    double bound = 0.0;
+    for (std::size_t r = 0; r < rootCount; ++r)
+        walkTree(roots[r], [&](std::uint32_t i, TreeStack& stack) {
+            const ChainNode& n = chains_[i];
+            const double reach = n.radius * (1.0 + 1e-12);
+            double across2 = 0.0, gap2 = 0.0;
+            for (int k = 0; k < 3; ++k) {
+                const double g = std::max({lo[k] - n.centre[k], 0.0, n.centre[k] - hi[k]});
+                gap2 += g * g;
+                if (k != a) across2 += g * g;
+            }
+            const bool misses = across2 > reach * reach || hi[a] < n.centre[a] - reach;
+            const double d = std::sqrt(gap2) * (1.0 - 1e-12);
+            if (misses && d > reach) {
+                const double b = n.errorScale * remainderFactor(d, d - reach, reach);
+                if (b <= tolerance) {
+                    taken.push_back(i);
+                    bound += b;
+                    if (n.chord) {
+                        edges.emplace_back(n.from);
+                        edges.emplace_back(n.to);
+                    }
+                    return true;
+                }
+            }
+            if (n.count == 0 && n.edgeCount > kDirectEdges) {
+                stack.push(n.left);
+                stack.push(n.right);
+            } else {
+                const auto first = chainEdges_.begin() + 2 * std::ptrdiff_t(n.edgeFirst);
+                edges.insert(edges.end(), first, first + 2 * std::ptrdiff_t(n.edgeCount));
+            }
+            return true;
+        });
+    (void)s;
+    (void)t;
+    work = double(count) * double(taken.size() + edges.size() / 2);
+    // Node by node over the points (the inner loop has no branch).
+    std::fill(out, out + count, 0.0);
+    for (const std::uint32_t i : taken) {
+        const ChainNode& n = chains_[i];
+        for (std::size_t k = 0; k < count; ++k) {
+            const glm::dvec3 y = n.centre - points[k];
+            const double d2 = glm::dot(y, y);
+            out[k] -= secondOrderTerm(n, y, d2, std::sqrt(d2));
+        }
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+        EdgeAngles angles;
+        angles.add(edges.data(), edges.size() / 2, a, points[k]);
+        out[k] = (out[k] + angles.angle()) / kFourPi;
+    }
+    return bound + kRoundingSlack;
+}
 
 bool ChainLabels::firstCut(int winding, const glm::vec3& q, const std::uint32_t* roots, std::size_t rootCount,
                             double farLo, double farHi, CapsEstimate& out) const {
@@ -435,7 +516,8 @@ void ChainLabels::frontier(const std::uint32_t* roots, std::size_t rootCount, co
 }
 
 std::size_t ChainLabels::memoryBytes() const {
-    return chains_.capacity() * sizeof(chains_[0]) + chainEdges_.capacity() * sizeof(chainEdges_[0]);
+    return chains_.capacity() * sizeof(chains_[0]) + chainEdges_.capacity() * sizeof(chainEdges_[0]) +
+           loopStarts_.capacity() * sizeof(loopStarts_[0]) + lengthBefore_.capacity() * sizeof(lengthBefore_[0]);
 }
 
 ChainTree chainTreeOf(const glm::vec3* edges, std::size_t edgeCount, Axis axis) {

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -22,6 +23,25 @@ public:
     explicit ChainLabels(const CapLoops& loops);
     /// [0] is the root; empty where the caps are no mesh.
     const std::vector<ChainNode>& chains() const { return chains_; }
+    /// The loops' edges in the tree's order (ChainNode::edgeFirst), 2
+    /// points an edge.
+    const std::vector<glm::vec3>& edges() const { return chainEdges_; }
+    int axisIndex() const;
+    /// The summed length of a node's edges.
+    double lengthOf(const ChainNode& n) const;
+    /// The loop tree edge `edge` lies in: its edges [first, end).
+    std::pair<std::uint32_t, std::uint32_t> loopOf(std::uint32_t edge) const;
+
+    /// The per-edge sum over the edges of chain nodes `roots` (over 4 pi)
+    /// at `count` points of the box [lo, hi] into `out`, and the bound
+    /// that holds at each: one cut for them all, a node q's ray misses
+    /// from anywhere in the box taken by its expansion to second order
+    /// where that errs by at most `tolerance` at the box's nearest point,
+    /// the rest opened down to nodes of at most kDirectEdges edges, whose
+    /// edges are summed (a cell's field samples its far part so). `work`:
+    /// the nodes taken and edges summed, over all the points.
+    double sumOver(const std::uint32_t* roots, std::size_t rootCount, const glm::dvec3& lo, const glm::dvec3& hi,
+                   const glm::dvec3* points, std::size_t count, double tolerance, double* out, double& work) const;
 
     /// `winding + B(q)` within `bound` of the per-edge sum's value, refined
     /// until it lies farther than `margin` (>= 1) times its bound from 1/2
@@ -73,6 +93,10 @@ private:
     /// The loops' edges with the loops in the chain tree's order, so that
     /// every chain node's edges lie together (ChainNode::edgeFirst).
     std::vector<glm::vec3> chainEdges_;
+    /// Each loop's first edge in chainEdges_, ascending, then their count.
+    std::vector<std::uint32_t> loopStarts_;
+    /// The edges' lengths summed up to each edge.
+    std::vector<double> lengthBefore_;
 };
 
 } // namespace vds::detail
