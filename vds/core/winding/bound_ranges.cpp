@@ -35,6 +35,24 @@ constexpr double kRangeTolerance = 5e-2;
 /// the plan and then the tree from its root, so a plan pays while it
 /// decides most of its queries (tuning: docs/benchmarks.md).
 constexpr unsigned kPlanMisses = 4;
+/// When a cell builds its field (CellField): once the work its queries
+/// without a range spent (nodes taken and edges summed, CapsEstimate::work)
+/// reaches what a field costs: the work of every build tried so far
+/// (CellField::work), the failed ones too, over the fields they gave,
+/// counting one more of kFirstFieldWork. Renting until the rent paid
+/// equals the price costs at most about twice what knowing the cell's
+/// queries beforehand would, and a cell few queries land in, or whose
+/// queries are cheap already, never pays. 125 samples of some 64 nodes
+/// and edges each.
+constexpr double kFirstFieldWork = 125.0 * 64.0;
+/// A field's near nodes: those within this many of its cell's longest
+/// sides across the axis. Wider leaves more nodes to each query, and
+/// bounds the rest's third derivative by the fourth power of a longer
+/// distance.
+constexpr double kFieldMargin = 1.0;
+/// A field with a larger error is not kept: most of its queries would
+/// not keep clear of 1/2 by that.
+constexpr double kFieldLimit = 0.1;
 /// -1: the range puts the value below the threshold, 1: above, 0: neither.
 int sideOf(double lo, double hi) {
     const double threshold = 0.5 + kGeneralizedWindingTie;
@@ -85,9 +103,6 @@ BoundRanges::BoundRanges(const CapLoops& loops, const CapsValueTree& values, con
         // (fineCells): what the windings and the surface say of each is
         // asked now (the windings are not kept).
         buildGrid(fine_, box, kFineCells, windings, false);
-        const std::size_t cells = std::size_t(coarse_.dims.x) * coarse_.dims.y * coarse_.dims.z;
-        coarse_.visits.reset(new std::atomic<std::uint16_t>[cells]);
-        for (std::size_t c = 0; c < cells; ++c) coarse_.visits[c].store(0, std::memory_order_relaxed);
         coarse_.blockDims = (coarse_.dims + 1u) / 2u;
         const std::size_t blocks = std::size_t(coarse_.blockDims.x) * coarse_.blockDims.y * coarse_.blockDims.z;
         coarse_.blockTried.reset(new std::atomic<std::uint8_t>[blocks]);
@@ -290,11 +305,14 @@ std::size_t BoundRanges::memoryBytes() const {
         const std::size_t cells = std::size_t(g->dims.x) * g->dims.y * g->dims.z;
         // state, alone, planMisses, farCrossed; near, nearCount, nearLoops; lo, hi
         total += cells * (sizeof(CellState) + sizeof(CellVerdict) + 2 + sizeof(std::unique_ptr<std::uint32_t[]>) + 2 * sizeof(std::uint32_t) + 2 * sizeof(double));
-        if (g->visits) total += cells * sizeof(std::uint16_t);
+        // visits, spent, fields, fieldState
+        total += cells * (sizeof(std::uint16_t) + sizeof(std::uint32_t) + sizeof(std::unique_ptr<CellField>) + 1);
         if (g->blockTried) total += std::size_t(g->blockDims.x) * g->blockDims.y * g->blockDims.z;
         for (std::size_t c = 0; c < cells; ++c) // plans published so far
             if (g->state[c].load(std::memory_order_acquire) == CellState::Planned)
                 total += (std::size_t(g->nearCount[c]) + g->nearLoops[c]) * sizeof(std::uint32_t);
+        for (std::size_t c = 0; c < cells; ++c) // fields published so far
+            if (g->fieldState[c].load(std::memory_order_acquire) == 2) total += g->fields[c]->memoryBytes();
     }
     return total;
 }
@@ -309,10 +327,40 @@ bool BoundRanges::fineCells() const {
     return true;
 }
 
-bool BoundRanges::busy(std::size_t cell) const {
-    std::atomic<std::uint16_t>& visits = coarse_.visits[cell];
+bool BoundRanges::busy(const RangeGrid& g, std::size_t cell) const {
+    std::atomic<std::uint16_t>& visits = g.visits[cell];
     if (visits.load(std::memory_order_relaxed) >= kBusyVisits) return true;
     return unsigned(visits.fetch_add(1, std::memory_order_relaxed)) + 1 >= kBusyVisits;
+}
+
+const CellField* BoundRanges::fieldOf(const RangeGrid& g, std::size_t cell, CellState state) const {
+    std::atomic<std::uint8_t>& built = g.fieldState[cell];
+    std::uint8_t now = built.load(std::memory_order_acquire);
+    if (now == 2) return g.fields[cell].get();
+    const double price = (buildWork_.load(std::memory_order_relaxed) + kFirstFieldWork) /
+                         double(fieldsBuilt_.load(std::memory_order_relaxed) + 1);
+    if (now != 0 || double(g.spent[cell].load(std::memory_order_relaxed)) < price) return nullptr;
+    if (!built.compare_exchange_strong(now, 1, std::memory_order_acquire)) return nullptr;
+    // This thread builds it; the others go on without meanwhile.
+    const glm::uvec3 at(cell % g.dims.x, cell / g.dims.x % g.dims.y, cell / (std::size_t(g.dims.x) * g.dims.y));
+    const glm::dvec3 from(g.box.lo), to(g.box.hi);
+    const double slack = 2.0 * cellSlack(to - from);
+    const glm::dvec3 lo = from + glm::dvec3(at) * g.size - slack, hi = lo + g.size + 2.0 * slack;
+    const double longest = std::max({g.size.x, g.size.y, g.size.z});
+    auto field = std::make_unique<CellField>();
+    // Only where it leaves each query fewer nodes than the cell's plan.
+    const std::size_t nearLimit = state == CellState::Planned ? g.nearCount[cell] : std::size_t(-1);
+    const bool made = field->build(labels_, lo, hi, kFieldMargin * longest, kFieldLimit, nearLimit);
+    // The price the next cells weigh (a race loses a sample, no label).
+    buildWork_.store(buildWork_.load(std::memory_order_relaxed) + field->work(), std::memory_order_relaxed);
+    if (!made) {
+        built.store(3, std::memory_order_release);
+        return nullptr;
+    }
+    fieldsBuilt_.fetch_add(1, std::memory_order_relaxed);
+    g.fields[cell] = std::move(field);
+    built.store(2, std::memory_order_release);
+    return g.fields[cell].get();
 }
 
 template <class Winding>
@@ -322,25 +370,37 @@ bool BoundRanges::insideBy(const glm::vec3& q, const Winding& windingAt, bool ap
     if (!coarse_.cellOf(q, cell, at)) return generalizedWindingInside(labels_.decide(windingAt(), q, 1.0).term);
     CellState state = coarse_.state[cell].load(std::memory_order_acquire);
     if (state == CellState::Unvisited) state = rangeOf(coarse_, cell, at);
-    if ((state == CellState::NoRange || state == CellState::Planned) && busy(cell) && fineCells()) {
+    const bool undecided = state == CellState::NoRange || state == CellState::Planned;
+    const bool isBusy = undecided && busy(coarse_, cell);
+    Route route;
+    std::size_t fineCell;
+    glm::uvec3 fineAt;
+    const bool fine = isBusy && fineCells() && fine_.cellOf(q, fineCell, fineAt);
+    if (undecided) {
+        // The finest field there is: a busy coarse cell's fine cells build
+        // their own (a margin and octants half as wide: fewer near nodes).
+        route.charge[0] = &coarse_.spent[cell];
+        if (fine) {
+            route.charge[1] = &fine_.spent[fineCell];
+            route.field = fieldOf(fine_, fineCell, CellState::NoRange);
+        }
+        if (!route.field) route.field = fieldOf(coarse_, cell, state);
+        if (route.field) return insideIn(coarse_, cell, state, q, windingAt, apart, route);
+    }
+    if (fine) {
         // The fine cell, where it has a range or a plan (or the coarse one
         // has none either).
-        std::size_t fineCell;
-        glm::uvec3 fineAt;
-        if (fine_.cellOf(q, fineCell, fineAt)) {
-            CellState fineState = fine_.state[fineCell].load(std::memory_order_acquire);
-            if (fineState == CellState::Unvisited)
-                fineState = rangeOf(fine_, fineCell, fineAt, state == CellState::Planned);
-            if ((fineState != CellState::NoRange && fineState != CellState::Filling) || state == CellState::NoRange)
-                return insideIn(fine_, fineCell, fineState, q, windingAt, apart);
-        }
+        CellState fineState = fine_.state[fineCell].load(std::memory_order_acquire);
+        if (fineState == CellState::Unvisited) fineState = rangeOf(fine_, fineCell, fineAt, state == CellState::Planned);
+        if ((fineState != CellState::NoRange && fineState != CellState::Filling) || state == CellState::NoRange)
+            return insideIn(fine_, fineCell, fineState, q, windingAt, apart, route);
     }
-    return insideIn(coarse_, cell, state, q, windingAt, apart);
+    return insideIn(coarse_, cell, state, q, windingAt, apart, route);
 }
 
 template <class Winding>
 bool BoundRanges::insideIn(const RangeGrid& g, std::size_t cell, CellState state, const glm::vec3& q,
-                            const Winding& windingAt, bool apart) const {
+                            const Winding& windingAt, bool apart, const Route& route) const {
     // A closed count's range, for a query apart from it: -w_caps's range
     // (the count taken off), as CappedRange.
     const bool closedApart = state == CellState::WindingRange && apart && g.alone[cell].byClosed();
@@ -353,12 +413,28 @@ bool BoundRanges::insideIn(const RangeGrid& g, std::size_t cell, CellState state
         const int side = sideOf(shift + g.lo[cell], shift + g.hi[cell]);
         if (side != 0) return side > 0;
     }
+    if (const CellField* field = route.field) {
+        // The near nodes refined, the rest by the field: first the one
+        // pass of their first cut (each near node holds few edges).
+        const double rest = field->rest(q), lo = rest - field->error(), hi = rest + field->error();
+        const std::vector<std::uint32_t>& near = field->nearNodes();
+        CapsEstimate out;
+        const bool decided = labels_.firstCut(winding, q, near.data(), near.size(), lo, hi, out) ||
+                             labels_.refine(winding, q, 1.0, near.data(), near.size(), lo, hi, out);
+        // The rent a finer field would cut (a coarse field's fine cell).
+        route.add(out.work);
+        if (decided) return generalizedWindingInside(out.term);
+    }
+    double work = 0.0;
     if (state == CellState::Planned) {
         CapsEstimate planned;
-        if (decidePlanned(g, winding, q, cell, planned)) {
+        const bool decided = decidePlanned(g, winding, q, cell, planned);
+        work = planned.work;
+        if (decided) {
             std::uint8_t misses = g.planMisses[cell].load(std::memory_order_relaxed);
             if (misses != 0) // once: a race lost leaves the score a step high
                 g.planMisses[cell].compare_exchange_weak(misses, std::uint8_t(misses - 1), std::memory_order_relaxed);
+            route.add(work);
             return generalizedWindingInside(planned.term);
         }
         // Undecided: the query lies within the far range's width of 1/2.
@@ -366,7 +442,9 @@ bool BoundRanges::insideIn(const RangeGrid& g, std::size_t cell, CellState state
         if (unsigned(g.planMisses[cell].fetch_add(1, std::memory_order_relaxed)) + 1 >= kPlanMisses)
             g.state[cell].store(CellState::NoRange, std::memory_order_relaxed);
     }
-    return generalizedWindingInside(labels_.decide(winding, q, 1.0).term);
+    const CapsEstimate decided = labels_.decide(winding, q, 1.0);
+    route.add(work + decided.work);
+    return generalizedWindingInside(decided.term);
 }
 
 bool BoundRanges::inside(int winding, const glm::vec3& q, bool apart) const {

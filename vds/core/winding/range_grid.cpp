@@ -33,6 +33,13 @@ void RangeGrid::allocate() const {
     g.alone.reset(new CellVerdict[cells]);
     g.lo.reset(new double[cells]);
     g.hi.reset(new double[cells]);
+    g.visits.reset(new std::atomic<std::uint16_t>[cells]);
+    for (std::size_t c = 0; c < cells; ++c) g.visits[c].store(0, std::memory_order_relaxed);
+    g.fields.reset(new std::unique_ptr<CellField>[cells]);
+    g.spent.reset(new std::atomic<std::uint32_t>[cells]);
+    for (std::size_t c = 0; c < cells; ++c) g.spent[c].store(0, std::memory_order_relaxed);
+    g.fieldState.reset(new std::atomic<std::uint8_t>[cells]);
+    for (std::size_t c = 0; c < cells; ++c) g.fieldState[c].store(0, std::memory_order_relaxed);
 }
 
 } // namespace vds::detail

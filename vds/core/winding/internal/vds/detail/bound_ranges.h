@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <algorithm>
 #include <mutex>
 
 #include <glm/vec3.hpp>
@@ -45,8 +46,10 @@ public:
     /// 1 inside, 0 outside where q's cell answers without the integer term;
     /// else -1 (BoundaryCaps::insideAlone).
     inline int insideAlone(const glm::vec3& q, bool apart) const;
-    /// Bytes held by both grids (the plans filled so far included).
+    /// Bytes held by both grids (the plans and fields filled so far included).
     std::size_t memoryBytes() const;
+    /// The cells' fields built so far (CellField).
+    std::size_t fieldsBuilt() const { return fieldsBuilt_.load(std::memory_order_relaxed); }
 
 private:
     /// `cellsNow`: allocate its cells' cache too (RangeGrid::allocate).
@@ -71,19 +74,37 @@ private:
     /// of it not yet filled: one fill for eight far from the surface.
     /// True where `cell` got it (then WindingRange is the caller's to publish).
     bool blockRange(const RangeGrid& g, std::size_t cell, const glm::uvec3& at) const;
-    /// Whether a coarse cell without a range has had queries enough to
-    /// ask the fine grid (counting this one).
-    bool busy(std::size_t cell) const;
+    /// Whether a cell without a range has had queries enough for a coarse
+    /// one to ask the fine grid (counting this one).
+    bool busy(const RangeGrid& g, std::size_t cell) const;
+    /// A cell's field (`state` its state, Planned or not), built here once
+    /// its queries without a range reach kFieldVisits; none where it is
+    /// not (yet) to be had.
+    const CellField* fieldOf(const RangeGrid& g, std::size_t cell, CellState state) const;
     /// A cell's plan, on the fill: false where the far loops' range would
     /// be too wide to help.
     bool plan(const RangeGrid& g, std::size_t cell, const glm::vec3& c, double half, bool within) const;
     /// decide() from a planned cell's near loops; false where that does
     /// not decide (the far range is as wide as the rest of the distance).
     bool decidePlanned(const RangeGrid& g, int winding, const glm::vec3& q, std::size_t cell, CapsEstimate& out) const;
-    /// insideBy() in cell `cell` of `g`, of state `state`.
+    /// A query's way past its cell's range: the field it asks first, and
+    /// the cells charged with the work it then spends (RangeGrid::spent).
+    struct Route {
+        const CellField* field = nullptr;
+        std::atomic<std::uint32_t>* charge[2] = {nullptr, nullptr};
+        /// Adds `work` to each cell charged (saturating well short of the
+        /// counter's range).
+        void add(double work) const {
+            for (std::atomic<std::uint32_t>* c : charge)
+                if (c && c->load(std::memory_order_relaxed) < (1u << 30))
+                    c->fetch_add(std::uint32_t(std::min(work, 65536.0)), std::memory_order_relaxed);
+        }
+    };
+    /// insideBy() in cell `cell` of `g`, of state `state`, asking the
+    /// route's field (where given) before a plan or the tree.
     template <class Winding>
     bool insideIn(const RangeGrid& g, std::size_t cell, CellState state, const glm::vec3& q,
-                  const Winding& windingAt, bool apart) const;
+                  const Winding& windingAt, bool apart, const Route& route) const;
     /// inside(), asking `windingAt()` for the integer term only where the
     /// cell's range does not answer without it.
     template <class Winding>
@@ -106,6 +127,10 @@ private:
     /// The fine grid's cache allocated once (`mutable`: part of the cache).
     mutable std::once_flag fineOnce_;
     mutable std::atomic<bool> fineReady_{false};
+    /// What fields cost, in the work units of RangeGrid::spent: every
+    /// build's work, and the fields built (bound_ranges.cpp, kFirstFieldWork).
+    mutable std::atomic<double> buildWork_{0.0};
+    mutable std::atomic<std::size_t> fieldsBuilt_{0};
 };
 
 // Inline: asked once a query (a sprite's batch asks insideAlone of every point).

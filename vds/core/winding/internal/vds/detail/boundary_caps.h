@@ -58,7 +58,11 @@
 //     c. else Planned where the far loops' range is narrow and the near
 //        loops few, else NoRange.
 //  3. NoRange or Planned, once many queries landed: the fine cell (half as
-//     wide), where it holds a range or a plan.
+//     wide), where it holds a range or a plan. Before that, once a cell's
+//     queries past its range spent as much work as a field costs: its
+//     field (CellField; the fine cell's in a busy coarse cell), the chain
+//     nodes near its column refined (as 7) with the rest's interpolated
+//     value and bound as the far range; where that does not decide, on.
 //  4. WindingRange clear of 1/2: its label, no integer term asked; a cell
 //     by a closed count, for a query apart from its count: as CappedRange.
 //  5. BoundaryRange: winding + [lo, hi]; CappedRange: winding + C_caps(q)
@@ -163,8 +167,10 @@ public:
     /// [0] is the root; empty where the edges do not close into loops.
     const std::vector<ChainNode>& chains() const { return labels_.chains(); }
     /// Bytes held: the loops, caps, trees and both grids of bounds (the
-    /// plans filled so far included).
+    /// plans and fields filled so far included).
     std::size_t memoryBytes() const;
+    /// The grid cells' fields built so far (CellField: bound_ranges.h).
+    std::size_t fieldsBuilt() const { return ranges_.fieldsBuilt(); }
 
 private:
     CapLoops loops_;

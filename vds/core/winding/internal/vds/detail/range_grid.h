@@ -14,6 +14,8 @@
 
 #include <vds/mesh.h>
 
+#include <vds/detail/cell_field.h>
+
 namespace vds::detail {
 
 /// What a cell of the grids of bounds holds (how a label uses it: the list
@@ -116,10 +118,20 @@ struct RangeGrid {
     /// those it did: past a few, the cell goes back to NoRange (most of
     /// its queries lie close to 1/2).
     mutable std::unique_ptr<std::atomic<std::uint8_t>[]> planMisses;
-    /// The coarse grid's: queries that found no range in the cell
-    /// (NoRange and Planned), up to a bound (bound_ranges.cpp); from then
-    /// on they ask the fine grid's cell.
+    /// Queries that found no range in the cell (NoRange and Planned; in
+    /// the fine grid, those of a busy coarse cell), up to a bound
+    /// (bound_ranges.cpp): from kBusyVisits on, a coarse cell's ask the
+    /// fine grid's cell, and from kFieldVisits on a cell builds its field.
     mutable std::unique_ptr<std::atomic<std::uint16_t>[]> visits;
+    /// A cell's field (CellField), built once enough of its queries found
+    /// no range (visits), published by fieldState: 0 none yet, 1 being
+    /// built, 2 built, 3 none to be had.
+    mutable std::unique_ptr<std::unique_ptr<CellField>[]> fields;
+    /// The work its queries without a range spent (nodes taken and edges
+    /// summed), up to a bound: its field is built once that reaches what
+    /// a field costs (bound_ranges.cpp).
+    mutable std::unique_ptr<std::atomic<std::uint32_t>[]> spent;
+    mutable std::unique_ptr<std::atomic<std::uint8_t>[]> fieldState;
     /// The coarse grid's: per block of 2 x 2 x 2 cells, 1 once a cell
     /// of it tried the block's range (BoundRanges::blockRange).
     mutable std::unique_ptr<std::atomic<std::uint8_t>[]> blockTried;
