@@ -25,6 +25,7 @@ constexpr double kFineCells = 2.0 * kRangeCells;
 /// Queries without a range a coarse cell takes before it hands them to
 /// its fine cells.
 constexpr unsigned kBusyVisits = 1024;
+constexpr unsigned kVisitsCounted = 60000;
 /// The node tolerance of the estimate at a cell's centre (estimate()):
 /// coarse, as a range serves only where it keeps clear of 1/2; it bounds
 /// the part of a cell's range that is the estimate's error (tuning:
@@ -37,13 +38,14 @@ constexpr double kRangeTolerance = 5e-2;
 constexpr unsigned kPlanMisses = 4;
 /// When a cell builds its field (CellField): once the work its queries
 /// without a range spent (nodes taken and edges summed, CapsEstimate::work)
-/// reaches what a field costs: the work of every build tried so far
+/// reaches twice what a field costs: the work of every build tried so far
 /// (CellField::work), the failed ones too, over the fields they gave,
-/// counting one more of kFirstFieldWork. Renting until the rent paid
-/// equals the price costs at most about twice what knowing the cell's
-/// queries beforehand would, and a cell few queries land in, or whose
-/// queries are cheap already, never pays. 125 samples of some 64 nodes
-/// and edges each.
+/// counting one more of kFirstFieldWork. A field is kept only where it
+/// leaves a query at most half the work (fieldOf), so it saves at least
+/// half the rent: renting until the rent saved would have paid the price
+/// costs at most about twice what knowing the cell's queries beforehand
+/// would, and a cell few queries land in, or whose queries are cheap
+/// already, never pays. 125 samples of some 64 nodes and edges each.
 constexpr double kFirstFieldWork = 125.0 * 64.0;
 /// A field's near nodes: those within this many of its cell's longest
 /// sides across the axis. Wider leaves more nodes to each query, and
@@ -328,9 +330,13 @@ bool BoundRanges::fineCells() const {
 }
 
 bool BoundRanges::busy(const RangeGrid& g, std::size_t cell) const {
+    // Counted on past kBusyVisits (a field weighs the work per visit), up
+    // to kVisitsCounted, short of the counter's range by more than racing
+    // threads can add.
     std::atomic<std::uint16_t>& visits = g.visits[cell];
-    if (visits.load(std::memory_order_relaxed) >= kBusyVisits) return true;
-    return unsigned(visits.fetch_add(1, std::memory_order_relaxed)) + 1 >= kBusyVisits;
+    const unsigned now = visits.load(std::memory_order_relaxed);
+    if (now < kVisitsCounted) visits.fetch_add(1, std::memory_order_relaxed);
+    return now + 1 >= kBusyVisits;
 }
 
 const CellField* BoundRanges::fieldOf(const RangeGrid& g, std::size_t cell, CellState state) const {
@@ -339,7 +345,7 @@ const CellField* BoundRanges::fieldOf(const RangeGrid& g, std::size_t cell, Cell
     if (now == 2) return g.fields[cell].get();
     const double price = (buildWork_.load(std::memory_order_relaxed) + kFirstFieldWork) /
                          double(fieldsBuilt_.load(std::memory_order_relaxed) + 1);
-    if (now != 0 || double(g.spent[cell].load(std::memory_order_relaxed)) < price) return nullptr;
+    if (now != 0 || double(g.spent[cell].load(std::memory_order_relaxed)) < 2.0 * price) return nullptr;
     if (!built.compare_exchange_strong(now, 1, std::memory_order_acquire)) return nullptr;
     // This thread builds it; the others go on without meanwhile.
     const glm::uvec3 at(cell % g.dims.x, cell / g.dims.x % g.dims.y, cell / (std::size_t(g.dims.x) * g.dims.y));
@@ -348,8 +354,13 @@ const CellField* BoundRanges::fieldOf(const RangeGrid& g, std::size_t cell, Cell
     const glm::dvec3 lo = from + glm::dvec3(at) * g.size - slack, hi = lo + g.size + 2.0 * slack;
     const double longest = std::max({g.size.x, g.size.y, g.size.z});
     auto field = std::make_unique<CellField>();
-    // Only where it leaves each query fewer nodes than the cell's plan.
-    const std::size_t nearLimit = state == CellState::Planned ? g.nearCount[cell] : std::size_t(-1);
+    // Only where it leaves each query at most half the work its queries
+    // spent so far (a near node costs about two: its expansion and chord),
+    // and fewer nodes than the cell's plan.
+    const double rent = double(g.spent[cell].load(std::memory_order_relaxed)) /
+                        std::max(1.0, double(g.visits[cell].load(std::memory_order_relaxed)));
+    std::size_t nearLimit = std::size_t(std::max(0.0, 0.25 * rent));
+    if (state == CellState::Planned) nearLimit = std::min<std::size_t>(nearLimit, g.nearCount[cell]);
     const bool made = field->build(labels_, lo, hi, kFieldMargin * longest, kFieldLimit, nearLimit);
     // The price the next cells weigh (a race loses a sample, no label).
     buildWork_.store(buildWork_.load(std::memory_order_relaxed) + field->work(), std::memory_order_relaxed);
