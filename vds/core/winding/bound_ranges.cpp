@@ -402,7 +402,8 @@ bool BoundRanges::insideBy(const glm::vec3& q, const Winding& windingAt, bool ap
         // The fine cell, where it has a range or a plan (or the coarse one
         // has none either).
         CellState fineState = fine_.state[fineCell].load(std::memory_order_acquire);
-        if (fineState == CellState::Unvisited) fineState = rangeOf(fine_, fineCell, fineAt, state == CellState::Planned);
+        if (fineState == CellState::Unvisited)
+            fineState = rangeOf(fine_, fineCell, fineAt, state == CellState::Planned);
         if ((fineState != CellState::NoRange && fineState != CellState::Filling) || state == CellState::NoRange)
             return insideIn(fine_, fineCell, fineState, q, windingAt, apart, route);
     }

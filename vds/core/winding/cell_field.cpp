@@ -157,7 +157,8 @@ double CellField::thirdBound(const ChainLabels& labels, const std::vector<std::u
     // The junctions: where a near node's run of a loop meets a far edge,
     // a ray at the shared vertex, as far across the axis as that edge.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> runs; // near edges [first, end)
-    for (const std::uint32_t i : near_) runs.emplace_back(chains[i].edgeFirst, chains[i].edgeFirst + chains[i].edgeCount);
+    for (const std::uint32_t i : near_)
+        runs.emplace_back(chains[i].edgeFirst, chains[i].edgeFirst + chains[i].edgeCount);
     std::sort(runs.begin(), runs.end());
     const auto isNear = [&](std::uint32_t edge) {
         const auto at = std::upper_bound(runs.begin(), runs.end(), std::make_pair(edge, ~0u));
@@ -200,7 +201,8 @@ bool CellField::build(const ChainLabels& labels, const glm::dvec3& lo, const glm
             for (int k = 0; k < 5; ++k) nodes[std::size_t(25 * i + 5 * j + k)] = lo + glm::dvec3(i, j, k) * spacing;
     double sampling = 0.0;
     const double sampleError =
-        labels.sumOver(far.data(), far.size(), lo, hi, nodes.data(), nodes.size(), kSampleTolerance, values_.data(), sampling);
+        labels.sumOver(far.data(), far.size(), lo, hi, nodes.data(), nodes.size(), kSampleTolerance,
+                       values_.data(), sampling);
     work_ += sampling;
     error_ = (interpolation + kLebesgue * kLebesgue * kLebesgue * sampleError) * (1.0 + 1e-9) + caps::kRoundingSlack;
     return error_ < limit;
@@ -223,7 +225,8 @@ double CellField::rest(const glm::vec3& q) const {
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
             const double* row = values_.data() + 25 * (first[0] + i) + 5 * (first[1] + j) + first[2];
-            sum += weight[0][i] * weight[1][j] * (weight[2][0] * row[0] + weight[2][1] * row[1] + weight[2][2] * row[2]);
+            const double along = weight[2][0] * row[0] + weight[2][1] * row[1] + weight[2][2] * row[2];
+            sum += weight[0][i] * weight[1][j] * along;
         }
     return sum;
 }

@@ -56,7 +56,8 @@ ChainLabels::ChainLabels(const CapLoops& loops) : loops_(loops) {
     loopStarts_.push_back(std::uint32_t(chainEdges_.size() / 2));
     lengthBefore_.assign(chainEdges_.size() / 2 + 1, 0.0);
     for (std::size_t k = 0; k + 1 < lengthBefore_.size(); ++k)
-        lengthBefore_[k + 1] = lengthBefore_[k] + glm::length(glm::dvec3(chainEdges_[2 * k + 1]) - glm::dvec3(chainEdges_[2 * k]));
+        lengthBefore_[k + 1] =
+            lengthBefore_[k] + glm::length(glm::dvec3(chainEdges_[2 * k + 1]) - glm::dvec3(chainEdges_[2 * k]));
 }
 
 double ChainLabels::lengthOf(const ChainNode& n) const {

@@ -59,10 +59,11 @@
 //        loops few, else NoRange.
 //  3. NoRange or Planned, once many queries landed: the fine cell (half as
 //     wide), where it holds a range or a plan. Before that, once a cell's
-//     queries past its range spent as much work as a field costs: its
-//     field (CellField; the fine cell's in a busy coarse cell), the chain
-//     nodes near its column refined (as 7) with the rest's interpolated
-//     value and bound as the far range; where that does not decide, on.
+//     queries past its range spent twice what a field costs, and where it
+//     halves their work: its field (CellField; the fine cell's in a busy
+//     coarse cell), the chain nodes near its column refined (as 7) with
+//     the rest's interpolated value and bound as the far range; where
+//     that does not decide, on.
 //  4. WindingRange clear of 1/2: its label, no integer term asked; a cell
 //     by a closed count, for a query apart from its count: as CappedRange.
 //  5. BoundaryRange: winding + [lo, hi]; CappedRange: winding + C_caps(q)

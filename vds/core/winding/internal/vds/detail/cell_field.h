@@ -8,10 +8,12 @@
 // angle a_e is the solid angle of the strip swept from e towards +axis,
 // over 4 pi, harmonic off that strip. Call an edge near where its
 // projection along the axis comes within `margin` of the cell's footprint
-// (at any height), and a chain node near where its ball's does; the cut
-// of the chain tree into nodes far and the fewest near ones (each down to
-// kDirectEdges edges) splits the edges. Every far edge's strip keeps `margin` away from the
-// cell, so S = sum of a_e over the far edges is harmonic over the cell, and
+// (at any height), and a chain node near where its ball's does: the
+// tree is cut into far nodes and near ones (whole subtrees of near edges,
+// split where no query in the cell could take them, as
+// ChainLabels::frontier splits). Every far edge's strip keeps `margin`
+// away from the cell, so S = sum of a_e over the far edges is harmonic
+// over the cell, and
 // B(q) = the near nodes' per-edge sum at q + S(q) exactly.
 //
 // S's derivatives. A strip's solid angle has as gradient the Biot-Savart
@@ -26,20 +28,21 @@
 //
 //     |D^k S [h, ..., h]| <= sqrt 2 k! / (4 pi) * integral of |dx| / r^(k+1)
 //
-// over those curves: an edge at distance d adds at most length / d^(k+1),
-// a ray at distance rho across the axis at most the integral over a whole
-// line, pi / (2 rho^3) for k = 3 and pi / rho for the gradient (k = 1,
-// there without the sqrt 2: the Biot-Savart integrand has norm 1 / r^2).
+// over those curves: an edge at distance d adds at most length / d^(k+1)
+// (a far node small against its distance, its length / d^(k+1) with d
+// its ball's), a ray at distance rho across the axis at most the
+// integral over a whole line, pi / (2 rho^3) for k = 3.
 //
 // The interpolation. S is sampled at the 5 x 5 x 5 nodes of the cell
-// (widened against the rounding of a point's cell index), a quarter of
-// its side s apart, and taken in each octant by the tensor product of
-// quadratic interpolation along each axis at its 3 x 3 x 3 nodes. Along one axis quadratic interpolation at -s, 0, s
-// errs by at most max|f'''| / 6 * max|x (x^2 - s^2)| = 0.0642 s^3 max|f'''|,
+// (widened against the rounding of a point's cell index), s apart (a
+// quarter of its side), and taken in each octant by the tensor product
+// of quadratic interpolation along each axis at its 3 x 3 x 3 nodes.
+// Along one axis quadratic interpolation at -s, 0, s errs by at most
+// max|f'''| / 6 * max|x (x^2 - s^2)| = 0.0642 s^3 max|f'''|,
 // and its Lebesgue constant is 5/4; the tensor product's error is at most
 // e_1 + (5/4) e_2 + (5/4)^2 e_3 (f - IxIyIz f = (f - Ix f) + Ix (f - Iy f)
 // + IxIy (f - Iz f)), and the samples' own errors (the chain tree's bound,
-// ChainLabels::sum) add (5/4)^3 times their largest.
+// ChainLabels::sumOver) add (5/4)^3 times their largest.
 #pragma once
 
 #include <array>
