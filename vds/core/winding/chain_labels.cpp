@@ -205,7 +205,7 @@ int ChainLabels::axisIndex() const { return loops_.axisIndex(); }
 double ChainLabels::sumOver(const std::uint32_t* roots, std::size_t rootCount, const glm::dvec3& lo,
                            const glm::dvec3& hi, const glm::dvec3* points, std::size_t count, double tolerance,
                            double* out, double& work) const {
-    const int a = loops_.axisIndex(), s = (a + 1) % 3, t = (a + 2) % 3;
+    const int a = loops_.axisIndex();
     // One cut for every point of the box: a node is taken where no ray
     // from the box towards -axis meets its ball (its footprint clear of
     // the box's, or the box below it) and its bound at the box's nearest
@@ -246,8 +246,6 @@ double ChainLabels::sumOver(const std::uint32_t* roots, std::size_t rootCount, c
             }
             return true;
         });
-    (void)s;
-    (void)t;
     work = double(count) * double(taken.size() + edges.size() / 2);
     // Node by node over the points (the inner loop has no branch).
     std::fill(out, out + count, 0.0);
