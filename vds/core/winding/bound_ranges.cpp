@@ -392,6 +392,7 @@ bool BoundRanges::insideBy(const glm::vec3& q, const Winding& windingAt, bool ap
         // their own (a margin and octants half as wide: fewer near nodes).
         route.charge[0] = &coarse_.spent[cell];
         if (fine) {
+            busy(fine_, fineCell); // its visits, for the work per visit fieldOf weighs
             route.charge[1] = &fine_.spent[fineCell];
             route.field = fieldOf(fine_, fineCell, CellState::NoRange);
         }
